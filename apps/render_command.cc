@@ -1,0 +1,117 @@
+// splam render: draw a world, a log, trajectories, or any of them over each other.
+#include <fmt/core.h>
+
+#include "apps/commands.h"
+#include "apps/run_picture.h"
+#include "io/carmen.h"
+#include "io/simulation_log.h"
+#include "io/world_file.h"
+#include "kernel/angle.h"
+
+namespace splam::apps {
+namespace {
+
+struct RenderArgs {
+  std::string world;
+  std::string log;
+  std::vector<std::string> trajectories;
+  std::vector<std::string> out = {"render.svg", "render.png"};
+  std::string title;
+  int scan_every = 10;
+  double resolution_m_per_px = 0.05;
+  double pixels_per_meter = 40.0;
+  double flaser_step_deg = 0.0;
+  double flaser_max_range_m = 81.8;
+};
+
+int RunRender(const RenderArgs& args) {
+  if (args.world.empty() && args.log.empty() && args.trajectories.empty()) {
+    fmt::print(stderr, "splam render: give at least one of --world, --log, --trajectory\n");
+    return kExitBadInput;
+  }
+  RunPicture picture;
+  picture.title = args.title;
+  picture.pixels_per_meter = args.pixels_per_meter;
+  std::optional<sim::World> world;
+  if (!args.world.empty()) {
+    io::FloorPlanOptions floor_plan;
+    floor_plan.resolution_m_per_px = args.resolution_m_per_px;
+    io::Result<sim::World> read = io::LoadWorld(args.world, floor_plan);
+    if (!read.ok()) {
+      fmt::print(stderr, "splam render: {}\n", read.error);
+      return kExitBadInput;
+    }
+    world = std::move(read.value);
+    picture.world = &*world;
+    if (picture.title.empty()) picture.title = world->name;
+  }
+  if (!args.log.empty()) {
+    io::CarmenReadOptions options;
+    options.flaser_angular_step_rad = kernel::DegToRad(args.flaser_step_deg);
+    options.flaser_max_range_m = args.flaser_max_range_m;
+    const io::CarmenReadResult read = io::ReadCarmenLog(args.log, options);
+    if (!read.log.ok()) {
+      fmt::print(stderr, "splam render: {}\n", read.log.error);
+      return kExitBadInput;
+    }
+    const io::CarmenLog& log = *read.log.value;
+    picture.truth = io::TrueTrajectory(log);
+    picture.odometry = io::OdometryTrajectory(log);
+    picture.scan_points = ScanPointsInWorld(log, args.scan_every);
+    if (picture.title.empty()) picture.title = args.log;
+    fmt::print("{}: {} scans, {} odometry poses, {} true poses\n", args.log, log.Lasers().size(),
+               picture.odometry.size(), picture.truth.size());
+  }
+  for (const std::string& path : args.trajectories) {
+    io::Result<io::Trajectory> read = io::ReadTrajectory(path);
+    if (!read.ok()) {
+      fmt::print(stderr, "splam render: {}\n", read.error);
+      return kExitBadInput;
+    }
+    picture.estimates.emplace_back(std::filesystem::path(path).stem().string(),
+                                   std::move(*read.value));
+  }
+  if (std::string error = SaveRunPicture(picture, args.out); !error.empty()) {
+    fmt::print(stderr, "splam render: {}\n", error);
+    return kExitBadInput;
+  }
+  for (const std::string& path : args.out) fmt::print("wrote {}\n", path);
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddRenderCommand(CLI::App* app, int* exit_code) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app->add_subcommand(
+      "render", "Draw a world, a CARMEN log and trajectories to SVG and/or PNG.");
+  cmd->add_option("--world", args->world,
+                  "Built-in world name, YAML world file or floor-plan image");
+  cmd->add_option("--log", args->log,
+                  "CARMEN log: ground truth (TRUEPOS), odometry and scan points");
+  cmd->add_option("--trajectory", args->trajectories,
+                  "Trajectory file(s) 'time x y theta' to draw as estimates");
+  cmd->add_option("--out", args->out, "Output picture(s), .svg or .png")->capture_default_str();
+  cmd->add_option("--title", args->title, "Title above the picture");
+  cmd->add_option("--scan-every", args->scan_every, "Draw the points of every N-th scan")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--resolution", args->resolution_m_per_px,
+                  "Metres per pixel of a floor-plan image world")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--pixels-per-meter", args->pixels_per_meter, "Picture scale")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--flaser-step-deg", args->flaser_step_deg,
+                  "FLASER beam spacing in degrees (0: 180/n for even n, 180/(n-1) for odd n)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--flaser-max-range", args->flaser_max_range_m,
+                  "FLASER readings at or above this are no-returns")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->callback([args, exit_code] { *exit_code = RunRender(*args); });
+}
+
+}  // namespace splam::apps

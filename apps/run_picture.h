@@ -1,0 +1,36 @@
+#ifndef SPLAM_APPS_RUN_PICTURE_H_
+#define SPLAM_APPS_RUN_PICTURE_H_
+
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/carmen.h"
+#include "io/trajectory.h"
+#include "sim/world.h"
+
+namespace splam::apps {
+
+// Everything one picture of a run can show; empty parts are left out.
+struct RunPicture {
+  std::string title;
+  const sim::World* world = nullptr;
+  io::Trajectory truth;
+  io::Trajectory odometry;
+  std::vector<std::pair<std::string, io::Trajectory>> estimates;  // legend label, trajectory
+  std::vector<Eigen::Vector2d> scan_points;                       // world frame
+  double robot_radius_m = 0.0;  // > 0 draws the robot at the last true (else odometric) pose
+  double pixels_per_meter = 40.0;
+};
+
+// Hit points of every `every`-th scan of the log, placed with the true pose of the same time
+// when the log has ground truth (TRUEPOS), else with the scan's own odometric laser pose.
+std::vector<Eigen::Vector2d> ScanPointsInWorld(const io::CarmenLog& log, int every);
+
+// Draws the picture into each path (.svg or .png); empty on success, else the first error.
+std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::string>& paths);
+
+}  // namespace splam::apps
+
+#endif  // SPLAM_APPS_RUN_PICTURE_H_

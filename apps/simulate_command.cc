@@ -1,0 +1,202 @@
+// splam simulate: drive the simulated robot along a route and record what it sensed.
+#include <fmt/core.h>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "apps/commands.h"
+#include "apps/run_picture.h"
+#include "io/simulation_log.h"
+#include "io/world_file.h"
+#include "kernel/angle.h"
+#include "sim/ray_caster.h"
+#include "sim/simulator.h"
+
+namespace splam::apps {
+namespace {
+
+struct SimulateArgs {
+  std::string world = "complex";
+  std::string route = "built-in";
+  std::uint64_t seed = 1;
+  std::string out;
+  std::string laser = "urg04lx";
+  bool sonar = false;
+  double odometry_noise_scale = 1.0;
+  double resolution_m_per_px = 0.05;
+  int max_steps = 20000;
+  int scan_every = 5;
+};
+
+int RunSimulate(const SimulateArgs& args) {
+  io::FloorPlanOptions floor_plan;
+  floor_plan.resolution_m_per_px = args.resolution_m_per_px;
+  io::Result<sim::World> world = io::LoadWorld(args.world, floor_plan);
+  if (!world.ok()) {
+    fmt::print(stderr, "splam simulate: {}\n", world.error);
+    return kExitBadInput;
+  }
+  if (std::string problem = world.value->Validate(); !problem.empty()) {
+    fmt::print(stderr, "splam simulate: {}: {}\n", args.world, problem);
+    return kExitBadInput;
+  }
+
+  io::Route route;
+  if (args.route == "built-in") {
+    if (!world.value->start || world.value->route.empty()) {
+      fmt::print(stderr, "splam simulate: world '{}' has no built-in route; pass --route FILE\n",
+                 args.world);
+      return kExitBadInput;
+    }
+    route.start = *world.value->start;
+    route.waypoints = world.value->route;
+  } else {
+    io::Result<io::Route> read = io::ReadRoute(args.route);
+    if (!read.ok()) {
+      fmt::print(stderr, "splam simulate: {}\n", read.error);
+      return kExitBadInput;
+    }
+    route = *read.value;
+  }
+
+  sim::SimulatorOptions options;
+  if (args.laser == "urg04lx")
+    options.laser = sim::LaserOptions::Urg04lx();
+  else if (args.laser == "lms200")
+    options.laser = sim::LaserOptions::Lms200(0.5);
+  else
+    options.laser = sim::LaserOptions::Lms200(1.0);
+  options.enable_sonar = args.sonar;
+  options.odometry.forward_per_m *= args.odometry_noise_scale;
+  options.odometry.lateral_per_m *= args.odometry_noise_scale;
+  options.odometry.rotation_per_rad *= args.odometry_noise_scale;
+  options.odometry.rotation_per_m *= args.odometry_noise_scale;
+  sim::RouteOptions route_options;
+  route_options.max_steps = args.max_steps;
+  for (const std::string& problem : {options.Validate(), route_options.Validate()}) {
+    if (!problem.empty()) {
+      fmt::print(stderr, "splam simulate: {}\n", problem);
+      return kExitBadInput;
+    }
+  }
+
+  const sim::RayCaster caster(*world.value);
+  sim::Simulator simulator(caster, options, route.start, args.seed);
+  if (!simulator.IsFree(route.start)) {
+    fmt::print(stderr,
+               "splam simulate: the start pose ({}, {}) collides with an obstacle of '{}'\n",
+               route.start.x(), route.start.y(), args.world);
+    return kExitBadInput;
+  }
+  const sim::RouteRun run = sim::FollowRoute(&simulator, route.waypoints, route_options);
+
+  // Write everything, also after an early stop.
+  const std::string out = args.out.empty() ? "runs/simulate-" + world.value->name : args.out;
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec) {
+    fmt::print(stderr, "splam simulate: cannot create {}: {}\n", out, ec.message());
+    return kExitBadInput;
+  }
+  const std::vector<std::string> comments = {
+      " splam simulate: world " + world.value->name + ", laser " + options.laser.model + ", seed " +
+          std::to_string(args.seed),
+      " ODOM: noisy odometry; TRUEPOS: ground truth; ROBOTLASER1: scans (odometric poses)"};
+  const io::CarmenLog log = io::MakeCarmenLog(run.frames, options, comments);
+  const io::Trajectory truth = io::TrueTrajectory(log);
+  const io::Trajectory odometry = io::OdometryTrajectory(log);
+  RunPicture picture;
+  picture.title = fmt::format("{} | {} | seed {} | {} scans, {:.1f} m", world.value->name,
+                              options.laser.model, args.seed, run.frames.size(), run.distance_m);
+  picture.world = &*world.value;
+  picture.truth = truth;
+  picture.odometry = odometry;
+  picture.scan_points = ScanPointsInWorld(log, args.scan_every);
+  picture.robot_radius_m = options.robot.radius_m;
+
+  const kernel::Pose2 drift = run.frames.back().true_pose.Between(run.frames.back().odometry_pose);
+  nlohmann::ordered_json summary;
+  summary["world"] = world.value->name;
+  summary["laser"] = options.laser.model;
+  summary["seed"] = args.seed;
+  summary["completed"] = run.completed;
+  summary["message"] = run.message;
+  summary["waypoints_reached"] = run.waypoints_reached;
+  summary["waypoints"] = route.waypoints.size();
+  summary["scans"] = run.frames.size();
+  summary["duration_s"] = run.frames.back().time_s;
+  summary["distance_m"] = run.distance_m;
+  summary["final_odometry_error"] = {{"position_m", drift.translation().norm()},
+                                     {"heading_rad", std::abs(drift.theta())}};
+  summary["files"] = {"log.clf", "truth.txt", "odometry.txt", "world.yaml", "run.svg", "run.png"};
+
+  std::vector<std::string> errors = {
+      io::WriteCarmenLog(out + "/log.clf", log),
+      io::WriteTrajectory(out + "/truth.txt", truth, "ground truth of " + world.value->name),
+      io::WriteTrajectory(out + "/odometry.txt", odometry, "odometry of " + world.value->name),
+      io::WriteWorldFile(out + "/world.yaml", *world.value),
+      SaveRunPicture(picture, {out + "/run.svg", out + "/run.png"}),
+  };
+  std::ofstream(out + "/summary.json") << summary.dump(2) << "\n";
+  for (const std::string& e : errors) {
+    if (!e.empty()) {
+      fmt::print(stderr, "splam simulate: {}\n", e);
+      return kExitBadInput;
+    }
+  }
+  fmt::print(
+      "{} scans over {:.1f} s, {:.1f} m travelled, {}/{} waypoints; odometry drift at the end "
+      "{:.3f} m, "
+      "{:.2f} deg\nwrote {}/{{log.clf, truth.txt, odometry.txt, world.yaml, run.svg, run.png, "
+      "summary.json}}\n",
+      run.frames.size(), run.frames.back().time_s, run.distance_m, run.waypoints_reached,
+      route.waypoints.size(), drift.translation().norm(), kernel::RadToDeg(std::abs(drift.theta())),
+      out);
+  if (!run.completed) {
+    fmt::print(stderr, "splam simulate: the route was not completed: {}\n", run.message);
+    return kExitIncomplete;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddSimulateCommand(CLI::App* app, int* exit_code) {
+  auto args = std::make_shared<SimulateArgs>();
+  CLI::App* cmd = app->add_subcommand("simulate",
+                                      "Drive the simulated robot along a route; write a CARMEN log "
+                                      "with ground truth, trajectories and "
+                                      "pictures into --out.");
+  cmd->add_option(
+         "--world", args->world,
+         "Built-in world (corridor, office, complex), a YAML world file or a floor-plan image")
+      ->capture_default_str();
+  cmd->add_option("--route", args->route,
+                  "'built-in' (the world's own route) or a route file: lines 'x y', the first may "
+                  "be 'x y theta'")
+      ->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Seed of all noise; the same seed gives the same files")
+      ->capture_default_str();
+  cmd->add_option("--out", args->out, "Output directory (default runs/simulate-<world>)");
+  cmd->add_option("--laser", args->laser, "Laser model")
+      ->check(CLI::IsMember({"urg04lx", "lms200", "lms200-1deg"}))
+      ->capture_default_str();
+  cmd->add_flag("--sonar", args->sonar, "Also simulate and log the 16-sonar ring");
+  cmd->add_option("--odometry-noise", args->odometry_noise_scale,
+                  "Scale of the default odometry noise (0 = perfect odometry)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--resolution", args->resolution_m_per_px,
+                  "Metres per pixel of a floor-plan image world")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--max-steps", args->max_steps, "Cap on 0.1 s time steps")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--scan-every", args->scan_every, "Draw the points of every N-th scan")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->callback([args, exit_code] { *exit_code = RunSimulate(*args); });
+}
+
+}  // namespace splam::apps

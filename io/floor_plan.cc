@@ -1,0 +1,84 @@
+#include "io/floor_plan.h"
+
+#include <cmath>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace splam::io {
+
+std::string FloorPlanOptions::Validate() const {
+  if (!(resolution_m_per_px > 0.0) || !std::isfinite(resolution_m_per_px)) {
+    return "floor-plan resolution must be a positive number of metres per pixel";
+  }
+  if (dark_threshold < 1 || dark_threshold > 255) return "dark threshold must be in 1..255";
+  if (!origin_m.allFinite()) return "floor-plan origin must be finite";
+  if (!(simplify_tolerance_px >= 0.0)) return "simplify tolerance must be >= 0";
+  return "";
+}
+
+Result<sim::World> ReadFloorPlan(const std::string& path, const FloorPlanOptions& options) {
+  using R = Result<sim::World>;
+  if (std::string problem = options.Validate(); !problem.empty())
+    return R::Fail(FileError(path, 0, problem));
+  if (!std::filesystem::is_regular_file(path))
+    return R::Fail(FileError(path, 0, "no such image file"));
+  cv::Mat grey;
+  try {
+    grey = cv::imread(path, cv::IMREAD_GRAYSCALE);
+  } catch (const cv::Exception& e) {
+    return R::Fail(FileError(path, 0, std::string("cannot decode image: ") + e.what()));
+  }
+  if (grey.empty())
+    return R::Fail(FileError(path, 0, "cannot decode image (not a PNG/JPEG/... file?)"));
+
+  cv::Mat dark;
+  cv::threshold(grey, dark, options.dark_threshold - 1, 255, cv::THRESH_BINARY_INV);
+  // A one-pixel white frame so that regions touching the border still get closed outlines.
+  cv::copyMakeBorder(dark, dark, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(dark, contours, cv::RETR_LIST, cv::CHAIN_APPROX_NONE);
+
+  sim::World world;
+  world.name = std::filesystem::path(path).stem().string();
+  const double res = options.resolution_m_per_px;
+  const int rows = grey.rows;
+  for (const auto& contour : contours) {
+    std::vector<cv::Point> simplified;
+    cv::approxPolyDP(contour, simplified, options.simplify_tolerance_px, true);
+    sim::Polyline polygon;
+    polygon.closed = true;
+    for (const cv::Point& p : simplified) {
+      // Pixel centres (minus the frame offset); image rows grow downwards, y grows upwards.
+      const Eigen::Vector2d v(options.origin_m.x() + (p.x - 1 + 0.5) * res,
+                              options.origin_m.y() + (rows - (p.y - 1) - 0.5) * res);
+      if (polygon.vertices.empty() || polygon.vertices.back() != v) polygon.vertices.push_back(v);
+    }
+    if (polygon.vertices.size() >= 2 && polygon.vertices.front() == polygon.vertices.back()) {
+      polygon.vertices.pop_back();
+    }
+    if (polygon.vertices.size() < 3) {
+      // A single pixel or a one-pixel line: keep it as an open wall, or as a tiny square.
+      if (polygon.vertices.size() == 2) {
+        world.obstacles.push_back(sim::Polyline{polygon.vertices, false});
+      } else if (polygon.vertices.size() == 1) {
+        const Eigen::Vector2d c = polygon.vertices[0];
+        const double h = 0.5 * res;
+        world.obstacles.push_back(
+            sim::Polyline{{c + Eigen::Vector2d(-h, -h), c + Eigen::Vector2d(h, -h),
+                           c + Eigen::Vector2d(h, h), c + Eigen::Vector2d(-h, h)},
+                          true});
+      }
+      continue;
+    }
+    world.obstacles.push_back(std::move(polygon));
+  }
+  if (world.obstacles.empty()) {
+    return R::Fail(FileError(path, 0,
+                             "no dark pixels (below grey level " +
+                                 std::to_string(options.dark_threshold) + "): the world is empty"));
+  }
+  return R::Ok(std::move(world));
+}
+
+}  // namespace splam::io

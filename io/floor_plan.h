@@ -1,0 +1,30 @@
+#ifndef SPLAM_IO_FLOOR_PLAN_H_
+#define SPLAM_IO_FLOOR_PLAN_H_
+
+#include <Eigen/Core>
+#include <string>
+
+#include "io/result.h"
+#include "sim/world.h"
+
+namespace splam::io {
+
+struct FloorPlanOptions {
+  double resolution_m_per_px = 0.05;  // size of one pixel
+  int dark_threshold = 128;           // grey level (0-255) below which a pixel is an obstacle
+  // World coordinates of the bottom-left corner of the image (x to the right, y up).
+  Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();
+  // Douglas-Peucker tolerance when turning outlines into polygons, pixels.
+  double simplify_tolerance_px = 0.7;
+
+  std::string Validate() const;
+};
+
+// A world from a floor-plan image (any format OpenCV reads, PNG in practice): every connected
+// region of dark pixels becomes a polygon obstacle tracing its outline (holes included), so the
+// walls are as thick as drawn. Fails on unreadable images and images without dark pixels.
+Result<sim::World> ReadFloorPlan(const std::string& path, const FloorPlanOptions& options);
+
+}  // namespace splam::io
+
+#endif  // SPLAM_IO_FLOOR_PLAN_H_

@@ -1,0 +1,273 @@
+#include "io/render.h"
+
+#include <cairo-svg.h>
+#include <cairo.h>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <filesystem>
+
+#include "io/result.h"
+
+namespace splam::io {
+namespace {
+
+constexpr double kTitleBand = 28.0;   // px above the map when there is a title
+constexpr double kFooterBand = 30.0;  // px below the map for the scale bar and legend
+constexpr const char* kFont = "DejaVu Sans";
+
+struct LegendEntry {
+  std::string label;
+  Rgb color;
+  bool is_points;
+};
+
+void SetColor(cairo_t* cr, Rgb c, double alpha = 1.0) {
+  cairo_set_source_rgba(cr, c.r, c.g, c.b, alpha);
+}
+
+// 1, 2 or 5 times a power of ten, close to `target`.
+double NiceLength(double target) {
+  const double p = std::pow(10.0, std::floor(std::log10(target)));
+  for (double m : {5.0, 2.0, 1.0}) {
+    if (m * p <= target) return m * p;
+  }
+  return p;
+}
+
+}  // namespace
+
+std::string FigureOptions::Validate() const {
+  if (!(pixels_per_meter > 0.0) || !std::isfinite(pixels_per_meter))
+    return "pixels_per_meter must be positive";
+  if (!(margin_m >= 0.0)) return "margin_m must be >= 0";
+  if (max_pixels < 100) return "max_pixels must be at least 100";
+  return "";
+}
+
+struct Figure::Impl {
+  kernel::Box2 area;
+  FigureOptions options;
+  double ppm = 1.0;
+  double width = 0.0, map_height = 0.0;
+  cairo_surface_t* recording = nullptr;
+  cairo_t* cr = nullptr;
+  std::vector<LegendEntry> legend;
+
+  Eigen::Vector2d ToPixel(const Eigen::Vector2d& p) const {
+    return {(p.x() - area.min.x() + options.margin_m) * ppm,
+            (area.max.y() - p.y() + options.margin_m) * ppm};
+  }
+  void AddLegend(const std::string& label, Rgb color, bool is_points) {
+    if (label.empty()) return;
+    for (const LegendEntry& e : legend) {
+      if (e.label == label) return;
+    }
+    legend.push_back({label, color, is_points});
+  }
+  void Paint(cairo_t* target) const;
+};
+
+Figure::Figure(const kernel::Box2& area, const FigureOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  assert(!area.IsEmpty() && options.Validate().empty());
+  impl_->area = area;
+  impl_->options = options;
+  const Eigen::Vector2d size = area.Size() + Eigen::Vector2d::Constant(2.0 * options.margin_m);
+  impl_->ppm =
+      std::min(options.pixels_per_meter, options.max_pixels / std::max(size.maxCoeff(), 1e-9));
+  impl_->width = std::ceil(size.x() * impl_->ppm);
+  impl_->map_height = std::ceil(size.y() * impl_->ppm);
+  impl_->recording = cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, nullptr);
+  impl_->cr = cairo_create(impl_->recording);
+  cairo_set_line_join(impl_->cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(impl_->cr, CAIRO_LINE_CAP_ROUND);
+}
+
+Figure::~Figure() {
+  cairo_destroy(impl_->cr);
+  cairo_surface_destroy(impl_->recording);
+}
+
+void Figure::DrawWorld(const sim::World& world, Rgb color, const std::string& legend) {
+  cairo_t* cr = impl_->cr;
+  for (std::size_t i = 0; i < world.obstacles.size(); ++i) {
+    sim::Primitives p;
+    world.AppendPrimitives(i, &p);
+    // Chained segments and Bezier pieces continue the current sub-path, so closed outlines fill.
+    for (const auto& s : p.segments) {
+      const Eigen::Vector2d a = impl_->ToPixel(s.a), b = impl_->ToPixel(s.b);
+      if (!cairo_has_current_point(cr)) cairo_move_to(cr, a.x(), a.y());
+      cairo_line_to(cr, b.x(), b.y());
+    }
+    for (const auto& b : p.beziers) {
+      const Eigen::Vector2d q0 = impl_->ToPixel(b.p[0]), q1 = impl_->ToPixel(b.p[1]),
+                            q2 = impl_->ToPixel(b.p[2]), q3 = impl_->ToPixel(b.p[3]);
+      if (!cairo_has_current_point(cr)) cairo_move_to(cr, q0.x(), q0.y());
+      cairo_curve_to(cr, q1.x(), q1.y(), q2.x(), q2.y(), q3.x(), q3.y());
+    }
+    for (const auto& c : p.circles) {
+      const Eigen::Vector2d q = impl_->ToPixel(c.center);
+      cairo_new_sub_path(cr);
+      cairo_arc(cr, q.x(), q.y(), c.radius * impl_->ppm, 0.0, 2.0 * M_PI);
+    }
+    for (const auto& e : p.ellipses) {
+      const Eigen::Vector2d q = impl_->ToPixel(e.center);
+      cairo_save(cr);
+      cairo_translate(cr, q.x(), q.y());
+      cairo_rotate(cr, -e.angle_rad);  // pixel y points down
+      cairo_scale(cr, e.radius_x * impl_->ppm, e.radius_y * impl_->ppm);
+      cairo_new_sub_path(cr);
+      cairo_arc(cr, 0.0, 0.0, 1.0, 0.0, 2.0 * M_PI);
+      cairo_restore(cr);
+    }
+    const bool closed = std::visit(
+        [](const auto& shape) {
+          if constexpr (requires { shape.closed; })
+            return shape.closed;
+          else
+            return true;
+        },
+        world.obstacles[i]);
+    if (closed) {
+      cairo_close_path(cr);
+      SetColor(cr, color, 0.15);
+      cairo_fill_preserve(cr);
+    }
+    SetColor(cr, color);
+    cairo_set_line_width(cr, 2.0);
+    cairo_stroke(cr);
+  }
+  impl_->AddLegend(legend, color, false);
+}
+
+void Figure::DrawPath(const std::vector<kernel::Pose2>& poses, Rgb color, double width_px,
+                      const std::string& legend) {
+  if (poses.empty()) return;
+  cairo_t* cr = impl_->cr;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const Eigen::Vector2d q = impl_->ToPixel(poses[i].translation());
+    if (i == 0)
+      cairo_move_to(cr, q.x(), q.y());
+    else
+      cairo_line_to(cr, q.x(), q.y());
+  }
+  SetColor(cr, color);
+  cairo_set_line_width(cr, width_px);
+  cairo_stroke(cr);
+  impl_->AddLegend(legend, color, false);
+}
+
+void Figure::DrawPoints(const std::vector<Eigen::Vector2d>& points, Rgb color, double radius_px,
+                        const std::string& legend) {
+  cairo_t* cr = impl_->cr;
+  for (const Eigen::Vector2d& p : points) {
+    const Eigen::Vector2d q = impl_->ToPixel(p);
+    cairo_rectangle(cr, q.x() - radius_px, q.y() - radius_px, 2 * radius_px, 2 * radius_px);
+  }
+  SetColor(cr, color, 0.6);
+  cairo_fill(cr);
+  impl_->AddLegend(legend, color, true);
+}
+
+void Figure::DrawRobot(const kernel::Pose2& pose, double radius_m, Rgb color) {
+  cairo_t* cr = impl_->cr;
+  const Eigen::Vector2d c = impl_->ToPixel(pose.translation());
+  const Eigen::Vector2d tip = impl_->ToPixel(pose * Eigen::Vector2d(radius_m, 0.0));
+  cairo_new_sub_path(cr);
+  cairo_arc(cr, c.x(), c.y(), radius_m * impl_->ppm, 0.0, 2.0 * M_PI);
+  cairo_move_to(cr, c.x(), c.y());
+  cairo_line_to(cr, tip.x(), tip.y());
+  SetColor(cr, color);
+  cairo_set_line_width(cr, 1.5);
+  cairo_stroke(cr);
+}
+
+void Figure::Impl::Paint(cairo_t* target) const {
+  const double top = options.title.empty() ? 0.0 : kTitleBand;
+  cairo_set_source_rgb(target, 1, 1, 1);
+  cairo_paint(target);
+  cairo_save(target);
+  cairo_rectangle(target, 0, top, width, map_height);
+  cairo_clip(target);
+  cairo_set_source_surface(target, recording, 0.0, top);
+  cairo_paint(target);
+  cairo_restore(target);
+
+  cairo_select_font_face(target, kFont, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  if (!options.title.empty()) {
+    cairo_set_font_size(target, 15.0);
+    cairo_set_source_rgb(target, 0, 0, 0);
+    cairo_move_to(target, 8.0, 19.0);
+    cairo_show_text(target, options.title.c_str());
+  }
+  // Scale bar, bottom left.
+  const double y = top + map_height + 12.0;
+  const double length_m = NiceLength(0.2 * width / ppm);
+  cairo_set_source_rgb(target, 0, 0, 0);
+  cairo_set_line_width(target, 2.0);
+  cairo_move_to(target, 8.0, y - 4.0);
+  cairo_line_to(target, 8.0, y);
+  cairo_line_to(target, 8.0 + length_m * ppm, y);
+  cairo_line_to(target, 8.0 + length_m * ppm, y - 4.0);
+  cairo_stroke(target);
+  cairo_set_font_size(target, 11.0);
+  char label[32];
+  std::snprintf(label, sizeof(label), "%g m", length_m);
+  cairo_move_to(target, 8.0, y + 13.0);
+  cairo_show_text(target, label);
+  // Legend, to the right of the scale bar.
+  double x = 24.0 + length_m * ppm;
+  for (const LegendEntry& e : legend) {
+    SetColor(target, e.color);
+    if (e.is_points) {
+      cairo_rectangle(target, x + 6.0, y - 3.0, 5.0, 5.0);
+      cairo_fill(target);
+    } else {
+      cairo_set_line_width(target, 2.5);
+      cairo_move_to(target, x, y);
+      cairo_line_to(target, x + 16.0, y);
+      cairo_stroke(target);
+    }
+    cairo_set_source_rgb(target, 0, 0, 0);
+    cairo_move_to(target, x + 20.0, y + 4.0);
+    cairo_show_text(target, e.label.c_str());
+    cairo_text_extents_t extents;
+    cairo_text_extents(target, e.label.c_str(), &extents);
+    x += 34.0 + extents.x_advance;
+  }
+}
+
+std::string Figure::Save(const std::string& path) const {
+  std::string ext = std::filesystem::path(path).extension().string();
+  const double height =
+      impl_->map_height + kFooterBand + (impl_->options.title.empty() ? 0.0 : kTitleBand);
+  cairo_surface_t* surface = nullptr;
+  if (ext == ".svg") {
+    surface = cairo_svg_surface_create(path.c_str(), impl_->width, height);
+  } else if (ext == ".png") {
+    surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(impl_->width),
+                                         static_cast<int>(std::ceil(height)));
+  } else {
+    return FileError(path, 0, "unknown picture format (use .svg or .png)");
+  }
+  cairo_t* cr = cairo_create(surface);
+  impl_->Paint(cr);
+  cairo_destroy(cr);
+  cairo_status_t status = CAIRO_STATUS_SUCCESS;
+  if (ext == ".png") {
+    status = cairo_surface_write_to_png(surface, path.c_str());
+  } else {
+    cairo_surface_finish(surface);
+    status = cairo_surface_status(surface);
+  }
+  cairo_surface_destroy(surface);
+  if (status != CAIRO_STATUS_SUCCESS) {
+    return FileError(path, 0,
+                     std::string("cannot write picture: ") + cairo_status_to_string(status));
+  }
+  return "";
+}
+
+}  // namespace splam::io

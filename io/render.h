@@ -1,0 +1,67 @@
+#ifndef SPLAM_IO_RENDER_H_
+#define SPLAM_IO_RENDER_H_
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "kernel/pose2.h"
+#include "kernel/shapes.h"
+#include "sim/world.h"
+
+namespace splam::io {
+
+struct Rgb {
+  double r = 0.0, g = 0.0, b = 0.0;
+};
+
+// The colours every splam picture uses for the same things.
+namespace palette {
+inline constexpr Rgb kWorld{0.15, 0.15, 0.15};
+inline constexpr Rgb kTrue{0.10, 0.35, 0.85};      // ground truth: blue
+inline constexpr Rgb kOdometry{0.85, 0.10, 0.65};  // odometry: magenta
+inline constexpr Rgb kEstimate{0.0, 0.0, 0.0};     // estimate: black
+inline constexpr Rgb kScan{0.95, 0.45, 0.05};      // laser points: orange
+}  // namespace palette
+
+struct FigureOptions {
+  double pixels_per_meter = 40.0;  // PNG resolution; SVG user units are the same pixels
+  double margin_m = 0.5;           // white space around the drawn area
+  std::string title;               // drawn above the map when not empty
+  int max_pixels = 4000;           // the scale shrinks so that neither side exceeds this
+
+  std::string Validate() const;
+};
+
+// A map-like picture in world coordinates (metres, y up) with a title, a legend and a scale
+// bar, saved as SVG or PNG. Drawing is recorded once and replayed into either format.
+class Figure {
+ public:
+  // `area` is the part of the world to show; it must not be empty.
+  Figure(const kernel::Box2& area, const FigureOptions& options = {});
+  ~Figure();
+  Figure(const Figure&) = delete;
+  Figure& operator=(const Figure&) = delete;
+
+  void DrawWorld(const sim::World& world, Rgb color = palette::kWorld,
+                 const std::string& legend = "world");
+  // A polyline through the poses' positions.
+  void DrawPath(const std::vector<kernel::Pose2>& poses, Rgb color, double width_px,
+                const std::string& legend);
+  void DrawPoints(const std::vector<Eigen::Vector2d>& points, Rgb color, double radius_px,
+                  const std::string& legend);
+  // The robot's disc and a heading tick.
+  void DrawRobot(const kernel::Pose2& pose, double radius_m, Rgb color);
+
+  // Writes path.svg or path.png by the extension; empty on success, else the error.
+  std::string Save(const std::string& path) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace splam::io
+
+#endif  // SPLAM_IO_RENDER_H_

@@ -1,0 +1,89 @@
+#include "io/trajectory.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "io/text.h"
+
+namespace splam::io {
+
+std::string ReadTextFile(const std::string& path, std::string* text) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return FileError(path, 0, "cannot open for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  *text = buffer.str();
+  return "";
+}
+
+std::string WriteTextFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) return FileError(path, 0, "cannot open for writing");
+  out << text;
+  return out ? "" : FileError(path, 0, "write failed");
+}
+
+Result<Trajectory> ParseTrajectory(const std::string& text, const std::string& name) {
+  Trajectory trajectory;
+  std::istringstream in(text);
+  std::string line;
+  int line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    const auto tokens = SplitTokens(line);
+    if (tokens.empty() || tokens[0].front() == '#') continue;
+    if (tokens.size() != 4) {
+      return Result<Trajectory>::Fail(
+          FileError(name, line_number,
+                    "expected 4 values 'time x y theta', found " + std::to_string(tokens.size())));
+    }
+    double v[4];
+    for (int i = 0; i < 4; ++i) {
+      const auto value = ParseDouble(tokens[i]);
+      if (!value || !std::isfinite(*value)) {
+        return Result<Trajectory>::Fail(FileError(
+            name, line_number, "'" + std::string(tokens[i]) + "' is not a finite number"));
+      }
+      v[i] = *value;
+    }
+    if (!trajectory.empty() && v[0] < trajectory.back().time_s) {
+      return Result<Trajectory>::Fail(FileError(name, line_number, "time goes backwards"));
+    }
+    trajectory.push_back({v[0], kernel::Pose2(v[1], v[2], v[3])});
+  }
+  return Result<Trajectory>::Ok(std::move(trajectory));
+}
+
+Result<Trajectory> ReadTrajectory(const std::string& path) {
+  std::string text;
+  if (std::string error = ReadTextFile(path, &text); !error.empty()) {
+    return Result<Trajectory>::Fail(error);
+  }
+  return ParseTrajectory(text, path);
+}
+
+std::string FormatTrajectory(const Trajectory& trajectory, const std::string& comment) {
+  std::string out;
+  if (!comment.empty()) out += "# " + comment + "\n";
+  out += "# time_s x_m y_m theta_rad\n";
+  for (const StampedPose& p : trajectory) {
+    out += FormatDouble(p.time_s) + " " + FormatDouble(p.pose.x()) + " " +
+           FormatDouble(p.pose.y()) + " " + FormatDouble(p.pose.theta()) + "\n";
+  }
+  return out;
+}
+
+std::string WriteTrajectory(const std::string& path, const Trajectory& trajectory,
+                            const std::string& comment) {
+  return WriteTextFile(path, FormatTrajectory(trajectory, comment));
+}
+
+std::vector<kernel::Pose2> Poses(const Trajectory& trajectory) {
+  std::vector<kernel::Pose2> poses;
+  poses.reserve(trajectory.size());
+  for (const StampedPose& p : trajectory) poses.push_back(p.pose);
+  return poses;
+}
+
+}  // namespace splam::io

@@ -1,0 +1,36 @@
+#ifndef SPLAM_IO_TRAJECTORY_H_
+#define SPLAM_IO_TRAJECTORY_H_
+
+#include <string>
+#include <vector>
+
+#include "io/result.h"
+#include "kernel/pose2.h"
+
+namespace splam::io {
+
+struct StampedPose {
+  double time_s = 0.0;
+  kernel::Pose2 pose;
+};
+using Trajectory = std::vector<StampedPose>;
+
+// Trajectory files: one pose per line, "time_s x_m y_m theta_rad", separated by white space;
+// '#' starts a comment line. Times must not decrease.
+Result<Trajectory> ReadTrajectory(const std::string& path);
+Result<Trajectory> ParseTrajectory(const std::string& text, const std::string& name);
+std::string FormatTrajectory(const Trajectory& trajectory, const std::string& comment = "");
+// Empty on success, else why the file could not be written.
+std::string WriteTrajectory(const std::string& path, const Trajectory& trajectory,
+                            const std::string& comment = "");
+
+std::vector<kernel::Pose2> Poses(const Trajectory& trajectory);
+
+// Reads a whole file into *text; empty on success, else "path: cannot open ...".
+std::string ReadTextFile(const std::string& path, std::string* text);
+// Writes text to a file; empty on success.
+std::string WriteTextFile(const std::string& path, const std::string& text);
+
+}  // namespace splam::io
+
+#endif  // SPLAM_IO_TRAJECTORY_H_

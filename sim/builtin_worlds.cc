@@ -1,0 +1,155 @@
+#include "sim/builtin_worlds.h"
+
+#include <cmath>
+
+#include "kernel/angle.h"
+
+namespace splam::sim {
+namespace {
+
+using V = Eigen::Vector2d;
+
+Polyline Wall(std::vector<V> vertices) { return {std::move(vertices), false}; }
+Polyline Polygon(std::vector<V> vertices) { return {std::move(vertices), true}; }
+Polyline Rectangle(double x0, double y0, double x1, double y1) {
+  return Polygon({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
+}
+
+World Corridor() {
+  World w;
+  w.name = "corridor";
+  // South wall (y = -1.2): a 1 m recess at x 3-4, a door at x 6-7 into a 3 m x 2 m room,
+  // a 2 m recess at x 10-12, a 3 m recess at x 15-18.
+  w.obstacles.push_back(Wall({{0, -1.2},
+                              {3, -1.2},
+                              {3, -1.5},
+                              {4, -1.5},
+                              {4, -1.2},
+                              {6, -1.2},
+                              {6, -3.2},
+                              {9, -3.2},
+                              {9, -1.2},
+                              {7, -1.2}}));
+  w.obstacles.push_back(Wall({{9, -1.2},
+                              {10, -1.2},
+                              {10, -1.5},
+                              {12, -1.5},
+                              {12, -1.2},
+                              {15, -1.2},
+                              {15, -1.6},
+                              {18, -1.6},
+                              {18, -1.2},
+                              {24, -1.2}}));
+  // North wall (y = +1.2): a 2 m recess at x 2-4, a door at x 8-9 into a 3 m x 2 m room,
+  // a 3 m recess at x 11-14, a 1 m recess at x 17-18.
+  w.obstacles.push_back(Wall({{0, 1.2},
+                              {2, 1.2},
+                              {2, 1.5},
+                              {4, 1.5},
+                              {4, 1.2},
+                              {8, 1.2},
+                              {8, 3.2},
+                              {11, 3.2},
+                              {11, 1.2},
+                              {9, 1.2}}));
+  w.obstacles.push_back(Wall({{11, 1.2},
+                              {11, 1.5},
+                              {14, 1.5},
+                              {14, 1.2},
+                              {17, 1.2},
+                              {17, 1.5},
+                              {18, 1.5},
+                              {18, 1.2},
+                              {24, 1.2}}));
+  // End walls.
+  w.obstacles.push_back(Wall({{0, -1.2}, {0, 1.2}}));
+  w.obstacles.push_back(Wall({{24, -1.2}, {24, 1.2}}));
+  // Straight run of 16 m started 2.7 deg off the corridor axis.
+  const double heading = kernel::DegToRad(2.7);
+  w.start = kernel::Pose2(1.0, -0.35, heading);
+  w.route = {V(1.0 + 16.0 * std::cos(heading), -0.35 + 16.0 * std::sin(heading))};
+  return w;
+}
+
+World Office() {
+  World w;
+  w.name = "office";
+  w.obstacles.push_back(Rectangle(0, 0, 16, 12));
+  // Corridor y 5-7. South side: three rooms with doors at x 2-2.9, 7-7.9, 13-13.9.
+  w.obstacles.push_back(Wall({{0, 5}, {2, 5}}));
+  w.obstacles.push_back(Wall({{2.9, 5}, {7, 5}}));
+  w.obstacles.push_back(Wall({{7.9, 5}, {13, 5}}));
+  w.obstacles.push_back(Wall({{13.9, 5}, {16, 5}}));
+  w.obstacles.push_back(Wall({{5, 0}, {5, 5}}));
+  w.obstacles.push_back(Wall({{10, 0}, {10, 5}}));
+  // North side: doors at x 3-3.9, 8-8.9, 13.5-14.4.
+  w.obstacles.push_back(Wall({{0, 7}, {3, 7}}));
+  w.obstacles.push_back(Wall({{3.9, 7}, {8, 7}}));
+  w.obstacles.push_back(Wall({{8.9, 7}, {13.5, 7}}));
+  w.obstacles.push_back(Wall({{14.4, 7}, {16, 7}}));
+  w.obstacles.push_back(Wall({{6, 7}, {6, 12}}));
+  w.obstacles.push_back(Wall({{11, 7}, {11, 12}}));
+  // Furniture: tables and cabinets.
+  w.obstacles.push_back(Rectangle(1.0, 1.0, 2.6, 1.8));
+  w.obstacles.push_back(Rectangle(6.5, 2.2, 8.5, 3.0));
+  w.obstacles.push_back(Rectangle(14.6, 0.4, 15.6, 2.0));
+  w.obstacles.push_back(Rectangle(1.5, 9.5, 3.5, 10.3));
+  w.obstacles.push_back(Rectangle(8.0, 10.8, 10.4, 11.6));
+  w.obstacles.push_back(Rectangle(12.5, 9.0, 13.7, 10.2));
+  w.start = kernel::Pose2(1.0, 6.0, 0.0);
+  w.route = {V(7.45, 6.0),  V(7.45, 4.0),  V(9.0, 4.0),   V(9.0, 1.2),   V(5.8, 1.2),
+             V(5.8, 4.0),   V(7.45, 4.0),  V(7.45, 6.0),  V(8.45, 6.0),  V(8.45, 8.5),
+             V(8.45, 9.8),  V(7.0, 9.8),   V(7.0, 8.2),   V(8.45, 8.2),  V(8.45, 6.0),
+             V(15.0, 6.0),  V(13.95, 6.0), V(13.95, 8.5), V(15.0, 9.5),  V(15.0, 11.0),
+             V(12.0, 11.0), V(12.0, 8.2),  V(13.95, 8.2), V(13.95, 6.0), V(2.0, 6.0)};
+  return w;
+}
+
+World Complex() {
+  World w;
+  w.name = "complex";
+  // Boundary: a straight south wall, a wavy spline east wall, a wavy spline north wall and a
+  // west wall with a rectangular alcove. Clamped splines end exactly at their end points, so the
+  // boundary is closed.
+  w.obstacles.push_back(Wall({{0, 0}, {20, 0}}));
+  w.obstacles.push_back(Spline{{{20, 0}, {21.2, 3}, {19.4, 7}, {21.3, 11}, {20, 15}}, false});
+  w.obstacles.push_back(
+      Spline{{{20, 15}, {16, 16.4}, {12, 14.0}, {8, 16.2}, {4, 14.4}, {0, 15}}, false});
+  w.obstacles.push_back(Wall({{0, 15}, {0, 9.5}, {-1.2, 9.5}, {-1.2, 6.5}, {0, 6.5}, {0, 0}}));
+  // Round pillars.
+  w.obstacles.push_back(kernel::Circle2{{5.0, 4.8}, 0.35});
+  w.obstacles.push_back(kernel::Circle2{{10.2, 3.6}, 0.3});
+  w.obstacles.push_back(kernel::Circle2{{14.6, 5.2}, 0.4});
+  w.obstacles.push_back(kernel::Circle2{{9.8, 11.6}, 0.3});
+  // An elliptical table.
+  w.obstacles.push_back(kernel::Ellipse2{{15.6, 10.6}, 1.3, 0.6, kernel::DegToRad(30)});
+  // Irregular smooth obstacles (closed splines).
+  w.obstacles.push_back(Spline{
+      {{2.6, 10.2}, {3.6, 9.4}, {5.0, 9.8}, {5.4, 11.2}, {4.4, 11.4}, {3.8, 12.2}, {2.6, 11.8}},
+      true});
+  w.obstacles.push_back(
+      Spline{{{16.4, 1.2}, {17.8, 1.0}, {18.4, 2.2}, {17.2, 3.0}, {16.6, 2.4}}, true});
+  // A free-standing S-shaped curved wall in the middle of the room.
+  w.obstacles.push_back(
+      Spline{{{7.0, 7.6}, {8.5, 9.2}, {10.5, 6.2}, {12.5, 8.8}, {13.6, 7.4}}, false});
+  // An irregular polygonal obstacle.
+  w.obstacles.push_back(Polygon({{11.8, 1.2}, {13.4, 1.0}, {13.8, 2.2}, {12.8, 2.9}, {11.6, 2.3}}));
+  w.start = kernel::Pose2(1.5, 2.0, 0.0);
+  w.route = {V(7.5, 2.0),   V(9.0, 5.2),   V(13.0, 6.3),  V(16.0, 6.6), V(18.3, 7.5),
+             V(18.3, 12.6), V(13.0, 12.8), V(12.2, 10.2), V(7.5, 10.6), V(6.0, 13.0),
+             V(1.5, 13.2),  V(1.2, 8.0),   V(2.5, 6.2),   V(1.5, 2.0)};
+  return w;
+}
+
+}  // namespace
+
+std::vector<std::string> BuiltinWorldNames() { return {"corridor", "office", "complex"}; }
+
+std::optional<World> BuiltinWorld(const std::string& name) {
+  if (name == "corridor") return Corridor();
+  if (name == "office") return Office();
+  if (name == "complex") return Complex();
+  return std::nullopt;
+}
+
+}  // namespace splam::sim

@@ -1,0 +1,25 @@
+#ifndef SPLAM_SIM_BUILTIN_WORLDS_H_
+#define SPLAM_SIM_BUILTIN_WORLDS_H_
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sim/world.h"
+
+namespace splam::sim {
+
+// Names of the worlds compiled into splam: "corridor", "office", "complex".
+std::vector<std::string> BuiltinWorldNames();
+
+// The built-in world of that name, with its start pose and default route; nullopt if unknown.
+//  - corridor: a straight 24 m x 2.4 m corridor with recesses and doors 1, 2 and 3 m wide,
+//    closed at both ends; route: a straight run started 2.7 deg off the axis (paper 001 §6).
+//  - office: 16 m x 12 m, six rooms off a central corridor through 0.9 m doors, tables.
+//  - complex: about 20 m x 15 m with curved walls, round pillars, an ellipse, irregular smooth
+//    obstacles and a free-standing curved wall (the environments of papers 000 and 003).
+std::optional<World> BuiltinWorld(const std::string& name);
+
+}  // namespace splam::sim
+
+#endif  // SPLAM_SIM_BUILTIN_WORLDS_H_

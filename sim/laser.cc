@@ -1,0 +1,88 @@
+#include "sim/laser.h"
+
+#include <cmath>
+#include <limits>
+
+#include "kernel/angle.h"
+
+namespace splam::sim {
+
+LaserOptions LaserOptions::Urg04lx() {
+  LaserOptions o;
+  o.model = "URG-04LX";
+  o.num_beams = 667;
+  o.angular_step_rad = kernel::DegToRad(0.36);
+  o.start_angle_rad = -0.5 * (o.num_beams - 1) * o.angular_step_rad;
+  o.min_range_m = 0.02;
+  o.max_range_m = 4.0;
+  o.noise_fraction = 0.01;
+  o.noise_floor_m = 0.0;
+  return o;
+}
+
+LaserOptions LaserOptions::Lms200(double resolution_deg) {
+  LaserOptions o;
+  o.model = "LMS-200";
+  o.angular_step_rad = kernel::DegToRad(resolution_deg);
+  o.num_beams = static_cast<int>(std::lround(180.0 / resolution_deg)) + 1;
+  o.start_angle_rad = -kernel::kPi / 2.0;
+  o.min_range_m = 0.01;
+  o.max_range_m = 8.0;
+  o.noise_fraction = 0.0;
+  o.noise_floor_m = 0.01;
+  return o;
+}
+
+std::string LaserOptions::Validate() const {
+  if (num_beams < 1) return "laser num_beams must be at least 1";
+  if (!std::isfinite(start_angle_rad) || !std::isfinite(angular_step_rad)) {
+    return "laser angles must be finite";
+  }
+  if (!(min_range_m >= 0.0) || !(max_range_m > min_range_m) || !std::isfinite(max_range_m)) {
+    return "laser ranges need 0 <= min_range_m < max_range_m < infinity";
+  }
+  if (!(noise_fraction >= 0.0) || !(noise_floor_m >= 0.0)) return "laser noise must be >= 0";
+  if (!(dropout_probability >= 0.0 && dropout_probability <= 1.0)) {
+    return "laser dropout_probability must be in [0, 1]";
+  }
+  return "";
+}
+
+kernel::Scan SimulateLaser(const RayCaster& caster, const LaserOptions& options,
+                           const kernel::Pose2& world_T_robot, double timestamp_s,
+                           kernel::Random* random, std::vector<int>* beam_obstacles) {
+  kernel::Scan scan;
+  scan.timestamp_s = timestamp_s;
+  scan.start_angle_rad = options.start_angle_rad;
+  scan.angular_step_rad = options.angular_step_rad;
+  scan.min_range_m = options.min_range_m;
+  scan.max_range_m = options.max_range_m;
+  scan.ranges_m.resize(options.num_beams);
+  if (beam_obstacles != nullptr) beam_obstacles->assign(options.num_beams, -1);
+
+  const kernel::Pose2 world_T_laser = world_T_robot * options.robot_T_laser;
+  kernel::Ray2 ray;
+  ray.origin = world_T_laser.translation();
+  for (int i = 0; i < options.num_beams; ++i) {
+    const double angle = world_T_laser.theta() + scan.BeamAngle(i);
+    ray.direction = {std::cos(angle), std::sin(angle)};
+    const RayHit hit = caster.Cast(ray, options.max_range_m);
+    double range = kernel::Scan::kNoReturn;
+    if (hit.obstacle >= 0) {
+      range = hit.range_m +
+              random->Gaussian(options.noise_floor_m + options.noise_fraction * hit.range_m);
+      if (options.dropout_probability > 0.0 && random->Uniform() < options.dropout_probability) {
+        range = kernel::Scan::kNoReturn;
+      } else if (range >= options.max_range_m) {
+        range = kernel::Scan::kNoReturn;
+      } else if (range < options.min_range_m) {
+        range = std::numeric_limits<double>::quiet_NaN();
+      }
+      if (beam_obstacles != nullptr) (*beam_obstacles)[i] = hit.obstacle;
+    }
+    scan.ranges_m[i] = range;
+  }
+  return scan;
+}
+
+}  // namespace splam::sim

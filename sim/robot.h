@@ -1,0 +1,45 @@
+#ifndef SPLAM_SIM_ROBOT_H_
+#define SPLAM_SIM_ROBOT_H_
+
+#include <string>
+
+#include "kernel/pose2.h"
+#include "kernel/random.h"
+
+namespace splam::sim {
+
+// A differential-drive robot the size of a Pioneer P3-DX, collision-checked as a disc.
+struct RobotOptions {
+  double radius_m = 0.267;               // P3-DX swing radius
+  double max_linear_speed_mps = 1.2;     // |v| limit applied to every command
+  double max_angular_speed_radps = 5.2;  // |w| limit (300 deg/s)
+
+  std::string Validate() const;
+};
+
+// Odometry error model (SPEC §2): Gaussian noise on the increment (dx, dy, dtheta) between two
+// poses, with standard deviations proportional to the motion, after the odometry models of
+// Stage and Thrun et al. with errors of a few per cent:
+//   sigma_dx  = forward_per_m * d,   sigma_dy = lateral_per_m * d,
+//   sigma_dth = rotation_per_rad * |dtheta| + rotation_per_m * d,   d = |(dx, dy)|.
+struct OdometryNoiseOptions {
+  double forward_per_m = 0.03;     // m of forward error per m travelled (3 %)
+  double lateral_per_m = 0.01;     // m of sideways error per m travelled (1 %)
+  double rotation_per_rad = 0.03;  // rad of heading error per rad turned (3 %)
+  double rotation_per_m = 0.01;    // rad of heading error per m travelled (0.57 deg/m)
+
+  std::string Validate() const;
+  static OdometryNoiseOptions Noiseless() { return {0.0, 0.0, 0.0, 0.0}; }
+};
+
+// The exact motion in the robot frame of a unicycle driven at constant (v, w) for dt: an arc of
+// radius v / w, or a straight line when w == 0.
+kernel::Pose2 UnicycleIncrement(double v_mps, double w_radps, double dt_s);
+
+// The increment as odometry measures it: `increment` plus noise drawn from `options`.
+kernel::Pose2 CorruptIncrement(const kernel::Pose2& increment, const OdometryNoiseOptions& options,
+                               kernel::Random* random);
+
+}  // namespace splam::sim
+
+#endif  // SPLAM_SIM_ROBOT_H_

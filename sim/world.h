@@ -1,0 +1,63 @@
+#ifndef SPLAM_SIM_WORLD_H_
+#define SPLAM_SIM_WORLD_H_
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "kernel/cubic_bezier.h"
+#include "kernel/pose2.h"
+#include "kernel/shapes.h"
+
+namespace splam::sim {
+
+// An open chain of straight walls, or a polygon when `closed`.
+struct Polyline {
+  std::vector<Eigen::Vector2d> vertices;
+  bool closed = false;
+};
+
+// A curved wall: an open cubic B-spline with clamped uniform knots (it starts at the first and
+// ends at the last control point), or a closed uniform cubic B-spline (a smooth blob) when
+// `closed`.
+struct Spline {
+  std::vector<Eigen::Vector2d> control_points;
+  bool closed = false;
+};
+
+using Shape = std::variant<Polyline, kernel::Circle2, kernel::Ellipse2, Spline>;
+
+// The primitives the ray caster works on; every obstacle decomposes into these.
+struct Primitives {
+  std::vector<kernel::Segment2> segments;
+  std::vector<kernel::Circle2> circles;
+  std::vector<kernel::Ellipse2> ellipses;
+  std::vector<kernel::CubicBezier> beziers;
+};
+
+// A static 2-D world: obstacles (their index is the obstacle id the sensors report), an optional
+// start pose and an optional default route of waypoints.
+struct World {
+  std::string name;
+  std::vector<Shape> obstacles;
+  std::optional<kernel::Pose2> start;
+  std::vector<Eigen::Vector2d> route;
+
+  // Empty when valid, else what is wrong and with which obstacle: polylines need >= 2 vertices
+  // (polygons 3) without zero-length edges, circles and ellipses positive radii, open splines
+  // >= 4 and closed splines >= 3 control points; all coordinates finite.
+  std::string Validate() const;
+  // Exact primitives of obstacle `index`: segments, circles, ellipses, Bezier pieces.
+  void AppendPrimitives(std::size_t index, Primitives* out) const;
+  kernel::Box2 Bounds() const;
+};
+
+// Name of the shape's kind as used in world files: polyline, polygon, circle, ellipse, spline,
+// closed_spline.
+std::string ShapeKindName(const Shape& shape);
+
+}  // namespace splam::sim
+
+#endif  // SPLAM_SIM_WORLD_H_
