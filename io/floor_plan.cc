@@ -46,32 +46,25 @@ Result<sim::World> ReadFloorPlan(const std::string& path, const FloorPlanOptions
   for (const auto& contour : contours) {
     std::vector<cv::Point> simplified;
     cv::approxPolyDP(contour, simplified, options.simplify_tolerance_px, true);
-    sim::Polyline polygon;
-    polygon.closed = true;
+    sim::Polyline loop;
     for (const cv::Point& p : simplified) {
       // Pixel centres (minus the frame offset); image rows grow downwards, y grows upwards.
       const Eigen::Vector2d v(options.origin_m.x() + (p.x - 1 + 0.5) * res,
                               options.origin_m.y() + (rows - (p.y - 1) - 0.5) * res);
-      if (polygon.vertices.empty() || polygon.vertices.back() != v) polygon.vertices.push_back(v);
+      if (loop.vertices.empty() || loop.vertices.back() != v) loop.vertices.push_back(v);
     }
-    if (polygon.vertices.size() >= 2 && polygon.vertices.front() == polygon.vertices.back()) {
-      polygon.vertices.pop_back();
+    if (loop.vertices.size() >= 2 && loop.vertices.front() == loop.vertices.back())
+      loop.vertices.pop_back();
+    if (loop.vertices.size() == 1) {
+      // A single dark pixel: a square of walls around its centre.
+      const Eigen::Vector2d c = loop.vertices[0];
+      const double h = 0.5 * res;
+      loop.vertices = {c + Eigen::Vector2d(-h, -h), c + Eigen::Vector2d(h, -h),
+                       c + Eigen::Vector2d(h, h), c + Eigen::Vector2d(-h, h)};
     }
-    if (polygon.vertices.size() < 3) {
-      // A single pixel or a one-pixel line: keep it as an open wall, or as a tiny square.
-      if (polygon.vertices.size() == 2) {
-        world.obstacles.push_back(sim::Polyline{polygon.vertices, false});
-      } else if (polygon.vertices.size() == 1) {
-        const Eigen::Vector2d c = polygon.vertices[0];
-        const double h = 0.5 * res;
-        world.obstacles.push_back(
-            sim::Polyline{{c + Eigen::Vector2d(-h, -h), c + Eigen::Vector2d(h, -h),
-                           c + Eigen::Vector2d(h, h), c + Eigen::Vector2d(-h, h)},
-                          true});
-      }
-      continue;
-    }
-    world.obstacles.push_back(std::move(polygon));
+    if (loop.vertices.size() >= 3)
+      loop.vertices.push_back(loop.vertices.front());  // close the loop
+    world.obstacles.push_back(std::move(loop));
   }
   if (world.obstacles.empty()) {
     return R::Fail(FileError(path, 0,

@@ -20,9 +20,10 @@ struct FloorPlanOptions {
   std::string Validate() const;
 };
 
-// A world from a floor-plan image (any format OpenCV reads, PNG in practice): every connected
-// region of dark pixels becomes a polygon obstacle tracing its outline (holes included), so the
-// walls are as thick as drawn. Fails on unreadable images and images without dark pixels.
+// A world from a floor-plan image (any format OpenCV reads, PNG in practice): the outline of every
+// region of dark pixels, and of every hole in one, becomes a closed loop of walls, so walls are
+// as thick as drawn. The loops are walls, not solids: a room inside a ring of dark pixels is free
+// space. Fails on unreadable images and images without dark pixels.
 Result<sim::World> ReadFloorPlan(const std::string& path, const FloorPlanOptions& options);
 
 }  // namespace splam::io

@@ -74,7 +74,7 @@ World Corridor() {
 World Office() {
   World w;
   w.name = "office";
-  w.obstacles.push_back(Rectangle(0, 0, 16, 12));
+  w.obstacles.push_back(Wall({{0, 0}, {16, 0}, {16, 12}, {0, 12}, {0, 0}}));  // outer walls
   // Corridor y 5-7. South side: three rooms with doors at x 2-2.9, 7-7.9, 13-13.9.
   w.obstacles.push_back(Wall({{0, 5}, {2, 5}}));
   w.obstacles.push_back(Wall({{2.9, 5}, {7, 5}}));

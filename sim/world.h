@@ -13,7 +13,8 @@
 
 namespace splam::sim {
 
-// An open chain of straight walls, or a polygon when `closed`.
+// An open chain of straight walls, or a polygon when `closed`. A polygon is a solid obstacle (its
+// inside collides); walls around a room are an open chain that returns to its first vertex.
 struct Polyline {
   std::vector<Eigen::Vector2d> vertices;
   bool closed = false;

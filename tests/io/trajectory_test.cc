@@ -1,0 +1,47 @@
+#include "io/trajectory.h"
+
+#include <gtest/gtest.h>
+
+#include "kernel/random.h"
+
+namespace splam::io {
+namespace {
+
+TEST(Trajectory, PropertyWriteThenReadIsExact) {
+  kernel::Random random(41);
+  Trajectory t;
+  double time = 0;
+  for (int i = 0; i < 500; ++i) {
+    time += random.Uniform(0, 0.2);
+    t.push_back(
+        {time, kernel::Pose2(random.Gaussian(10), random.Gaussian(10), random.Uniform(-3, 3))});
+  }
+  const Result<Trajectory> back = ParseTrajectory(FormatTrajectory(t, "test"), "mem");
+  ASSERT_TRUE(back.ok()) << back.error;
+  ASSERT_EQ(back.value->size(), t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    EXPECT_EQ((*back.value)[i].time_s, t[i].time_s);
+    EXPECT_EQ((*back.value)[i].pose.ToVector(), t[i].pose.ToVector());
+  }
+  EXPECT_EQ(Poses(t).size(), t.size());
+}
+
+TEST(Trajectory, BadLinesNameFileAndLine) {
+  EXPECT_EQ(ParseTrajectory("# c\n0 1 2\n", "t.txt").error,
+            "t.txt:2: expected 4 values 'time x y theta', found 3");
+  EXPECT_EQ(ParseTrajectory("0 1 2 x\n", "t.txt").error, "t.txt:1: 'x' is not a finite number");
+  EXPECT_EQ(ParseTrajectory("0 1 2 nan\n", "t.txt").error, "t.txt:1: 'nan' is not a finite number");
+  EXPECT_EQ(ParseTrajectory("1 0 0 0\n0.5 0 0 0\n", "t.txt").error, "t.txt:2: time goes backwards");
+  EXPECT_FALSE(ReadTrajectory("/nonexistent.txt").ok());
+}
+
+TEST(Trajectory, FileRoundTrip) {
+  const std::string path = ::testing::TempDir() + "/trajectory_test.txt";
+  ASSERT_EQ(WriteTrajectory(path, {{0.0, kernel::Pose2(1, 2, 3)}}), "");
+  const auto back = ReadTrajectory(path);
+  ASSERT_TRUE(back.ok());
+  EXPECT_EQ(back.value->at(0).pose.x(), 1.0);
+}
+
+}  // namespace
+}  // namespace splam::io

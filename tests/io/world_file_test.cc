@@ -1,0 +1,121 @@
+#include "io/world_file.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+
+#include "io/trajectory.h"
+#include "sim/builtin_worlds.h"
+
+namespace splam::io {
+namespace {
+
+TEST(WorldFile, ParsesEveryShape) {
+  const std::string yaml = R"(
+name: lab
+start: [1, 2, 0.5]
+route: [[3, 4], [5, 6]]
+obstacles:
+  - polyline: [[0, 0], [10, 0]]
+  - polygon: [[2, 2], [3, 2], [3, 3]]
+  - circle: {center: [5, 5], radius: 0.3}
+  - ellipse: {center: [7, 3], radii: [1.0, 0.5], angle: 0.5}
+  - spline: [[0, 5], [1, 6], [2, 5], [3, 6]]
+  - closed_spline: [[8, 8], [9, 8], [9, 9]]
+)";
+  const Result<sim::World> w = ParseWorld(yaml, "lab.yaml");
+  ASSERT_TRUE(w.ok()) << w.error;
+  EXPECT_EQ(w.value->name, "lab");
+  EXPECT_EQ(w.value->obstacles.size(), 6u);
+  EXPECT_EQ(w.value->start->ToVector(), Eigen::Vector3d(1, 2, 0.5));
+  EXPECT_EQ(w.value->route.size(), 2u);
+  EXPECT_EQ(std::get<kernel::Ellipse2>(w.value->obstacles[3]).radius_y, 0.5);
+  EXPECT_TRUE(std::get<sim::Spline>(w.value->obstacles[5]).closed);
+  EXPECT_EQ(w.value->Validate(), "");
+}
+
+TEST(WorldFile, PropertyBuiltinWorldsRoundTrip) {
+  for (const std::string& name : sim::BuiltinWorldNames()) {
+    const sim::World world = *sim::BuiltinWorld(name);
+    const std::string text = FormatWorld(world);
+    const Result<sim::World> back = ParseWorld(text, name + ".yaml");
+    ASSERT_TRUE(back.ok()) << back.error;
+    EXPECT_EQ(FormatWorld(*back.value), text);
+    ASSERT_EQ(back.value->obstacles.size(), world.obstacles.size());
+    EXPECT_EQ(back.value->start->ToVector(), world.start->ToVector());
+  }
+}
+
+struct BadWorld {
+  std::string yaml;
+  std::string expected;
+};
+
+void PrintTo(const BadWorld& b, std::ostream* os) { *os << b.yaml; }
+
+class BadWorldTest : public ::testing::TestWithParam<BadWorld> {};
+
+TEST_P(BadWorldTest, FailsNamingFileAndLine) {
+  const Result<sim::World> w = ParseWorld(GetParam().yaml, "bad.yaml");
+  ASSERT_FALSE(w.ok());
+  EXPECT_EQ(w.error, GetParam().expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, BadWorldTest,
+    ::testing::Values(
+        BadWorld{"obstacles:\n  - circle: {center: [1, 1], radius: -2}\n",
+                 "bad.yaml:2: radius must be positive"},
+        BadWorld{"obstacles:\n  - polyline: [[0, 0]]\n",
+                 "bad.yaml:2: needs at least 2 vertices, has 1"},
+        BadWorld{"obstacles:\n  - polyline: [[0, 0], [1, x]]\n",
+                 "bad.yaml:2: polyline: 'x' is not a finite number"},
+        BadWorld{"obstacles:\n  - hexagon: [[0, 0]]\n",
+                 "bad.yaml:2: unknown obstacle kind 'hexagon'"},
+        BadWorld{"obstacles:\n  - circle: {radius: 2}\n", "bad.yaml:2: circle needs 'center'"},
+        BadWorld{"obstacles:\n  - spline: [[0, 0], [1, 1], [2, 0]]\n",
+                 "bad.yaml:2: needs at least 4 control points, has 3"},
+        BadWorld{"name: x\n", "bad.yaml:1: needs a non-empty list 'obstacles'"},
+        BadWorld{"start: [1, 2]\nobstacles:\n  - circle: {center: [1, 1], radius: 2}\n",
+                 "bad.yaml:1: start must be [x, y, theta]"},
+        BadWorld{"obstacles: [\n", "bad.yaml:2: end of sequence flow not found"},
+        BadWorld{"- 1\n- 2\n", "bad.yaml:1: a world file is a YAML map"}));
+
+TEST(WorldFile, FloorPlanEntryIsRelativeToTheFile) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "world_file_test";
+  std::filesystem::create_directories(dir);
+  cv::Mat image(20, 30, CV_8UC1, cv::Scalar(255));
+  image(cv::Rect(5, 5, 10, 4)).setTo(0);
+  ASSERT_TRUE(cv::imwrite((dir / "plan.png").string(), image));
+  ASSERT_EQ(WriteTextFile((dir / "w.yaml").string(),
+                          "obstacles:\n  - floor_plan: {image: plan.png, resolution: 0.1}\n  - "
+                          "circle: {center: [0, 0], radius: 1}\n"),
+            "");
+  const Result<sim::World> w = ReadWorldFile((dir / "w.yaml").string());
+  ASSERT_TRUE(w.ok()) << w.error;
+  EXPECT_EQ(w.value->obstacles.size(), 2u);
+  ASSERT_EQ(WriteTextFile((dir / "bad.yaml").string(),
+                          "obstacles:\n  - floor_plan: {image: nothere.png, resolution: 0.1}\n"),
+            "");
+  const Result<sim::World> bad = ReadWorldFile((dir / "bad.yaml").string());
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error.find("bad.yaml:2: "), std::string::npos);
+  EXPECT_NE(bad.error.find("nothere.png: no such image file"), std::string::npos);
+}
+
+TEST(LoadWorld, BuiltinNamesFilesAndErrors) {
+  EXPECT_TRUE(LoadWorld("complex").ok());
+  const Result<sim::World> missing = LoadWorld("atlantis");
+  ASSERT_FALSE(missing.ok());
+  EXPECT_EQ(missing.error,
+            "atlantis: not a built-in world (corridor, office, complex) and no such file");
+  const std::string path = ::testing::TempDir() + "/load_world_test.yaml";
+  ASSERT_EQ(WriteWorldFile(path, *sim::BuiltinWorld("office")), "");
+  const Result<sim::World> office = LoadWorld(path);
+  ASSERT_TRUE(office.ok()) << office.error;
+  EXPECT_EQ(office.value->name, "office");
+}
+
+}  // namespace
+}  // namespace splam::io
