@@ -15,6 +15,7 @@ namespace {
 
 constexpr double kTitleBand = 28.0;   // px above the map when there is a title
 constexpr double kFooterBand = 30.0;  // px below the map for the scale bar and legend
+constexpr double kLegendRow = 16.0;   // px per extra legend row
 constexpr const char* kFont = "DejaVu Sans";
 
 struct LegendEntry {
@@ -66,8 +67,50 @@ struct Figure::Impl {
     }
     legend.push_back({label, color, is_points});
   }
+  // Legend entries laid out left to right after the scale bar, wrapping into rows that fit the
+  // width: the x offset and row of each entry.
+  struct Slot {
+    double x;
+    int row;
+  };
+  std::vector<Slot> LayoutLegend(double* scale_length_m) const;
+  double Height() const;
   void Paint(cairo_t* target) const;
 };
+
+std::vector<Figure::Impl::Slot> Figure::Impl::LayoutLegend(double* scale_length_m) const {
+  *scale_length_m = NiceLength(0.2 * width / ppm);
+  cairo_surface_t* scratch = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
+  cairo_t* measure = cairo_create(scratch);
+  cairo_select_font_face(measure, kFont, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(measure, 11.0);
+  const double start = 24.0 + *scale_length_m * ppm;
+  std::vector<Slot> slots;
+  double x = start;
+  int row = 0;
+  for (const LegendEntry& e : legend) {
+    cairo_text_extents_t extents;
+    cairo_text_extents(measure, e.label.c_str(), &extents);
+    const double w = 34.0 + extents.x_advance;
+    if (x > start && x + w > width) {
+      x = start;
+      ++row;
+    }
+    slots.push_back({x, row});
+    x += w;
+  }
+  cairo_destroy(measure);
+  cairo_surface_destroy(scratch);
+  return slots;
+}
+
+double Figure::Impl::Height() const {
+  double scale_length_m = 0.0;
+  const std::vector<Slot> slots = LayoutLegend(&scale_length_m);
+  const int rows = slots.empty() ? 1 : slots.back().row + 1;
+  return (options.title.empty() ? 0.0 : kTitleBand) + map_height + kFooterBand +
+         kLegendRow * (rows - 1);
+}
 
 Figure::Figure(const kernel::Box2& area, const FigureOptions& options)
     : impl_(std::make_unique<Impl>()) {
@@ -204,7 +247,8 @@ void Figure::Impl::Paint(cairo_t* target) const {
   }
   // Scale bar, bottom left.
   const double y = top + map_height + 12.0;
-  const double length_m = NiceLength(0.2 * width / ppm);
+  double length_m = 0.0;
+  const std::vector<Slot> slots = LayoutLegend(&length_m);
   cairo_set_source_rgb(target, 0, 0, 0);
   cairo_set_line_width(target, 2.0);
   cairo_move_to(target, 8.0, y - 4.0);
@@ -218,31 +262,29 @@ void Figure::Impl::Paint(cairo_t* target) const {
   cairo_move_to(target, 8.0, y + 13.0);
   cairo_show_text(target, label);
   // Legend, to the right of the scale bar.
-  double x = 24.0 + length_m * ppm;
-  for (const LegendEntry& e : legend) {
+  for (std::size_t i = 0; i < legend.size(); ++i) {
+    const LegendEntry& e = legend[i];
+    const double x = slots[i].x;
+    const double y_row = y + kLegendRow * slots[i].row;
     SetColor(target, e.color);
     if (e.is_points) {
-      cairo_rectangle(target, x + 6.0, y - 3.0, 5.0, 5.0);
+      cairo_rectangle(target, x + 6.0, y_row - 3.0, 5.0, 5.0);
       cairo_fill(target);
     } else {
       cairo_set_line_width(target, 2.5);
-      cairo_move_to(target, x, y);
-      cairo_line_to(target, x + 16.0, y);
+      cairo_move_to(target, x, y_row);
+      cairo_line_to(target, x + 16.0, y_row);
       cairo_stroke(target);
     }
     cairo_set_source_rgb(target, 0, 0, 0);
-    cairo_move_to(target, x + 20.0, y + 4.0);
+    cairo_move_to(target, x + 20.0, y_row + 4.0);
     cairo_show_text(target, e.label.c_str());
-    cairo_text_extents_t extents;
-    cairo_text_extents(target, e.label.c_str(), &extents);
-    x += 34.0 + extents.x_advance;
   }
 }
 
 std::string Figure::Save(const std::string& path) const {
   std::string ext = std::filesystem::path(path).extension().string();
-  const double height =
-      impl_->map_height + kFooterBand + (impl_->options.title.empty() ? 0.0 : kTitleBand);
+  const double height = impl_->Height();
   cairo_surface_t* surface = nullptr;
   if (ext == ".svg") {
     surface = cairo_svg_surface_create(path.c_str(), impl_->width, height);
