@@ -122,7 +122,8 @@ Figure::Figure(const kernel::Box2& area, const FigureOptions& options)
       std::min(options.pixels_per_meter, options.max_pixels / std::max(size.maxCoeff(), 1e-9));
   impl_->width = std::ceil(size.x() * impl_->ppm);
   impl_->map_height = std::ceil(size.y() * impl_->ppm);
-  impl_->recording = cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, nullptr);
+  const cairo_rectangle_t extents{0.0, 0.0, impl_->width, impl_->map_height};
+  impl_->recording = cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, &extents);
   impl_->cr = cairo_create(impl_->recording);
   cairo_set_line_join(impl_->cr, CAIRO_LINE_JOIN_ROUND);
   cairo_set_line_cap(impl_->cr, CAIRO_LINE_CAP_ROUND);
@@ -231,12 +232,10 @@ void Figure::Impl::Paint(cairo_t* target) const {
   const double top = options.title.empty() ? 0.0 : kTitleBand;
   cairo_set_source_rgb(target, 1, 1, 1);
   cairo_paint(target);
-  cairo_save(target);
-  cairo_rectangle(target, 0, top, width, map_height);
-  cairo_clip(target);
+  // The recording holds only what lies in the area (plus margin), so no clip is needed; a clip
+  // here made cairo emit a reference to an undefined clip path in SVG output.
   cairo_set_source_surface(target, recording, 0.0, top);
   cairo_paint(target);
-  cairo_restore(target);
 
   cairo_select_font_face(target, kFont, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   if (!options.title.empty()) {

@@ -75,35 +75,27 @@ Trajectory OdometryTrajectory(const CarmenLog& log) {
 Result<Route> ParseRoute(const std::string& text, const std::string& name) {
   Route route;
   bool has_start = false;
-  std::istringstream in(text);
-  std::string line;
-  int line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    const auto tokens = SplitTokens(line);
-    if (tokens.empty() || tokens[0].front() == '#') continue;
-    const bool first = route.waypoints.empty() && !has_start;
-    if (tokens.size() != 2 && !(first && tokens.size() == 3)) {
-      return Result<Route>::Fail(FileError(
-          name, line_number,
-          first ? "expected 'x y' or a start pose 'x y theta'" : "expected a waypoint 'x y'"));
-    }
-    double v[3] = {0, 0, 0};
-    for (std::size_t i = 0; i < tokens.size(); ++i) {
-      const auto value = ParseDouble(tokens[i]);
-      if (!value || !std::isfinite(*value)) {
-        return Result<Route>::Fail(FileError(
-            name, line_number, "'" + std::string(tokens[i]) + "' is not a finite number"));
-      }
-      v[i] = *value;
-    }
-    if (tokens.size() == 3) {
-      route.start = kernel::Pose2(v[0], v[1], v[2]);
-      has_start = true;
-    } else {
-      route.waypoints.emplace_back(v[0], v[1]);
-    }
-  }
+  std::vector<double> v;
+  const std::string error =
+      ForEachDataLine(text, [&](int line, const std::vector<std::string_view>& tokens) {
+        const bool first = route.waypoints.empty() && !has_start;
+        if (tokens.size() != 2 && !(first && tokens.size() == 3)) {
+          return FileError(
+              name, line,
+              first ? "expected 'x y' or a start pose 'x y theta'" : "expected a waypoint 'x y'");
+        }
+        if (std::string bad = ParseFiniteNumbers(tokens, &v); !bad.empty()) {
+          return FileError(name, line, bad);
+        }
+        if (v.size() == 3) {
+          route.start = kernel::Pose2(v[0], v[1], v[2]);
+          has_start = true;
+        } else {
+          route.waypoints.emplace_back(v[0], v[1]);
+        }
+        return std::string();
+      });
+  if (!error.empty()) return Result<Route>::Fail(error);
   if (!has_start) {
     if (route.waypoints.size() < 2) {
       return Result<Route>::Fail(

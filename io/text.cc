@@ -39,6 +39,37 @@ std::optional<long> ParseInteger(std::string_view token) {
   return value;
 }
 
+std::string ForEachDataLine(
+    const std::string& text,
+    const std::function<std::string(int, const std::vector<std::string_view>&)>& visit) {
+  std::size_t pos = 0;
+  int line_number = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    const std::vector<std::string_view> tokens =
+        SplitTokens(std::string_view(text).substr(pos, end - pos));
+    pos = end + 1;
+    ++line_number;
+    if (tokens.empty() || tokens[0].front() == '#') continue;
+    if (std::string error = visit(line_number, tokens); !error.empty()) return error;
+  }
+  return "";
+}
+
+std::string ParseFiniteNumbers(const std::vector<std::string_view>& tokens,
+                               std::vector<double>* values) {
+  values->clear();
+  for (std::string_view token : tokens) {
+    const std::optional<double> value = ParseDouble(token);
+    if (!value || !std::isfinite(*value)) {
+      return "'" + std::string(token) + "' is not a finite number";
+    }
+    values->push_back(*value);
+  }
+  return "";
+}
+
 std::string FormatDouble(double value) {
   if (std::isnan(value)) return "nan";
   if (std::isinf(value)) return value > 0 ? "inf" : "-inf";

@@ -1,6 +1,7 @@
 #ifndef SPLAM_IO_TEXT_H_
 #define SPLAM_IO_TEXT_H_
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -13,6 +14,16 @@ std::vector<std::string_view> SplitTokens(std::string_view line);
 // The whole token as a double (accepts "nan", "inf"), or nullopt.
 std::optional<double> ParseDouble(std::string_view token);
 std::optional<long> ParseInteger(std::string_view token);
+// Calls visit(line_number, tokens) for every line of `text` that is neither blank nor a '#'
+// comment, counting lines from 1. Stops at the first non-empty message `visit` returns and
+// returns it; empty when every line was accepted.
+std::string ForEachDataLine(
+    const std::string& text,
+    const std::function<std::string(int, const std::vector<std::string_view>&)>& visit);
+// Every token as a finite number; on failure *values is unspecified and the message is
+// "'token' is not a finite number".
+std::string ParseFiniteNumbers(const std::vector<std::string_view>& tokens,
+                               std::vector<double>* values);
 // Shortest text that reads back as exactly the same double ("inf", "-inf", "nan" for the rest).
 std::string FormatDouble(double value);
 

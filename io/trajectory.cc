@@ -26,32 +26,23 @@ std::string WriteTextFile(const std::string& path, const std::string& text) {
 
 Result<Trajectory> ParseTrajectory(const std::string& text, const std::string& name) {
   Trajectory trajectory;
-  std::istringstream in(text);
-  std::string line;
-  int line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    const auto tokens = SplitTokens(line);
-    if (tokens.empty() || tokens[0].front() == '#') continue;
+  std::vector<double> v;
+  const std::string error = ForEachDataLine(text, [&](int line,
+                                                      const std::vector<std::string_view>& tokens) {
     if (tokens.size() != 4) {
-      return Result<Trajectory>::Fail(
-          FileError(name, line_number,
-                    "expected 4 values 'time x y theta', found " + std::to_string(tokens.size())));
+      return FileError(
+          name, line, "expected 4 values 'time x y theta', found " + std::to_string(tokens.size()));
     }
-    double v[4];
-    for (int i = 0; i < 4; ++i) {
-      const auto value = ParseDouble(tokens[i]);
-      if (!value || !std::isfinite(*value)) {
-        return Result<Trajectory>::Fail(FileError(
-            name, line_number, "'" + std::string(tokens[i]) + "' is not a finite number"));
-      }
-      v[i] = *value;
+    if (std::string bad = ParseFiniteNumbers(tokens, &v); !bad.empty()) {
+      return FileError(name, line, bad);
     }
     if (!trajectory.empty() && v[0] < trajectory.back().time_s) {
-      return Result<Trajectory>::Fail(FileError(name, line_number, "time goes backwards"));
+      return FileError(name, line, "time goes backwards");
     }
     trajectory.push_back({v[0], kernel::Pose2(v[1], v[2], v[3])});
-  }
+    return std::string();
+  });
+  if (!error.empty()) return Result<Trajectory>::Fail(error);
   return Result<Trajectory>::Ok(std::move(trajectory));
 }
 

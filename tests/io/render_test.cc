@@ -54,6 +54,12 @@ TEST(Figure, SvgIsWrittenAndDeterministic) {
   EXPECT_NE(ta.find(" C "), std::string::npos);  // curved walls are drawn as Bezier curves
   // cairo numbers surfaces with a per-process counter; separate runs give identical files (see
   // the splam CLI test), within one process only these labels differ.
+  // Every reference points at a defined element (cairo can emit dangling clip references).
+  const std::regex reference("url\\(#([A-Za-z0-9_-]+)\\)");
+  for (auto it = std::sregex_iterator(ta.begin(), ta.end(), reference);
+       it != std::sregex_iterator(); ++it) {
+    EXPECT_NE(ta.find("id=\"" + (*it)[1].str() + "\""), std::string::npos) << (*it)[1].str();
+  }
   const std::regex surface_id("surface[0-9]+");
   EXPECT_EQ(std::regex_replace(ta, surface_id, "surface"),
             std::regex_replace(tb, surface_id, "surface"));
