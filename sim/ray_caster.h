@@ -40,7 +40,8 @@ class RayCaster {
   // True when a disc of `radius_m` around `center` touches an obstacle boundary or the center
   // lies inside a closed obstacle.
   bool Collides(const Eigen::Vector2d& center, double radius_m) const;
-  // Same as World::IsInsideObstacle, with closed splines pre-sampled.
+  // True when p lies inside a solid obstacle: a polygon, circle, ellipse or closed spline (the
+  // closed splines sampled at 32 points per piece; open polylines have no inside).
   bool IsInsideObstacle(const Eigen::Vector2d& p) const;
 
   const World& world() const { return world_; }
