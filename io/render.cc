@@ -18,10 +18,12 @@ constexpr double kFooterBand = 30.0;  // px below the map for the scale bar and 
 constexpr double kLegendRow = 16.0;   // px per extra legend row
 constexpr const char* kFont = "DejaVu Sans";
 
+enum class LegendKind { kLine, kPoints, kCircle, kDiamond };
+
 struct LegendEntry {
   std::string label;
   Rgb color;
-  bool is_points;
+  LegendKind kind;
 };
 
 void SetColor(cairo_t* cr, Rgb c, double alpha = 1.0) {
@@ -60,12 +62,12 @@ struct Figure::Impl {
     return {(p.x() - area.min.x() + options.margin_m) * ppm,
             (area.max.y() - p.y() + options.margin_m) * ppm};
   }
-  void AddLegend(const std::string& label, Rgb color, bool is_points) {
+  void AddLegend(const std::string& label, Rgb color, LegendKind kind) {
     if (label.empty()) return;
     for (const LegendEntry& e : legend) {
       if (e.label == label) return;
     }
-    legend.push_back({label, color, is_points});
+    legend.push_back({label, color, kind});
   }
   // Legend entries laid out left to right after the scale bar, wrapping into rows that fit the
   // width: the x offset and row of each entry.
@@ -183,7 +185,7 @@ void Figure::DrawWorld(const sim::World& world, Rgb color, const std::string& le
     cairo_set_line_width(cr, 2.0);
     cairo_stroke(cr);
   }
-  impl_->AddLegend(legend, color, false);
+  impl_->AddLegend(legend, color, LegendKind::kLine);
 }
 
 void Figure::DrawPath(const std::vector<kernel::Pose2>& poses, Rgb color, double width_px,
@@ -200,7 +202,7 @@ void Figure::DrawPath(const std::vector<kernel::Pose2>& poses, Rgb color, double
   SetColor(cr, color);
   cairo_set_line_width(cr, width_px);
   cairo_stroke(cr);
-  impl_->AddLegend(legend, color, false);
+  impl_->AddLegend(legend, color, LegendKind::kLine);
 }
 
 void Figure::DrawPoints(const std::vector<Eigen::Vector2d>& points, Rgb color, double radius_px,
@@ -212,7 +214,51 @@ void Figure::DrawPoints(const std::vector<Eigen::Vector2d>& points, Rgb color, d
   }
   SetColor(cr, color, 0.6);
   cairo_fill(cr);
-  impl_->AddLegend(legend, color, true);
+  impl_->AddLegend(legend, color, LegendKind::kPoints);
+}
+
+void Figure::DrawPolyline(const std::vector<Eigen::Vector2d>& points, Rgb color, double width_px,
+                          const std::string& legend, bool dashed) {
+  if (points.empty()) return;
+  cairo_t* cr = impl_->cr;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d q = impl_->ToPixel(points[i]);
+    if (i == 0) {
+      cairo_move_to(cr, q.x(), q.y());
+    } else {
+      cairo_line_to(cr, q.x(), q.y());
+    }
+  }
+  SetColor(cr, color);
+  cairo_set_line_width(cr, width_px);
+  const double dash[] = {4.0, 3.0};
+  cairo_set_dash(cr, dash, dashed ? 2 : 0, 0.0);
+  cairo_stroke(cr);
+  cairo_set_dash(cr, nullptr, 0, 0.0);
+  impl_->AddLegend(legend, color, LegendKind::kLine);
+}
+
+void Figure::DrawMarkers(const std::vector<Eigen::Vector2d>& points, Marker marker, Rgb color,
+                         double size_px, const std::string& legend) {
+  cairo_t* cr = impl_->cr;
+  for (const Eigen::Vector2d& p : points) {
+    const Eigen::Vector2d q = impl_->ToPixel(p);
+    cairo_new_sub_path(cr);
+    if (marker == Marker::kCircle) {
+      cairo_arc(cr, q.x(), q.y(), size_px, 0.0, 2.0 * M_PI);
+    } else {
+      cairo_move_to(cr, q.x(), q.y() - size_px);
+      cairo_line_to(cr, q.x() + size_px, q.y());
+      cairo_line_to(cr, q.x(), q.y() + size_px);
+      cairo_line_to(cr, q.x() - size_px, q.y());
+      cairo_close_path(cr);
+    }
+  }
+  SetColor(cr, color);
+  cairo_set_line_width(cr, 2.0);
+  cairo_stroke(cr);
+  impl_->AddLegend(legend, color,
+                   marker == Marker::kCircle ? LegendKind::kCircle : LegendKind::kDiamond);
 }
 
 void Figure::DrawRobot(const kernel::Pose2& pose, double radius_m, Rgb color) {
@@ -266,14 +312,32 @@ void Figure::Impl::Paint(cairo_t* target) const {
     const double x = slots[i].x;
     const double y_row = y + kLegendRow * slots[i].row;
     SetColor(target, e.color);
-    if (e.is_points) {
-      cairo_rectangle(target, x + 6.0, y_row - 3.0, 5.0, 5.0);
-      cairo_fill(target);
-    } else {
-      cairo_set_line_width(target, 2.5);
-      cairo_move_to(target, x, y_row);
-      cairo_line_to(target, x + 16.0, y_row);
-      cairo_stroke(target);
+    switch (e.kind) {
+      case LegendKind::kPoints:
+        cairo_rectangle(target, x + 6.0, y_row - 3.0, 5.0, 5.0);
+        cairo_fill(target);
+        break;
+      case LegendKind::kLine:
+        cairo_set_line_width(target, 2.5);
+        cairo_move_to(target, x, y_row);
+        cairo_line_to(target, x + 16.0, y_row);
+        cairo_stroke(target);
+        break;
+      case LegendKind::kCircle:
+        cairo_set_line_width(target, 2.0);
+        cairo_new_sub_path(target);
+        cairo_arc(target, x + 8.0, y_row, 4.0, 0.0, 2.0 * M_PI);
+        cairo_stroke(target);
+        break;
+      case LegendKind::kDiamond:
+        cairo_set_line_width(target, 2.0);
+        cairo_move_to(target, x + 8.0, y_row - 5.0);
+        cairo_line_to(target, x + 13.0, y_row);
+        cairo_line_to(target, x + 8.0, y_row + 5.0);
+        cairo_line_to(target, x + 3.0, y_row);
+        cairo_close_path(target);
+        cairo_stroke(target);
+        break;
     }
     cairo_set_source_rgb(target, 0, 0, 0);
     cairo_move_to(target, x + 20.0, y_row + 4.0);

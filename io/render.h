@@ -51,6 +51,14 @@ class Figure {
                 const std::string& legend);
   void DrawPoints(const std::vector<Eigen::Vector2d>& points, Rgb color, double radius_px,
                   const std::string& legend);
+  // A polyline through the points (dashed when `dashed`).
+  void DrawPolyline(const std::vector<Eigen::Vector2d>& points, Rgb color, double width_px,
+                    const std::string& legend, bool dashed = false);
+  enum class Marker { kCircle, kDiamond };
+  // Open markers of `size_px` (radius) at the points: circles mark inflection points and
+  // diamonds corners in every splam picture.
+  void DrawMarkers(const std::vector<Eigen::Vector2d>& points, Marker marker, Rgb color,
+                   double size_px, const std::string& legend);
   // The robot's disc and a heading tick.
   void DrawRobot(const kernel::Pose2& pose, double radius_m, Rgb color);
 

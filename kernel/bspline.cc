@@ -8,8 +8,65 @@
 namespace splam::kernel {
 namespace {
 
+// Gauss-Legendre nodes and weights on [-1, 1], 5 points: exact for polynomials of degree 9.
+constexpr double kGaussNodes[5] = {-0.9061798459386640, -0.5384693101056831, 0.0,
+                                   0.5384693101056831, 0.9061798459386640};
+constexpr double kGaussWeights[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                                     0.4786286704993665, 0.2369268850561891};
+// Sub-intervals per Bezier piece in the arc-length table.
+constexpr int kTableSteps = 16;
+
+// Arc length of a Bezier piece between local parameters a and b.
+double PieceLength(const CubicBezier& piece, double a, double b) {
+  const double half = 0.5 * (b - a), mid = 0.5 * (a + b);
+  double sum = 0.0;
+  for (int i = 0; i < 5; ++i)
+    sum += kGaussWeights[i] * piece.Derivative(mid + half * kGaussNodes[i]).norm();
+  return half * sum;
+}
+
 void SetError(std::string* error, std::string message) {
   if (error != nullptr) *error = std::move(message);
+}
+
+std::vector<CubicBezier> DecomposeToBezier(const std::vector<Eigen::Vector2d>& control_points,
+                                           const std::vector<double>& knots) {
+  // Algorithm A5.6 of Piegl & Tiller, The NURBS Book: insert every interior knot up to
+  // multiplicity 3, collecting one Bezier piece per span.
+  constexpr int p = CubicBSpline::kDegree;
+  const std::vector<double>& u = knots;
+  const int m = static_cast<int>(u.size()) - 1;
+  std::vector<CubicBezier> pieces(1);
+  for (int i = 0; i <= p; ++i) pieces[0].p[i] = control_points[i];
+  int a = p, b = p + 1;
+  std::array<double, p> alphas{};
+  while (b < m) {
+    const int i = b;
+    while (b < m && u[b + 1] == u[b]) ++b;
+    const int mult = b - i + 1;
+    CubicBezier next;
+    if (mult < p) {
+      const double numer = u[b] - u[a];
+      for (int j = p; j > mult; --j) alphas[j - mult - 1] = numer / (u[a + j] - u[a]);
+      const int r = p - mult;
+      for (int j = 1; j <= r; ++j) {
+        const int save = r - j, s = mult + j;
+        CubicBezier& q = pieces.back();
+        for (int k = p; k >= s; --k) {
+          const double alpha = alphas[k - s];
+          q.p[k] = alpha * q.p[k] + (1.0 - alpha) * q.p[k - 1];
+        }
+        if (b < m) next.p[save] = q.p[p];
+      }
+    }
+    if (b < m) {
+      for (int j = p - mult; j <= p; ++j) next.p[j] = control_points[b - p + j];
+      pieces.push_back(next);
+      a = b;
+      ++b;
+    }
+  }
+  return pieces;
 }
 
 }  // namespace
@@ -61,7 +118,7 @@ std::optional<CubicBSpline> CubicBSpline::ClampedUniform(
   return Create(std::move(control_points), std::move(knots), error);
 }
 
-Eigen::Vector2d CubicBSpline::Point(double t) const {
+Eigen::Vector2d CubicBSpline::PointDeBoor(double t) const {
   t = std::clamp(t, DomainStart(), DomainEnd());
   // Span k with knots[k] <= t < knots[k+1], k in [3, n-1].
   const std::size_t n = control_points_.size();
@@ -83,43 +140,119 @@ Eigen::Vector2d CubicBSpline::Point(double t) const {
   return d[kDegree];
 }
 
-std::vector<CubicBezier> CubicBSpline::ToBezier() const {
-  // Algorithm A5.6 of Piegl & Tiller, The NURBS Book: insert every interior knot up to
-  // multiplicity 3, collecting one Bezier piece per span.
-  constexpr int p = kDegree;
-  const std::vector<double>& u = knots_;
-  const int m = static_cast<int>(u.size()) - 1;
-  std::vector<CubicBezier> pieces(1);
-  for (int i = 0; i <= p; ++i) pieces[0].p[i] = control_points_[i];
-  int a = p, b = p + 1;
-  std::array<double, p> alphas{};
-  while (b < m) {
-    const int i = b;
-    while (b < m && u[b + 1] == u[b]) ++b;
-    const int mult = b - i + 1;
-    CubicBezier next;
-    if (mult < p) {
-      const double numer = u[b] - u[a];
-      for (int j = p; j > mult; --j) alphas[j - mult - 1] = numer / (u[a + j] - u[a]);
-      const int r = p - mult;
-      for (int j = 1; j <= r; ++j) {
-        const int save = r - j, s = mult + j;
-        CubicBezier& q = pieces.back();
-        for (int k = p; k >= s; --k) {
-          const double alpha = alphas[k - s];
-          q.p[k] = alpha * q.p[k] + (1.0 - alpha) * q.p[k - 1];
-        }
-        if (b < m) next.p[save] = q.p[p];
-      }
-    }
-    if (b < m) {
-      for (int j = p - mult; j <= p; ++j) next.p[j] = control_points_[b - p + j];
-      pieces.push_back(next);
-      a = b;
-      ++b;
+CubicBSpline::CubicBSpline(std::vector<Eigen::Vector2d> control_points, std::vector<double> knots)
+    : control_points_(std::move(control_points)),
+      knots_(std::move(knots)),
+      pieces_(DecomposeToBezier(control_points_, knots_)) {
+  for (std::size_t i = kDegree; i <= control_points_.size(); ++i) {
+    if (span_starts_.empty() || knots_[i] > span_starts_.back()) span_starts_.push_back(knots_[i]);
+  }
+  assert(span_starts_.size() == pieces_.size() + 1);
+  cumulative_.push_back({0, 0.0, 0.0});
+  for (std::size_t k = 0; k < pieces_.size(); ++k) {
+    for (int j = 1; j <= kTableSteps; ++j) {
+      const double a = static_cast<double>(j - 1) / kTableSteps,
+                   b = static_cast<double>(j) / kTableSteps;
+      cumulative_.push_back({k, b, cumulative_.back().arc_length + PieceLength(pieces_[k], a, b)});
     }
   }
-  return pieces;
+}
+
+std::pair<std::size_t, double> CubicBSpline::Locate(double t) const {
+  t = std::clamp(t, DomainStart(), DomainEnd());
+  const auto it = std::upper_bound(span_starts_.begin() + 1, span_starts_.end() - 1, t);
+  const std::size_t k = static_cast<std::size_t>(it - span_starts_.begin()) - 1;
+  return {k, (t - span_starts_[k]) / (span_starts_[k + 1] - span_starts_[k])};
+}
+
+Eigen::Vector2d CubicBSpline::Point(double t) const {
+  const auto [k, u] = Locate(t);
+  return pieces_[k].Point(u);
+}
+
+Eigen::Vector2d CubicBSpline::Derivative(double t) const {
+  const auto [k, u] = Locate(t);
+  return pieces_[k].Derivative(u) / (span_starts_[k + 1] - span_starts_[k]);
+}
+
+Eigen::Vector2d CubicBSpline::SecondDerivative(double t) const {
+  const auto [k, u] = Locate(t);
+  const double h = span_starts_[k + 1] - span_starts_[k];
+  return pieces_[k].SecondDerivative(u) / (h * h);
+}
+
+double CubicBSpline::ArcLengthAt(double t) const {
+  const auto [k, u] = Locate(t);
+  const int step = std::min(static_cast<int>(u * kTableSteps), kTableSteps - 1);
+  const TableEntry& entry = cumulative_[k * kTableSteps + static_cast<std::size_t>(step)];
+  return entry.arc_length + PieceLength(pieces_[k], entry.u, u);
+}
+
+double CubicBSpline::ParameterAtArcLength(double s) const {
+  s = std::clamp(s, 0.0, Length());
+  // The table entry at or before s, then Newton on the arc length within that sub-interval,
+  // safeguarded by bisection.
+  const auto it =
+      std::upper_bound(cumulative_.begin() + 1, cumulative_.end(), s,
+                       [](double value, const TableEntry& e) { return value < e.arc_length; });
+  const TableEntry& hi = it == cumulative_.end() ? cumulative_.back() : *it;
+  const TableEntry& lo = *(it - 1);
+  const CubicBezier& piece = pieces_[hi.piece];
+  const double u_lo = hi.u - 1.0 / kTableSteps;
+  double a = u_lo, b = hi.u;
+  const double target = s - lo.arc_length;
+  const double span = hi.arc_length - lo.arc_length;
+  double u = span > 0.0 ? u_lo + (b - a) * target / span : u_lo;
+  for (int it2 = 0; it2 < 30; ++it2) {
+    const double f = PieceLength(piece, u_lo, u) - target;
+    if (std::abs(f) < 1e-13) break;
+    if (f > 0.0)
+      b = u;
+    else
+      a = u;
+    const double df = piece.Derivative(u).norm();
+    double next = df > 0.0 ? u - f / df : 0.5 * (a + b);
+    if (!(next > a && next < b)) next = 0.5 * (a + b);
+    if (std::abs(next - u) < 1e-15) break;
+    u = next;
+  }
+  return span_starts_[hi.piece] + u * (span_starts_[hi.piece + 1] - span_starts_[hi.piece]);
+}
+
+std::vector<Eigen::Vector2d> CubicBSpline::ResampleByArcLength(double epsilon_m) const {
+  assert(epsilon_m > 0.0);
+  const double length = Length();
+  const std::size_t n = static_cast<std::size_t>(std::floor(length / epsilon_m + 1e-9)) + 1;
+  std::vector<Eigen::Vector2d> points;
+  points.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+    points.push_back(Point(ParameterAtArcLength(static_cast<double>(i) * epsilon_m)));
+  return points;
+}
+
+CubicBSpline::ClosestPoint CubicBSpline::Closest(const Eigen::Vector2d& q) const {
+  ClosestPoint best;
+  best.distance = kNoHit;
+  for (std::size_t k = 0; k < pieces_.size(); ++k) {
+    const double u = pieces_[k].ClosestParameter(q);
+    const Eigen::Vector2d p = pieces_[k].Point(u);
+    const double d = (p - q).norm();
+    if (d < best.distance) {
+      best = {span_starts_[k] + u * (span_starts_[k + 1] - span_starts_[k]), p, d};
+    }
+  }
+  return best;
+}
+
+CubicBSpline CubicBSpline::Transformed(const Pose2& a_T_b) const {
+  return CubicBSpline(a_T_b * control_points_, knots_);
+}
+
+double Intersect(const Ray2& ray, const CubicBSpline& curve, double t_min, double t_max) {
+  double best = kNoHit;
+  for (const CubicBezier& piece : curve.pieces())
+    best = std::min(best, Intersect(ray, piece, t_min, std::min(t_max, best)));
+  return best;
 }
 
 std::vector<CubicBezier> ClosedUniformBSplineToBezier(const std::vector<Eigen::Vector2d>& control) {

@@ -7,12 +7,15 @@
 #include <vector>
 
 #include "kernel/cubic_bezier.h"
+#include "kernel/pose2.h"
+#include "kernel/shapes.h"
 
 namespace splam::kernel {
 
 // A cubic B-spline C(t) = sum_i X_i N_{i,3}(t) with a clamped knot vector (the first and last
 // knots have multiplicity 4, so the curve starts at X_0 and ends at X_n), over the domain
-// [knots[3], knots[n + 1]].
+// [knots[3], knots[n + 1]]. The curve is also held as its Bezier pieces (one per non-empty knot
+// span), through which it is evaluated, measured and intersected.
 class CubicBSpline {
  public:
   static constexpr int kDegree = 3;
@@ -30,19 +33,63 @@ class CubicBSpline {
   const std::vector<double>& knots() const { return knots_; }
   double DomainStart() const { return knots_[kDegree]; }
   double DomainEnd() const { return knots_[control_points_.size()]; }
+  // The Bezier pieces in order; piece k spans [span_starts()[k], span_starts()[k + 1]].
+  const std::vector<CubicBezier>& pieces() const { return pieces_; }
+  const std::vector<double>& span_starts() const { return span_starts_; }
 
-  // de Boor's algorithm; t is clamped to the domain.
+  // C(t), C'(t) and C''(t) with respect to t; t is clamped to the domain.
   Eigen::Vector2d Point(double t) const;
-  // The curve as Bezier pieces, one per non-empty knot span (Boehm knot insertion).
-  std::vector<CubicBezier> ToBezier() const;
+  Eigen::Vector2d Derivative(double t) const;
+  Eigen::Vector2d SecondDerivative(double t) const;
+  // C(t) by de Boor's algorithm: the reference the pieces are tested against.
+  Eigen::Vector2d PointDeBoor(double t) const;
+
+  // Arc length of the whole curve and from the domain start to t (Gauss-Legendre quadrature;
+  // relative error below 1e-9 for pieces that are not degenerate).
+  double Length() const { return cumulative_.back().arc_length; }
+  double ArcLengthAt(double t) const;
+  // The parameter at arc length s from the start (s clamped to [0, Length()]).
+  double ParameterAtArcLength(double s) const;
+  // Points at arc lengths 0, epsilon, 2 epsilon, ... up to Length() (the last point is the
+  // curve's end only when Length() is a multiple of epsilon). epsilon > 0.
+  std::vector<Eigen::Vector2d> ResampleByArcLength(double epsilon_m) const;
+
+  struct ClosestPoint {
+    double t = 0.0;
+    Eigen::Vector2d point = Eigen::Vector2d::Zero();
+    double distance = 0.0;
+  };
+  // The point of the curve closest to q (the best over all pieces).
+  ClosestPoint Closest(const Eigen::Vector2d& q) const;
+
+  // The curve moved rigidly: a_T_b applied to a curve given in frame b. B-splines are affine
+  // invariant, so this transforms the control points.
+  CubicBSpline Transformed(const Pose2& a_T_b) const;
 
  private:
-  CubicBSpline(std::vector<Eigen::Vector2d> control_points, std::vector<double> knots)
-      : control_points_(std::move(control_points)), knots_(std::move(knots)) {}
+  CubicBSpline(std::vector<Eigen::Vector2d> control_points, std::vector<double> knots);
+  // Piece index and local parameter u in [0, 1] of t.
+  std::pair<std::size_t, double> Locate(double t) const;
+
+  // Arc-length table: at sub-interval boundaries of every piece, the piece, its local parameter
+  // and the arc length from the curve's start.
+  struct TableEntry {
+    std::size_t piece;
+    double u;
+    double arc_length;
+  };
 
   std::vector<Eigen::Vector2d> control_points_;
   std::vector<double> knots_;
+  std::vector<CubicBezier> pieces_;
+  std::vector<double> span_starts_;
+  std::vector<TableEntry> cumulative_;
 };
+
+// Smallest ray parameter in (t_min, t_max) where the ray meets the curve, or kNoHit: the
+// nearest hit over the Bezier pieces (see the CubicBezier overload: no crossing is missed, and
+// a hit at the joint of two pieces is one hit).
+double Intersect(const Ray2& ray, const CubicBSpline& curve, double t_min, double t_max);
 
 // A closed uniform cubic B-spline over the control polygon X_0 .. X_{n-1} (wrapping around;
 // n >= 3) as n Bezier pieces; piece i is the span of X_i .. X_{i+3 mod n}. The curve is C2 and

@@ -65,7 +65,7 @@ std::pair<CubicBezier, CubicBezier> CubicBezier::Split(double t) const {
   return {CubicBezier{{p[0], p01, p012, mid}}, CubicBezier{{mid, p123, p23, p[3]}}};
 }
 
-double CubicBezier::Distance(const Eigen::Vector2d& q) const {
+double CubicBezier::ClosestParameter(const Eigen::Vector2d& q) const {
   constexpr int kSamples = 32;
   double best_t = 0.0, best = (Point(0.0) - q).squaredNorm();
   for (int i = 1; i <= kSamples; ++i) {
@@ -73,7 +73,6 @@ double CubicBezier::Distance(const Eigen::Vector2d& q) const {
     const double d = (Point(t) - q).squaredNorm();
     if (d < best) best = d, best_t = t;
   }
-  // Newton on g(t) = B'(t) . (B(t) - q) = 0.
   double t = best_t;
   for (int it = 0; it < 20; ++it) {
     const Eigen::Vector2d r = Point(t) - q;
@@ -86,7 +85,7 @@ double CubicBezier::Distance(const Eigen::Vector2d& q) const {
     t = next;
     if (done) break;
   }
-  return std::sqrt(std::min(best, (Point(t) - q).squaredNorm()));
+  return (Point(t) - q).squaredNorm() <= best ? t : best_t;
 }
 
 double Intersect(const Ray2& ray, const CubicBezier& curve, double t_min, double t_max) {

@@ -21,8 +21,12 @@ struct CubicBezier {
   Box2 ControlBounds() const;
   // de Casteljau split at t: the pieces over [0, t] and [t, 1].
   std::pair<CubicBezier, CubicBezier> Split(double t) const;
-  // Distance from p to the curve: a dense scan then Newton refinement; accurate to 1e-9 m.
-  double Distance(const Eigen::Vector2d& q) const;
+  // The parameter of the point of the curve closest to q: a scan of 33 samples, then Newton
+  // steps on B'(t) . (B(t) - q) = 0; the distance is accurate to 1e-9 m.
+  double ClosestParameter(const Eigen::Vector2d& q) const;
+  double Distance(const Eigen::Vector2d& q) const {
+    return (Point(ClosestParameter(q)) - q).norm();
+  }
 };
 
 // Smallest ray parameter in (t_min, t_max) where the ray meets the curve, or kNoHit.

@@ -21,7 +21,7 @@ bool AllFinite(const std::vector<Eigen::Vector2d>& points) {
 
 std::vector<kernel::CubicBezier> SplinePieces(const Spline& spline) {
   if (spline.closed) return kernel::ClosedUniformBSplineToBezier(spline.control_points);
-  return kernel::CubicBSpline::ClampedUniform(spline.control_points)->ToBezier();
+  return kernel::CubicBSpline::ClampedUniform(spline.control_points)->pieces();
 }
 
 }  // namespace

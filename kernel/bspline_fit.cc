@@ -1,0 +1,131 @@
+#include "kernel/bspline_fit.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+
+namespace splam::kernel {
+namespace {
+
+void SetError(std::string* error, std::string message) {
+  if (error != nullptr) *error = std::move(message);
+}
+
+// The four non-zero cubic basis functions N_{span-3..span,3}(t) (Piegl & Tiller A2.2).
+void BasisFunctions(const std::vector<double>& knots, std::size_t span, double t, double n[4]) {
+  double left[4], right[4];
+  n[0] = 1.0;
+  for (int j = 1; j <= 3; ++j) {
+    left[j] = t - knots[span + 1 - j];
+    right[j] = knots[span + j] - t;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double denom = right[r + 1] + left[j - r];
+      const double temp = denom != 0.0 ? n[r] / denom : 0.0;
+      n[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    n[j] = saved;
+  }
+}
+
+}  // namespace
+
+std::string BSplineFitOptions::Validate() const {
+  if (!(control_point_spacing_m > 0.0)) return "control_point_spacing_m must be positive";
+  if (min_control_points < 4) return "min_control_points must be at least 4";
+  if (max_control_points < min_control_points)
+    return "max_control_points must be >= min_control_points";
+  if (parameter_smoothing_half_window < 0) return "parameter_smoothing_half_window must be >= 0";
+  return "";
+}
+
+std::optional<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& points,
+                                            const BSplineFitOptions& options, std::string* error) {
+  const std::size_t m = points.size();
+  if (m < 4) {
+    SetError(error, "a cubic B-spline fit needs at least 4 points, got " + std::to_string(m));
+    return std::nullopt;
+  }
+  for (const Eigen::Vector2d& p : points) {
+    if (!p.allFinite()) {
+      SetError(error, "point is not finite");
+      return std::nullopt;
+    }
+  }
+  // Chord-length parameters along a moving average of the points: on noisy data the raw chords
+  // zig-zag, so their length overstates the progress along the curve and the fit follows the
+  // noise. The fit itself uses the raw points.
+  const std::size_t half =
+      static_cast<std::size_t>(std::max(options.parameter_smoothing_half_window, 0));
+  std::vector<Eigen::Vector2d> smoothed(m);
+  for (std::size_t k = 0; k < m; ++k) {
+    const std::size_t h = std::min({half, k, m - 1 - k});  // symmetric, shrinking at the ends
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    for (std::size_t j = k - h; j <= k + h; ++j) sum += points[j];
+    smoothed[k] = sum / static_cast<double>(2 * h + 1);
+  }
+  std::vector<double> t(m, 0.0);
+  for (std::size_t k = 1; k < m; ++k) t[k] = t[k - 1] + (smoothed[k] - smoothed[k - 1]).norm();
+  const double length = t.back();
+  std::size_t distinct = 1;
+  for (std::size_t k = 1; k < m; ++k) distinct += t[k] > t[k - 1];
+  if (!(length > 0.0) || distinct < 4) {
+    SetError(error, "the points are not spread along a curve (fewer than 4 distinct points)");
+    return std::nullopt;
+  }
+  for (double& v : t) v /= length;
+
+  int wanted = static_cast<int>(std::lround(length / options.control_point_spacing_m)) + 1;
+  wanted = std::clamp(wanted, options.min_control_points, options.max_control_points);
+  const std::size_t n = std::min(static_cast<std::size_t>(wanted), distinct);  // control points
+
+  // Knots by averaging (Piegl & Tiller eq. 9.69): every span contains parameters.
+  std::vector<double> knots(n + 4, 0.0);
+  const double d = static_cast<double>(m) / static_cast<double>(n - 3);
+  for (std::size_t j = 1; j + 3 < n; ++j) {
+    const double jd = static_cast<double>(j) * d;
+    const std::size_t i = static_cast<std::size_t>(jd);
+    const double alpha = jd - static_cast<double>(i);
+    knots[j + 3] = (1.0 - alpha) * t[i - 1] + alpha * t[std::min(i, m - 1)];
+  }
+  std::fill(knots.begin() + static_cast<std::ptrdiff_t>(n), knots.end(), 1.0);
+  // Averaging can repeat a knot when parameters repeat; keep the vector strictly increasing
+  // inside so that no span is empty.
+  for (std::size_t j = 4; j < n; ++j) {
+    if (knots[j] <= knots[j - 1]) knots[j] = std::nextafter(knots[j - 1], 2.0);
+  }
+  if (n > 4 && knots[n - 1] >= 1.0) {
+    SetError(error, "cannot place knots for these points");
+    return std::nullopt;
+  }
+
+  // Normal equations N^T N X = N^T D for all control points. The ends are not pinned to the
+  // first and last measurement: a noisy end point would bend the end of the curve into a hook.
+  const Eigen::Index unknowns = static_cast<Eigen::Index>(n);
+  Eigen::MatrixXd ata = Eigen::MatrixXd::Zero(unknowns, unknowns);
+  Eigen::MatrixXd atb = Eigen::MatrixXd::Zero(unknowns, 2);
+  std::size_t span = 3;
+  for (std::size_t k = 0; k < m; ++k) {
+    while (span + 1 < n && t[k] >= knots[span + 1]) ++span;
+    double basis[4];
+    BasisFunctions(knots, span, t[k], basis);
+    for (int a = 0; a < 4; ++a) {
+      const Eigen::Index row = static_cast<Eigen::Index>(span - 3) + a;
+      atb.row(row) += basis[a] * points[k].transpose();
+      for (int b = 0; b < 4; ++b)
+        ata(row, static_cast<Eigen::Index>(span - 3) + b) += basis[a] * basis[b];
+    }
+  }
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(ata);
+  const Eigen::MatrixXd x = ldlt.solve(atb);
+  if (ldlt.info() != Eigen::Success || !x.allFinite()) {
+    SetError(error, "the least-squares system is singular");
+    return std::nullopt;
+  }
+  std::vector<Eigen::Vector2d> control(n);
+  for (std::size_t i = 0; i < n; ++i) control[i] = x.row(static_cast<Eigen::Index>(i)).transpose();
+  return CubicBSpline::Create(std::move(control), std::move(knots), error);
+}
+
+}  // namespace splam::kernel

@@ -1,0 +1,40 @@
+#ifndef SPLAM_KERNEL_BSPLINE_FIT_H_
+#define SPLAM_KERNEL_BSPLINE_FIT_H_
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "kernel/bspline.h"
+
+namespace splam::kernel {
+
+struct BSplineFitOptions {
+  // One control point per this much chord length of the data (the count grows with the
+  // segment's length), metres. Smaller follows detail and noise more closely.
+  double control_point_spacing_m = 0.25;
+  int min_control_points = 4;   // >= 4 (a single cubic piece)
+  int max_control_points = 64;  // cap for very long segments
+  // The chord-length parameters are measured along a moving average of 2 h + 1 points (h this
+  // value), so that range noise does not inflate the length; 0 uses the raw points.
+  int parameter_smoothing_half_window = 3;
+
+  std::string Validate() const;
+};
+
+// Least-squares cubic B-spline through ordered points D_0..D_m (paper 000 eq. 4, Piegl & Tiller
+// §9.4.1): parameters t_k from chord length (of the smoothed points) normalised to [0, 1], clamped
+// knots placed by de Boor's averaging so that every span holds data, and all control points
+// minimising sum_k |C(t_k) - D_k|^2 (the curve's ends are fitted too, not pinned to noisy end
+// points). The number of control points is round(chord length / spacing) + 1, clamped to
+// [min_control_points, max_control_points] and to the number of distinct parameters.
+// Fails (nullopt, *error set) for fewer than 4 points, non-finite points, or fewer than 4
+// distinct points along the chord (e.g. all points equal).
+std::optional<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& points,
+                                            const BSplineFitOptions& options = {},
+                                            std::string* error = nullptr);
+
+}  // namespace splam::kernel
+
+#endif  // SPLAM_KERNEL_BSPLINE_FIT_H_

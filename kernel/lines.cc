@@ -1,0 +1,187 @@
+#include "kernel/lines.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "kernel/angle.h"
+
+namespace splam::kernel {
+
+Eigen::Vector2d LineFeature::Normal() const { return {std::cos(theta_rad), std::sin(theta_rad)}; }
+Eigen::Vector2d LineFeature::Direction() const {
+  return {-std::sin(theta_rad), std::cos(theta_rad)};
+}
+
+std::optional<LineFeature> FitLineTls(const std::vector<Eigen::Vector2d>& points) {
+  if (points.size() < 2) return std::nullopt;
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& p : points) c += p;
+  c /= static_cast<double>(points.size());
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (const Eigen::Vector2d& p : points) scatter += (p - c) * (p - c).transpose();
+  if (!(scatter.trace() > 0.0) || !scatter.allFinite()) return std::nullopt;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
+  Eigen::Vector2d normal = eig.eigenvectors().col(0);  // smallest eigenvalue
+  double rho = normal.dot(c);
+  if (rho < 0.0) {
+    normal = -normal;
+    rho = -rho;
+  }
+  LineFeature line;
+  line.rho_m = rho;
+  line.theta_rad = WrapAngle(std::atan2(normal.y(), normal.x()));
+  const Eigen::Vector2d foot = rho * line.Normal();
+  const Eigen::Vector2d dir = line.Direction();
+  line.start = foot + dir * dir.dot(points.front() - foot);
+  line.end = foot + dir * dir.dot(points.back() - foot);
+  return line;
+}
+
+Eigen::Matrix2d LineCovariance(const std::vector<Eigen::Vector2d>& points, const LineFeature& line,
+                               const std::vector<double>& sigma2) {
+  const double n = static_cast<double>(points.size());
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& p : points) c += p;
+  c /= n;
+  const Eigen::Vector2d dir = line.Direction();
+  double spread = 0.0;
+  for (const Eigen::Vector2d& p : points) spread += std::pow(dir.dot(p - c), 2);
+  const double s2 =
+      std::accumulate(sigma2.begin(), sigma2.end(), 0.0) / static_cast<double>(sigma2.size());
+  const double m = dir.dot(c);
+  Eigen::Matrix2d cov;
+  const double var_theta = s2 / std::max(spread, 1e-12);
+  cov << s2 / n + m * m * var_theta, m * var_theta, m * var_theta, var_theta;
+  return cov;
+}
+
+std::string LineExtractionOptions::Validate() const {
+  if (!(sef_c0_m >= 0.0)) return "sef_c0_m must be >= 0";
+  if (!(range_sigma_m >= 0.0) || !(range_sigma_fraction >= 0.0) ||
+      !(range_sigma_m + range_sigma_fraction > 0.0)) {
+    return "the point noise model needs a positive sigma";
+  }
+  if (!(inlier_sigmas > 0.0)) return "inlier_sigmas must be positive";
+  if (ransac_iterations < 1) return "ransac_iterations must be at least 1";
+  if (min_points < 2) return "min_points must be at least 2";
+  if (!(min_length_m >= 0.0) || !(max_point_gap_m > 0.0))
+    return "line lengths and gaps must be positive";
+  if (!(corner_min_angle_rad > 0.0 && corner_min_angle_rad <= kPi / 2)) {
+    return "corner_min_angle_rad must be in (0, pi/2]";
+  }
+  if (!(corner_max_distance_m >= 0.0)) return "corner_max_distance_m must be >= 0";
+  return "";
+}
+
+std::vector<LineFeature> RansacLines(const std::vector<Eigen::Vector2d>& points,
+                                     const std::vector<double>& sigma2,
+                                     const LineExtractionOptions& options, Random* random) {
+  std::vector<LineFeature> lines;
+  std::vector<std::size_t> remaining(points.size());
+  std::iota(remaining.begin(), remaining.end(), 0);
+  const double k2 = options.inlier_sigmas * options.inlier_sigmas;
+  auto consensus = [&](const Eigen::Vector2d& normal, double rho) {
+    std::vector<std::size_t> inliers;
+    for (std::size_t i : remaining) {
+      const double d = normal.dot(points[i]) - rho;
+      if (d * d <= k2 * sigma2[i]) inliers.push_back(i);
+    }
+    return inliers;
+  };
+  // The longest run of inliers without a gap larger than max_point_gap_m.
+  auto longest_run = [&](const std::vector<std::size_t>& inliers) {
+    std::vector<std::size_t> best, run;
+    for (std::size_t i : inliers) {
+      if (!run.empty() && (points[i] - points[run.back()]).norm() > options.max_point_gap_m)
+        run.clear();
+      run.push_back(i);
+      if (run.size() > best.size()) best = run;
+    }
+    return best;
+  };
+  const std::size_t min_points = static_cast<std::size_t>(options.min_points);
+  while (remaining.size() >= min_points) {
+    std::vector<std::size_t> best;
+    for (int it = 0; it < options.ransac_iterations; ++it) {
+      const std::size_t a = remaining[random->Index(remaining.size())];
+      const std::size_t b = remaining[random->Index(remaining.size())];
+      const Eigen::Vector2d d = points[b] - points[a];
+      if (a == b || d.squaredNorm() == 0.0) continue;
+      const Eigen::Vector2d normal = Eigen::Vector2d(-d.y(), d.x()).normalized();
+      std::vector<std::size_t> run = longest_run(consensus(normal, normal.dot(points[a])));
+      if (run.size() > best.size()) best = std::move(run);
+    }
+    if (best.size() < min_points) break;
+    // Refit by TLS, then take the contiguous consensus of the refit line.
+    std::vector<Eigen::Vector2d> support;
+    for (std::size_t i : best) support.push_back(points[i]);
+    std::optional<LineFeature> line = FitLineTls(support);
+    if (line) {
+      std::vector<std::size_t> refit = longest_run(consensus(line->Normal(), line->rho_m));
+      if (refit.size() >= min_points) best = std::move(refit);
+      support.clear();
+      for (std::size_t i : best) support.push_back(points[i]);
+      line = FitLineTls(support);
+    }
+    std::erase_if(remaining,
+                  [&](std::size_t i) { return std::binary_search(best.begin(), best.end(), i); });
+    if (!line || line->Length() < options.min_length_m) continue;
+    std::vector<double> s2;
+    for (std::size_t i : best) s2.push_back(sigma2[i]);
+    line->covariance = LineCovariance(support, *line, s2);
+    line->point_indices = std::move(best);
+    lines.push_back(std::move(*line));
+  }
+  return lines;
+}
+
+LineExtraction ExtractLines(const Scan& scan, const LineExtractionOptions& options) {
+  LineExtraction out;
+  SegmentationOptions sef;
+  sef.method = SegmentationMethod::kDietmayer;
+  sef.dietmayer_c0_m = options.sef_c0_m;
+  sef.min_points = options.min_points;
+  sef.min_length_m = options.min_length_m;
+  Random random(options.seed);
+  for (const ScanSegment& segment : SegmentScan(scan, sef)) {
+    const std::size_t offset = out.points.size();
+    std::vector<double> sigma2;
+    for (std::size_t i = 0; i < segment.points.size(); ++i) {
+      const double sigma =
+          options.range_sigma_m + options.range_sigma_fraction * segment.points[i].norm();
+      sigma2.push_back(sigma * sigma);
+      out.points.push_back(segment.points[i]);
+      out.beams.push_back(segment.beams[i]);
+    }
+    for (LineFeature& line : RansacLines(segment.points, sigma2, options, &random)) {
+      for (std::size_t& i : line.point_indices) i += offset;
+      out.lines.push_back(std::move(line));
+    }
+  }
+  std::sort(out.lines.begin(), out.lines.end(), [](const LineFeature& a, const LineFeature& b) {
+    return a.point_indices.front() < b.point_indices.front();
+  });
+  // Corners between neighbours in beam order.
+  for (std::size_t i = 0; i + 1 < out.lines.size(); ++i) {
+    const LineFeature& a = out.lines[i];
+    const LineFeature& b = out.lines[i + 1];
+    const double cross =
+        a.Direction().x() * b.Direction().y() - a.Direction().y() * b.Direction().x();
+    const double angle = std::asin(std::min(1.0, std::abs(cross)));
+    if (angle < options.corner_min_angle_rad) continue;
+    // Intersection: solve n_a . x = rho_a, n_b . x = rho_b.
+    Eigen::Matrix2d n;
+    n << a.Normal().transpose(), b.Normal().transpose();
+    const Eigen::Vector2d x = n.inverse() * Eigen::Vector2d(a.rho_m, b.rho_m);
+    if ((x - a.end).norm() > options.corner_max_distance_m ||
+        (x - b.start).norm() > options.corner_max_distance_m) {
+      continue;
+    }
+    out.corners.push_back({x, i, i + 1, angle});
+  }
+  return out;
+}
+
+}  // namespace splam::kernel
