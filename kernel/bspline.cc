@@ -184,8 +184,10 @@ Eigen::Vector2d CubicBSpline::SecondDerivative(double t) const {
 double CubicBSpline::ArcLengthAt(double t) const {
   const auto [k, u] = Locate(t);
   const int step = std::min(static_cast<int>(u * kTableSteps), kTableSteps - 1);
+  // Entry k * kTableSteps + step is the arc length at u = step / kTableSteps of piece k (for
+  // step 0 it is stored as the end of piece k - 1).
   const TableEntry& entry = cumulative_[k * kTableSteps + static_cast<std::size_t>(step)];
-  return entry.arc_length + PieceLength(pieces_[k], entry.u, u);
+  return entry.arc_length + PieceLength(pieces_[k], static_cast<double>(step) / kTableSteps, u);
 }
 
 double CubicBSpline::ParameterAtArcLength(double s) const {
@@ -195,7 +197,8 @@ double CubicBSpline::ParameterAtArcLength(double s) const {
   const auto it =
       std::upper_bound(cumulative_.begin() + 1, cumulative_.end(), s,
                        [](double value, const TableEntry& e) { return value < e.arc_length; });
-  const TableEntry& hi = it == cumulative_.end() ? cumulative_.back() : *it;
+  if (it == cumulative_.end()) return DomainEnd();
+  const TableEntry& hi = *it;
   const TableEntry& lo = *(it - 1);
   const CubicBezier& piece = pieces_[hi.piece];
   const double u_lo = hi.u - 1.0 / kTableSteps;

@@ -82,45 +82,66 @@ std::vector<LineFeature> RansacLines(const std::vector<Eigen::Vector2d>& points,
   std::vector<std::size_t> remaining(points.size());
   std::iota(remaining.begin(), remaining.end(), 0);
   const double k2 = options.inlier_sigmas * options.inlier_sigmas;
-  auto consensus = [&](const Eigen::Vector2d& normal, double rho) {
-    std::vector<std::size_t> inliers;
-    for (std::size_t i : remaining) {
-      const double d = normal.dot(points[i]) - rho;
-      if (d * d <= k2 * sigma2[i]) inliers.push_back(i);
-    }
-    return inliers;
+  const double max_gap2 = options.max_point_gap_m * options.max_point_gap_m;
+  // The longest run of consensus points of the line (normal, rho) without a gap larger than
+  // max_point_gap_m, as positions [first, last] in `remaining` and its size; counted without
+  // allocating, since it runs for every RANSAC sample.
+  struct Run {
+    std::size_t first = 0, last = 0, size = 0;
   };
-  // The longest run of inliers without a gap larger than max_point_gap_m.
-  auto longest_run = [&](const std::vector<std::size_t>& inliers) {
-    std::vector<std::size_t> best, run;
-    for (std::size_t i : inliers) {
-      if (!run.empty() && (points[i] - points[run.back()]).norm() > options.max_point_gap_m)
-        run.clear();
-      run.push_back(i);
-      if (run.size() > best.size()) best = run;
+  auto longest_run = [&](const Eigen::Vector2d& normal, double rho) {
+    Run best, current;
+    const Eigen::Vector2d* previous = nullptr;
+    for (std::size_t pos = 0; pos < remaining.size(); ++pos) {
+      const std::size_t i = remaining[pos];
+      const double d = normal.dot(points[i]) - rho;
+      if (d * d > k2 * sigma2[i]) continue;
+      if (previous == nullptr || (points[i] - *previous).squaredNorm() > max_gap2)
+        current = {pos, pos, 0};
+      current.last = pos;
+      ++current.size;
+      previous = &points[i];
+      if (current.size > best.size) best = current;
     }
     return best;
   };
+  auto members = [&](const Run& run, const Eigen::Vector2d& normal, double rho) {
+    std::vector<std::size_t> out;
+    for (std::size_t pos = run.first; run.size > 0 && pos <= run.last; ++pos) {
+      const std::size_t i = remaining[pos];
+      const double d = normal.dot(points[i]) - rho;
+      if (d * d <= k2 * sigma2[i]) out.push_back(i);
+    }
+    return out;
+  };
   const std::size_t min_points = static_cast<std::size_t>(options.min_points);
   while (remaining.size() >= min_points) {
-    std::vector<std::size_t> best;
+    Run best_run;
+    Eigen::Vector2d best_normal = Eigen::Vector2d::UnitX();
+    double best_rho = 0.0;
     for (int it = 0; it < options.ransac_iterations; ++it) {
       const std::size_t a = remaining[random->Index(remaining.size())];
       const std::size_t b = remaining[random->Index(remaining.size())];
       const Eigen::Vector2d d = points[b] - points[a];
       if (a == b || d.squaredNorm() == 0.0) continue;
       const Eigen::Vector2d normal = Eigen::Vector2d(-d.y(), d.x()).normalized();
-      std::vector<std::size_t> run = longest_run(consensus(normal, normal.dot(points[a])));
-      if (run.size() > best.size()) best = std::move(run);
+      const double rho = normal.dot(points[a]);
+      const Run run = longest_run(normal, rho);
+      if (run.size > best_run.size) {
+        best_run = run;
+        best_normal = normal;
+        best_rho = rho;
+      }
     }
-    if (best.size() < min_points) break;
+    if (best_run.size < min_points) break;
+    std::vector<std::size_t> best = members(best_run, best_normal, best_rho);
     // Refit by TLS, then take the contiguous consensus of the refit line.
     std::vector<Eigen::Vector2d> support;
     for (std::size_t i : best) support.push_back(points[i]);
     std::optional<LineFeature> line = FitLineTls(support);
     if (line) {
-      std::vector<std::size_t> refit = longest_run(consensus(line->Normal(), line->rho_m));
-      if (refit.size() >= min_points) best = std::move(refit);
+      const Run refit = longest_run(line->Normal(), line->rho_m);
+      if (refit.size >= min_points) best = members(refit, line->Normal(), line->rho_m);
       support.clear();
       for (std::size_t i : best) support.push_back(points[i]);
       line = FitLineTls(support);

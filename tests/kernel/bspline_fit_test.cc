@@ -1,0 +1,82 @@
+#include "kernel/bspline_fit.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "kernel/random.h"
+
+namespace splam::kernel {
+namespace {
+
+TEST(FitCubicBSpline, PropertyPointsFromAKnownSplineAreFittedBack) {
+  Random random(61);
+  for (int trial = 0; trial < 100; ++trial) {
+    // A smooth random spline 1-6 m long.
+    std::vector<Eigen::Vector2d> control;
+    Eigen::Vector2d p(random.Uniform(-5, 5), random.Uniform(-5, 5));
+    const int n = 4 + static_cast<int>(random.Index(6));
+    for (int i = 0; i < n; ++i) {
+      control.push_back(p);
+      p += Eigen::Vector2d(random.Uniform(0.3, 1.0), random.Uniform(-0.5, 0.5));
+    }
+    const CubicBSpline truth = *CubicBSpline::ClampedUniform(control);
+    const std::vector<Eigen::Vector2d> points = truth.ResampleByArcLength(0.02);
+    // Control points about as dense as the true curve's, so that the fit can follow it.
+    BSplineFitOptions options;
+    options.control_point_spacing_m = 0.1;
+    std::string error;
+    const auto fit = FitCubicBSpline(points, options, &error);
+    ASSERT_TRUE(fit.has_value()) << error;
+    // Every data point is within 2 mm of the fit, and the fit within 2 mm of the true curve.
+    double worst = 0.0;
+    for (const auto& q : points) worst = std::max(worst, fit->Closest(q).distance);
+    for (const auto& q : fit->ResampleByArcLength(0.05))
+      worst = std::max(worst, truth.Closest(q).distance);
+    EXPECT_LT(worst, 2e-3) << "trial " << trial;
+    EXPECT_NEAR(fit->Length(), truth.Length(), 0.01 * truth.Length());
+  }
+}
+
+TEST(FitCubicBSpline, ControlPointCountGrowsWithLength) {
+  auto count = [](double length) {
+    std::vector<Eigen::Vector2d> points;
+    for (double x = 0; x <= length; x += 0.01) points.emplace_back(x, 0.1 * std::sin(x));
+    return FitCubicBSpline(points)->control_points().size();
+  };
+  EXPECT_EQ(count(0.3), 4u);
+  EXPECT_EQ(count(2.0), 9u);  // round(2.0 / 0.25) + 1
+  EXPECT_EQ(count(4.0), 17u);
+  EXPECT_EQ(count(40.0), 64u);  // capped
+}
+
+TEST(FitCubicBSpline, DegenerateInputsGiveDefinedResults) {
+  std::string error;
+  EXPECT_FALSE(FitCubicBSpline({{0, 0}, {1, 0}, {2, 0}}, {}, &error));
+  EXPECT_NE(error.find("at least 4 points"), std::string::npos);
+  EXPECT_FALSE(
+      FitCubicBSpline(std::vector<Eigen::Vector2d>(10, Eigen::Vector2d(1, 1)), {}, &error));
+  EXPECT_NE(error.find("fewer than 4 distinct"), std::string::npos);
+  EXPECT_FALSE(FitCubicBSpline({{0, 0}, {1, NAN}, {2, 0}, {3, 0}}, {}, &error));
+  // Duplicates among distinct points and collinear points are fine, and nothing is NaN.
+  const auto dup =
+      FitCubicBSpline({{0, 0}, {0, 0}, {1, 0}, {1, 0}, {2, 0}, {3, 0}, {3, 0}, {4, 0}});
+  ASSERT_TRUE(dup.has_value());
+  const auto line = FitCubicBSpline({{0, 0}, {1, 1}, {2, 2}, {3, 3}, {4, 4}});
+  ASSERT_TRUE(line.has_value());
+  for (const auto* s : {&*dup, &*line}) {
+    for (const auto& c : s->control_points()) EXPECT_TRUE(c.allFinite());
+    for (const auto& q : s->ResampleByArcLength(0.01)) EXPECT_TRUE(q.allFinite());
+  }
+  EXPECT_NEAR(line->Length(), 4 * std::sqrt(2.0), 1e-6);
+}
+
+TEST(BSplineFitOptions, Validate) {
+  EXPECT_EQ(BSplineFitOptions().Validate(), "");
+  BSplineFitOptions o;
+  o.min_control_points = 3;
+  EXPECT_NE(o.Validate(), "");
+}
+
+}  // namespace
+}  // namespace splam::kernel
