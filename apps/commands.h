@@ -8,6 +8,8 @@ namespace splam::apps {
 // Each Add*Command registers a subcommand whose callback stores its exit status in *exit_code.
 void AddSimulateCommand(CLI::App* app, int* exit_code);
 void AddRenderCommand(CLI::App* app, int* exit_code);
+void AddSlamCommand(CLI::App* app, int* exit_code);
+void AddEvalCommand(CLI::App* app, int* exit_code);
 
 // Exit statuses of every command.
 inline constexpr int kExitOk = 0;

@@ -2,8 +2,11 @@
 
 #include <map>
 
+#include "estimation/metrics.h"
+#include "io/plot.h"
 #include "io/render.h"
 #include "io/simulation_log.h"
+#include "kernel/angle.h"
 
 namespace splam::apps {
 
@@ -34,6 +37,7 @@ std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::str
   extend(picture.odometry);
   for (const auto& [label, t] : picture.estimates) extend(t);
   for (const Eigen::Vector2d& p : picture.scan_points) area.Extend(p);
+  for (const auto& [a, b] : picture.map_segments) area.Extend(a), area.Extend(b);
   if (area.IsEmpty()) area = kernel::Box2{Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1)};
 
   io::FigureOptions options;
@@ -42,7 +46,11 @@ std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::str
   io::Figure figure(area, options);
   if (!picture.scan_points.empty())
     figure.DrawPoints(picture.scan_points, io::palette::kScan, 0.9, "laser hits");
-  if (picture.world != nullptr) figure.DrawWorld(*picture.world);
+  if (picture.world != nullptr) figure.DrawWorld(*picture.world, picture.world_color);
+  for (const auto& [a, b] : picture.map_segments)
+    figure.DrawPolyline({a, b}, io::palette::kMap, 2.5, "map lines");
+  figure.DrawMarkers(picture.map_corners, io::Figure::Marker::kDiamond, io::palette::kMap, 5.0,
+                     "map corners");
   figure.DrawPath(io::Poses(picture.odometry), io::palette::kOdometry, 1.5, "odometry");
   for (const auto& [label, t] : picture.estimates)
     figure.DrawPath(io::Poses(t), io::palette::kEstimate, 1.5, label);
@@ -56,6 +64,27 @@ std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::str
     if (std::string error = figure.Save(path); !error.empty()) return error;
   }
   return "";
+}
+
+// Writes x, y and theta errors over time of each trajectory against the truth.
+std::string SaveErrorPlot(
+    const std::string& title, const kernel::Trajectory& truth,
+    const std::vector<std::tuple<std::string, io::Rgb, kernel::Trajectory>>& runs,
+    const std::vector<std::string>& paths) {
+  std::vector<io::PlotPanel> panels = {
+      {"x error (m)", {}}, {"y error (m)", {}}, {"theta error (deg)", {}}};
+  for (const auto& [label, color, trajectory] : runs) {
+    const estimation::TrajectoryError e = estimation::CompareToTruth(truth, trajectory);
+    std::vector<double> deg;
+    for (double a : e.error_theta_rad) deg.push_back(kernel::RadToDeg(a));
+    panels[0].series.push_back({label, color, e.time_s, e.error_x_m});
+    panels[1].series.push_back({label, color, e.time_s, e.error_y_m});
+    panels[2].series.push_back({label, color, e.time_s, deg});
+  }
+  io::PlotOptions options;
+  options.title = title;
+  options.x_label = "time (s)";
+  return io::SavePlot(panels, options, paths);
 }
 
 }  // namespace splam::apps

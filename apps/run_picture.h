@@ -3,10 +3,12 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 #include "io/carmen.h"
+#include "io/render.h"
 #include "io/trajectory.h"
 #include "sim/world.h"
 
@@ -20,6 +22,9 @@ struct RunPicture {
   io::Trajectory odometry;
   std::vector<std::pair<std::string, io::Trajectory>> estimates;  // legend label, trajectory
   std::vector<Eigen::Vector2d> scan_points;                       // world frame
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> map_segments;  // estimated map lines
+  std::vector<Eigen::Vector2d> map_corners;                               // estimated map corners
+  io::Rgb world_color = io::palette::kWorld;
   double robot_radius_m = 0.0;  // > 0 draws the robot at the last true (else odometric) pose
   double pixels_per_meter = 40.0;
 };
@@ -30,6 +35,13 @@ std::vector<Eigen::Vector2d> ScanPointsInWorld(const io::CarmenLog& log, int eve
 
 // Draws the picture into each path (.svg or .png); empty on success, else the first error.
 std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::string>& paths);
+
+// Plots the x, y and theta errors over time of each (label, colour, trajectory) against the
+// truth, to each path; empty on success.
+std::string SaveErrorPlot(
+    const std::string& title, const kernel::Trajectory& truth,
+    const std::vector<std::tuple<std::string, io::Rgb, kernel::Trajectory>>& runs,
+    const std::vector<std::string>& paths);
 
 }  // namespace splam::apps
 

@@ -10,6 +10,8 @@ int main(int argc, char** argv) {
   int exit_code = splam::apps::kExitOk;
   splam::apps::AddSimulateCommand(&app, &exit_code);
   splam::apps::AddRenderCommand(&app, &exit_code);
+  splam::apps::AddSlamCommand(&app, &exit_code);
+  splam::apps::AddEvalCommand(&app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

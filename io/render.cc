@@ -1,6 +1,5 @@
 #include "io/render.h"
 
-#include <cairo-svg.h>
 #include <cairo.h>
 
 #include <algorithm>
@@ -8,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "io/internal/cairo_output.h"
 #include "io/result.h"
 
 namespace splam::io {
@@ -16,7 +16,7 @@ namespace {
 constexpr double kTitleBand = 28.0;   // px above the map when there is a title
 constexpr double kFooterBand = 30.0;  // px below the map for the scale bar and legend
 constexpr double kLegendRow = 16.0;   // px per extra legend row
-constexpr const char* kFont = "DejaVu Sans";
+using internal::kFont;
 
 enum class LegendKind { kLine, kPoints, kCircle, kDiamond };
 
@@ -346,33 +346,8 @@ void Figure::Impl::Paint(cairo_t* target) const {
 }
 
 std::string Figure::Save(const std::string& path) const {
-  std::string ext = std::filesystem::path(path).extension().string();
-  const double height = impl_->Height();
-  cairo_surface_t* surface = nullptr;
-  if (ext == ".svg") {
-    surface = cairo_svg_surface_create(path.c_str(), impl_->width, height);
-  } else if (ext == ".png") {
-    surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(impl_->width),
-                                         static_cast<int>(std::ceil(height)));
-  } else {
-    return FileError(path, 0, "unknown picture format (use .svg or .png)");
-  }
-  cairo_t* cr = cairo_create(surface);
-  impl_->Paint(cr);
-  cairo_destroy(cr);
-  cairo_status_t status = CAIRO_STATUS_SUCCESS;
-  if (ext == ".png") {
-    status = cairo_surface_write_to_png(surface, path.c_str());
-  } else {
-    cairo_surface_finish(surface);
-    status = cairo_surface_status(surface);
-  }
-  cairo_surface_destroy(surface);
-  if (status != CAIRO_STATUS_SUCCESS) {
-    return FileError(path, 0,
-                     std::string("cannot write picture: ") + cairo_status_to_string(status));
-  }
-  return "";
+  return internal::WriteCairo(path, impl_->width, impl_->Height(),
+                              [&](cairo_t* cr) { impl_->Paint(cr); });
 }
 
 }  // namespace splam::io

@@ -23,6 +23,7 @@ inline constexpr Rgb kTrue{0.10, 0.35, 0.85};      // ground truth: blue
 inline constexpr Rgb kOdometry{0.85, 0.10, 0.65};  // odometry: magenta
 inline constexpr Rgb kEstimate{0.0, 0.0, 0.0};     // estimate: black
 inline constexpr Rgb kScan{0.95, 0.45, 0.05};      // laser points: orange
+inline constexpr Rgb kMap{0.75, 0.10, 0.10};       // estimated map: dark red
 }  // namespace palette
 
 struct FigureOptions {

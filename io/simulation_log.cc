@@ -7,6 +7,12 @@
 
 namespace splam::io {
 
+int CarmenLaserType(const std::string& model) {
+  if (model == "LMS-200") return kCarmenSickLms;
+  if (model == "URG-04LX") return kCarmenHokuyoUrg;
+  return kCarmenSimulatedLaser;
+}
+
 CarmenLog MakeCarmenLog(const std::vector<sim::SensorFrame>& frames,
                         const sim::SimulatorOptions& options,
                         const std::vector<std::string>& comments) {
@@ -36,6 +42,7 @@ CarmenLog MakeCarmenLog(const std::vector<sim::SensorFrame>& frames,
     laser.scan = f.scan;
     laser.laser_pose = f.odometry_pose * options.laser.robot_T_laser;
     laser.robot_pose = f.odometry_pose;
+    laser.laser_type = CarmenLaserType(options.laser.model);
     laser.accuracy_m = options.laser.noise_floor_m;
     laser.tv_mps = f.linear_velocity_mps;
     laser.rv_radps = f.angular_velocity_radps;

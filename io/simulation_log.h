@@ -13,6 +13,12 @@
 
 namespace splam::io {
 
+// CARMEN's laser types (carmen_laser_laser_type_t), written in ROBOTLASER1 lines.
+inline constexpr int kCarmenSickLms = 0;
+inline constexpr int kCarmenHokuyoUrg = 2;
+inline constexpr int kCarmenSimulatedLaser = 3;
+int CarmenLaserType(const std::string& model);
+
 // A simulated run as a CARMEN log: per frame one ODOM (the noisy odometry), one TRUEPOS (ground
 // truth) and one ROBOTLASER1 (the scan, with the odometric laser and robot poses), and a SONAR
 // line when the frame has sonar readings; all three share the frame's timestamp. `comments` go

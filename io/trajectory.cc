@@ -70,11 +70,4 @@ std::string WriteTrajectory(const std::string& path, const Trajectory& trajector
   return WriteTextFile(path, FormatTrajectory(trajectory, comment));
 }
 
-std::vector<kernel::Pose2> Poses(const Trajectory& trajectory) {
-  std::vector<kernel::Pose2> poses;
-  poses.reserve(trajectory.size());
-  for (const StampedPose& p : trajectory) poses.push_back(p.pose);
-  return poses;
-}
-
 }  // namespace splam::io

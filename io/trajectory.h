@@ -6,14 +6,13 @@
 
 #include "io/result.h"
 #include "kernel/pose2.h"
+#include "kernel/trajectory.h"
 
 namespace splam::io {
 
-struct StampedPose {
-  double time_s = 0.0;
-  kernel::Pose2 pose;
-};
-using Trajectory = std::vector<StampedPose>;
+using kernel::Poses;
+using kernel::StampedPose;
+using kernel::Trajectory;
 
 // Trajectory files: one pose per line, "time_s x_m y_m theta_rad", separated by white space;
 // '#' starts a comment line. Times must not decrease.
@@ -23,8 +22,6 @@ std::string FormatTrajectory(const Trajectory& trajectory, const std::string& co
 // Empty on success, else why the file could not be written.
 std::string WriteTrajectory(const std::string& path, const Trajectory& trajectory,
                             const std::string& comment = "");
-
-std::vector<kernel::Pose2> Poses(const Trajectory& trajectory);
 
 // Reads a whole file into *text; empty on success, else "path: cannot open ...".
 std::string ReadTextFile(const std::string& path, std::string* text);

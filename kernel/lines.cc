@@ -64,6 +64,7 @@ std::string LineExtractionOptions::Validate() const {
     return "the point noise model needs a positive sigma";
   }
   if (!(inlier_sigmas > 0.0)) return "inlier_sigmas must be positive";
+  if (!(max_residual_sigmas > 0.0)) return "max_residual_sigmas must be positive";
   if (ransac_iterations < 1) return "ransac_iterations must be at least 1";
   if (min_points < 2) return "min_points must be at least 2";
   if (!(min_length_m >= 0.0) || !(max_point_gap_m > 0.0))
@@ -150,7 +151,14 @@ std::vector<LineFeature> RansacLines(const std::vector<Eigen::Vector2d>& points,
                   [&](std::size_t i) { return std::binary_search(best.begin(), best.end(), i); });
     if (!line || line->Length() < options.min_length_m) continue;
     std::vector<double> s2;
-    for (std::size_t i : best) s2.push_back(sigma2[i]);
+    double residual2 = 0.0, noise2 = 0.0;
+    for (std::size_t i : best) {
+      s2.push_back(sigma2[i]);
+      residual2 += std::pow(line->SignedDistance(points[i]), 2);
+      noise2 += sigma2[i];
+    }
+    if (residual2 > options.max_residual_sigmas * options.max_residual_sigmas * noise2)
+      continue;  // not straight
     line->covariance = LineCovariance(support, *line, s2);
     line->point_indices = std::move(best);
     lines.push_back(std::move(*line));

@@ -64,6 +64,9 @@ struct LineExtractionOptions {
   int ransac_iterations = 40;  // minimal samples (2 points) drawn per line
   int min_points = 8;          // consensus needed to accept a line
   double min_length_m = 0.25;  // shorter lines are dropped
+  // Straightness: a line is kept only when the RMS distance of its points from it is at most
+  // this many times the RMS of the point noise model; a chord of a curved wall is rejected.
+  double max_residual_sigmas = 1.5;
   // A line's supporting points must be contiguous: consensus points farther apart than this
   // (along the scan) start another line.
   double max_point_gap_m = 0.25;

@@ -1,0 +1,151 @@
+// splam eval: score trajectories against ground truth and with the relations metric.
+#include <fmt/core.h>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "apps/commands.h"
+#include "apps/run_picture.h"
+#include "estimation/metrics.h"
+#include "io/relations.h"
+#include "io/trajectory.h"
+#include "kernel/angle.h"
+
+namespace splam::apps {
+namespace {
+
+struct EvalArgs {
+  std::string run;
+  std::string estimate, truth, odometry, relations, out;
+  std::string label = "estimate";
+};
+
+nlohmann::ordered_json RelationsJson(const estimation::RelationsError& r) {
+  return {
+      {"relations_used", r.used},
+      {"relations_skipped", r.skipped},
+      {"translation_m", {{"mean", r.translation_mean}, {"std", r.translation_std}}},
+      {"translation_sq_m2", {{"mean", r.translation_sq_mean}, {"std", r.translation_sq_std}}},
+      {"rotation_deg",
+       {{"mean", kernel::RadToDeg(r.rotation_mean)}, {"std", kernel::RadToDeg(r.rotation_std)}}},
+      {"rotation_sq_deg2",
+       {{"mean", kernel::RadToDeg(kernel::RadToDeg(r.rotation_sq_mean))},
+        {"std", kernel::RadToDeg(kernel::RadToDeg(r.rotation_sq_std))}}}};
+}
+
+int RunEval(EvalArgs args) {
+  if (!args.run.empty()) {
+    const std::filesystem::path dir(args.run);
+    if (args.estimate.empty()) args.estimate = (dir / "trajectory.txt").string();
+    if (args.odometry.empty() && std::filesystem::exists(dir / "odometry.txt"))
+      args.odometry = (dir / "odometry.txt").string();
+    if (args.truth.empty() && std::filesystem::exists(dir / "truth.txt"))
+      args.truth = (dir / "truth.txt").string();
+    if (args.out.empty()) args.out = args.run;
+  }
+  if (args.estimate.empty()) {
+    fmt::print(stderr, "splam eval: give a run directory or --estimate\n");
+    return kExitBadInput;
+  }
+  if (args.truth.empty() && args.relations.empty()) {
+    fmt::print(stderr,
+               "splam eval: nothing to compare with: give --truth or --relations (or a run with "
+               "truth.txt)\n");
+    return kExitBadInput;
+  }
+  // Trajectories to score: the estimate and, as the baseline, raw odometry.
+  std::vector<std::pair<std::string, kernel::Trajectory>> runs;
+  for (const auto& [label, path] :
+       {std::pair{args.label, args.estimate}, std::pair{std::string("odometry"), args.odometry}}) {
+    if (path.empty()) continue;
+    io::Result<kernel::Trajectory> t = io::ReadTrajectory(path);
+    if (!t.ok()) {
+      fmt::print(stderr, "splam eval: {}\n", t.error);
+      return kExitBadInput;
+    }
+    runs.emplace_back(label, std::move(*t.value));
+  }
+  nlohmann::ordered_json report;
+  if (!args.truth.empty()) {
+    io::Result<kernel::Trajectory> truth = io::ReadTrajectory(args.truth);
+    if (!truth.ok()) {
+      fmt::print(stderr, "splam eval: {}\n", truth.error);
+      return kExitBadInput;
+    }
+    fmt::print("against ground truth ({}):\n  {:<10} {:>12} {:>12} {:>14} {:>14} {:>8}\n",
+               args.truth, "", "RMSE pos (m)", "max pos (m)", "RMSE head (deg)", "max head (deg)",
+               "poses");
+    std::vector<std::tuple<std::string, io::Rgb, kernel::Trajectory>> plotted;
+    for (const auto& [label, trajectory] : runs) {
+      const estimation::TrajectoryError e = estimation::CompareToTruth(*truth.value, trajectory);
+      report["truth"][label] = {{"matched_poses", e.matched},
+                                {"rmse_position_m", e.rmse_position_m},
+                                {"max_position_m", e.max_position_m},
+                                {"rmse_heading_deg", kernel::RadToDeg(e.rmse_heading_rad)},
+                                {"max_heading_deg", kernel::RadToDeg(e.max_heading_rad)}};
+      fmt::print("  {:<10} {:>12.3f} {:>12.3f} {:>14.2f} {:>14.2f} {:>8}\n", label,
+                 e.rmse_position_m, e.max_position_m, kernel::RadToDeg(e.rmse_heading_rad),
+                 kernel::RadToDeg(e.max_heading_rad), e.matched);
+      plotted.emplace_back(
+          label, label == "odometry" ? io::palette::kOdometry : io::palette::kEstimate, trajectory);
+    }
+    if (!args.out.empty()) {
+      std::filesystem::create_directories(args.out);
+      if (std::string e =
+              SaveErrorPlot("error against ground truth", *truth.value, plotted,
+                            {args.out + "/eval_errors.svg", args.out + "/eval_errors.png"});
+          !e.empty()) {
+        fmt::print(stderr, "splam eval: {}\n", e);
+        return kExitBadInput;
+      }
+    }
+  }
+  if (!args.relations.empty()) {
+    io::Result<std::vector<estimation::Relation>> relations = io::ReadRelations(args.relations);
+    if (!relations.ok()) {
+      fmt::print(stderr, "splam eval: {}\n", relations.error);
+      return kExitBadInput;
+    }
+    fmt::print("relations metric ({}, {} relations):\n  {:<10} {:>22} {:>22} {:>6}\n",
+               args.relations, relations.value->size(), "", "translation (m)", "rotation (deg)",
+               "used");
+    for (const auto& [label, trajectory] : runs) {
+      const estimation::RelationsError r =
+          estimation::EvaluateRelations(*relations.value, trajectory);
+      report["relations"][label] = RelationsJson(r);
+      fmt::print("  {:<10} {:>10.4f} +- {:<9.4f} {:>10.3f} +- {:<9.3f} {:>6}\n", label,
+                 r.translation_mean, r.translation_std, kernel::RadToDeg(r.rotation_mean),
+                 kernel::RadToDeg(r.rotation_std), r.used);
+    }
+  }
+  if (!args.out.empty()) {
+    std::filesystem::create_directories(args.out);
+    std::ofstream(args.out + "/eval.json") << report.dump(2) << "\n";
+    fmt::print("wrote {}/eval.json{}\n", args.out,
+               args.truth.empty() ? "" : " and eval_errors.{svg,png}");
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddEvalCommand(CLI::App* app, int* exit_code) {
+  auto args = std::make_shared<EvalArgs>();
+  CLI::App* cmd = app->add_subcommand("eval",
+                                      "Score a trajectory against ground truth (RMSE, max, error "
+                                      "plots) and/or with the relations metric; raw "
+                                      "odometry is scored too as the baseline.");
+  cmd->add_option("run", args->run,
+                  "A run directory of `splam slam` (trajectory.txt, odometry.txt, truth.txt)");
+  cmd->add_option("--estimate", args->estimate, "Estimated trajectory 'time x y theta'");
+  cmd->add_option("--truth", args->truth, "Ground-truth trajectory");
+  cmd->add_option("--odometry", args->odometry, "Odometry trajectory (the baseline)");
+  cmd->add_option("--relations", args->relations,
+                  "Relations file of the SLAM benchmark (t1 t2 x y z roll pitch yaw)");
+  cmd->add_option("--label", args->label, "Name of the estimate in tables")->capture_default_str();
+  cmd->add_option("--out", args->out,
+                  "Where eval.json and the error plots go (default: the run directory)");
+  cmd->callback([args, exit_code] { *exit_code = RunEval(*args); });
+}
+
+}  // namespace splam::apps

@@ -1,0 +1,294 @@
+#include "estimation/ekf_line_slam.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "estimation/chi_square.h"
+#include "kernel/angle.h"
+
+namespace splam::estimation {
+namespace {
+
+using kernel::WrapAngle;
+using Matrix5d = Eigen::Matrix<double, 5, 5>;
+using Matrix25 = Eigen::Matrix<double, 2, 5>;
+
+}  // namespace
+
+struct EkfLineSlam::Observation {
+  bool is_line = true;
+  Eigen::Vector2d z = Eigen::Vector2d::Zero();  // (rho, theta) or (x, y), robot frame
+  Eigen::Matrix2d r = Eigen::Matrix2d::Zero();  // measurement covariance
+  Eigen::Vector2d a = Eigen::Vector2d::Zero();  // segment end points, robot frame (lines)
+  Eigen::Vector2d b = Eigen::Vector2d::Zero();
+  std::size_t points = 0;  // supporting points (lines)
+};
+
+std::string EkfLineSlamOptions::Validate() const {
+  for (const std::string& problem : {odometry.Validate(), extraction.Validate()}) {
+    if (!problem.empty()) return problem;
+  }
+  if (!(line_rho_floor_m > 0) || !(line_theta_floor_rad > 0) || !(corner_sigma_m > 0)) {
+    return "measurement noise floors must be positive";
+  }
+  if (!(gate_probability > 0 && gate_probability < 1) ||
+      !(new_landmark_probability >= gate_probability && new_landmark_probability < 1)) {
+    return "need 0 < gate_probability <= new_landmark_probability < 1";
+  }
+  if (!(min_new_line_length_m >= 0) || min_new_line_points < 2) return "bad new-line thresholds";
+  if (!(corner_max_distance_m > 0) || !(max_extension_gap_m >= 0))
+    return "bad association distances";
+  return "";
+}
+
+EkfLineSlam::EkfLineSlam(const kernel::Pose2& initial_pose,
+                         const Eigen::Matrix3d& initial_covariance,
+                         const EkfLineSlamOptions& options)
+    : options_(options),
+      gate_(ChiSquareQuantile(options.gate_probability, 2)),
+      new_gate_(ChiSquareQuantile(options.new_landmark_probability, 2)),
+      x_(initial_pose.ToVector()),
+      p_(initial_covariance) {}
+
+void EkfLineSlam::Predict(const kernel::Pose2& u) {
+  if (!healthy()) return;
+  MotionJacobians j;
+  const kernel::Pose2 next = MotionModel(pose(), u, &j);
+  x_.head<3>() = next.ToVector();
+  const Eigen::Index m = x_.size() - 3;
+  p_.topLeftCorner<3, 3>() = j.f_x * p_.topLeftCorner<3, 3>() * j.f_x.transpose() +
+                             j.f_u * options_.odometry.Covariance(u) * j.f_u.transpose();
+  if (m > 0) {
+    p_.topRightCorner(3, m) = j.f_x * p_.topRightCorner(3, m);
+    p_.bottomLeftCorner(m, 3) = p_.topRightCorner(3, m).transpose();
+  }
+  CheckHealth();
+}
+
+void EkfLineSlam::Correct(Eigen::Index l, const Matrix23& h_r, const Eigen::Matrix2d& h_l,
+                          const Eigen::Vector2d& nu, const Eigen::Matrix2d& r) {
+  // P H^T touches only the robot columns and the landmark's two columns.
+  const Eigen::MatrixXd pht =
+      p_.leftCols<3>() * h_r.transpose() + p_.middleCols(l, 2) * h_l.transpose();
+  Eigen::Matrix2d s = h_r * pht.topRows<3>() + h_l * pht.middleRows(l, 2) + r;
+  s = 0.5 * (s + s.transpose());
+  const Eigen::MatrixXd k = pht * s.inverse();
+  x_ += k * nu;
+  x_(2) = WrapAngle(x_(2));
+  // Joseph form (I - KH) P (I - KH)^T + K R K^T, written with P H^T so that it costs O(N^2):
+  // P - K (P H^T)^T - (P H^T) K^T + K S K^T.
+  const Eigen::MatrixXd kpht = k * pht.transpose();
+  p_ += -kpht - kpht.transpose() + k * s * k.transpose();
+  p_ = 0.5 * (p_ + p_.transpose()).eval();
+}
+
+Eigen::Index EkfLineSlam::Augment(const Eigen::Vector2d& g, const Matrix23& g_r,
+                                  const Eigen::Matrix2d& g_z, const Eigen::Matrix2d& r) {
+  const Eigen::Index n = x_.size();
+  x_.conservativeResize(n + 2);
+  x_.tail<2>() = g;
+  const Eigen::MatrixXd cross = g_r * p_.topRows<3>();  // 2 x n
+  p_.conservativeResize(n + 2, n + 2);
+  p_.bottomLeftCorner(2, n) = cross;
+  p_.topRightCorner(n, 2) = cross.transpose();
+  p_.bottomRightCorner<2, 2>() =
+      g_r * p_.topLeftCorner<3, 3>() * g_r.transpose() + g_z * r * g_z.transpose();
+  return n;
+}
+
+void EkfLineSlam::NormaliseLine(LineLandmark* landmark) {
+  const Eigen::Index i = landmark->index;
+  if (x_(i) < 0.0) {
+    // (rho, theta) -> (-rho, theta + pi): the rho row and column of P change sign, and the
+    // direction (-sin theta, cos theta) reverses, so the extent flips too.
+    x_(i) = -x_(i);
+    x_(i + 1) += kernel::kPi;
+    p_.row(i) *= -1.0;
+    p_.col(i) *= -1.0;
+    std::swap(landmark->s_min, landmark->s_max);
+    landmark->s_min = -landmark->s_min;
+    landmark->s_max = -landmark->s_max;
+  }
+  x_(i + 1) = WrapAngle(x_(i + 1));
+}
+
+void EkfLineSlam::ExtendLine(LineLandmark* landmark, const Eigen::Vector2d& a,
+                             const Eigen::Vector2d& b) {
+  const double theta = x_(landmark->index + 1);
+  const Eigen::Vector2d dir(-std::sin(theta), std::cos(theta));
+  landmark->s_min = std::min({landmark->s_min, dir.dot(a), dir.dot(b)});
+  landmark->s_max = std::max({landmark->s_max, dir.dot(a), dir.dot(b)});
+}
+
+UpdateReport EkfLineSlam::Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) {
+  return Update(kernel::ExtractLines(scan, options_.extraction), robot_T_laser);
+}
+
+UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
+                                 const kernel::Pose2& robot_T_laser) {
+  UpdateReport report;
+  if (!healthy()) return report;
+
+  // Observations in the robot frame.
+  std::vector<Observation> observations;
+  for (const kernel::LineFeature& f : features.lines) {
+    Observation o;
+    const Line line = TransformLine(robot_T_laser, {f.rho_m, f.theta_rad});
+    o.z = {line.rho, line.theta};
+    o.r = f.covariance +
+          Eigen::Vector2d(options_.line_rho_floor_m * options_.line_rho_floor_m,
+                          options_.line_theta_floor_rad * options_.line_theta_floor_rad)
+              .asDiagonal()
+              .toDenseMatrix();
+    o.a = robot_T_laser * f.start;
+    o.b = robot_T_laser * f.end;
+    o.points = f.point_indices.size();
+    observations.push_back(o);
+    ++report.line_observations;
+  }
+  if (options_.use_corners) {
+    for (const kernel::LineCorner& c : features.corners) {
+      Observation o;
+      o.is_line = false;
+      o.z = robot_T_laser * c.position;
+      o.r = options_.corner_sigma_m * options_.corner_sigma_m * Eigen::Matrix2d::Identity();
+      observations.push_back(o);
+      ++report.corner_observations;
+    }
+  }
+
+  // Mahalanobis distance of every observation to every compatible landmark.
+  const kernel::Pose2 x = pose();
+  struct Candidate {
+    double d2;
+    std::size_t observation, landmark;
+  };
+  std::vector<Candidate> candidates;
+  std::vector<double> nearest(observations.size(), std::numeric_limits<double>::infinity());
+  for (std::size_t o = 0; o < observations.size(); ++o) {
+    const Observation& obs = observations[o];
+    const std::size_t count = obs.is_line ? lines_.size() : corners_.size();
+    for (std::size_t l = 0; l < count; ++l) {
+      const Eigen::Index i = obs.is_line ? lines_[l].index : corners_[l].index;
+      Matrix23 h_r;
+      Eigen::Matrix2d h_l;
+      Eigen::Vector2d nu;
+      if (obs.is_line) {
+        const LineLandmark& lm = lines_[l];
+        // The observed segment must overlap the landmark's extent or continue it closely.
+        const Eigen::Vector2d dir(-std::sin(x_(i + 1)), std::cos(x_(i + 1)));
+        const double sa = dir.dot(x * obs.a), sb = dir.dot(x * obs.b);
+        const double gap =
+            std::max({0.0, std::min(sa, sb) - lm.s_max, lm.s_min - std::max(sa, sb)});
+        if (gap > options_.max_extension_gap_m) continue;
+        const Eigen::Vector2d h = PredictLine(x, {x_(i), x_(i + 1)}, &h_r, &h_l);
+        nu = {obs.z(0) - h(0), WrapAngle(obs.z(1) - h(1))};
+      } else {
+        if ((x * obs.z - x_.segment<2>(i)).norm() > options_.corner_max_distance_m) continue;
+        nu = obs.z - PredictPoint(x, x_.segment<2>(i), &h_r, &h_l);
+      }
+      Matrix25 h;
+      h << h_r, h_l;
+      Matrix5d p_local;
+      p_local << p_.topLeftCorner<3, 3>(), p_.block(0, i, 3, 2), p_.block(i, 0, 2, 3),
+          p_.block<2, 2>(i, i);
+      const Eigen::Matrix2d s = h * p_local * h.transpose() + obs.r;
+      const double d2 = nu.dot(s.ldlt().solve(nu));
+      nearest[o] = std::min(nearest[o], d2);
+      if (d2 < gate_) candidates.push_back({d2, o, l});
+    }
+  }
+
+  // Greedy one-to-one assignment by increasing distance, then sequential corrections.
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& a, const Candidate& b) { return a.d2 < b.d2; });
+  std::vector<bool> obs_used(observations.size(), false);
+  std::vector<bool> line_used(lines_.size(), false), corner_used(corners_.size(), false);
+  for (const Candidate& c : candidates) {
+    const Observation& obs = observations[c.observation];
+    std::vector<bool>& used = obs.is_line ? line_used : corner_used;
+    if (obs_used[c.observation] || used[c.landmark]) continue;
+    obs_used[c.observation] = true;
+    used[c.landmark] = true;
+    const Eigen::Index i = obs.is_line ? lines_[c.landmark].index : corners_[c.landmark].index;
+    Matrix23 h_r;
+    Eigen::Matrix2d h_l;
+    if (obs.is_line) {
+      const Eigen::Vector2d h = PredictLine(pose(), {x_(i), x_(i + 1)}, &h_r, &h_l);
+      Correct(i, h_r, h_l, {obs.z(0) - h(0), WrapAngle(obs.z(1) - h(1))}, obs.r);
+      LineLandmark& lm = lines_[c.landmark];
+      NormaliseLine(&lm);
+      ExtendLine(&lm, pose() * obs.a, pose() * obs.b);
+      ++lm.observations;
+    } else {
+      const Eigen::Vector2d h = PredictPoint(pose(), x_.segment<2>(i), &h_r, &h_l);
+      Correct(i, h_r, h_l, obs.z - h, obs.r);
+      ++corners_[c.landmark].observations;
+    }
+    ++report.associated;
+  }
+
+  // New landmarks from what is clearly new.
+  for (std::size_t o = 0; o < observations.size(); ++o) {
+    if (obs_used[o]) continue;
+    const Observation& obs = observations[o];
+    if (nearest[o] < new_gate_) {
+      ++report.ambiguous;
+      continue;
+    }
+    Matrix23 g_r;
+    Eigen::Matrix2d g_z;
+    if (obs.is_line) {
+      if ((obs.b - obs.a).norm() < options_.min_new_line_length_m ||
+          static_cast<int>(obs.points) < options_.min_new_line_points) {
+        ++report.too_small;
+        continue;
+      }
+      const Line g = InitializeLine(pose(), {obs.z(0), obs.z(1)}, &g_r, &g_z);
+      const Eigen::Index i = Augment({g.rho, g.theta}, g_r, g_z, obs.r);
+      LineLandmark lm{i, std::numeric_limits<double>::infinity(),
+                      -std::numeric_limits<double>::infinity(), 1};
+      ExtendLine(&lm, pose() * obs.a, pose() * obs.b);
+      lines_.push_back(lm);
+    } else {
+      const Eigen::Vector2d g = InitializePoint(pose(), obs.z, &g_r, &g_z);
+      corners_.push_back({Augment(g, g_r, g_z, obs.r), 1});
+    }
+    ++report.new_landmarks;
+  }
+  CheckHealth();
+  return report;
+}
+
+std::vector<MapLine> EkfLineSlam::MapLines() const {
+  std::vector<MapLine> out;
+  for (const LineLandmark& lm : lines_) {
+    const Eigen::Index i = lm.index;
+    const Line line{x_(i), x_(i + 1)};
+    const Eigen::Vector2d n(std::cos(line.theta), std::sin(line.theta)), dir(-n.y(), n.x());
+    out.push_back({line, line.rho * n + lm.s_min * dir, line.rho * n + lm.s_max * dir,
+                   p_.block<2, 2>(i, i), lm.observations});
+  }
+  return out;
+}
+
+std::vector<MapCorner> EkfLineSlam::MapCorners() const {
+  std::vector<MapCorner> out;
+  for (const CornerLandmark& c : corners_) {
+    out.push_back({x_.segment<2>(c.index), p_.block<2, 2>(c.index, c.index), c.observations});
+  }
+  return out;
+}
+
+void EkfLineSlam::CheckHealth() {
+  if (!x_.allFinite() || !p_.allFinite()) {
+    health_ = "state or covariance is not finite";
+  } else if ((p_.diagonal().array() <= 0.0).any()) {
+    health_ = "covariance lost a positive diagonal entry";
+  }
+}
+
+}  // namespace splam::estimation

@@ -1,0 +1,133 @@
+#ifndef SPLAM_ESTIMATION_EKF_LINE_SLAM_H_
+#define SPLAM_ESTIMATION_EKF_LINE_SLAM_H_
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "estimation/models.h"
+#include "kernel/lines.h"
+#include "kernel/pose2.h"
+#include "kernel/scan.h"
+
+namespace splam::estimation {
+
+struct EkfLineSlamOptions {
+  OdometryNoiseModel odometry;
+  // How lines and corners are extracted from every scan (kernel::ExtractLines).
+  kernel::LineExtractionOptions extraction;
+  bool use_corners = true;  // corners as point landmarks (the classic EKF of paper 003 §2.2)
+
+  // Measurement noise: a line's covariance is the TLS covariance from the point noise plus these
+  // floors (model error: walls are not perfectly straight), a corner's is sigma^2 I.
+  double line_rho_floor_m = 0.01;
+  double line_theta_floor_rad = 0.005;
+  double corner_sigma_m = 0.03;
+
+  // Nearest-neighbour association with the Mahalanobis distance, gated at this chi-square
+  // probability (2 dof; 0.95 -> 5.99 as in paper 001).
+  double gate_probability = 0.95;
+  // An unassociated observation becomes a new landmark only when it is outside this larger gate
+  // of every landmark (0.999 -> 13.8); in between it is ambiguous and ignored.
+  double new_landmark_probability = 0.999;
+  // New line landmarks need this much support.
+  double min_new_line_length_m = 0.5;
+  int min_new_line_points = 10;
+  // A corner is compared only with corner landmarks within this distance (D_min of paper 003).
+  double corner_max_distance_m = 0.5;
+  // An observed segment associates with a line landmark only when it overlaps the landmark's
+  // extent or extends it across a gap of at most this much.
+  double max_extension_gap_m = 1.0;
+
+  std::string Validate() const;
+};
+
+// One landmark of the map as it is drawn and exported.
+struct MapLine {
+  Line line;                   // world frame
+  Eigen::Vector2d start, end;  // extent of everything seen of it
+  Eigen::Matrix2d covariance;  // of (rho, theta)
+  int observations = 0;
+};
+struct MapCorner {
+  Eigen::Vector2d position;
+  Eigen::Matrix2d covariance;
+  int observations = 0;
+};
+
+// What one update did.
+struct UpdateReport {
+  int line_observations = 0;
+  int corner_observations = 0;
+  int associated = 0;  // observations used to correct the state
+  int new_landmarks = 0;
+  int ambiguous = 0;  // neither inside the gate nor clearly new
+  int too_small = 0;  // unassociated lines too short to start a landmark
+};
+
+// EKF-SLAM with line (rho, theta) and corner (x, y) landmarks (SPEC §2-4, paper 001 and the
+// classic EKF of paper 003 §2.2). State X = [x, y, th, landmarks...], P its full covariance.
+class EkfLineSlam {
+ public:
+  EkfLineSlam(const kernel::Pose2& initial_pose, const Eigen::Matrix3d& initial_covariance,
+              const EkfLineSlamOptions& options = {});
+
+  // Prediction with an odometry increment (dx, dy, dth) in the robot frame (SPEC §2): only the
+  // robot block and the robot-landmark cross-covariances change.
+  void Predict(const kernel::Pose2& odometry_increment);
+  // Extracts lines (and corners) from a scan taken by a laser at robot_T_laser, associates them,
+  // corrects the state (Joseph form) and adds new landmarks.
+  UpdateReport Update(const kernel::Scan& scan,
+                      const kernel::Pose2& robot_T_laser = kernel::Pose2());
+  // The same from already extracted features, given in the laser frame.
+  UpdateReport Update(const kernel::LineExtraction& features, const kernel::Pose2& robot_T_laser);
+
+  kernel::Pose2 pose() const { return kernel::Pose2(x_(0), x_(1), x_(2)); }
+  Eigen::Matrix3d pose_covariance() const { return p_.topLeftCorner<3, 3>(); }
+  const Eigen::VectorXd& state() const { return x_; }
+  const Eigen::MatrixXd& covariance() const { return p_; }
+  std::size_t num_lines() const { return lines_.size(); }
+  std::size_t num_corners() const { return corners_.size(); }
+  std::vector<MapLine> MapLines() const;
+  std::vector<MapCorner> MapCorners() const;
+  // False once the state or covariance is not finite or P lost positive diagonal entries; the
+  // message says what happened. An unhealthy filter ignores further input.
+  bool healthy() const { return health_.empty(); }
+  const std::string& health() const { return health_; }
+
+ private:
+  struct LineLandmark {
+    Eigen::Index index;   // of rho in the state; theta follows
+    double s_min, s_max;  // extent along the line direction (-sin theta, cos theta)
+    int observations;
+  };
+  struct CornerLandmark {
+    Eigen::Index index;
+    int observations;
+  };
+  struct Observation;
+
+  // EKF correction with innovation nu and H = [h_r, 0.., h_l at landmark, 0..].
+  void Correct(Eigen::Index landmark, const Matrix23& h_r, const Eigen::Matrix2d& h_l,
+               const Eigen::Vector2d& nu, const Eigen::Matrix2d& r);
+  // Appends a 2-vector landmark g with Jacobians G_r (robot) and G_z (measurement).
+  Eigen::Index Augment(const Eigen::Vector2d& g, const Matrix23& g_r, const Eigen::Matrix2d& g_z,
+                       const Eigen::Matrix2d& r);
+  // Keeps line landmark `index` in normal form (rho >= 0, theta wrapped) after a correction.
+  void NormaliseLine(LineLandmark* landmark);
+  void ExtendLine(LineLandmark* landmark, const Eigen::Vector2d& a_world,
+                  const Eigen::Vector2d& b_world);
+  void CheckHealth();
+
+  EkfLineSlamOptions options_;
+  double gate_ = 0.0, new_gate_ = 0.0;
+  Eigen::VectorXd x_;
+  Eigen::MatrixXd p_;
+  std::vector<LineLandmark> lines_;
+  std::vector<CornerLandmark> corners_;
+  std::string health_;
+};
+
+}  // namespace splam::estimation
+
+#endif  // SPLAM_ESTIMATION_EKF_LINE_SLAM_H_

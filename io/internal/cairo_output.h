@@ -1,0 +1,20 @@
+#ifndef SPLAM_IO_INTERNAL_CAIRO_OUTPUT_H_
+#define SPLAM_IO_INTERNAL_CAIRO_OUTPUT_H_
+
+#include <cairo.h>
+
+#include <functional>
+#include <string>
+
+namespace splam::io::internal {
+
+// Creates an SVG or PNG surface (by the path's extension) of width x height pixels, lets `paint`
+// draw on it and writes the file. Empty on success, else "path: why".
+std::string WriteCairo(const std::string& path, double width, double height,
+                       const std::function<void(cairo_t*)>& paint);
+
+inline constexpr const char* kFont = "DejaVu Sans";
+
+}  // namespace splam::io::internal
+
+#endif  // SPLAM_IO_INTERNAL_CAIRO_OUTPUT_H_

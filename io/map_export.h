@@ -1,0 +1,37 @@
+#ifndef SPLAM_IO_MAP_EXPORT_H_
+#define SPLAM_IO_MAP_EXPORT_H_
+
+#include <string>
+#include <vector>
+
+#include "estimation/ekf_line_slam.h"
+#include "io/result.h"
+
+namespace splam::io {
+
+// Line maps of the EKF with lines and corners, in world coordinates (metres).
+//
+// Text (after paper 001, which wrote segment end points for AutoCAD): '#' comments, then
+//   segment x1 y1 x2 y2
+//   corner x y
+// one entity per line. DXF (AutoCAD 2000, readable by CAD programs): LINE entities on layer
+// "lines" and POINT entities on layer "corners".
+std::string FormatLineMapText(const std::vector<estimation::MapLine>& lines,
+                              const std::vector<estimation::MapCorner>& corners);
+// Empty on success, else the error.
+std::string WriteLineMapText(const std::string& path, const std::vector<estimation::MapLine>& lines,
+                             const std::vector<estimation::MapCorner>& corners);
+std::string WriteLineMapDxf(const std::string& path, const std::vector<estimation::MapLine>& lines,
+                            const std::vector<estimation::MapCorner>& corners);
+
+// The segments and corners of a DXF file (LINE and POINT entities of any layer), for checking
+// exports and reading maps back.
+struct DxfContent {
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> segments;
+  std::vector<Eigen::Vector2d> points;
+};
+Result<DxfContent> ReadDxf(const std::string& path);
+
+}  // namespace splam::io
+
+#endif  // SPLAM_IO_MAP_EXPORT_H_

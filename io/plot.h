@@ -1,0 +1,39 @@
+#ifndef SPLAM_IO_PLOT_H_
+#define SPLAM_IO_PLOT_H_
+
+#include <string>
+#include <vector>
+
+#include "io/render.h"
+
+namespace splam::io {
+
+struct PlotSeries {
+  std::string label;
+  Rgb color;
+  std::vector<double> x, y;  // same length
+};
+
+// One chart; panels of a plot share the x axis and are stacked top to bottom.
+struct PlotPanel {
+  std::string y_label;
+  std::vector<PlotSeries> series;
+};
+
+struct PlotOptions {
+  std::string title;
+  std::string x_label;
+  double width_px = 900.0;
+  double panel_height_px = 200.0;
+
+  std::string Validate() const;
+};
+
+// Draws line charts (axes with ticks, a zero line, a legend per panel) to each path (.svg or
+// .png). Empty on success, else the first error. Panels without data are drawn empty.
+std::string SavePlot(const std::vector<PlotPanel>& panels, const PlotOptions& options,
+                     const std::vector<std::string>& paths);
+
+}  // namespace splam::io
+
+#endif  // SPLAM_IO_PLOT_H_

@@ -1,0 +1,37 @@
+#include "io/relations.h"
+
+#include "io/text.h"
+#include "io/trajectory.h"
+
+namespace splam::io {
+
+Result<std::vector<estimation::Relation>> ParseRelations(const std::string& text,
+                                                         const std::string& name) {
+  using R = Result<std::vector<estimation::Relation>>;
+  std::vector<estimation::Relation> relations;
+  std::vector<double> v;
+  const std::string error =
+      ForEachDataLine(text, [&](int line, const std::vector<std::string_view>& tokens) {
+        if (tokens.size() != 8) {
+          return FileError(name, line,
+                           "expected 8 values 't1 t2 x y z roll pitch yaw', found " +
+                               std::to_string(tokens.size()));
+        }
+        if (std::string bad = ParseFiniteNumbers(tokens, &v); !bad.empty())
+          return FileError(name, line, bad);
+        relations.push_back({v[0], v[1], kernel::Pose2(v[2], v[3], v[7])});
+        return std::string();
+      });
+  if (!error.empty()) return R::Fail(error);
+  return R::Ok(std::move(relations));
+}
+
+Result<std::vector<estimation::Relation>> ReadRelations(const std::string& path) {
+  std::string text;
+  if (std::string error = ReadTextFile(path, &text); !error.empty()) {
+    return Result<std::vector<estimation::Relation>>::Fail(error);
+  }
+  return ParseRelations(text, path);
+}
+
+}  // namespace splam::io
