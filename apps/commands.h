@@ -10,6 +10,7 @@ void AddSimulateCommand(CLI::App* app, int* exit_code);
 void AddRenderCommand(CLI::App* app, int* exit_code);
 void AddSlamCommand(CLI::App* app, int* exit_code);
 void AddEvalCommand(CLI::App* app, int* exit_code);
+void AddExperimentCommand(CLI::App* app, int* exit_code);
 
 // Exit statuses of every command.
 inline constexpr int kExitOk = 0;

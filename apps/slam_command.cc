@@ -21,6 +21,8 @@
 namespace splam::apps {
 namespace {
 
+constexpr double kRealOdometryScale = 3.0;
+
 struct SlamArgs {
   std::string method = "ekf-lines";
   std::string log;
@@ -33,6 +35,9 @@ struct SlamArgs {
   // 1 % of the range; SICK LMS, FLASER logs: 1 cm).
   double range_sigma_m = -1.0;
   double range_sigma_fraction = -1.0;
+  // Scale of the default odometry noise model; negative: 1 for simulated logs (ROBOTLASER1),
+  // kRealOdometryScale for real FLASER logs, whose odometry is much worse than the simulator's.
+  double odometry_noise_scale = -1.0;
 };
 
 double Percentile(std::vector<double> v, double q) {
@@ -87,6 +92,13 @@ int RunSlam(const SlamArgs& args) {
       args.range_sigma_m >= 0 ? args.range_sigma_m : (urg ? 0.003 : 0.01);
   options.extraction.range_sigma_fraction =
       args.range_sigma_fraction >= 0 ? args.range_sigma_fraction : (urg ? 0.01 : 0.0);
+  const bool real = lasers[0]->format == io::LaserMessage::Format::kFlaser;
+  const double scale = args.odometry_noise_scale >= 0 ? args.odometry_noise_scale
+                                                      : (real ? kRealOdometryScale : 1.0);
+  options.odometry.forward_per_m *= scale;
+  options.odometry.lateral_per_m *= scale;
+  options.odometry.rotation_per_rad *= scale;
+  options.odometry.rotation_per_m *= scale;
   if (std::string problem = options.Validate(); !problem.empty()) {
     fmt::print(stderr, "splam slam: {}\n", problem);
     return kExitBadInput;
@@ -131,7 +143,7 @@ int RunSlam(const SlamArgs& args) {
     }
     estimate.push_back({m.stamp.ipc_timestamp_s, slam.pose()});
     odometry.push_back({m.stamp.ipc_timestamp_s, m.robot_pose});
-    if (const auto t = kernel::PoseAt(truth, m.stamp.ipc_timestamp_s, 1e-3)) {
+    if (const auto t = kernel::PoseAt(truth, m.stamp.ipc_timestamp_s, 0.0, 1e-3)) {
       nees.push_back(estimation::PoseNees(*t, slam.pose(), slam.pose_covariance()));
     }
     if ((i + 1) % 1000 == 0) {
@@ -171,6 +183,7 @@ int RunSlam(const SlamArgs& args) {
 
   nlohmann::ordered_json summary;
   summary["method"] = args.method;
+  summary["odometry_noise_scale"] = scale;
   summary["line_noise_model"] = {{"range_sigma_m", options.extraction.range_sigma_m},
                                  {"range_sigma_fraction", options.extraction.range_sigma_fraction}};
   summary["log"] = args.log;
@@ -281,6 +294,11 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
   cmd->add_option(
          "--range-sigma-fraction", args->range_sigma_fraction,
          "Laser range noise, fraction of the range; default 0.01 for a Hokuyo URG, 0 otherwise")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--odometry-noise", args->odometry_noise_scale,
+                  "Scale of the default odometry noise model (3 % of distance and rotation); "
+                  "default 1 for simulated "
+                  "logs and 3 for real FLASER logs")
       ->check(CLI::NonNegativeNumber);
   cmd->callback([args, exit_code] { *exit_code = RunSlam(*args); });
 }

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   splam::apps::AddRenderCommand(&app, &exit_code);
   splam::apps::AddSlamCommand(&app, &exit_code);
   splam::apps::AddEvalCommand(&app, &exit_code);
+  splam::apps::AddExperimentCommand(&app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -78,11 +78,19 @@ void EkfLineSlam::Correct(Eigen::Index l, const Matrix23& h_r, const Eigen::Matr
   const Eigen::MatrixXd k = pht * s.inverse();
   x_ += k * nu;
   x_(2) = WrapAngle(x_(2));
-  // Joseph form (I - KH) P (I - KH)^T + K R K^T, written with P H^T so that it costs O(N^2):
-  // P - K (P H^T)^T - (P H^T) K^T + K S K^T.
-  const Eigen::MatrixXd kpht = k * pht.transpose();
-  p_ += -kpht - kpht.transpose() + k * s * k.transpose();
-  p_ = 0.5 * (p_ + p_.transpose()).eval();
+  // Joseph form (I - KH) P (I - KH)^T + K R K^T = P - K (PH^T)^T - (PH^T) K^T + K S K^T, as one
+  // in-place symmetric rank-4 update P += U M U^T with U = [K, PH^T], M = [[S, -I], [-I, 0]]:
+  // O(N^2) without N x N temporaries.
+  Eigen::MatrixXd u(p_.rows(), 4);
+  u << k, pht;
+  Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
+  m.topLeftCorner<2, 2>() = s;
+  m.topRightCorner<2, 2>() = -Eigen::Matrix2d::Identity();
+  m.bottomLeftCorner<2, 2>() = -Eigen::Matrix2d::Identity();
+  const Eigen::MatrixXd um = u * m;
+  p_.noalias() += um * u.transpose();
+  // Rounding makes P drift from symmetry slowly; restore it now and then.
+  if (++corrections_ % 64 == 0) p_ = p_.selfadjointView<Eigen::Lower>();
 }
 
 Eigen::Index EkfLineSlam::Augment(const Eigen::Vector2d& g, const Matrix23& g_r,
@@ -154,7 +162,9 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
       Observation o;
       o.is_line = false;
       o.z = robot_T_laser * c.position;
-      o.r = options_.corner_sigma_m * options_.corner_sigma_m * Eigen::Matrix2d::Identity();
+      const Eigen::Matrix2d rotation = robot_T_laser.Rotation();
+      o.r = rotation * c.covariance * rotation.transpose() +
+            options_.corner_sigma_m * options_.corner_sigma_m * Eigen::Matrix2d::Identity();
       observations.push_back(o);
       ++report.corner_observations;
     }

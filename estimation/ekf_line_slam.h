@@ -18,11 +18,12 @@ struct EkfLineSlamOptions {
   kernel::LineExtractionOptions extraction;
   bool use_corners = true;  // corners as point landmarks (the classic EKF of paper 003 §2.2)
 
-  // Measurement noise: a line's covariance is the TLS covariance from the point noise plus these
-  // floors (model error: walls are not perfectly straight), a corner's is sigma^2 I.
+  // Measurement noise: a line's covariance is the TLS covariance from the point noise, a corner's
+  // is propagated from its two lines; both plus these floors (model error: real walls are not
+  // perfectly straight, corners not perfectly sharp).
   double line_rho_floor_m = 0.01;
   double line_theta_floor_rad = 0.005;
-  double corner_sigma_m = 0.03;
+  double corner_sigma_m = 0.02;
 
   // Nearest-neighbour association with the Mahalanobis distance, gated at this chi-square
   // probability (2 dof; 0.95 -> 5.99 as in paper 001).
@@ -126,6 +127,7 @@ class EkfLineSlam {
   std::vector<LineLandmark> lines_;
   std::vector<CornerLandmark> corners_;
   std::string health_;
+  std::size_t corrections_ = 0;
 };
 
 }  // namespace splam::estimation

@@ -53,8 +53,9 @@ RelationsError EvaluateRelations(const std::vector<Relation>& relations,
   RelationsError r;
   std::vector<double> trans, trans2, rot, rot2;
   for (const Relation& rel : relations) {
-    const std::optional<kernel::Pose2> a = kernel::PoseAt(estimate, rel.t1, 1e-3);
-    const std::optional<kernel::Pose2> b = kernel::PoseAt(estimate, rel.t2, 1e-3);
+    // Relation times are scan timestamps: match them to 1 ms, else interpolate over < 1 s.
+    const std::optional<kernel::Pose2> a = kernel::PoseAt(estimate, rel.t1, 1.0, 1e-3);
+    const std::optional<kernel::Pose2> b = kernel::PoseAt(estimate, rel.t2, 1.0, 1e-3);
     if (!a || !b) {
       ++r.skipped;
       continue;

@@ -41,7 +41,8 @@ struct RelationsError {
 };
 
 // The relations metric: for every relation the same relative motion is computed from the
-// estimate (poses looked up at t1 and t2, which should be timestamps of the trajectory).
+// estimate (poses at t1 and t2: a pose stamped within 1 ms, else interpolated between poses less
+// than 1 s apart; relations without both are skipped).
 RelationsError EvaluateRelations(const std::vector<Relation>& relations,
                                  const kernel::Trajectory& estimate);
 

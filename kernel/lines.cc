@@ -46,14 +46,22 @@ Eigen::Matrix2d LineCovariance(const std::vector<Eigen::Vector2d>& points, const
   for (const Eigen::Vector2d& p : points) c += p;
   c /= n;
   const Eigen::Vector2d dir = line.Direction();
-  double spread = 0.0;
-  for (const Eigen::Vector2d& p : points) spread += std::pow(dir.dot(p - c), 2);
-  const double s2 =
-      std::accumulate(sigma2.begin(), sigma2.end(), 0.0) / static_cast<double>(sigma2.size());
+  double spread = 0.0, var_e = 0.0, var_theta = 0.0, cov_e_theta = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double s = dir.dot(points[i] - c);
+    spread += s * s;
+    var_e += sigma2[i];
+    var_theta += s * s * sigma2[i];
+    cov_e_theta += s * sigma2[i];
+  }
+  spread = std::max(spread, 1e-12);
+  var_e /= n * n;
+  var_theta /= spread * spread;
+  cov_e_theta /= n * spread;
   const double m = dir.dot(c);
   Eigen::Matrix2d cov;
-  const double var_theta = s2 / std::max(spread, 1e-12);
-  cov << s2 / n + m * m * var_theta, m * var_theta, m * var_theta, var_theta;
+  cov << var_e + 2.0 * m * cov_e_theta + m * m * var_theta, cov_e_theta + m * var_theta,
+      cov_e_theta + m * var_theta, var_theta;
   return cov;
 }
 
@@ -150,12 +158,15 @@ std::vector<LineFeature> RansacLines(const std::vector<Eigen::Vector2d>& points,
     std::erase_if(remaining,
                   [&](std::size_t i) { return std::binary_search(best.begin(), best.end(), i); });
     if (!line || line->Length() < options.min_length_m) continue;
+    // Range noise acts along the beam: across the line it is sigma2 (n . u)^2 with u the beam
+    // direction (points are in the sensor frame).
     std::vector<double> s2;
     double residual2 = 0.0, noise2 = 0.0;
     for (std::size_t i : best) {
-      s2.push_back(sigma2[i]);
+      const double cos_incidence = line->Normal().dot(points[i].normalized());
+      s2.push_back(sigma2[i] * cos_incidence * cos_incidence);
       residual2 += std::pow(line->SignedDistance(points[i]), 2);
-      noise2 += sigma2[i];
+      noise2 += s2.back();
     }
     if (residual2 > options.max_residual_sigmas * options.max_residual_sigmas * noise2)
       continue;  // not straight
@@ -208,7 +219,17 @@ LineExtraction ExtractLines(const Scan& scan, const LineExtractionOptions& optio
         (x - b.start).norm() > options.corner_max_distance_m) {
       continue;
     }
-    out.corners.push_back({x, i, i + 1, angle});
+    // d x / d rho_k = N^-1 e_k; d x / d theta_k = -N^-1 e_k (t_k . x), t_k = d n_k / d theta_k.
+    const Eigen::Matrix2d n_inv = n.inverse();
+    Eigen::Matrix<double, 2, 4> j;
+    j.col(0) = n_inv.col(0);
+    j.col(1) = -n_inv.col(0) * a.Direction().dot(x);
+    j.col(2) = n_inv.col(1);
+    j.col(3) = -n_inv.col(1) * b.Direction().dot(x);
+    Eigen::Matrix4d lines_cov = Eigen::Matrix4d::Zero();
+    lines_cov.topLeftCorner<2, 2>() = a.covariance;
+    lines_cov.bottomRightCorner<2, 2>() = b.covariance;
+    out.corners.push_back({x, i, i + 1, angle, j * lines_cov * j.transpose()});
   }
   return out;
 }

@@ -36,11 +36,15 @@ struct LineFeature {
 // distinct points. start/end are the projections of the first and last point.
 std::optional<LineFeature> FitLineTls(const std::vector<Eigen::Vector2d>& points);
 
-// Covariance of the TLS line's (rho, theta) when every point has isotropic noise with variance
-// sigma2[i] (first order; sigma^2 below is their mean): with N points, s_i the position of
-// point i along the line from the centroid c, S = sum s_i^2 and m = (-sin theta, cos theta) . c,
-//   var(theta) = sigma^2 / S,  var(rho) = sigma^2 / N + m^2 sigma^2 / S,
-//   cov(rho, theta) = m sigma^2 / S.
+// Covariance of the TLS line's (rho, theta), to first order, when point i is displaced across the
+// line with variance sigma2[i] (independent points). With N points, s_i the position of point i
+// along the line from the centroid c, S = sum s_i^2 and m = (-sin theta, cos theta) . c: the
+// offset e of the line at the centroid and its angle have
+//   var(e) = sum sigma2_i / N^2,  var(theta) = sum s_i^2 sigma2_i / S^2,
+//   cov(e, theta) = sum s_i sigma2_i / (N S),
+// and rho = e + m dtheta, so var(rho) = var(e) + 2 m cov(e, theta) + m^2 var(theta) and
+// cov(rho, theta) = cov(e, theta) + m var(theta). Equal variances sigma^2 give the familiar
+// sigma^2 / N + m^2 sigma^2 / S and sigma^2 / S.
 Eigen::Matrix2d LineCovariance(const std::vector<Eigen::Vector2d>& points, const LineFeature& line,
                                const std::vector<double>& sigma2);
 
@@ -49,6 +53,9 @@ struct LineCorner {
   Eigen::Vector2d position = Eigen::Vector2d::Zero();
   std::size_t first_line = 0, second_line = 0;  // indices into LineExtraction::lines
   double angle_rad = 0.0;                       // angle between the two lines, in (0, pi/2]
+  // Covariance of the position, propagated from the two lines' (rho, theta) covariances through
+  // the intersection x = N^-1 (rho_1, rho_2), N = [n_1^T; n_2^T].
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
 };
 
 struct LineExtractionOptions {
@@ -86,8 +93,11 @@ struct LineExtraction {
   std::vector<std::size_t> beams;       // their beam indices
 };
 
-// RANSAC over ordered points with per-point noise variances: repeatedly the largest contiguous
-// consensus of a 2-point line, refit by TLS, is taken as a line and its points removed.
+// RANSAC over ordered points in the sensor frame with per-point range-noise variances sigma2
+// (along the beam): repeatedly the largest contiguous consensus of a 2-point line, refit by TLS,
+// is taken as a line and its points removed. Inliers are within inlier_sigmas * sigma of the
+// line; the covariance and the straightness test use the noise across the line,
+// sigma2 (n . u)^2 for the beam direction u.
 std::vector<LineFeature> RansacLines(const std::vector<Eigen::Vector2d>& points,
                                      const std::vector<double>& sigma2,
                                      const LineExtractionOptions& options, Random* random);

@@ -14,11 +14,13 @@ std::vector<Pose2> Poses(const Trajectory& trajectory) {
   return poses;
 }
 
-std::optional<Pose2> PoseAt(const Trajectory& trajectory, double t, double max_gap_s) {
+std::optional<Pose2> PoseAt(const Trajectory& trajectory, double t, double max_gap_s,
+                            double match_tolerance_s) {
   if (trajectory.empty()) return std::nullopt;
-  const auto after = std::lower_bound(trajectory.begin(), trajectory.end(), t,
-                                      [](const StampedPose& p, double time) { return p.time_s < time; });
-  const double tolerance = max_gap_s * 1e-6;
+  const auto after =
+      std::lower_bound(trajectory.begin(), trajectory.end(), t,
+                       [](const StampedPose& p, double time) { return p.time_s < time; });
+  const double tolerance = match_tolerance_s;
   if (after != trajectory.end() && std::abs(after->time_s - t) <= tolerance) return after->pose;
   if (after != trajectory.begin() && std::abs(std::prev(after)->time_s - t) <= tolerance) {
     return std::prev(after)->pose;

@@ -17,10 +17,12 @@ using Trajectory = std::vector<StampedPose>;
 
 std::vector<Pose2> Poses(const Trajectory& trajectory);
 
-// The pose at time t: the pose stamped t when there is one (within max_gap_s / 1e6), else the
+// The pose at time t: the pose stamped within match_tolerance_s of t when there is one, else the
 // linear interpolation of position and (wrapped) heading between the two poses around t when
 // they are at most max_gap_s apart; nullopt outside the trajectory or across a larger gap.
-std::optional<Pose2> PoseAt(const Trajectory& trajectory, double t, double max_gap_s = 1.0);
+// (Unix timestamps near 1e9 s carry about 1e-7 s of double precision.)
+std::optional<Pose2> PoseAt(const Trajectory& trajectory, double t, double max_gap_s = 1.0,
+                            double match_tolerance_s = 1e-4);
 
 }  // namespace splam::kernel
 

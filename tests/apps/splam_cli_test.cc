@@ -7,7 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "io/carmen.h"
+#include "io/map_export.h"
 #include "io/simulation_log.h"
+#include "io/text.h"
 #include "io/trajectory.h"
 
 namespace splam {
@@ -165,8 +167,118 @@ TEST(SplamCli, RenderDrawsWorldsAndLogs) {
   EXPECT_EQ(Splam("render").status, 2);
 }
 
+TEST(SplamCli, SlamWithLinesOnASimulatedOfficeBeatsOdometry) {
+  const fs::path dir = Temp("slam");
+  ASSERT_EQ(Splam("simulate --world office --seed 2 --out " + (dir / "sim").string()).status, 0);
+  const Output r = Splam("slam --method ekf-lines " + (dir / "sim" / "log.clf").string() +
+                         " --out " + (dir / "ekf").string());
+  ASSERT_EQ(r.status, 0) << r.text;
+  for (const char* file : {"trajectory.txt", "odometry.txt", "truth.txt", "map.txt", "map.dxf",
+                           "map.svg", "map.png", "errors.svg", "errors.png", "summary.json"}) {
+    EXPECT_TRUE(fs::exists(dir / "ekf" / file)) << file;
+  }
+  const auto summary = nlohmann::json::parse(Slurp(dir / "ekf" / "summary.json"));
+  EXPECT_TRUE(summary["health"]["healthy"].get<bool>());
+  const double ekf = summary["error"]["estimate"]["rmse_position_m"].get<double>();
+  const double odometry = summary["error"]["odometry"]["rmse_position_m"].get<double>();
+  EXPECT_LT(ekf, 0.05);
+  EXPECT_LT(ekf, odometry / 3);
+  EXPECT_GT(summary["map"]["lines"].get<int>(), 15);
+  EXPECT_GT(summary["associations"]["accepted"].get<int>(), 1000);
+  EXPECT_GT(summary["nees"]["mean"].get<double>(), 0.0);
+  const auto dxf = io::ReadDxf((dir / "ekf" / "map.dxf").string());
+  ASSERT_TRUE(dxf.ok());
+  EXPECT_EQ(dxf.value->segments.size(), summary["map"]["lines"].get<std::size_t>());
+
+  // splam eval on the run directory: against the truth, and with relations built from it.
+  std::string relations;
+  const auto truth = io::ReadTrajectory((dir / "ekf" / "truth.txt").string());
+  ASSERT_TRUE(truth.ok());
+  for (std::size_t i = 0; i + 20 < truth.value->size(); i += 20) {
+    const auto& a = (*truth.value)[i];
+    const auto& b = (*truth.value)[i + 20];
+    const kernel::Pose2 m = a.pose.Between(b.pose);
+    relations += io::FormatDouble(a.time_s) + " " + io::FormatDouble(b.time_s) + " " +
+                 io::FormatDouble(m.x()) + " " + io::FormatDouble(m.y()) + " 0 0 0 " +
+                 io::FormatDouble(m.theta()) + "\n";
+  }
+  ASSERT_EQ(io::WriteTextFile((dir / "run.relations").string(), relations), "");
+  const Output e =
+      Splam("eval " + (dir / "ekf").string() + " --relations " + (dir / "run.relations").string());
+  ASSERT_EQ(e.status, 0) << e.text;
+  const auto report = nlohmann::json::parse(Slurp(dir / "ekf" / "eval.json"));
+  EXPECT_NEAR(report["truth"]["estimate"]["rmse_position_m"].get<double>(), ekf, 1e-9);
+  EXPECT_EQ(report["relations"]["estimate"]["relations_used"].get<std::size_t>(),
+            truth.value->size() / 20);
+  EXPECT_LT(report["relations"]["estimate"]["translation_m"]["mean"].get<double>(),
+            report["relations"]["odometry"]["translation_m"]["mean"].get<double>());
+  EXPECT_TRUE(fs::exists(dir / "ekf" / "eval_errors.png"));
+}
+
+TEST(SplamCli, SlamAndEvalRejectBadInput) {
+  const fs::path dir = Temp("slam_bad");
+  fs::create_directories(dir);
+  ASSERT_EQ(io::WriteTextFile((dir / "bad.clf").string(),
+                              "FLASER 3 1 2 3 0 0 0 0 0 0 1 h 1\nFLASER 2 1\n"),
+            "");
+  Output r = Splam("slam " + (dir / "bad.clf").string() + " --out " + (dir / "o").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.text.find("bad.clf:2: FLASER: line ends early"), std::string::npos) << r.text;
+  ASSERT_EQ(io::WriteTextFile((dir / "empty.clf").string(), "# nothing\n"), "");
+  r = Splam("slam " + (dir / "empty.clf").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.text.find("no laser scans"), std::string::npos) << r.text;
+  r = Splam("slam --method magic " + (dir / "empty.clf").string());
+  EXPECT_EQ(r.status, 2);
+  ASSERT_EQ(io::WriteTextFile((dir / "t.txt").string(), "0 0 0 0\n"), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "r.relations").string(), "0 1 2\n"), "");
+  r = Splam("eval --estimate " + (dir / "t.txt").string() + " --relations " +
+            (dir / "r.relations").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.text.find("r.relations:1: expected 8 values"), std::string::npos) << r.text;
+  r = Splam("eval --estimate " + (dir / "t.txt").string());
+  EXPECT_EQ(r.status, 2);
+}
+
+TEST(SplamCli, CorridorExperimentRecoversTheMapDistances) {
+  const fs::path dir = Temp("experiment");
+  const Output r = Splam("experiment corridor-lines --runs 3 --out " + dir.string());
+  ASSERT_EQ(r.status, 0) << r.text;
+  const auto report = nlohmann::json::parse(Slurp(dir / "report.json"));
+  ASSERT_EQ(report["distances"].size(), 9u);
+  for (const auto& d : report["distances"]) {
+    ASSERT_GT(d["mapped_runs"].get<int>(), 0) << d["name"];
+    EXPECT_LT(d["error_percent"].get<double>(), 1.0) << d["name"];
+  }
+  EXPECT_LT(report["final_position_error_m"]["ekf_lines_mean"].get<double>(),
+            report["final_position_error_m"]["odometry_mean"].get<double>());
+  for (const char* file : {"table1.md", "nees.png", "map.png", "errors.png"})
+    EXPECT_TRUE(fs::exists(dir / file)) << file;
+}
+
+TEST(SplamCli, SlamRunsOnTheRealMitLog) {
+  const char* env = std::getenv("SPLAM_DATA");
+  const fs::path data = env != nullptr ? env : SPLAM_DEFAULT_DATA_DIR;
+  if (!fs::exists(data / "mit-csail.clf"))
+    GTEST_SKIP() << data / "mit-csail.clf"
+                 << " not found: set SPLAM_DATA";
+  const fs::path dir = Temp("mit");
+  const Output r =
+      Splam("slam " + (data / "mit-csail.clf").string() + " --max-scans 300 --out " + dir.string());
+  ASSERT_EQ(r.status, 0) << r.text;
+  const auto summary = nlohmann::json::parse(Slurp(dir / "summary.json"));
+  EXPECT_TRUE(summary["health"]["healthy"].get<bool>());
+  EXPECT_EQ(summary["scans"].get<int>(), 300);
+  EXPECT_EQ(summary["odometry_noise_scale"].get<double>(), 3.0);  // real FLASER log
+  const Output e =
+      Splam("eval " + dir.string() + " --relations " + (data / "mit-csail.relations").string());
+  ASSERT_EQ(e.status, 0) << e.text;
+  const auto report = nlohmann::json::parse(Slurp(dir / "eval.json"));
+  EXPECT_GT(report["relations"]["estimate"]["relations_used"].get<int>(), 50);
+}
+
 TEST(SplamCli, EveryCommandHasHelp) {
-  for (const char* command : {"", "simulate", "render"}) {
+  for (const char* command : {"", "simulate", "render", "slam", "eval", "experiment"}) {
     const Output r = Splam(std::string(command) + " --help");
     EXPECT_EQ(r.status, 0) << command;
     EXPECT_NE(r.text.find("Usage"), std::string::npos) << r.text;

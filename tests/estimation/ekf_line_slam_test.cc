@@ -1,0 +1,166 @@
+// EKF-SLAM with lines and corners on synthetic observations whose truth is known exactly.
+#include "estimation/ekf_line_slam.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "estimation/metrics.h"
+#include "kernel/angle.h"
+#include "kernel/random.h"
+
+namespace splam::estimation {
+namespace {
+
+using kernel::LineExtraction;
+using kernel::LineFeature;
+using kernel::Pose2;
+
+// A room of four walls (x = 0, x = 8, y = 0, y = 5) seen from `pose` without noise: every wall
+// whose foot lies inside the room becomes a line feature with a 2 m extent around the foot.
+LineExtraction SeeRoom(const Pose2& pose, kernel::Random* random = nullptr, double sigma = 0.0) {
+  const Line walls[] = {
+      {0.0, kernel::kPi}, {8.0, 0.0}, {0.0, -kernel::kPi / 2}, {5.0, kernel::kPi / 2}};
+  LineExtraction out;
+  for (const Line& w : walls) {
+    // The foot of the perpendicular from the robot to the wall n . p = rho.
+    const Eigen::Vector2d n(std::cos(w.theta), std::sin(w.theta));
+    const Eigen::Vector2d on_wall = pose.translation() - (n.dot(pose.translation()) - w.rho) * n;
+    const Line seen = TransformLine(pose.Inverse(), {w.rho, w.theta});
+    LineFeature f;
+    f.rho_m = seen.rho + (random ? random->Gaussian(sigma) : 0.0);
+    f.theta_rad = seen.theta + (random ? random->Gaussian(sigma / 3.0) : 0.0);
+    const Eigen::Vector2d t(-n.y(), n.x());
+    f.start = pose.Inverse() * (on_wall - 1.0 * t);
+    f.end = pose.Inverse() * (on_wall + 1.0 * t);
+    f.covariance = Eigen::Vector2d(1e-4, 1e-5).asDiagonal();
+    f.point_indices.resize(50);
+    out.lines.push_back(f);
+  }
+  return out;
+}
+
+TEST(EkfLineSlam, FirstScanCreatesLandmarksThenReobservationsAssociate) {
+  EkfLineSlam slam(Pose2(3, 2, 0.3), Eigen::Matrix3d::Identity() * 1e-6);
+  const UpdateReport first = slam.Update(SeeRoom(Pose2(3, 2, 0.3)), Pose2());
+  EXPECT_EQ(first.new_landmarks, 4);
+  EXPECT_EQ(slam.num_lines(), 4u);
+  EXPECT_EQ(slam.state().size(), 3 + 8);
+  const UpdateReport again = slam.Update(SeeRoom(Pose2(3, 2, 0.3)), Pose2());
+  EXPECT_EQ(again.associated, 4);
+  EXPECT_EQ(again.new_landmarks, 0);
+  EXPECT_EQ(slam.num_lines(), 4u);
+  // The map is the room, in normal form.
+  for (const MapLine& l : slam.MapLines()) {
+    EXPECT_GE(l.line.rho, 0.0);
+    const bool vertical = std::abs(std::cos(l.line.theta)) > 0.99;
+    EXPECT_NEAR(l.line.rho, vertical ? (l.line.rho > 4 ? 8.0 : 0.0) : (l.line.rho > 2 ? 5.0 : 0.0),
+                1e-6);
+  }
+}
+
+TEST(EkfLineSlam, CorrectsOdometryDriftAgainstTheMap) {
+  // The robot drives loops inside the room; its odometry errors are drawn from the filter's own
+  // noise model (scaled up 3x to make drift visible, and told to the filter). Seeing the walls
+  // keeps the estimate on the truth while dead reckoning drifts away.
+  EkfLineSlamOptions options;
+  options.odometry.forward_per_m *= 3;
+  options.odometry.lateral_per_m *= 3;
+  options.odometry.rotation_per_rad *= 3;
+  options.odometry.rotation_per_m *= 3;
+  EkfLineSlam slam(Pose2(2, 1, 0), Eigen::Matrix3d::Identity() * 1e-6, options);
+  kernel::Random random(121);
+  Pose2 truth(2, 1, 0), dead_reckoning(2, 1, 0);
+  slam.Update(SeeRoom(truth, &random, 0.005), Pose2());
+  for (int step = 0; step < 400; ++step) {
+    const Pose2 u(0.05, 0.0, step % 50 < 10 ? 0.15 : 0.0);
+    truth = truth * u;
+    const Eigen::Matrix3d cov = options.odometry.Covariance(u);
+    const Pose2 measured(u.x() + random.Gaussian(std::sqrt(cov(0, 0))),
+                         u.y() + random.Gaussian(std::sqrt(cov(1, 1))),
+                         u.theta() + random.Gaussian(std::sqrt(cov(2, 2))));
+    dead_reckoning = dead_reckoning * measured;
+    slam.Predict(measured);
+    slam.Update(SeeRoom(truth, &random, 0.005), Pose2());
+    ASSERT_TRUE(slam.healthy()) << slam.health();
+  }
+  EXPECT_EQ(slam.num_lines(), 4u);
+  EXPECT_LT((slam.pose().translation() - truth.translation()).norm(), 0.05);
+  EXPECT_GT((dead_reckoning.translation() - truth.translation()).norm(), 0.2);
+  EXPECT_LT(std::abs(kernel::WrapAngle(slam.pose().theta() - truth.theta())), 0.01);
+  // The covariance stays symmetric and positive definite.
+  const Eigen::MatrixXd& p = slam.covariance();
+  EXPECT_LT((p - p.transpose()).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(p).eigenvalues().minCoeff(), 0.0);
+}
+
+TEST(EkfLineSlam, PredictionGrowsOnlyTheRobotUncertainty) {
+  EkfLineSlam slam(Pose2(3, 2, 0), Eigen::Matrix3d::Identity() * 1e-6);
+  slam.Update(SeeRoom(Pose2(3, 2, 0)), Pose2());
+  const Eigen::MatrixXd before = slam.covariance();
+  slam.Predict(Pose2(1.0, 0.0, 0.2));
+  const Eigen::MatrixXd after = slam.covariance();
+  EXPECT_GT(after(0, 0), before(0, 0));
+  EXPECT_GT(after(2, 2), before(2, 2));
+  // The landmark block is untouched.
+  EXPECT_LT((after.bottomRightCorner(8, 8) - before.bottomRightCorner(8, 8)).cwiseAbs().maxCoeff(),
+            1e-15);
+  EXPECT_NEAR(slam.pose().x(), 4.0, 1e-12);
+  EXPECT_NEAR(slam.pose().theta(), 0.2, 1e-12);
+}
+
+TEST(EkfLineSlam, OutliersAreRejectedOrBecomeNewLandmarksNotCorrections) {
+  EkfLineSlam slam(Pose2(3, 2, 0), Eigen::Matrix3d::Identity() * 1e-6);
+  slam.Update(SeeRoom(Pose2(3, 2, 0)), Pose2());
+  LineExtraction odd = SeeRoom(Pose2(3, 2, 0));
+  odd.lines[1].rho_m += 0.5;  // the wall at x = 8 seen 0.5 m too far: a different wall
+  const Pose2 before = slam.pose();
+  const UpdateReport r = slam.Update(odd, Pose2());
+  EXPECT_EQ(r.associated, 3);
+  EXPECT_EQ(r.new_landmarks, 1);
+  EXPECT_LT(kernel::MaxAbsDifference(slam.pose(), before), 1e-6);
+  // Short lines do not start landmarks.
+  LineExtraction tiny = SeeRoom(Pose2(3, 2, 0));
+  for (auto& l : tiny.lines) {
+    l.rho_m += 1.0;
+    l.end = l.start + 0.1 * (l.end - l.start).normalized();
+  }
+  const UpdateReport t = slam.Update(tiny, Pose2());
+  EXPECT_EQ(t.new_landmarks, 0);
+  EXPECT_EQ(t.too_small, 4);
+}
+
+TEST(EkfLineSlam, CornersAreLandmarksToo) {
+  EkfLineSlam slam(Pose2(3, 2, 0.5), Eigen::Matrix3d::Identity() * 1e-6);
+  LineExtraction features;
+  features.corners.push_back(
+      {Pose2(3, 2, 0.5).Inverse() * Eigen::Vector2d(8, 5), 0, 1, kernel::kPi / 2});
+  EXPECT_EQ(slam.Update(features, Pose2()).new_landmarks, 1);
+  EXPECT_EQ(slam.Update(features, Pose2()).associated, 1);
+  ASSERT_EQ(slam.MapCorners().size(), 1u);
+  EXPECT_LT((slam.MapCorners()[0].position - Eigen::Vector2d(8, 5)).norm(), 1e-9);
+}
+
+TEST(EkfLineSlam, LaserMountingIsTakenIntoAccount) {
+  // The same room seen by a laser mounted 0.2 m ahead and turned 0.1 rad.
+  const Pose2 robot(3, 2, 0.3), robot_T_laser(0.2, 0.0, 0.1);
+  EkfLineSlam slam(robot, Eigen::Matrix3d::Identity() * 1e-6);
+  LineExtraction seen = SeeRoom(robot * robot_T_laser);
+  slam.Update(seen, robot_T_laser);
+  for (const MapLine& l : slam.MapLines()) {
+    const bool vertical = std::abs(std::cos(l.line.theta)) > 0.99;
+    EXPECT_NEAR(l.line.rho, vertical ? (l.line.rho > 4 ? 8.0 : 0.0) : (l.line.rho > 2 ? 5.0 : 0.0),
+                1e-6);
+  }
+}
+
+TEST(EkfLineSlamOptions, Validate) {
+  EXPECT_EQ(EkfLineSlamOptions().Validate(), "");
+  EkfLineSlamOptions o;
+  o.new_landmark_probability = 0.5;
+  EXPECT_NE(o.Validate(), "");
+}
+
+}  // namespace
+}  // namespace splam::estimation
