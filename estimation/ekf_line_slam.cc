@@ -172,11 +172,11 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
 
   // Mahalanobis distance of every observation to every compatible landmark.
   const kernel::Pose2 x = pose();
-  struct Candidate {
+  struct Pairing {
     double d2;
     std::size_t observation, landmark;
   };
-  std::vector<Candidate> candidates;
+  std::vector<Pairing> pairings;
   std::vector<double> nearest(observations.size(), std::numeric_limits<double>::infinity());
   for (std::size_t o = 0; o < observations.size(); ++o) {
     const Observation& obs = observations[o];
@@ -208,16 +208,16 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
       const Eigen::Matrix2d s = h * p_local * h.transpose() + obs.r;
       const double d2 = nu.dot(s.ldlt().solve(nu));
       nearest[o] = std::min(nearest[o], d2);
-      if (d2 < gate_) candidates.push_back({d2, o, l});
+      if (d2 < gate_) pairings.push_back({d2, o, l});
     }
   }
 
   // Greedy one-to-one assignment by increasing distance, then sequential corrections.
-  std::sort(candidates.begin(), candidates.end(),
-            [](const Candidate& a, const Candidate& b) { return a.d2 < b.d2; });
+  std::sort(pairings.begin(), pairings.end(),
+            [](const Pairing& a, const Pairing& b) { return a.d2 < b.d2; });
   std::vector<bool> obs_used(observations.size(), false);
   std::vector<bool> line_used(lines_.size(), false), corner_used(corners_.size(), false);
-  for (const Candidate& c : candidates) {
+  for (const Pairing& c : pairings) {
     const Observation& obs = observations[c.observation];
     std::vector<bool>& used = obs.is_line ? line_used : corner_used;
     if (obs_used[c.observation] || used[c.landmark]) continue;
@@ -241,7 +241,8 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
     ++report.associated;
   }
 
-  // New landmarks from what is clearly new.
+  // New landmarks from what is clearly new: after enough sightings as a candidate.
+  ++scans_;
   for (std::size_t o = 0; o < observations.size(); ++o) {
     if (obs_used[o]) continue;
     const Observation& obs = observations[o];
@@ -249,26 +250,60 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
       ++report.ambiguous;
       continue;
     }
+    if (obs.is_line && ((obs.b - obs.a).norm() < options_.min_new_line_length_m ||
+                        static_cast<int>(obs.points) < options_.min_new_line_points)) {
+      ++report.too_small;
+      continue;
+    }
     Matrix23 g_r;
     Eigen::Matrix2d g_z;
+    Eigen::Vector2d g;
     if (obs.is_line) {
-      if ((obs.b - obs.a).norm() < options_.min_new_line_length_m ||
-          static_cast<int>(obs.points) < options_.min_new_line_points) {
-        ++report.too_small;
-        continue;
+      const Line line = InitializeLine(pose(), {obs.z(0), obs.z(1)}, &g_r, &g_z);
+      g = {line.rho, line.theta};
+    } else {
+      g = InitializePoint(pose(), obs.z, &g_r, &g_z);
+    }
+    // Match a candidate of the same kind; promote it when it has been seen often enough.
+    Candidate* match = nullptr;
+    for (Candidate& c : candidates_) {
+      if (c.is_line != obs.is_line || c.last_scan == scans_) continue;
+      const bool close =
+          obs.is_line
+              ? std::abs(c.value(0) - g(0)) <= options_.candidate_rho_tolerance_m &&
+                    std::abs(WrapAngle(c.value(1) - g(1))) <= options_.candidate_theta_tolerance_rad
+              : (c.value - g).norm() <= options_.corner_max_distance_m;
+      if (close) {
+        match = &c;
+        break;
       }
-      const Line g = InitializeLine(pose(), {obs.z(0), obs.z(1)}, &g_r, &g_z);
-      const Eigen::Index i = Augment({g.rho, g.theta}, g_r, g_z, obs.r);
+    }
+    if (match == nullptr) {
+      candidates_.push_back({obs.is_line, g, 0, scans_});
+      match = &candidates_.back();
+    }
+    match->value = g;
+    match->last_scan = scans_;
+    if (++match->observations < options_.min_observations_to_add) {
+      ++report.candidates;
+      continue;
+    }
+    match->observations = -1;  // promoted: removed below
+    if (obs.is_line) {
+      const Eigen::Index i = Augment(g, g_r, g_z, obs.r);
       LineLandmark lm{i, std::numeric_limits<double>::infinity(),
                       -std::numeric_limits<double>::infinity(), 1};
       ExtendLine(&lm, pose() * obs.a, pose() * obs.b);
       lines_.push_back(lm);
     } else {
-      const Eigen::Vector2d g = InitializePoint(pose(), obs.z, &g_r, &g_z);
       corners_.push_back({Augment(g, g_r, g_z, obs.r), 1});
     }
     ++report.new_landmarks;
   }
+  std::erase_if(candidates_, [&](const Candidate& c) {
+    return c.observations < 0 ||
+           scans_ - c.last_scan > static_cast<std::size_t>(options_.candidate_max_age_scans);
+  });
   CheckHealth();
   return report;
 }

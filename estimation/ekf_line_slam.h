@@ -31,6 +31,16 @@ struct EkfLineSlamOptions {
   // An unassociated observation becomes a new landmark only when it is outside this larger gate
   // of every landmark (0.999 -> 13.8); in between it is ambiguous and ignored.
   double new_landmark_probability = 0.999;
+  // An unassociated observation that is clearly new becomes a candidate (kept outside the state,
+  // in the world frame); it becomes a landmark when seen again in at least this many scans
+  // within candidate_max_age_scans. Spurious lines (people, clutter, noise) never enter the state,
+  // which keeps the filter small on long real logs. 1 adds landmarks at once.
+  int min_observations_to_add = 3;
+  int candidate_max_age_scans = 10;
+  // Candidates match when their world lines differ by at most these, and corners by
+  // corner_max_distance_m.
+  double candidate_rho_tolerance_m = 0.15;
+  double candidate_theta_tolerance_rad = 0.05;
   // New line landmarks need this much support.
   double min_new_line_length_m = 0.5;
   int min_new_line_points = 10;
@@ -62,8 +72,9 @@ struct UpdateReport {
   int corner_observations = 0;
   int associated = 0;  // observations used to correct the state
   int new_landmarks = 0;
-  int ambiguous = 0;  // neither inside the gate nor clearly new
-  int too_small = 0;  // unassociated lines too short to start a landmark
+  int ambiguous = 0;   // neither inside the gate nor clearly new
+  int too_small = 0;   // unassociated lines too short to start a landmark
+  int candidates = 0;  // clearly new observations kept as (or matched to) candidates
 };
 
 // EKF-SLAM with line (rho, theta) and corner (x, y) landmarks (SPEC §2-4, paper 001 and the
@@ -126,6 +137,15 @@ class EkfLineSlam {
   Eigen::MatrixXd p_;
   std::vector<LineLandmark> lines_;
   std::vector<CornerLandmark> corners_;
+  // Candidate landmarks: world-frame value (rho, theta) or (x, y), how often and when last seen.
+  struct Candidate {
+    bool is_line;
+    Eigen::Vector2d value;
+    int observations;
+    std::size_t last_scan;
+  };
+  std::vector<Candidate> candidates_;
+  std::size_t scans_ = 0;
   std::string health_;
   std::size_t corrections_ = 0;
 };

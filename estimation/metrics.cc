@@ -21,8 +21,9 @@ std::pair<double, double> MeanStd(const std::vector<double>& v) {
 
 }  // namespace
 
-TrajectoryError CompareToTruth(const kernel::Trajectory& truth,
+TrajectoryError CompareToTruth(const kernel::Trajectory& unsorted_truth,
                                const kernel::Trajectory& estimate) {
+  const kernel::Trajectory truth = kernel::SortedByTime(unsorted_truth);
   TrajectoryError e;
   double sum_p2 = 0.0, sum_h2 = 0.0;
   for (const kernel::StampedPose& est : estimate) {
@@ -49,7 +50,8 @@ TrajectoryError CompareToTruth(const kernel::Trajectory& truth,
 }
 
 RelationsError EvaluateRelations(const std::vector<Relation>& relations,
-                                 const kernel::Trajectory& estimate) {
+                                 const kernel::Trajectory& unsorted_estimate) {
+  const kernel::Trajectory estimate = kernel::SortedByTime(unsorted_estimate);
   RelationsError r;
   std::vector<double> trans, trans2, rot, rot2;
   for (const Relation& rel : relations) {

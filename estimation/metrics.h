@@ -19,8 +19,8 @@ struct TrajectoryError {
   std::vector<double> time_s, error_x_m, error_y_m, error_theta_rad;
 };
 
-// Compares every estimate pose with the truth at the same time (interpolated between truth
-// poses at most 1 s apart). Both trajectories are in the same frame (simulated runs start the
+// Compares every estimate pose (in any order) with the truth at the same time (interpolated between
+// truth poses at most 1 s apart). Both trajectories are in the same frame (simulated runs start the
 // estimate at the true start pose).
 TrajectoryError CompareToTruth(const kernel::Trajectory& truth, const kernel::Trajectory& estimate);
 
@@ -41,8 +41,8 @@ struct RelationsError {
 };
 
 // The relations metric: for every relation the same relative motion is computed from the
-// estimate (poses at t1 and t2: a pose stamped within 1 ms, else interpolated between poses less
-// than 1 s apart; relations without both are skipped).
+// estimate (in any order) (poses at t1 and t2: a pose stamped within 1 ms, else interpolated
+// between poses less than 1 s apart; relations without both are skipped).
 RelationsError EvaluateRelations(const std::vector<Relation>& relations,
                                  const kernel::Trajectory& estimate);
 

@@ -36,9 +36,6 @@ Result<Trajectory> ParseTrajectory(const std::string& text, const std::string& n
     if (std::string bad = ParseFiniteNumbers(tokens, &v); !bad.empty()) {
       return FileError(name, line, bad);
     }
-    if (!trajectory.empty() && v[0] < trajectory.back().time_s) {
-      return FileError(name, line, "time goes backwards");
-    }
     trajectory.push_back({v[0], kernel::Pose2(v[1], v[2], v[3])});
     return std::string();
   });

@@ -15,7 +15,8 @@ using kernel::StampedPose;
 using kernel::Trajectory;
 
 // Trajectory files: one pose per line, "time_s x_m y_m theta_rad", separated by white space;
-// '#' starts a comment line. Times must not decrease.
+// '#' starts a comment line. Poses are kept in file order: the timestamps of real logs can jitter
+// backwards (intel.clf does 631 times, by a few milliseconds).
 Result<Trajectory> ReadTrajectory(const std::string& path);
 Result<Trajectory> ParseTrajectory(const std::string& text, const std::string& name);
 std::string FormatTrajectory(const Trajectory& trajectory, const std::string& comment = "");

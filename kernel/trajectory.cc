@@ -14,6 +14,12 @@ std::vector<Pose2> Poses(const Trajectory& trajectory) {
   return poses;
 }
 
+Trajectory SortedByTime(Trajectory trajectory) {
+  std::stable_sort(trajectory.begin(), trajectory.end(),
+                   [](const StampedPose& a, const StampedPose& b) { return a.time_s < b.time_s; });
+  return trajectory;
+}
+
 std::optional<Pose2> PoseAt(const Trajectory& trajectory, double t, double max_gap_s,
                             double match_tolerance_s) {
   if (trajectory.empty()) return std::nullopt;

@@ -17,6 +17,9 @@ using Trajectory = std::vector<StampedPose>;
 
 std::vector<Pose2> Poses(const Trajectory& trajectory);
 
+// The trajectory stably sorted by time (PoseAt needs time order).
+Trajectory SortedByTime(Trajectory trajectory);
+
 // The pose at time t: the pose stamped within match_tolerance_s of t when there is one, else the
 // linear interpolation of position and (wrapped) heading between the two poses around t when
 // they are at most max_gap_s apart; nullopt outside the trajectory or across a larger gap.

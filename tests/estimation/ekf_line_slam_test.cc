@@ -41,8 +41,15 @@ LineExtraction SeeRoom(const Pose2& pose, kernel::Random* random = nullptr, doub
   return out;
 }
 
+// Options that add landmarks at their first sighting, as the tests below expect.
+EkfLineSlamOptions Immediate() {
+  EkfLineSlamOptions options;
+  options.min_observations_to_add = 1;
+  return options;
+}
+
 TEST(EkfLineSlam, FirstScanCreatesLandmarksThenReobservationsAssociate) {
-  EkfLineSlam slam(Pose2(3, 2, 0.3), Eigen::Matrix3d::Identity() * 1e-6);
+  EkfLineSlam slam(Pose2(3, 2, 0.3), Eigen::Matrix3d::Identity() * 1e-6, Immediate());
   const UpdateReport first = slam.Update(SeeRoom(Pose2(3, 2, 0.3)), Pose2());
   EXPECT_EQ(first.new_landmarks, 4);
   EXPECT_EQ(slam.num_lines(), 4u);
@@ -64,7 +71,7 @@ TEST(EkfLineSlam, CorrectsOdometryDriftAgainstTheMap) {
   // The robot drives loops inside the room; its odometry errors are drawn from the filter's own
   // noise model (scaled up 3x to make drift visible, and told to the filter). Seeing the walls
   // keeps the estimate on the truth while dead reckoning drifts away.
-  EkfLineSlamOptions options;
+  EkfLineSlamOptions options = Immediate();
   options.odometry.forward_per_m *= 3;
   options.odometry.lateral_per_m *= 3;
   options.odometry.rotation_per_rad *= 3;
@@ -96,7 +103,7 @@ TEST(EkfLineSlam, CorrectsOdometryDriftAgainstTheMap) {
 }
 
 TEST(EkfLineSlam, PredictionGrowsOnlyTheRobotUncertainty) {
-  EkfLineSlam slam(Pose2(3, 2, 0), Eigen::Matrix3d::Identity() * 1e-6);
+  EkfLineSlam slam(Pose2(3, 2, 0), Eigen::Matrix3d::Identity() * 1e-6, Immediate());
   slam.Update(SeeRoom(Pose2(3, 2, 0)), Pose2());
   const Eigen::MatrixXd before = slam.covariance();
   slam.Predict(Pose2(1.0, 0.0, 0.2));
@@ -111,7 +118,7 @@ TEST(EkfLineSlam, PredictionGrowsOnlyTheRobotUncertainty) {
 }
 
 TEST(EkfLineSlam, OutliersAreRejectedOrBecomeNewLandmarksNotCorrections) {
-  EkfLineSlam slam(Pose2(3, 2, 0), Eigen::Matrix3d::Identity() * 1e-6);
+  EkfLineSlam slam(Pose2(3, 2, 0), Eigen::Matrix3d::Identity() * 1e-6, Immediate());
   slam.Update(SeeRoom(Pose2(3, 2, 0)), Pose2());
   LineExtraction odd = SeeRoom(Pose2(3, 2, 0));
   odd.lines[1].rho_m += 0.5;  // the wall at x = 8 seen 0.5 m too far: a different wall
@@ -132,7 +139,7 @@ TEST(EkfLineSlam, OutliersAreRejectedOrBecomeNewLandmarksNotCorrections) {
 }
 
 TEST(EkfLineSlam, CornersAreLandmarksToo) {
-  EkfLineSlam slam(Pose2(3, 2, 0.5), Eigen::Matrix3d::Identity() * 1e-6);
+  EkfLineSlam slam(Pose2(3, 2, 0.5), Eigen::Matrix3d::Identity() * 1e-6, Immediate());
   LineExtraction features;
   features.corners.push_back(
       {Pose2(3, 2, 0.5).Inverse() * Eigen::Vector2d(8, 5), 0, 1, kernel::kPi / 2});
@@ -145,7 +152,7 @@ TEST(EkfLineSlam, CornersAreLandmarksToo) {
 TEST(EkfLineSlam, LaserMountingIsTakenIntoAccount) {
   // The same room seen by a laser mounted 0.2 m ahead and turned 0.1 rad.
   const Pose2 robot(3, 2, 0.3), robot_T_laser(0.2, 0.0, 0.1);
-  EkfLineSlam slam(robot, Eigen::Matrix3d::Identity() * 1e-6);
+  EkfLineSlam slam(robot, Eigen::Matrix3d::Identity() * 1e-6, Immediate());
   LineExtraction seen = SeeRoom(robot * robot_T_laser);
   slam.Update(seen, robot_T_laser);
   for (const MapLine& l : slam.MapLines()) {
@@ -153,6 +160,25 @@ TEST(EkfLineSlam, LaserMountingIsTakenIntoAccount) {
     EXPECT_NEAR(l.line.rho, vertical ? (l.line.rho > 4 ? 8.0 : 0.0) : (l.line.rho > 2 ? 5.0 : 0.0),
                 1e-6);
   }
+}
+
+TEST(EkfLineSlam, LandmarksEnterTheStateOnlyAfterRepeatedSightings) {
+  EkfLineSlam slam(Pose2(3, 2, 0), Eigen::Matrix3d::Identity() * 1e-6);  // default: 3 sightings
+  const LineExtraction room = SeeRoom(Pose2(3, 2, 0));
+  EXPECT_EQ(slam.Update(room, Pose2()).candidates, 4);
+  EXPECT_EQ(slam.num_lines(), 0u);
+  EXPECT_EQ(slam.Update(room, Pose2()).candidates, 4);
+  EXPECT_EQ(slam.Update(room, Pose2()).new_landmarks, 4);
+  EXPECT_EQ(slam.num_lines(), 4u);
+  EXPECT_EQ(slam.Update(room, Pose2()).associated, 4);
+  // A line seen once (a person walking by) never enters the state, and is forgotten.
+  LineExtraction once = room;
+  once.lines.resize(1);
+  once.lines[0].rho_m += 1.0;
+  EXPECT_EQ(slam.Update(once, Pose2()).candidates, 1);
+  for (int i = 0; i < 20; ++i) slam.Update(LineExtraction(), Pose2());
+  EXPECT_EQ(slam.Update(once, Pose2()).candidates, 1);  // a fresh candidate again
+  EXPECT_EQ(slam.num_lines(), 4u);
 }
 
 TEST(EkfLineSlamOptions, Validate) {
