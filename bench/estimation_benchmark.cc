@@ -32,6 +32,7 @@ void BM_EkfLinesScan(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   splam::estimation::EkfLineSlamOptions options;
   options.gate_probability = 0.99;
+  options.min_observations_to_add = 1;  // build the map from single sightings
   splam::estimation::EkfLineSlam slam(Pose2(), Eigen::Matrix3d::Identity() * 1e-6, options);
   for (int i = 0; i < n; i += 10) slam.Update(Walls(i, std::min(10, n - i)), Pose2());
   const splam::kernel::LineExtraction seen = Walls(0, 5);
