@@ -240,9 +240,9 @@ TEST(SplamCli, SlamAndEvalRejectBadInput) {
   EXPECT_EQ(r.status, 2);
 }
 
-TEST(SplamCli, CorridorExperimentRecoversTheMapDistances) {
+TEST(SplamCli, CorridorExperimentRecoversTheMapDistancesConsistently) {
   const fs::path dir = Temp("experiment");
-  const Output r = Splam("experiment corridor-lines --runs 3 --out " + dir.string());
+  const Output r = Splam("experiment corridor-lines --runs 20 --out " + dir.string());
   ASSERT_EQ(r.status, 0) << r.text;
   const auto report = nlohmann::json::parse(Slurp(dir / "report.json"));
   ASSERT_EQ(report["distances"].size(), 9u);
@@ -250,6 +250,10 @@ TEST(SplamCli, CorridorExperimentRecoversTheMapDistances) {
     ASSERT_GT(d["mapped_runs"].get<int>(), 0) << d["name"];
     EXPECT_LT(d["error_percent"].get<double>(), 1.0) << d["name"];
   }
+  // Filter consistency (issue 4): the average NEES over 20 runs inside the 95 % band for at
+  // least 90 % of the steps.
+  EXPECT_TRUE(report["nees"]["passed"].get<bool>());
+  EXPECT_GE(report["nees"]["fraction_of_steps_inside"].get<double>(), 0.9);
   EXPECT_LT(report["final_position_error_m"]["ekf_lines_mean"].get<double>(),
             report["final_position_error_m"]["odometry_mean"].get<double>());
   for (const char* file : {"table1.md", "nees.png", "map.png", "errors.png"})
