@@ -118,6 +118,39 @@ std::optional<CubicBSpline> CubicBSpline::ClampedUniform(
   return Create(std::move(control_points), std::move(knots), error);
 }
 
+void CubicBasis(const std::vector<double>& knots, std::size_t span, double t, double values[4]) {
+  // Piegl & Tiller, The NURBS Book, algorithm A2.2.
+  double left[4], right[4];
+  values[0] = 1.0;
+  for (int j = 1; j <= CubicBSpline::kDegree; ++j) {
+    left[j] = t - knots[span + 1 - j];
+    right[j] = knots[span + j] - t;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double denom = right[r + 1] + left[j - r];
+      const double temp = denom != 0.0 ? values[r] / denom : 0.0;
+      values[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    values[j] = saved;
+  }
+}
+
+CubicBSpline::Basis CubicBSpline::BasisAt(double t) const {
+  // The span k with knots[k] <= t < knots[k+1] (the last non-empty span at the domain's end).
+  t = std::clamp(t, DomainStart(), DomainEnd());
+  const std::size_t n = control_points_.size();
+  std::size_t k = static_cast<std::size_t>(
+      std::upper_bound(knots_.begin() + kDegree, knots_.begin() + static_cast<std::ptrdiff_t>(n),
+                       t) -
+      knots_.begin() - 1);
+  k = std::min(k, n - 1);
+  Basis basis;
+  basis.first = k - kDegree;
+  CubicBasis(knots_, k, t, basis.values);
+  return basis;
+}
+
 Eigen::Vector2d CubicBSpline::PointDeBoor(double t) const {
   t = std::clamp(t, DomainStart(), DomainEnd());
   // Span k with knots[k] <= t < knots[k+1], k in [3, n-1].

@@ -41,6 +41,13 @@ class CubicBSpline {
   Eigen::Vector2d Point(double t) const;
   Eigen::Vector2d Derivative(double t) const;
   Eigen::Vector2d SecondDerivative(double t) const;
+  // The basis functions that are non-zero at t: N_{first+k,3}(t) for k = 0..3 (they sum to 1),
+  // so that C(t) = sum_k values[k] X_{first+k}. t is clamped to the domain.
+  struct Basis {
+    std::size_t first = 0;
+    double values[4] = {0.0, 0.0, 0.0, 0.0};
+  };
+  Basis BasisAt(double t) const;
   // C(t) by de Boor's algorithm: the reference the pieces are tested against.
   Eigen::Vector2d PointDeBoor(double t) const;
 
@@ -85,6 +92,10 @@ class CubicBSpline {
   std::vector<double> span_starts_;
   std::vector<TableEntry> cumulative_;
 };
+
+// The four cubic basis functions N_{span-3..span,3}(t) that can be non-zero on the knot span
+// [knots[span], knots[span+1]) (Piegl & Tiller A2.2).
+void CubicBasis(const std::vector<double>& knots, std::size_t span, double t, double values[4]);
 
 // Smallest ray parameter in (t_min, t_max) where the ray meets the curve, or kNoHit: the
 // nearest hit over the Bezier pieces (see the CubicBezier overload: no crossing is missed, and

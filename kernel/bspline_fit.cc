@@ -11,24 +11,6 @@ void SetError(std::string* error, std::string message) {
   if (error != nullptr) *error = std::move(message);
 }
 
-// The four non-zero cubic basis functions N_{span-3..span,3}(t) (Piegl & Tiller A2.2).
-void BasisFunctions(const std::vector<double>& knots, std::size_t span, double t, double n[4]) {
-  double left[4], right[4];
-  n[0] = 1.0;
-  for (int j = 1; j <= 3; ++j) {
-    left[j] = t - knots[span + 1 - j];
-    right[j] = knots[span + j] - t;
-    double saved = 0.0;
-    for (int r = 0; r < j; ++r) {
-      const double denom = right[r + 1] + left[j - r];
-      const double temp = denom != 0.0 ? n[r] / denom : 0.0;
-      n[r] = saved + right[r + 1] * temp;
-      saved = left[j - r] * temp;
-    }
-    n[j] = saved;
-  }
-}
-
 }  // namespace
 
 std::string BSplineFitOptions::Validate() const {
@@ -109,7 +91,7 @@ std::optional<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& 
   for (std::size_t k = 0; k < m; ++k) {
     while (span + 1 < n && t[k] >= knots[span + 1]) ++span;
     double basis[4];
-    BasisFunctions(knots, span, t[k], basis);
+    CubicBasis(knots, span, t[k], basis);
     for (int a = 0; a < 4; ++a) {
       const Eigen::Index row = static_cast<Eigen::Index>(span - 3) + a;
       atb.row(row) += basis[a] * points[k].transpose();
