@@ -125,8 +125,15 @@ void EkfLineSlam::NormaliseLine(LineLandmark* landmark) {
 
 void EkfLineSlam::ExtendLine(LineLandmark* landmark, const Eigen::Vector2d& a,
                              const Eigen::Vector2d& b) {
-  const double theta = x_(landmark->index + 1);
-  const Eigen::Vector2d dir(-std::sin(theta), std::cos(theta));
+  const double rho = x_(landmark->index), theta = x_(landmark->index + 1);
+  const Eigen::Vector2d normal(std::cos(theta), std::sin(theta)), dir(-normal.y(), normal.x());
+  // Only a segment that lies on the line extends it: an association accepted through a large
+  // covariance must not stretch the drawn extent along the line.
+  if (std::isfinite(landmark->s_min) &&
+      (std::abs(normal.dot(a) - rho) > options_.max_extension_offset_m ||
+       std::abs(normal.dot(b) - rho) > options_.max_extension_offset_m)) {
+    return;
+  }
   landmark->s_min = std::min({landmark->s_min, dir.dot(a), dir.dot(b)});
   landmark->s_max = std::max({landmark->s_max, dir.dot(a), dir.dot(b)});
 }

@@ -49,6 +49,8 @@ struct EkfLineSlamOptions {
   // An observed segment associates with a line landmark only when it overlaps the landmark's
   // extent or extends it across a gap of at most this much.
   double max_extension_gap_m = 1.0;
+  // ... and extends it only when both its ends lie within this distance of the corrected line.
+  double max_extension_offset_m = 0.2;
 
   std::string Validate() const;
 };

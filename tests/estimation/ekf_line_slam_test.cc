@@ -181,6 +181,27 @@ TEST(EkfLineSlam, LandmarksEnterTheStateOnlyAfterRepeatedSightings) {
   EXPECT_EQ(slam.num_lines(), 4u);
 }
 
+TEST(EkfLineSlam, ReobservedLinesExtendTheirExtent) {
+  // SeeRoom sees 2 m of each wall around the foot of the perpendicular. Driving 2 m along x,
+  // the walls y = 0 and y = 5 are seen from x = 2 to x = 6 in all.
+  EkfLineSlam slam(Pose2(3, 2, 0), Eigen::Matrix3d::Identity() * 1e-6, Immediate());
+  slam.Update(SeeRoom(Pose2(3, 2, 0)), Pose2());
+  for (int step = 1; step <= 20; ++step) {
+    slam.Predict(Pose2(0.1, 0, 0));
+    slam.Update(SeeRoom(Pose2(3 + 0.1 * step, 2, 0)), Pose2());
+  }
+  ASSERT_EQ(slam.num_lines(), 4u);
+  int horizontal = 0;
+  for (const MapLine& l : slam.MapLines()) {
+    if (std::abs(std::sin(l.line.theta)) < 0.99) continue;
+    ++horizontal;
+    EXPECT_NEAR(std::min(l.start.x(), l.end.x()), 2.0, 1e-3);
+    EXPECT_NEAR(std::max(l.start.x(), l.end.x()), 6.0, 1e-3);
+    EXPECT_NEAR(l.start.y(), l.end.y(), 1e-6);  // both ends on the wall
+  }
+  EXPECT_EQ(horizontal, 2);
+}
+
 TEST(EkfLineSlamOptions, Validate) {
   EXPECT_EQ(EkfLineSlamOptions().Validate(), "");
   EkfLineSlamOptions o;
