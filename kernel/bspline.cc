@@ -136,15 +136,16 @@ void CubicBasis(const std::vector<double>& knots, std::size_t span, double t, do
   }
 }
 
-CubicBSpline::Basis CubicBSpline::BasisAt(double t) const {
-  // The span k with knots[k] <= t < knots[k+1] (the last non-empty span at the domain's end).
-  t = std::clamp(t, DomainStart(), DomainEnd());
+std::size_t CubicBSpline::KnotSpan(double t) const {
   const std::size_t n = control_points_.size();
-  std::size_t k = static_cast<std::size_t>(
-      std::upper_bound(knots_.begin() + kDegree, knots_.begin() + static_cast<std::ptrdiff_t>(n),
-                       t) -
-      knots_.begin() - 1);
-  k = std::min(k, n - 1);
+  const auto it = std::upper_bound(knots_.begin() + kDegree,
+                                   knots_.begin() + static_cast<std::ptrdiff_t>(n), t);
+  return std::min(static_cast<std::size_t>(it - knots_.begin()) - 1, n - 1);
+}
+
+CubicBSpline::Basis CubicBSpline::BasisAt(double t) const {
+  t = std::clamp(t, DomainStart(), DomainEnd());
+  const std::size_t k = KnotSpan(t);
   Basis basis;
   basis.first = k - kDegree;
   CubicBasis(knots_, k, t, basis.values);
@@ -153,13 +154,7 @@ CubicBSpline::Basis CubicBSpline::BasisAt(double t) const {
 
 Eigen::Vector2d CubicBSpline::PointDeBoor(double t) const {
   t = std::clamp(t, DomainStart(), DomainEnd());
-  // Span k with knots[k] <= t < knots[k+1], k in [3, n-1].
-  const std::size_t n = control_points_.size();
-  std::size_t k = static_cast<std::size_t>(
-      std::upper_bound(knots_.begin() + kDegree, knots_.begin() + static_cast<std::ptrdiff_t>(n),
-                       t) -
-      knots_.begin() - 1);
-  k = std::min(k, n - 1);
+  const std::size_t k = KnotSpan(t);
   std::array<Eigen::Vector2d, 4> d;
   for (int j = 0; j <= kDegree; ++j) d[j] = control_points_[k - kDegree + j];
   for (int r = 1; r <= kDegree; ++r) {

@@ -75,6 +75,9 @@ class CubicBSpline {
 
  private:
   CubicBSpline(std::vector<Eigen::Vector2d> control_points, std::vector<double> knots);
+  // The knot span k with knots[k] <= t < knots[k+1], k in [3, n-1] (the last non-empty span at
+  // the domain's end); t within the domain.
+  std::size_t KnotSpan(double t) const;
   // Piece index and local parameter u in [0, 1] of t.
   std::pair<std::size_t, double> Locate(double t) const;
 
