@@ -51,14 +51,13 @@ std::string RayCasterOptions::Validate() const {
   return "";
 }
 
-RayCaster::RayCaster(const World& world, const RayCasterOptions& options)
-    : world_(world), options_(options) {
+RayCaster::RayCaster(const World& world, const RayCasterOptions& options) : options_(options) {
   assert(options.Validate().empty());
   assert(world.Validate().empty());
   const double cs = options_.cell_size_m;
-  for (std::size_t i = 0; i < world_.obstacles.size(); ++i) {
+  for (std::size_t i = 0; i < world.obstacles.size(); ++i) {
     Primitives p;
-    world_.AppendPrimitives(i, &p);
+    world.AppendPrimitives(i, &p);
     const int id = static_cast<int>(i);
     auto add = [&](Kind kind, std::size_t index) {
       refs_.push_back({kind, static_cast<std::uint32_t>(index), id});
@@ -75,7 +74,7 @@ RayCaster::RayCaster(const World& world, const RayCasterOptions& options)
     for (const auto& b : pieces)
       add(Kind::kBezier, primitives_.beziers.size()), primitives_.beziers.push_back(b);
 
-    const Shape& shape = world_.obstacles[i];
+    const Shape& shape = world.obstacles[i];
     if (const auto* poly = std::get_if<Polyline>(&shape); poly && poly->closed) {
       closed_polygons_.push_back(poly->vertices);
     } else if (const auto* spline = std::get_if<Spline>(&shape); spline && spline->closed) {
@@ -87,7 +86,7 @@ RayCaster::RayCaster(const World& world, const RayCasterOptions& options)
     }
   }
 
-  Box2 bounds = world_.Bounds();
+  Box2 bounds = world.Bounds();
   if (bounds.IsEmpty()) bounds = Box2{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
   origin_ = bounds.min - Eigen::Vector2d::Constant(cs);
   const Eigen::Vector2d extent = bounds.max + Eigen::Vector2d::Constant(cs) - origin_;

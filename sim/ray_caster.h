@@ -44,9 +44,6 @@ class RayCaster {
   // closed splines sampled at 32 points per piece; open polylines have no inside).
   bool IsInsideObstacle(const Eigen::Vector2d& p) const;
 
-  const World& world() const { return world_; }
-  std::size_t num_primitives() const { return refs_.size(); }
-
  private:
   enum class Kind : std::uint8_t { kSegment, kCircle, kEllipse, kBezier };
   struct Ref {
@@ -60,7 +57,6 @@ class RayCaster {
   void Register(std::uint32_t ref, const kernel::Box2& box,
                 std::vector<std::vector<std::uint32_t>>* cells) const;
 
-  World world_;
   RayCasterOptions options_;
   Primitives primitives_;
   std::vector<Ref> refs_;
