@@ -50,82 +50,30 @@ EkfLineSlam::EkfLineSlam(const kernel::Pose2& initial_pose,
     : options_(options),
       gate_(ChiSquareQuantile(options.gate_probability, 2)),
       new_gate_(ChiSquareQuantile(options.new_landmark_probability, 2)),
-      x_(initial_pose.ToVector()),
-      p_(initial_covariance) {}
+      ekf_(initial_pose, initial_covariance) {}
 
 void EkfLineSlam::Predict(const kernel::Pose2& u) {
-  if (!healthy()) return;
-  MotionJacobians j;
-  const kernel::Pose2 next = MotionModel(pose(), u, &j);
-  x_.head<3>() = next.ToVector();
-  const Eigen::Index m = x_.size() - 3;
-  p_.topLeftCorner<3, 3>() = j.f_x * p_.topLeftCorner<3, 3>() * j.f_x.transpose() +
-                             j.f_u * options_.odometry.Covariance(u) * j.f_u.transpose();
-  if (m > 0) {
-    p_.topRightCorner(3, m) = j.f_x * p_.topRightCorner(3, m);
-    p_.bottomLeftCorner(m, 3) = p_.topRightCorner(3, m).transpose();
-  }
-  CheckHealth();
-}
-
-void EkfLineSlam::Correct(Eigen::Index l, const Matrix23& h_r, const Eigen::Matrix2d& h_l,
-                          const Eigen::Vector2d& nu, const Eigen::Matrix2d& r) {
-  // P H^T touches only the robot columns and the landmark's two columns.
-  const Eigen::MatrixXd pht =
-      p_.leftCols<3>() * h_r.transpose() + p_.middleCols(l, 2) * h_l.transpose();
-  Eigen::Matrix2d s = h_r * pht.topRows<3>() + h_l * pht.middleRows(l, 2) + r;
-  s = 0.5 * (s + s.transpose());
-  const Eigen::MatrixXd k = pht * s.inverse();
-  x_ += k * nu;
-  x_(2) = WrapAngle(x_(2));
-  // Joseph form (I - KH) P (I - KH)^T + K R K^T = P - K (PH^T)^T - (PH^T) K^T + K S K^T, as one
-  // in-place symmetric rank-4 update P += U M U^T with U = [K, PH^T], M = [[S, -I], [-I, 0]]:
-  // O(N^2) without N x N temporaries.
-  Eigen::MatrixXd u(p_.rows(), 4);
-  u << k, pht;
-  Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
-  m.topLeftCorner<2, 2>() = s;
-  m.topRightCorner<2, 2>() = -Eigen::Matrix2d::Identity();
-  m.bottomLeftCorner<2, 2>() = -Eigen::Matrix2d::Identity();
-  const Eigen::MatrixXd um = u * m;
-  p_.noalias() += um * u.transpose();
-  // Rounding makes P drift from symmetry slowly; restore it now and then.
-  if (++corrections_ % 64 == 0) p_ = p_.selfadjointView<Eigen::Lower>();
-}
-
-Eigen::Index EkfLineSlam::Augment(const Eigen::Vector2d& g, const Matrix23& g_r,
-                                  const Eigen::Matrix2d& g_z, const Eigen::Matrix2d& r) {
-  const Eigen::Index n = x_.size();
-  x_.conservativeResize(n + 2);
-  x_.tail<2>() = g;
-  const Eigen::MatrixXd cross = g_r * p_.topRows<3>();  // 2 x n
-  p_.conservativeResize(n + 2, n + 2);
-  p_.bottomLeftCorner(2, n) = cross;
-  p_.topRightCorner(n, 2) = cross.transpose();
-  p_.bottomRightCorner<2, 2>() =
-      g_r * p_.topLeftCorner<3, 3>() * g_r.transpose() + g_z * r * g_z.transpose();
-  return n;
+  ekf_.Predict(u, options_.odometry.Covariance(u));
 }
 
 void EkfLineSlam::NormaliseLine(LineLandmark* landmark) {
   const Eigen::Index i = landmark->index;
-  if (x_(i) < 0.0) {
+  Eigen::VectorXd& x = ekf_.mutable_state();
+  if (x(i) < 0.0) {
     // (rho, theta) -> (-rho, theta + pi): the rho row and column of P change sign, and the
     // direction (-sin theta, cos theta) reverses, so the extent flips too.
-    x_(i) = -x_(i);
-    x_(i + 1) += kernel::kPi;
-    p_.row(i) *= -1.0;
-    p_.col(i) *= -1.0;
+    ekf_.Negate(i);
+    x(i + 1) += kernel::kPi;
     std::swap(landmark->s_min, landmark->s_max);
     landmark->s_min = -landmark->s_min;
     landmark->s_max = -landmark->s_max;
   }
-  x_(i + 1) = WrapAngle(x_(i + 1));
+  x(i + 1) = WrapAngle(x(i + 1));
 }
 
 void EkfLineSlam::ExtendLine(LineLandmark* landmark, const Eigen::Vector2d& a,
                              const Eigen::Vector2d& b) {
-  const double rho = x_(landmark->index), theta = x_(landmark->index + 1);
+  const double rho = ekf_.state()(landmark->index), theta = ekf_.state()(landmark->index + 1);
   const Eigen::Vector2d normal(std::cos(theta), std::sin(theta)), dir(-normal.y(), normal.x());
   // Only a segment that lies on the line extends it: an association accepted through a large
   // covariance must not stretch the drawn extent along the line.
@@ -196,22 +144,24 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
       if (obs.is_line) {
         const LineLandmark& lm = lines_[l];
         // The observed segment must overlap the landmark's extent or continue it closely.
-        const Eigen::Vector2d dir(-std::sin(x_(i + 1)), std::cos(x_(i + 1)));
+        const Eigen::Vector2d dir(-std::sin(ekf_.state()(i + 1)), std::cos(ekf_.state()(i + 1)));
         const double sa = dir.dot(x * obs.a), sb = dir.dot(x * obs.b);
         const double gap =
             std::max({0.0, std::min(sa, sb) - lm.s_max, lm.s_min - std::max(sa, sb)});
         if (gap > options_.max_extension_gap_m) continue;
-        const Eigen::Vector2d h = PredictLine(x, {x_(i), x_(i + 1)}, &h_r, &h_l);
+        const Eigen::Vector2d h =
+            PredictLine(x, {ekf_.state()(i), ekf_.state()(i + 1)}, &h_r, &h_l);
         nu = {obs.z(0) - h(0), WrapAngle(obs.z(1) - h(1))};
       } else {
-        if ((x * obs.z - x_.segment<2>(i)).norm() > options_.corner_max_distance_m) continue;
-        nu = obs.z - PredictPoint(x, x_.segment<2>(i), &h_r, &h_l);
+        if ((x * obs.z - ekf_.state().segment<2>(i)).norm() > options_.corner_max_distance_m)
+          continue;
+        nu = obs.z - PredictPoint(x, ekf_.state().segment<2>(i), &h_r, &h_l);
       }
       Matrix25 h;
       h << h_r, h_l;
       Matrix5d p_local;
-      p_local << p_.topLeftCorner<3, 3>(), p_.block(0, i, 3, 2), p_.block(i, 0, 2, 3),
-          p_.block<2, 2>(i, i);
+      p_local << ekf_.covariance().topLeftCorner<3, 3>(), ekf_.covariance().block(0, i, 3, 2),
+          ekf_.covariance().block(i, 0, 2, 3), ekf_.covariance().block<2, 2>(i, i);
       const Eigen::Matrix2d s = h * p_local * h.transpose() + obs.r;
       const double d2 = nu.dot(s.ldlt().solve(nu));
       nearest[o] = std::min(nearest[o], d2);
@@ -234,15 +184,17 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
     Matrix23 h_r;
     Eigen::Matrix2d h_l;
     if (obs.is_line) {
-      const Eigen::Vector2d h = PredictLine(pose(), {x_(i), x_(i + 1)}, &h_r, &h_l);
-      Correct(i, h_r, h_l, {obs.z(0) - h(0), WrapAngle(obs.z(1) - h(1))}, obs.r);
+      const Eigen::Vector2d h =
+          PredictLine(pose(), {ekf_.state()(i), ekf_.state()(i + 1)}, &h_r, &h_l);
+      ekf_.Correct(h_r, {JacobianBlock{i, h_l}},
+                   Eigen::Vector2d(obs.z(0) - h(0), WrapAngle(obs.z(1) - h(1))), obs.r);
       LineLandmark& lm = lines_[c.landmark];
       NormaliseLine(&lm);
       ExtendLine(&lm, pose() * obs.a, pose() * obs.b);
       ++lm.observations;
     } else {
-      const Eigen::Vector2d h = PredictPoint(pose(), x_.segment<2>(i), &h_r, &h_l);
-      Correct(i, h_r, h_l, obs.z - h, obs.r);
+      const Eigen::Vector2d h = PredictPoint(pose(), ekf_.state().segment<2>(i), &h_r, &h_l);
+      ekf_.Correct(h_r, {JacobianBlock{i, h_l}}, obs.z - h, obs.r);
       ++corners_[c.landmark].observations;
     }
     ++report.associated;
@@ -297,13 +249,13 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
     }
     match->observations = -1;  // promoted: removed below
     if (obs.is_line) {
-      const Eigen::Index i = Augment(g, g_r, g_z, obs.r);
+      const Eigen::Index i = ekf_.Append(g, g_r, g_z * obs.r * g_z.transpose());
       LineLandmark lm{i, std::numeric_limits<double>::infinity(),
                       -std::numeric_limits<double>::infinity(), 1};
       ExtendLine(&lm, pose() * obs.a, pose() * obs.b);
       lines_.push_back(lm);
     } else {
-      corners_.push_back({Augment(g, g_r, g_z, obs.r), 1});
+      corners_.push_back({ekf_.Append(g, g_r, g_z * obs.r * g_z.transpose()), 1});
     }
     ++report.new_landmarks;
   }
@@ -311,7 +263,6 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
     return c.observations < 0 ||
            scans_ - c.last_scan > static_cast<std::size_t>(options_.candidate_max_age_scans);
   });
-  CheckHealth();
   return report;
 }
 
@@ -319,10 +270,10 @@ std::vector<MapLine> EkfLineSlam::MapLines() const {
   std::vector<MapLine> out;
   for (const LineLandmark& lm : lines_) {
     const Eigen::Index i = lm.index;
-    const Line line{x_(i), x_(i + 1)};
+    const Line line{ekf_.state()(i), ekf_.state()(i + 1)};
     const Eigen::Vector2d n(std::cos(line.theta), std::sin(line.theta)), dir(-n.y(), n.x());
     out.push_back({line, line.rho * n + lm.s_min * dir, line.rho * n + lm.s_max * dir,
-                   p_.block<2, 2>(i, i), lm.observations});
+                   ekf_.covariance().block<2, 2>(i, i), lm.observations});
   }
   return out;
 }
@@ -330,17 +281,10 @@ std::vector<MapLine> EkfLineSlam::MapLines() const {
 std::vector<MapCorner> EkfLineSlam::MapCorners() const {
   std::vector<MapCorner> out;
   for (const CornerLandmark& c : corners_) {
-    out.push_back({x_.segment<2>(c.index), p_.block<2, 2>(c.index, c.index), c.observations});
+    out.push_back({ekf_.state().segment<2>(c.index),
+                   ekf_.covariance().block<2, 2>(c.index, c.index), c.observations});
   }
   return out;
-}
-
-void EkfLineSlam::CheckHealth() {
-  if (!x_.allFinite() || !p_.allFinite()) {
-    health_ = "state or covariance is not finite";
-  } else if ((p_.diagonal().array() <= 0.0).any()) {
-    health_ = "covariance lost a positive diagonal entry";
-  }
 }
 
 }  // namespace splam::estimation

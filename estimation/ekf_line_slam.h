@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "estimation/ekf_core.h"
 #include "estimation/models.h"
 #include "kernel/lines.h"
 #include "kernel/pose2.h"
@@ -96,18 +97,18 @@ class EkfLineSlam {
   // The same from already extracted features, given in the laser frame.
   UpdateReport Update(const kernel::LineExtraction& features, const kernel::Pose2& robot_T_laser);
 
-  kernel::Pose2 pose() const { return kernel::Pose2(x_(0), x_(1), x_(2)); }
-  Eigen::Matrix3d pose_covariance() const { return p_.topLeftCorner<3, 3>(); }
-  const Eigen::VectorXd& state() const { return x_; }
-  const Eigen::MatrixXd& covariance() const { return p_; }
+  kernel::Pose2 pose() const { return ekf_.pose(); }
+  Eigen::Matrix3d pose_covariance() const { return ekf_.pose_covariance(); }
+  const Eigen::VectorXd& state() const { return ekf_.state(); }
+  const Eigen::MatrixXd& covariance() const { return ekf_.covariance(); }
   std::size_t num_lines() const { return lines_.size(); }
   std::size_t num_corners() const { return corners_.size(); }
   std::vector<MapLine> MapLines() const;
   std::vector<MapCorner> MapCorners() const;
   // False once the state or covariance is not finite or P lost positive diagonal entries; the
   // message says what happened. An unhealthy filter ignores further input.
-  bool healthy() const { return health_.empty(); }
-  const std::string& health() const { return health_; }
+  bool healthy() const { return ekf_.healthy(); }
+  const std::string& health() const { return ekf_.health(); }
 
  private:
   struct LineLandmark {
@@ -121,22 +122,14 @@ class EkfLineSlam {
   };
   struct Observation;
 
-  // EKF correction with innovation nu and H = [h_r, 0.., h_l at landmark, 0..].
-  void Correct(Eigen::Index landmark, const Matrix23& h_r, const Eigen::Matrix2d& h_l,
-               const Eigen::Vector2d& nu, const Eigen::Matrix2d& r);
-  // Appends a 2-vector landmark g with Jacobians G_r (robot) and G_z (measurement).
-  Eigen::Index Augment(const Eigen::Vector2d& g, const Matrix23& g_r, const Eigen::Matrix2d& g_z,
-                       const Eigen::Matrix2d& r);
   // Keeps line landmark `index` in normal form (rho >= 0, theta wrapped) after a correction.
   void NormaliseLine(LineLandmark* landmark);
   void ExtendLine(LineLandmark* landmark, const Eigen::Vector2d& a_world,
                   const Eigen::Vector2d& b_world);
-  void CheckHealth();
 
   EkfLineSlamOptions options_;
   double gate_ = 0.0, new_gate_ = 0.0;
-  Eigen::VectorXd x_;
-  Eigen::MatrixXd p_;
+  EkfCore ekf_;
   std::vector<LineLandmark> lines_;
   std::vector<CornerLandmark> corners_;
   // Candidate landmarks: world-frame value (rho, theta) or (x, y), how often and when last seen.
@@ -148,8 +141,6 @@ class EkfLineSlam {
   };
   std::vector<Candidate> candidates_;
   std::size_t scans_ = 0;
-  std::string health_;
-  std::size_t corrections_ = 0;
 };
 
 }  // namespace splam::estimation

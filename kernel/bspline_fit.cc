@@ -5,13 +5,6 @@
 #include <cmath>
 
 namespace splam::kernel {
-namespace {
-
-void SetError(std::string* error, std::string message) {
-  if (error != nullptr) *error = std::move(message);
-}
-
-}  // namespace
 
 std::string BSplineFitOptions::Validate() const {
   if (!(control_point_spacing_m > 0.0)) return "control_point_spacing_m must be positive";
@@ -22,17 +15,25 @@ std::string BSplineFitOptions::Validate() const {
   return "";
 }
 
-std::optional<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& points,
-                                            const BSplineFitOptions& options, std::string* error) {
+namespace {
+
+void SetError(std::string* error, std::string message) {
+  if (error != nullptr) *error = std::move(message);
+}
+
+// Chord-length parameters t_k and knots of the fit; false (with *error) for degenerate points.
+bool FitParametersAndKnots(const std::vector<Eigen::Vector2d>& points,
+                           const BSplineFitOptions& options, std::vector<double>* t_out,
+                           std::vector<double>* knots_out, std::string* error) {
   const std::size_t m = points.size();
   if (m < 4) {
     SetError(error, "a cubic B-spline fit needs at least 4 points, got " + std::to_string(m));
-    return std::nullopt;
+    return false;
   }
   for (const Eigen::Vector2d& p : points) {
     if (!p.allFinite()) {
       SetError(error, "point is not finite");
-      return std::nullopt;
+      return false;
     }
   }
   // Chord-length parameters along a moving average of the points: on noisy data the raw chords
@@ -54,7 +55,7 @@ std::optional<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& 
   for (std::size_t k = 1; k < m; ++k) distinct += t[k] > t[k - 1];
   if (!(length > 0.0) || distinct < 4) {
     SetError(error, "the points are not spread along a curve (fewer than 4 distinct points)");
-    return std::nullopt;
+    return false;
   }
   for (double& v : t) v /= length;
 
@@ -79,35 +80,79 @@ std::optional<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& 
   }
   if (n > 4 && knots[n - 1] >= 1.0) {
     SetError(error, "cannot place knots for these points");
-    return std::nullopt;
+    return false;
   }
+  *t_out = std::move(t);
+  *knots_out = std::move(knots);
+  return true;
+}
 
+// The normal matrix N^T N of the fit and the basis rows: row k of N is nonzero in columns
+// first[k] .. first[k] + 3 with values basis[k].
+struct NormalEquations {
+  Eigen::MatrixXd ntn;
+  std::vector<Eigen::Index> first;
+  std::vector<Eigen::Vector4d> basis;
+};
+NormalEquations BuildNormalEquations(const std::vector<double>& t,
+                                     const std::vector<double>& knots) {
+  const std::size_t n = knots.size() - 4;
+  NormalEquations e;
+  e.ntn = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  e.first.reserve(t.size());
+  e.basis.reserve(t.size());
+  std::size_t span = 3;
+  for (const double tk : t) {
+    while (span + 1 < n && tk >= knots[span + 1]) ++span;
+    Eigen::Vector4d basis;
+    CubicBasis(knots, span, tk, basis.data());
+    const Eigen::Index first = static_cast<Eigen::Index>(span - 3);
+    e.ntn.block<4, 4>(first, first) += basis * basis.transpose();
+    e.first.push_back(first);
+    e.basis.push_back(basis);
+  }
+  return e;
+}
+
+}  // namespace
+
+std::optional<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& points,
+                                            const BSplineFitOptions& options, std::string* error) {
+  std::vector<double> t, knots;
+  if (!FitParametersAndKnots(points, options, &t, &knots, error)) return std::nullopt;
   // Normal equations N^T N X = N^T D for all control points. The ends are not pinned to the
   // first and last measurement: a noisy end point would bend the end of the curve into a hook.
-  const Eigen::Index unknowns = static_cast<Eigen::Index>(n);
-  Eigen::MatrixXd ata = Eigen::MatrixXd::Zero(unknowns, unknowns);
-  Eigen::MatrixXd atb = Eigen::MatrixXd::Zero(unknowns, 2);
-  std::size_t span = 3;
-  for (std::size_t k = 0; k < m; ++k) {
-    while (span + 1 < n && t[k] >= knots[span + 1]) ++span;
-    double basis[4];
-    CubicBasis(knots, span, t[k], basis);
-    for (int a = 0; a < 4; ++a) {
-      const Eigen::Index row = static_cast<Eigen::Index>(span - 3) + a;
-      atb.row(row) += basis[a] * points[k].transpose();
-      for (int b = 0; b < 4; ++b)
-        ata(row, static_cast<Eigen::Index>(span - 3) + b) += basis[a] * basis[b];
-    }
-  }
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(ata);
-  const Eigen::MatrixXd x = ldlt.solve(atb);
+  const NormalEquations e = BuildNormalEquations(t, knots);
+  Eigen::MatrixXd ntd = Eigen::MatrixXd::Zero(e.ntn.rows(), 2);
+  for (std::size_t k = 0; k < points.size(); ++k)
+    ntd.middleRows<4>(e.first[k]) += e.basis[k] * points[k].transpose();
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(e.ntn);
+  const Eigen::MatrixXd x = ldlt.solve(ntd);
   if (ldlt.info() != Eigen::Success || !x.allFinite()) {
     SetError(error, "the least-squares system is singular");
     return std::nullopt;
   }
-  std::vector<Eigen::Vector2d> control(n);
-  for (std::size_t i = 0; i < n; ++i) control[i] = x.row(static_cast<Eigen::Index>(i)).transpose();
+  std::vector<Eigen::Vector2d> control(static_cast<std::size_t>(x.rows()));
+  for (Eigen::Index i = 0; i < x.rows(); ++i) control[static_cast<std::size_t>(i)] = x.row(i);
   return CubicBSpline::Create(std::move(control), std::move(knots), error);
+}
+
+std::optional<BSplineFitOperator> CubicBSplineFitOperator(
+    const std::vector<Eigen::Vector2d>& points, const BSplineFitOptions& options,
+    std::string* error) {
+  std::vector<double> t, knots;
+  if (!FitParametersAndKnots(points, options, &t, &knots, error)) return std::nullopt;
+  const NormalEquations e = BuildNormalEquations(t, knots);
+  Eigen::MatrixXd nt = Eigen::MatrixXd::Zero(e.ntn.rows(), static_cast<Eigen::Index>(t.size()));
+  for (std::size_t k = 0; k < t.size(); ++k)
+    nt.col(static_cast<Eigen::Index>(k)).segment<4>(e.first[k]) = e.basis[k];
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(e.ntn);
+  BSplineFitOperator op{std::move(knots), ldlt.solve(nt)};
+  if (ldlt.info() != Eigen::Success || !op.m.allFinite()) {
+    SetError(error, "the least-squares system is singular");
+    return std::nullopt;
+  }
+  return op;
 }
 
 }  // namespace splam::kernel

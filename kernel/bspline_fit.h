@@ -35,6 +35,18 @@ std::optional<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& 
                                             const BSplineFitOptions& options = {},
                                             std::string* error = nullptr);
 
+// The fit as a linear operator, for propagating covariances (EKF-SLAM with B-splines, SPEC §8):
+// with the parameters and knots of FitCubicBSpline, the control points are X_i = sum_k M(i, k) D_k
+// (each coordinate alike), M = (N^T N)^-1 N^T, N(k, i) = N_i(t_k). The parameters depend on the
+// points only through chord lengths; M treats them as fixed, as Pedraza et al. do.
+struct BSplineFitOperator {
+  std::vector<double> knots;  // control points + 4
+  Eigen::MatrixXd m;          // control points x data points
+};
+std::optional<BSplineFitOperator> CubicBSplineFitOperator(
+    const std::vector<Eigen::Vector2d>& points, const BSplineFitOptions& options = {},
+    std::string* error = nullptr);
+
 }  // namespace splam::kernel
 
 #endif  // SPLAM_KERNEL_BSPLINE_FIT_H_

@@ -16,11 +16,27 @@ std::optional<SplineCurve> ExtractCurve(const std::vector<Eigen::Vector2d>& poin
                                         std::string* error) {
   std::optional<CubicBSpline> spline = FitCubicBSpline(points, options.fit, error);
   if (!spline) return std::nullopt;
-  std::vector<Eigen::Vector2d> samples = spline->ResampleByArcLength(options.epsilon_m);
+  SplineCurve curve = DescribeCurve(std::move(*spline), options);
+  curve.points = points;
+  return curve;
+}
+
+SplineCurve DescribeCurve(CubicBSpline spline, const SplineExtractionOptions& options) {
+  std::vector<Eigen::Vector2d> samples = spline.ResampleByArcLength(options.epsilon_m);
   CurvatureProfile profile = ComputeCurvature(samples, options.epsilon_m, options.curvature);
   std::vector<CurveFeature> features = FindFeatures(profile, options.features);
   return SplineCurve{
-      points, {}, std::move(*spline), std::move(samples), std::move(profile), std::move(features)};
+      {}, {}, std::move(spline), std::move(samples), std::move(profile), std::move(features)};
+}
+
+SplineCurve Transformed(const SplineCurve& curve, const Pose2& a_T_b) {
+  SplineCurve moved = curve;
+  for (Eigen::Vector2d& p : moved.points) p = a_T_b * p;
+  moved.spline = curve.spline.Transformed(a_T_b);
+  for (Eigen::Vector2d& p : moved.samples) p = a_T_b * p;
+  for (Eigen::Vector2d& p : moved.profile.smoothed) p = a_T_b * p;
+  for (CurveFeature& f : moved.features) f.position = a_T_b * f.position;
+  return moved;
 }
 
 std::vector<SplineCurve> ExtractCurves(const Scan& scan, const SplineExtractionOptions& options) {

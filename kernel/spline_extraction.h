@@ -46,6 +46,14 @@ std::optional<SplineCurve> ExtractCurve(const std::vector<Eigen::Vector2d>& poin
                                         const SplineExtractionOptions& options = {},
                                         std::string* error = nullptr);
 
+// The samples, curvature profile and features of a given spline (e.g. a map curve); `points`
+// and `beams` stay empty.
+SplineCurve DescribeCurve(CubicBSpline spline, const SplineExtractionOptions& options = {});
+
+// The curve moved by a_T_b (given in frame b, returned in frame a). Curvature and features are
+// invariant under rigid motion, so nothing is recomputed.
+SplineCurve Transformed(const SplineCurve& curve, const Pose2& a_T_b);
+
 // The curves of every segment of a scan, in the sensor frame, in beam order.
 std::vector<SplineCurve> ExtractCurves(const Scan& scan,
                                        const SplineExtractionOptions& options = {});

@@ -1,0 +1,94 @@
+#include "estimation/ekf_core.h"
+
+#include <Eigen/Cholesky>
+
+#include "estimation/models.h"
+#include "kernel/angle.h"
+
+namespace splam::estimation {
+
+EkfCore::EkfCore(const kernel::Pose2& initial_pose, const Eigen::Matrix3d& initial_covariance)
+    : x_(initial_pose.ToVector()), p_(initial_covariance) {}
+
+void EkfCore::Predict(const kernel::Pose2& u, const Eigen::Matrix3d& q_u) {
+  if (!healthy()) return;
+  MotionJacobians j;
+  const kernel::Pose2 next = MotionModel(pose(), u, &j);
+  x_.head<3>() = next.ToVector();
+  const Eigen::Index m = x_.size() - 3;
+  p_.topLeftCorner<3, 3>() =
+      j.f_x * p_.topLeftCorner<3, 3>() * j.f_x.transpose() + j.f_u * q_u * j.f_u.transpose();
+  if (m > 0) {
+    p_.topRightCorner(3, m) = j.f_x * p_.topRightCorner(3, m);
+    p_.bottomLeftCorner(m, 3) = p_.topRightCorner(3, m).transpose();
+  }
+  CheckHealth();
+}
+
+bool EkfCore::Correct(const Eigen::MatrixXd& h_robot, const std::vector<JacobianBlock>& blocks,
+                      const Eigen::VectorXd& nu, const Eigen::MatrixXd& r) {
+  if (!healthy()) return false;
+  // P H^T touches only the robot columns and the blocks' columns.
+  Eigen::MatrixXd pht = p_.leftCols<3>() * h_robot.transpose();
+  for (const JacobianBlock& b : blocks)
+    pht.noalias() += p_.middleCols(b.start, b.jacobian.cols()) * b.jacobian.transpose();
+  Eigen::MatrixXd s = h_robot * pht.topRows<3>() + r;
+  for (const JacobianBlock& b : blocks)
+    s.noalias() += b.jacobian * pht.middleRows(b.start, b.jacobian.cols());
+  s = 0.5 * (s + s.transpose()).eval();
+  const Eigen::LLT<Eigen::MatrixXd> llt(s);
+  if (llt.info() != Eigen::Success) return false;
+  x_.noalias() += pht * llt.solve(nu);
+  x_(2) = kernel::WrapAngle(x_(2));
+  // P -= L L^T with L = P H^T U^-1, S = U^T U: only the lower triangle is updated, then mirrored.
+  const Eigen::MatrixXd l = llt.matrixU().transpose().solve(pht.transpose()).transpose();
+  p_.selfadjointView<Eigen::Lower>().rankUpdate(l, -1.0);
+  for (Eigen::Index j = 1; j < p_.cols(); ++j) p_.col(j).head(j) = p_.row(j).head(j).transpose();
+  CheckHealth();
+  return true;
+}
+
+Eigen::Index EkfCore::ReplaceBlock(Eigen::Index start, Eigen::Index size, const Eigen::VectorXd& g,
+                                   const Eigen::MatrixXd& g_r, const Eigen::MatrixXd& g_b,
+                                   const Eigen::MatrixXd& q) {
+  const Eigen::Index n = x_.size();
+  const Eigen::Index w = g.size();
+  // Cross-covariance of the new block with the whole old state, and its own covariance.
+  Eigen::MatrixXd cross = g_r * p_.topRows<3>();
+  if (size > 0) cross.noalias() += g_b * p_.middleRows(start, size);
+  Eigen::MatrixXd own = cross.leftCols<3>() * g_r.transpose() + q;
+  if (size > 0) own.noalias() += cross.middleCols(start, size) * g_b.transpose();
+
+  const Eigen::Index kept = n - size;
+  Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1> keep(kept);
+  for (Eigen::Index i = 0; i < kept; ++i) keep(i) = i < start ? i : i + size;
+  Eigen::VectorXd x(kept + w);
+  x.head(kept) = x_(keep);
+  x.tail(w) = g;
+  Eigen::MatrixXd p(kept + w, kept + w);
+  p.topLeftCorner(kept, kept) = p_(keep, keep);
+  p.bottomLeftCorner(w, kept) = cross(Eigen::all, keep);
+  p.topRightCorner(kept, w) = p.bottomLeftCorner(w, kept).transpose();
+  p.bottomRightCorner(w, w) = 0.5 * (own + own.transpose());
+  x_ = std::move(x);
+  p_ = std::move(p);
+  CheckHealth();
+  return kept;
+}
+
+void EkfCore::Negate(Eigen::Index i) {
+  x_(i) = -x_(i);
+  p_.row(i) *= -1.0;
+  p_.col(i) *= -1.0;
+}
+
+void EkfCore::CheckHealth() {
+  if (!health_.empty()) return;
+  if (!x_.allFinite() || !p_.allFinite()) {
+    health_ = "state or covariance is not finite";
+  } else if ((p_.diagonal().array() <= 0.0).any()) {
+    health_ = "covariance lost a positive diagonal entry";
+  }
+}
+
+}  // namespace splam::estimation
