@@ -38,6 +38,8 @@ std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::str
   for (const auto& [label, t] : picture.estimates) extend(t);
   for (const Eigen::Vector2d& p : picture.scan_points) area.Extend(p);
   for (const auto& [a, b] : picture.map_segments) area.Extend(a), area.Extend(b);
+  for (const auto& curve : picture.map_curves)
+    for (const Eigen::Vector2d& p : curve) area.Extend(p);
   if (area.IsEmpty()) area = kernel::Box2{Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1)};
 
   io::FigureOptions options;
@@ -49,6 +51,11 @@ std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::str
   if (picture.world != nullptr) figure.DrawWorld(*picture.world, picture.world_color);
   for (const auto& [a, b] : picture.map_segments)
     figure.DrawPolyline({a, b}, io::palette::kMap, 2.5, "map lines");
+  for (const auto& curve : picture.map_curves)
+    figure.DrawPolyline(curve, io::palette::kMap, 2.5, "map splines");
+  figure.DrawPoints(picture.map_control_points, io::palette::kMap, 1.5, "control points");
+  figure.DrawMarkers(picture.map_inflections, io::Figure::Marker::kCircle, io::palette::kMap, 5.0,
+                     "inflection points");
   figure.DrawMarkers(picture.map_corners, io::Figure::Marker::kDiamond, io::palette::kMap, 5.0,
                      "map corners");
   figure.DrawPath(io::Poses(picture.odometry), io::palette::kOdometry, 1.5, "odometry");

@@ -24,6 +24,9 @@ struct RunPicture {
   std::vector<Eigen::Vector2d> scan_points;                       // world frame
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> map_segments;  // estimated map lines
   std::vector<Eigen::Vector2d> map_corners;                               // estimated map corners
+  std::vector<std::vector<Eigen::Vector2d>> map_curves;  // estimated map curves as polylines
+  std::vector<Eigen::Vector2d> map_control_points;       // ... their control points
+  std::vector<Eigen::Vector2d> map_inflections;          // ... and inflection points
   io::Rgb world_color = io::palette::kWorld;
   double robot_radius_m = 0.0;  // > 0 draws the robot at the last true (else odometric) pose
   double pixels_per_meter = 40.0;

@@ -8,11 +8,10 @@
 
 #include "apps/commands.h"
 #include "apps/run_picture.h"
+#include "apps/slam_methods.h"
 #include "estimation/chi_square.h"
-#include "estimation/ekf_line_slam.h"
 #include "estimation/metrics.h"
 #include "io/carmen.h"
-#include "io/map_export.h"
 #include "io/plot.h"
 #include "io/simulation_log.h"
 #include "io/world_file.h"
@@ -25,14 +24,15 @@ constexpr double kRealOdometryScale = 3.0;
 
 struct SlamArgs {
   std::string method = "ekf-lines";
+  std::string association = "curvature";  // ekf-bspline
   std::string log;
   std::string out;
   std::string world;
   int max_scans = 0;
   double flaser_step_deg = 0.0;
   double flaser_max_range_m = 81.8;
-  // Point noise for line extraction; negative: chosen from the log's laser type (Hokuyo URG:
-  // 1 % of the range; SICK LMS, FLASER logs: 1 cm).
+  // Range noise (line extraction, beam measurements); negative: chosen from the log's laser
+  // type (Hokuyo URG: 1 % of the range; SICK LMS, FLASER logs: 1 cm).
   double range_sigma_m = -1.0;
   double range_sigma_fraction = -1.0;
   // Scale of the default odometry noise model; negative: 1 for simulated logs (ROBOTLASER1),
@@ -85,24 +85,47 @@ int RunSlam(const SlamArgs& args) {
     world = std::move(w.value);
   }
 
-  estimation::EkfLineSlamOptions options;
   const bool urg = lasers[0]->format == io::LaserMessage::Format::kRobotLaser1 &&
                    lasers[0]->laser_type == io::kCarmenHokuyoUrg;
-  options.extraction.range_sigma_m =
-      args.range_sigma_m >= 0 ? args.range_sigma_m : (urg ? 0.003 : 0.01);
-  options.extraction.range_sigma_fraction =
+  const double sigma = args.range_sigma_m >= 0 ? args.range_sigma_m : (urg ? 0.003 : 0.01);
+  const double sigma_fraction =
       args.range_sigma_fraction >= 0 ? args.range_sigma_fraction : (urg ? 0.01 : 0.0);
   const bool real = lasers[0]->format == io::LaserMessage::Format::kFlaser;
   const double scale = args.odometry_noise_scale >= 0 ? args.odometry_noise_scale
                                                       : (real ? kRealOdometryScale : 1.0);
-  options.odometry.forward_per_m *= scale;
-  options.odometry.lateral_per_m *= scale;
-  options.odometry.rotation_per_rad *= scale;
-  options.odometry.rotation_per_m *= scale;
-  if (std::string problem = options.Validate(); !problem.empty()) {
+  estimation::OdometryNoiseModel odometry_noise;
+  odometry_noise.forward_per_m *= scale;
+  odometry_noise.lateral_per_m *= scale;
+  odometry_noise.rotation_per_rad *= scale;
+  odometry_noise.rotation_per_m *= scale;
+  // The estimate starts at the first odometric pose with a small covariance: the map frame is
+  // the odometry frame (for simulated runs, the true frame).
+  const kernel::Pose2 start = lasers[0]->robot_pose;
+  const Eigen::Matrix3d start_covariance = Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal();
+  std::unique_ptr<SlamMethod> slam;
+  std::string problem;
+  if (args.method == "ekf-lines") {
+    estimation::EkfLineSlamOptions options;
+    options.odometry = odometry_noise;
+    options.extraction.range_sigma_m = sigma;
+    options.extraction.range_sigma_fraction = sigma_fraction;
+    problem = options.Validate();
+    if (problem.empty()) slam = MakeLineSlam(start, start_covariance, options);
+  } else {
+    estimation::EkfBSplineSlamOptions options;
+    options.odometry = odometry_noise;
+    options.association = args.association;
+    options.range_sigma_floor_m = urg ? 0.0 : sigma;
+    options.range_sigma_fraction = sigma_fraction;
+    problem = options.Validate();
+    if (problem.empty()) slam = MakeBSplineSlam(start, start_covariance, options);
+  }
+  if (!problem.empty()) {
     fmt::print(stderr, "splam slam: {}\n", problem);
     return kExitBadInput;
   }
+  const std::string label =
+      args.method == "ekf-lines" ? args.method : args.method + " (" + args.association + ")";
   const std::string out =
       args.out.empty() ? "runs/slam-" + std::filesystem::path(args.log).stem().string() : args.out;
   std::error_code ec;
@@ -115,40 +138,28 @@ int RunSlam(const SlamArgs& args) {
   const io::Trajectory truth = io::TrueTrajectory(log);
   const std::size_t n =
       args.max_scans > 0 ? std::min<std::size_t>(args.max_scans, lasers.size()) : lasers.size();
-  // The estimate starts at the first odometric pose with a small covariance: the map frame is
-  // the odometry frame (for simulated runs, the true frame).
-  estimation::EkfLineSlam slam(lasers[0]->robot_pose,
-                               Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal(), options);
   io::Trajectory estimate, odometry;
   std::vector<double> step_ms, nees;
-  estimation::UpdateReport totals;
   const auto wall_start = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < n; ++i) {
     const io::LaserMessage& m = *lasers[i];
     const auto t0 = std::chrono::steady_clock::now();
-    if (i > 0) slam.Predict(lasers[i - 1]->robot_pose.Between(m.robot_pose));
-    const estimation::UpdateReport r = slam.Update(m.scan, m.robot_pose.Between(m.laser_pose));
+    if (i > 0) slam->Predict(lasers[i - 1]->robot_pose.Between(m.robot_pose));
+    slam->Update(m.scan, m.robot_pose.Between(m.laser_pose));
     step_ms.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    totals.line_observations += r.line_observations;
-    totals.corner_observations += r.corner_observations;
-    totals.associated += r.associated;
-    totals.new_landmarks += r.new_landmarks;
-    totals.ambiguous += r.ambiguous;
-    totals.too_small += r.too_small;
-    if (!slam.healthy()) {
+    if (!slam->healthy()) {
       fmt::print(stderr, "splam slam: the filter failed at scan {} (t = {} s): {}\n", i,
-                 m.stamp.ipc_timestamp_s, slam.health());
+                 m.stamp.ipc_timestamp_s, slam->health());
       break;
     }
-    estimate.push_back({m.stamp.ipc_timestamp_s, slam.pose()});
+    estimate.push_back({m.stamp.ipc_timestamp_s, slam->pose()});
     odometry.push_back({m.stamp.ipc_timestamp_s, m.robot_pose});
     if (const auto t = kernel::PoseAt(truth, m.stamp.ipc_timestamp_s, 0.0, 1e-3)) {
-      nees.push_back(estimation::PoseNees(*t, slam.pose(), slam.pose_covariance()));
+      nees.push_back(estimation::PoseNees(*t, slam->pose(), slam->pose_covariance()));
     }
     if ((i + 1) % 1000 == 0) {
-      fmt::print("  {}/{} scans, {} lines and {} corners in the map\n", i + 1, n, slam.num_lines(),
-                 slam.num_corners());
+      fmt::print("  {}/{} scans, {} in the map\n", i + 1, n, slam->MapDescription());
     }
   }
   const double wall_s =
@@ -156,36 +167,32 @@ int RunSlam(const SlamArgs& args) {
   const double data_s = estimate.empty() ? 0.0 : estimate.back().time_s - estimate.front().time_s;
 
   // Files.
-  const std::vector<estimation::MapLine> map_lines = slam.MapLines();
-  const std::vector<estimation::MapCorner> map_corners = slam.MapCorners();
-  std::vector<std::string> errors = {
-      io::WriteTrajectory(out + "/trajectory.txt", estimate, "ekf-lines estimate of " + args.log),
-      io::WriteTrajectory(out + "/odometry.txt", odometry, "odometry of " + args.log),
-      io::WriteLineMapText(out + "/map.txt", map_lines, map_corners),
-      io::WriteLineMapDxf(out + "/map.dxf", map_lines, map_corners),
-  };
+  std::vector<std::string> errors = slam->WriteMap(out);
+  errors.push_back(
+      io::WriteTrajectory(out + "/trajectory.txt", estimate, label + " estimate of " + args.log));
+  errors.push_back(io::WriteTrajectory(out + "/odometry.txt", odometry, "odometry of " + args.log));
   if (!truth.empty())
     errors.push_back(io::WriteTrajectory(out + "/truth.txt", truth, "ground truth of " + args.log));
 
   RunPicture picture;
-  picture.title = fmt::format("ekf-lines on {}: {} lines, {} corners",
-                              std::filesystem::path(args.log).filename().string(), map_lines.size(),
-                              map_corners.size());
+  picture.title =
+      fmt::format("{} on {}: {}", label, std::filesystem::path(args.log).filename().string(),
+                  slam->MapDescription());
   picture.world = world ? &*world : nullptr;
   picture.world_color = io::Rgb{0.75, 0.75, 0.75};
   picture.truth = truth;
   picture.odometry = odometry;
   picture.estimates = {{"estimate", estimate}};
-  for (const estimation::MapLine& l : map_lines) picture.map_segments.push_back({l.start, l.end});
-  for (const estimation::MapCorner& c : map_corners) picture.map_corners.push_back(c.position);
+  slam->DrawMap(&picture);
   picture.pixels_per_meter = 40.0;
   errors.push_back(SaveRunPicture(picture, {out + "/map.svg", out + "/map.png"}));
 
   nlohmann::ordered_json summary;
   summary["method"] = args.method;
+  if (args.method == "ekf-bspline") summary["association"] = args.association;
   summary["odometry_noise_scale"] = scale;
-  summary["line_noise_model"] = {{"range_sigma_m", options.extraction.range_sigma_m},
-                                 {"range_sigma_fraction", options.extraction.range_sigma_fraction}};
+  summary["range_noise_model"] = {{"range_sigma_m", sigma},
+                                  {"range_sigma_fraction", sigma_fraction}};
   summary["log"] = args.log;
   summary["scans"] = estimate.size();
   summary["data_duration_s"] = data_s;
@@ -196,17 +203,11 @@ int RunSlam(const SlamArgs& args) {
       {"median", Percentile(step_ms, 0.5)},
       {"p95", Percentile(step_ms, 0.95)},
       {"max", Percentile(step_ms, 1.0)}};
-  summary["map"] = {{"lines", map_lines.size()}, {"corners", map_corners.size()}};
-  summary["associations"] = {{"line_observations", totals.line_observations},
-                             {"corner_observations", totals.corner_observations},
-                             {"accepted", totals.associated},
-                             {"new_landmarks", totals.new_landmarks},
-                             {"rejected_ambiguous", totals.ambiguous},
-                             {"rejected_too_small", totals.too_small}};
-  const Eigen::Matrix3d p = slam.pose_covariance();
+  summary.update(slam->Statistics());
+  const Eigen::Matrix3d p = slam->pose_covariance();
   summary["health"] = {
-      {"healthy", slam.healthy()},
-      {"message", slam.health()},
+      {"healthy", slam->healthy()},
+      {"message", slam->health()},
       {"scans_processed", estimate.size()},
       {"scans_in_log", lasers.size()},
       {"final_pose_sigma", {std::sqrt(p(0, 0)), std::sqrt(p(1, 1)), std::sqrt(p(2, 2))}}};
@@ -226,10 +227,10 @@ int RunSlam(const SlamArgs& args) {
         {"fraction_in_95_band",
          nees.empty() ? 0.0 : static_cast<double>(inside) / static_cast<double>(nees.size())},
         {"steps", nees.size()}};
-    errors.push_back(SaveErrorPlot("ekf-lines: error against ground truth", truth,
-                                   {{"odometry", io::palette::kOdometry, odometry},
-                                    {"ekf-lines", io::palette::kEstimate, estimate}},
-                                   {out + "/errors.svg", out + "/errors.png"}));
+    errors.push_back(SaveErrorPlot(
+        label + ": error against ground truth", truth,
+        {{"odometry", io::palette::kOdometry, odometry}, {label, io::palette::kEstimate, estimate}},
+        {out + "/errors.svg", out + "/errors.png"}));
   }
   std::ofstream(out + "/summary.json") << summary.dump(2) << "\n";
   for (const std::string& e : errors) {
@@ -243,23 +244,21 @@ int RunSlam(const SlamArgs& args) {
       "{:.2f})\n",
       estimate.size(), data_s, wall_s, wall_s > 0 ? data_s / wall_s : 0.0,
       summary["time_per_scan_ms"]["mean"].get<double>(), Percentile(step_ms, 0.5));
-  fmt::print("map: {} lines, {} corners; associations: {} accepted, {} new, {} ambiguous\n",
-             map_lines.size(), map_corners.size(), totals.associated, totals.new_landmarks,
-             totals.ambiguous);
+  fmt::print("map: {}; associations: {}\n", slam->MapDescription(), summary["associations"].dump());
   if (!truth.empty()) {
     const auto e = estimation::CompareToTruth(truth, estimate);
     const auto o = estimation::CompareToTruth(truth, odometry);
     fmt::print(
-        "position RMSE: ekf-lines {:.3f} m, odometry {:.3f} m; heading RMSE: {:.2f} deg, {:.2f} "
+        "position RMSE: {} {:.3f} m, odometry {:.3f} m; heading RMSE: {:.2f} deg, {:.2f} "
         "deg\n",
-        e.rmse_position_m, o.rmse_position_m, kernel::RadToDeg(e.rmse_heading_rad),
+        label, e.rmse_position_m, o.rmse_position_m, kernel::RadToDeg(e.rmse_heading_rad),
         kernel::RadToDeg(o.rmse_heading_rad));
   }
   fmt::print(
       "wrote {}/{{trajectory.txt, odometry.txt, map.txt, map.dxf, map.svg, map.png, "
       "summary.json{}}}\n",
       out, truth.empty() ? "" : ", truth.txt, errors.svg, errors.png");
-  if (!slam.healthy()) return kExitIncomplete;
+  if (!slam->healthy()) return kExitIncomplete;
   return kExitOk;
 }
 
@@ -271,7 +270,11 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
                                       "Run a SLAM method over a CARMEN log; write the trajectory, "
                                       "the map, pictures and a summary.");
   cmd->add_option("--method", args->method, "SLAM method")
-      ->check(CLI::IsMember({"ekf-lines"}))
+      ->check(CLI::IsMember({"ekf-lines", "ekf-bspline"}))
+      ->capture_default_str();
+  cmd->add_option("--association", args->association,
+                  "ekf-bspline data association: pedraza (end points) or curvature (paper 000)")
+      ->check(CLI::IsMember({"pedraza", "curvature"}))
       ->capture_default_str();
   cmd->add_option("log", args->log, "CARMEN log (simulated or real)")->required();
   cmd->add_option("--out", args->out, "Output directory (default runs/slam-<log>)");
@@ -287,8 +290,7 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--range-sigma", args->range_sigma_m,
-                  "Laser range noise for line extraction, metres (constant part); default from the "
-                  "log's laser type: "
+                  "Laser range noise, metres (constant part); default from the log's laser type: "
                   "3 mm for a Hokuyo URG, 1 cm for SICK and FLASER logs")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option(

@@ -21,6 +21,14 @@ class Collector : public DL_CreationAdapter {
   DxfContent content;
 };
 
+// A DXF layer: LINE and POINT entities.
+struct DxfLayer {
+  std::string name;
+  int color;
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> segments;
+  std::vector<Eigen::Vector2d> points;
+};
+
 }  // namespace
 
 std::string FormatLineMapText(const std::vector<estimation::MapLine>& lines,
@@ -41,11 +49,12 @@ std::string WriteLineMapText(const std::string& path, const std::vector<estimati
   return WriteTextFile(path, FormatLineMapText(lines, corners));
 }
 
-std::string WriteLineMapDxf(const std::string& path, const std::vector<estimation::MapLine>& lines,
-                            const std::vector<estimation::MapCorner>& corners) {
-  // The minimal complete AutoCAD 2000 file of the dxflib documentation: header, tables
-  // (viewport, line types, layers, style, view, UCS, application id, dimension style, block
-  // records), model and paper space blocks, entities and objects.
+namespace {
+
+// The minimal complete AutoCAD 2000 file of the dxflib documentation with these layers.
+std::string WriteDxf(const std::string& path, const std::vector<DxfLayer>& layers) {
+  // Header, tables (viewport, line types, layers, style, view, UCS, application id, dimension
+  // style, block records), model and paper space blocks, entities and objects.
   DL_Dxf dxf;
   std::unique_ptr<DL_WriterA> dw(dxf.out(path.c_str(), DL_Codes::AC1015));
   if (dw == nullptr) return FileError(path, 0, "cannot open for writing");
@@ -58,13 +67,13 @@ std::string WriteLineMapDxf(const std::string& path, const std::vector<estimatio
   dxf.writeLinetype(*dw, DL_LinetypeData("BYLAYER", "BYLAYER", 0, 0, 0.0));
   dxf.writeLinetype(*dw, DL_LinetypeData("CONTINUOUS", "Continuous", 0, 0, 0.0));
   dw->tableEnd();
-  dw->tableLayers(3);
+  dw->tableLayers(static_cast<int>(layers.size()) + 1);
   dxf.writeLayer(*dw, DL_LayerData("0", 0),
                  DL_Attributes("", DL_Codes::black, 100, "CONTINUOUS", 1.0));
-  dxf.writeLayer(*dw, DL_LayerData("lines", 0),
-                 DL_Attributes("", DL_Codes::black, 35, "CONTINUOUS", 1.0));
-  dxf.writeLayer(*dw, DL_LayerData("corners", 0),
-                 DL_Attributes("", DL_Codes::red, 35, "CONTINUOUS", 1.0));
+  for (const DxfLayer& layer : layers) {
+    dxf.writeLayer(*dw, DL_LayerData(layer.name, 0),
+                   DL_Attributes("", layer.color, 35, "CONTINUOUS", 1.0));
+  }
   dw->tableEnd();
   dw->tableStyle(1);
   dxf.writeStyle(*dw, DL_StyleData("standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
@@ -87,14 +96,12 @@ std::string WriteLineMapDxf(const std::string& path, const std::vector<estimatio
   dxf.writeEndBlock(*dw, "*Paper_Space0");
   dw->sectionEnd();
   dw->sectionEntities();
-  const DL_Attributes lines_layer("lines", 256, -1, "BYLAYER", 1.0);
-  const DL_Attributes corners_layer("corners", 256, -1, "BYLAYER", 1.0);
-  for (const estimation::MapLine& l : lines) {
-    dxf.writeLine(*dw, DL_LineData(l.start.x(), l.start.y(), 0.0, l.end.x(), l.end.y(), 0.0),
-                  lines_layer);
-  }
-  for (const estimation::MapCorner& c : corners) {
-    dxf.writePoint(*dw, DL_PointData(c.position.x(), c.position.y(), 0.0), corners_layer);
+  for (const DxfLayer& layer : layers) {
+    const DL_Attributes attributes(layer.name, 256, -1, "BYLAYER", 1.0);
+    for (const auto& [a, b] : layer.segments)
+      dxf.writeLine(*dw, DL_LineData(a.x(), a.y(), 0.0, b.x(), b.y(), 0.0), attributes);
+    for (const Eigen::Vector2d& p : layer.points)
+      dxf.writePoint(*dw, DL_PointData(p.x(), p.y(), 0.0), attributes);
   }
   dw->sectionEnd();
   dxf.writeObjects(*dw);
@@ -102,6 +109,51 @@ std::string WriteLineMapDxf(const std::string& path, const std::vector<estimatio
   dw->dxfEOF();
   dw->close();
   return "";
+}
+
+}  // namespace
+
+std::string WriteLineMapDxf(const std::string& path, const std::vector<estimation::MapLine>& lines,
+                            const std::vector<estimation::MapCorner>& corners) {
+  DxfLayer line_layer{"lines", DL_Codes::black, {}, {}};
+  for (const estimation::MapLine& l : lines) line_layer.segments.emplace_back(l.start, l.end);
+  DxfLayer corner_layer{"corners", DL_Codes::red, {}, {}};
+  for (const estimation::MapCorner& c : corners) corner_layer.points.push_back(c.position);
+  return WriteDxf(path, {line_layer, corner_layer});
+}
+
+std::string FormatSplineMapText(const std::vector<estimation::MapSpline>& splines) {
+  std::string out =
+      "# splam B-spline map: world frame, metres; cubic, clamped knots\n"
+      "# spline id n x_0 y_0 ... x_n-1 y_n-1 knot_0 ... knot_n+3\n";
+  for (const estimation::MapSpline& s : splines) {
+    const auto& control = s.spline.control_points();
+    out += "spline " + std::to_string(s.id) + " " + std::to_string(control.size());
+    for (const Eigen::Vector2d& p : control)
+      out += " " + FormatDouble(p.x()) + " " + FormatDouble(p.y());
+    for (const double k : s.spline.knots()) out += " " + FormatDouble(k);
+    out += "\n";
+  }
+  return out;
+}
+
+std::string WriteSplineMapText(const std::string& path,
+                               const std::vector<estimation::MapSpline>& splines) {
+  return WriteTextFile(path, FormatSplineMapText(splines));
+}
+
+std::string WriteSplineMapDxf(const std::string& path,
+                              const std::vector<estimation::MapSpline>& splines, double spacing_m) {
+  DxfLayer curves{"splines", DL_Codes::black, {}, {}};
+  DxfLayer control{"control_points", DL_Codes::red, {}, {}};
+  for (const estimation::MapSpline& s : splines) {
+    std::vector<Eigen::Vector2d> points = s.spline.ResampleByArcLength(spacing_m);
+    points.push_back(s.spline.Point(s.spline.DomainEnd()));
+    for (std::size_t k = 1; k < points.size(); ++k)
+      curves.segments.emplace_back(points[k - 1], points[k]);
+    for (const Eigen::Vector2d& p : s.spline.control_points()) control.points.push_back(p);
+  }
+  return WriteDxf(path, {curves, control});
 }
 
 Result<DxfContent> ReadDxf(const std::string& path) {

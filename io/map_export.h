@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "estimation/ekf_bspline_slam.h"
 #include "estimation/ekf_line_slam.h"
 #include "io/result.h"
 
@@ -23,6 +24,17 @@ std::string WriteLineMapText(const std::string& path, const std::vector<estimati
                              const std::vector<estimation::MapCorner>& corners);
 std::string WriteLineMapDxf(const std::string& path, const std::vector<estimation::MapLine>& lines,
                             const std::vector<estimation::MapCorner>& corners);
+
+// B-spline maps of the EKF with B-splines. Text: '#' comments, then one spline a line:
+//   spline id n x_0 y_0 ... x_(n-1) y_(n-1) knot_0 ... knot_(n+3)
+// DXF: each curve as LINE segments spacing_m long on layer "splines", its control points as
+// POINT entities on layer "control_points".
+std::string FormatSplineMapText(const std::vector<estimation::MapSpline>& splines);
+std::string WriteSplineMapText(const std::string& path,
+                               const std::vector<estimation::MapSpline>& splines);
+std::string WriteSplineMapDxf(const std::string& path,
+                              const std::vector<estimation::MapSpline>& splines,
+                              double spacing_m = 0.05);
 
 // The segments and corners of a DXF file (LINE and POINT entities of any layer), for checking
 // exports and reading maps back.

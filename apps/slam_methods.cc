@@ -1,0 +1,142 @@
+#include "apps/slam_methods.h"
+
+#include <fmt/core.h>
+
+#include "io/map_export.h"
+
+namespace splam::apps {
+namespace {
+
+class LineSlam : public SlamMethod {
+ public:
+  LineSlam(const kernel::Pose2& pose, const Eigen::Matrix3d& covariance,
+           const estimation::EkfLineSlamOptions& options)
+      : slam_(pose, covariance, options) {}
+  void Predict(const kernel::Pose2& u) override { slam_.Predict(u); }
+  void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) override {
+    const estimation::UpdateReport r = slam_.Update(scan, robot_T_laser);
+    totals_.line_observations += r.line_observations;
+    totals_.corner_observations += r.corner_observations;
+    totals_.associated += r.associated;
+    totals_.new_landmarks += r.new_landmarks;
+    totals_.ambiguous += r.ambiguous;
+    totals_.too_small += r.too_small;
+  }
+  kernel::Pose2 pose() const override { return slam_.pose(); }
+  Eigen::Matrix3d pose_covariance() const override { return slam_.pose_covariance(); }
+  bool healthy() const override { return slam_.healthy(); }
+  std::string health() const override { return slam_.health(); }
+  std::string MapDescription() const override {
+    return fmt::format("{} lines, {} corners", slam_.num_lines(), slam_.num_corners());
+  }
+  void DrawMap(RunPicture* picture) const override {
+    for (const estimation::MapLine& l : slam_.MapLines())
+      picture->map_segments.push_back({l.start, l.end});
+    for (const estimation::MapCorner& c : slam_.MapCorners())
+      picture->map_corners.push_back(c.position);
+  }
+  std::vector<std::string> WriteMap(const std::string& dir) const override {
+    const auto lines = slam_.MapLines();
+    const auto corners = slam_.MapCorners();
+    return {io::WriteLineMapText(dir + "/map.txt", lines, corners),
+            io::WriteLineMapDxf(dir + "/map.dxf", lines, corners)};
+  }
+  nlohmann::ordered_json Statistics() const override {
+    return {{"map", {{"lines", slam_.num_lines()}, {"corners", slam_.num_corners()}}},
+            {"associations",
+             {{"line_observations", totals_.line_observations},
+              {"corner_observations", totals_.corner_observations},
+              {"accepted", totals_.associated},
+              {"new_landmarks", totals_.new_landmarks},
+              {"rejected_ambiguous", totals_.ambiguous},
+              {"rejected_too_small", totals_.too_small}}}};
+  }
+
+ private:
+  estimation::EkfLineSlam slam_;
+  estimation::UpdateReport totals_;
+};
+
+class BSplineSlam : public SlamMethod {
+ public:
+  BSplineSlam(const kernel::Pose2& pose, const Eigen::Matrix3d& covariance,
+              const estimation::EkfBSplineSlamOptions& options)
+      : slam_(pose, covariance, options) {}
+  void Predict(const kernel::Pose2& u) override { slam_.Predict(u); }
+  void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) override {
+    const estimation::BSplineUpdateReport r = slam_.Update(scan, robot_T_laser);
+    observed_ += r.observed_curves;
+    matched_ += r.matched_curves;
+    beams_used_ += r.beams_used;
+    beams_rejected_ += r.beams_rejected;
+    created_ += static_cast<int>(r.created.size());
+    extended_ += static_cast<int>(r.extended.size());
+    ignored_ += r.ignored_curves;
+    for (const auto& a : r.associations) with_features_ += a.used_features && !a.beams.empty();
+  }
+  kernel::Pose2 pose() const override { return slam_.pose(); }
+  Eigen::Matrix3d pose_covariance() const override { return slam_.pose_covariance(); }
+  bool healthy() const override { return slam_.healthy(); }
+  std::string health() const override { return slam_.health(); }
+  std::string MapDescription() const override {
+    return fmt::format("{} splines, {} control points", slam_.num_splines(),
+                       slam_.num_control_points());
+  }
+  void DrawMap(RunPicture* picture) const override {
+    DrawSplineMap(slam_.MapSplines(), slam_.options().extraction, picture);
+  }
+  std::vector<std::string> WriteMap(const std::string& dir) const override {
+    const auto splines = slam_.MapSplines();
+    return {io::WriteSplineMapText(dir + "/map.txt", splines),
+            io::WriteSplineMapDxf(dir + "/map.dxf", splines)};
+  }
+  nlohmann::ordered_json Statistics() const override {
+    return {
+        {"map", {{"splines", slam_.num_splines()}, {"control_points", slam_.num_control_points()}}},
+        {"associations",
+         {{"method", slam_.options().association},
+          {"observed_curves", observed_},
+          {"matched_curves", matched_},
+          {"matches_with_paired_features", with_features_},
+          {"beams_used", beams_used_},
+          {"beams_rejected", beams_rejected_},
+          {"new_splines", created_},
+          {"extensions", extended_},
+          {"ignored_curves", ignored_}}}};
+  }
+
+ private:
+  estimation::EkfBSplineSlam slam_;
+  long observed_ = 0, matched_ = 0, beams_used_ = 0, beams_rejected_ = 0;
+  int created_ = 0, extended_ = 0, ignored_ = 0, with_features_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<SlamMethod> MakeLineSlam(const kernel::Pose2& initial_pose,
+                                         const Eigen::Matrix3d& initial_covariance,
+                                         const estimation::EkfLineSlamOptions& options) {
+  return std::make_unique<LineSlam>(initial_pose, initial_covariance, options);
+}
+
+std::unique_ptr<SlamMethod> MakeBSplineSlam(const kernel::Pose2& initial_pose,
+                                            const Eigen::Matrix3d& initial_covariance,
+                                            const estimation::EkfBSplineSlamOptions& options) {
+  return std::make_unique<BSplineSlam>(initial_pose, initial_covariance, options);
+}
+
+void DrawSplineMap(const std::vector<estimation::MapSpline>& splines,
+                   const kernel::SplineExtractionOptions& features, RunPicture* picture) {
+  for (const estimation::MapSpline& s : splines) {
+    const kernel::SplineCurve curve = kernel::DescribeCurve(s.spline, features);
+    picture->map_curves.push_back(curve.samples);
+    for (const Eigen::Vector2d& p : s.spline.control_points())
+      picture->map_control_points.push_back(p);
+    for (const kernel::CurveFeature& f : curve.features) {
+      (f.type == kernel::FeatureType::kCorner ? picture->map_corners : picture->map_inflections)
+          .push_back(f.position);
+    }
+  }
+}
+
+}  // namespace splam::apps

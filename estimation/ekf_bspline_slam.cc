@@ -1,0 +1,453 @@
+#include "estimation/ekf_bspline_slam.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "estimation/bspline_models.h"
+#include "estimation/chi_square.h"
+#include "kernel/bspline_fit.h"
+
+namespace splam::estimation {
+namespace {
+
+using kernel::CubicBSpline;
+using kernel::SplineCurve;
+
+// Axis-aligned box of a set of points.
+struct Box {
+  Eigen::Vector2d lo, hi;
+  double Gap(const Box& o) const { return (lo - o.hi).cwiseMax(o.lo - hi).cwiseMax(0.0).norm(); }
+};
+Box BoxOf(const std::vector<Eigen::Vector2d>& points) {
+  Box b{points.front(), points.front()};
+  for (const Eigen::Vector2d& p : points) {
+    b.lo = b.lo.cwiseMin(p);
+    b.hi = b.hi.cwiseMax(p);
+  }
+  return b;
+}
+
+// Approximate arc length of every measured point along its curve: the chord length along the
+// points scaled to the curve's length (the fit's parameters are chord lengths too).
+std::vector<double> ApproximateArcLengths(const SplineCurve& curve) {
+  std::vector<double> s(curve.points.size(), 0.0);
+  for (std::size_t k = 1; k < s.size(); ++k)
+    s[k] = s[k - 1] + (curve.points[k] - curve.points[k - 1]).norm();
+  const double scale = s.back() > 0.0 ? curve.spline.Length() / s.back() : 0.0;
+  for (double& v : s) v *= scale;
+  return s;
+}
+
+// Measured points in the world frame at the current pose, D = t + R(th) l_T (r cos a, r sin a),
+// with their derivatives by the pose and by the range.
+struct BeamPoints {
+  std::vector<Eigen::Vector2d> points;
+  std::vector<Eigen::Matrix<double, 2, 3>> d_pose;
+  std::vector<Eigen::Vector2d> d_range;
+  std::vector<double> variance;
+};
+
+// Variance of a measured range: the laser's noise plus the model error.
+double RangeVariance(const EkfBSplineSlamOptions& o, double range_m) {
+  const double sigma = o.range_sigma_floor_m + o.range_sigma_fraction * range_m;
+  return sigma * sigma + o.model_sigma_m * o.model_sigma_m;
+}
+
+BeamPoints MakeBeamPoints(const kernel::Scan& scan, const kernel::Pose2& world_T_robot,
+                          const kernel::Pose2& robot_T_laser, const std::vector<std::size_t>& beams,
+                          const EkfBSplineSlamOptions& options) {
+  BeamPoints b;
+  const kernel::Pose2& x = world_T_robot;
+  const Eigen::Matrix2d rotation = x.Rotation();
+  const Eigen::Matrix2d d_rotation{{-rotation(1, 0), -rotation(0, 0)},
+                                   {rotation(0, 0), -rotation(1, 0)}};  // dR/dth
+  for (const std::size_t k : beams) {
+    const double r = scan.ranges_m[k], a = scan.BeamAngle(k);
+    const Eigen::Vector2d in_laser(r * std::cos(a), r * std::sin(a));
+    const Eigen::Vector2d in_robot = robot_T_laser * in_laser;
+    b.points.push_back(x * in_robot);
+    Eigen::Matrix<double, 2, 3> d;
+    d.leftCols<2>().setIdentity();
+    d.col(2) = d_rotation * in_robot;
+    b.d_pose.push_back(d);
+    b.d_range.push_back(rotation * robot_T_laser.Rotation() *
+                        Eigen::Vector2d(std::cos(a), std::sin(a)));
+    b.variance.push_back(RangeVariance(options, r));
+  }
+  return b;
+}
+
+// The control points of a fit X = (M (x) I2) D where the data columns `columns` of M hold the
+// beams' points: adds their part to g, G_r = dg/dpose and q = G_z diag(var) G_z^T.
+void AddBeamColumns(const Eigen::MatrixXd& m, const std::vector<Eigen::Index>& columns,
+                    const BeamPoints& b, Eigen::VectorXd* g, Eigen::MatrixXd* g_r,
+                    Eigen::MatrixXd* q) {
+  const Eigen::Index n = m.rows();
+  Eigen::MatrixXd g_z = Eigen::MatrixXd::Zero(2 * n, static_cast<Eigen::Index>(columns.size()));
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    const auto col = m.col(columns[k]);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      g->segment<2>(2 * i) += col(i) * b.points[k];
+      g_r->middleRows<2>(2 * i) += col(i) * b.d_pose[k];
+      g_z.col(static_cast<Eigen::Index>(k)).segment<2>(2 * i) = col(i) * b.d_range[k];
+    }
+  }
+  const Eigen::VectorXd variance = Eigen::Map<const Eigen::VectorXd>(
+      b.variance.data(), static_cast<Eigen::Index>(b.variance.size()));
+  q->noalias() += g_z * variance.asDiagonal() * g_z.transpose();
+}
+
+}  // namespace
+
+struct EkfBSplineSlam::Match {
+  std::size_t curve;
+  std::size_t landmark;
+  CurveMatch match;
+  double Length() const { return match.observed.end_m - match.observed.start_m; }
+};
+
+std::string EkfBSplineSlamOptions::Validate() const {
+  for (const std::string& problem : {odometry.Validate(), extraction.Validate(),
+                                     association_options.Validate(), map_fit.Validate()}) {
+    if (!problem.empty()) return problem;
+  }
+  if (association != "pedraza" && association != "curvature")
+    return "association must be \"pedraza\" or \"curvature\", not \"" + association + "\"";
+  if (!(range_sigma_floor_m >= 0) || !(range_sigma_fraction >= 0) || !(model_sigma_m >= 0) ||
+      !(range_sigma_floor_m + range_sigma_fraction + model_sigma_m > 0))
+    return "range noise must be non-negative and not all zero";
+  if (!(beam_spacing_m >= 0) || max_beams_per_match < 1) return "bad beam selection";
+  if (!(max_correspondence_distance_m > 0) ||
+      !(beam_gate_probability > 0 && beam_gate_probability < 1))
+    return "bad beam gates";
+  if (!(min_incidence_sine >= 0 && min_incidence_sine < 1)) return "bad min_incidence_sine";
+  if (!(min_new_curve_length_m >= 0) || min_new_curve_points < 4) return "bad new-curve limits";
+  if (!(min_extension_length_m > 0) || !(end_tolerance_m >= 0) || !(extension_sample_spacing_m > 0))
+    return "bad extension parameters";
+  if (!(control_point_sigma_floor_m >= 0)) return "control_point_sigma_floor_m must be >= 0";
+  return "";
+}
+
+EkfBSplineSlam::EkfBSplineSlam(const kernel::Pose2& initial_pose,
+                               const Eigen::Matrix3d& initial_covariance,
+                               const EkfBSplineSlamOptions& options)
+    : options_(options),
+      association_(MakeSplineAssociation(options.association, options.association_options)),
+      beam_gate_(ChiSquareQuantile(options.beam_gate_probability, 1)),
+      ekf_(initial_pose, initial_covariance) {}
+
+void EkfBSplineSlam::Predict(const kernel::Pose2& u) {
+  ekf_.Predict(u, options_.odometry.Covariance(u));
+}
+
+CubicBSpline EkfBSplineSlam::SplineOf(const Landmark& landmark) const {
+  const Eigen::Index n = landmark.size() / 2;
+  std::vector<Eigen::Vector2d> control(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i)
+    control[static_cast<std::size_t>(i)] = ekf_.state().segment<2>(landmark.index + 2 * i);
+  return *CubicBSpline::Create(std::move(control), landmark.knots);
+}
+
+std::vector<MapSpline> EkfBSplineSlam::MapSplines() const {
+  std::vector<MapSpline> out;
+  for (const Landmark& l : splines_) out.push_back({l.id, SplineOf(l), l.observations});
+  return out;
+}
+
+BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
+                                           const kernel::Pose2& robot_T_laser) {
+  BSplineUpdateReport report;
+  if (!healthy()) return report;
+  const std::vector<SplineCurve> curves = kernel::ExtractCurves(scan, options_.extraction);
+  report.observed_curves = static_cast<int>(curves.size());
+
+  // Association at the predicted pose: every observed curve against every map spline whose
+  // control points come within d_min (the coarse test), then the fine association.
+  const kernel::Pose2 world_T_laser = pose() * robot_T_laser;
+  std::vector<SplineCurve> observed;
+  for (const SplineCurve& c : curves) observed.push_back(kernel::Transformed(c, world_T_laser));
+  const double d_min = options_.association_options.d_min_m;
+  std::vector<Box> map_boxes;
+  std::vector<std::optional<SplineCurve>> map_curves(splines_.size());
+  for (const Landmark& l : splines_) {
+    const CubicBSpline spline = SplineOf(l);
+    map_boxes.push_back(BoxOf(spline.control_points()));
+  }
+  std::vector<Match> matches;
+  std::vector<bool> near_map(observed.size(), false);
+  for (std::size_t i = 0; i < observed.size(); ++i) {
+    const Box box = BoxOf(observed[i].spline.control_points());
+    for (std::size_t l = 0; l < splines_.size(); ++l) {
+      if (box.Gap(map_boxes[l]) > d_min) continue;
+      if (!map_curves[l])
+        map_curves[l] = kernel::DescribeCurve(SplineOf(splines_[l]), options_.extraction);
+      if (RelatedControlPoints(observed[i], *map_curves[l], d_min) == 0) continue;
+      near_map[i] = true;
+      std::optional<CurveMatch> m = association_->Match(observed[i], *map_curves[l]);
+      if (m) matches.push_back({i, l, std::move(*m)});
+    }
+  }
+
+  // Longest stretches first; a stretch mostly covered by an accepted one of the same observed
+  // curve (a duplicate map spline of the same obstacle) is dropped.
+  std::sort(matches.begin(), matches.end(),
+            [](const Match& a, const Match& b) { return a.Length() > b.Length(); });
+  std::vector<const Match*> accepted;
+  auto covered = [&](std::size_t curve, double start, double end) {
+    double overlap = 0.0;
+    for (const Match* a : accepted) {
+      if (a->curve != curve) continue;
+      overlap += std::max(
+          0.0, std::min(end, a->match.observed.end_m) - std::max(start, a->match.observed.start_m));
+    }
+    return overlap;
+  };
+  for (const Match& m : matches) {
+    if (covered(m.curve, m.match.observed.start_m, m.match.observed.end_m) > 0.5 * m.Length())
+      continue;
+    accepted.push_back(&m);
+  }
+
+  // Corrections, one per accepted match, each at the state the previous ones left.
+  std::vector<bool> matched(observed.size(), false);
+  for (const Match* m : accepted) {
+    SplineAssociationRecord record;
+    record.observed_curve = m->curve;
+    record.map_spline = splines_[m->landmark].id;
+    record.used_features = m->match.used_features;
+    CorrectWith(scan, robot_T_laser, observed[m->curve], curves[m->curve].beams, *m, &record);
+    report.beams_rejected += record.rejected_beams;
+    if (!record.beams.empty()) {
+      matched[m->curve] = true;
+      report.beams_used += static_cast<int>(record.beams.size());
+      ++splines_[m->landmark].observations;
+    }
+    report.associations.push_back(std::move(record));
+  }
+  report.matched_curves = static_cast<int>(std::count(matched.begin(), matched.end(), true));
+
+  // Extensions: an observed curve that runs on past the end of the map spline it matched.
+  const double tol = options_.end_tolerance_m;
+  std::vector<bool> extended(splines_.size(), false);
+  for (const Match* m : accepted) {
+    if (extended[m->landmark] || !matched[m->curve]) continue;
+    const SplineCurve& o = observed[m->curve];
+    const double lo = o.spline.Length(), lm = map_curves[m->landmark]->spline.Length();
+    const bool reversed = m->match.map.end_m < m->match.map.start_m;
+    const double os = m->match.observed.start_m, oe = m->match.observed.end_m;
+    const std::vector<double> arc = ApproximateArcLengths(o);
+    const std::vector<std::size_t>& beams = curves[m->curve].beams;
+    // (observed stretch beyond, map end it continues, which map end)
+    struct Side {
+      double from, to;
+      bool map_end_reached, at_map_end;
+    };
+    const Side sides[2] = {
+        {0.0, os, reversed ? m->match.map.start_m >= lm - tol : m->match.map.start_m <= tol,
+         reversed},
+        {oe, lo, reversed ? m->match.map.end_m <= tol : m->match.map.end_m >= lm - tol, !reversed},
+    };
+    for (int side = 0; side < 2 && !extended[m->landmark]; ++side) {
+      const Side& sd = sides[side];
+      if (!sd.map_end_reached || sd.to - sd.from < options_.min_extension_length_m) continue;
+      if (covered(m->curve, sd.from, sd.to) > options_.end_tolerance_m) continue;
+      // Beams beyond the stretch, ordered away from the map curve.
+      std::vector<std::size_t> beyond;
+      for (std::size_t k = 0; k < beams.size(); ++k) {
+        if (arc[k] > sd.from && arc[k] < sd.to) beyond.push_back(beams[k]);
+      }
+      if (side == 0) std::reverse(beyond.begin(), beyond.end());
+      if (beyond.size() < 4) continue;
+      Landmark& landmark = splines_[m->landmark];
+      if (ExtendSpline(&landmark, scan, robot_T_laser, beyond, sd.at_map_end)) {
+        extended[m->landmark] = true;
+        report.extended.push_back({landmark.id, beyond});
+      }
+    }
+  }
+
+  // New splines from curves that no map spline comes near.
+  for (std::size_t i = 0; i < observed.size(); ++i) {
+    if (near_map[i]) {
+      report.ignored_curves += !matched[i];
+      continue;
+    }
+    if (observed[i].spline.Length() < options_.min_new_curve_length_m ||
+        static_cast<int>(curves[i].beams.size()) < options_.min_new_curve_points) {
+      ++report.ignored_curves;
+      continue;
+    }
+    if (AddSpline(scan, robot_T_laser, curves[i].beams))
+      report.created.push_back({splines_.back().id, curves[i].beams});
+  }
+  return report;
+}
+
+void EkfBSplineSlam::CorrectWith(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+                                 const SplineCurve& observed, const std::vector<std::size_t>& beams,
+                                 const Match& match, SplineAssociationRecord* record) {
+  const Landmark& landmark = splines_[match.landmark];
+  const CubicBSpline spline = SplineOf(landmark);
+  const CurveMatch& cm = match.match;
+  const double epsilon = options_.association_options.epsilon_m;
+  // Beams in the observed stretch, spaced along it.
+  const std::vector<double> arc = ApproximateArcLengths(observed);
+  const double spacing = std::max(
+      options_.beam_spacing_m, match.Length() / static_cast<double>(options_.max_beams_per_match));
+  std::vector<std::size_t> candidates;
+  double last = -1e9;
+  for (std::size_t k = 0; k < beams.size(); ++k) {
+    if (arc[k] < cm.observed.start_m || arc[k] > cm.observed.end_m || arc[k] - last < spacing)
+      continue;
+    candidates.push_back(k);
+    last = arc[k];
+  }
+
+  const kernel::Pose2 x = pose();
+  const kernel::Pose2 world_T_laser = x * robot_T_laser;
+  const Eigen::MatrixXd& p = ekf_.covariance();
+  std::vector<Eigen::Matrix<double, 1, 11>> rows;  // (pose, 8 control coordinates)
+  std::vector<std::size_t> firsts;
+  std::vector<double> innovations, variances;
+  for (const std::size_t k : candidates) {
+    const std::size_t beam = beams[k];
+    // The map point the association paired with this measured point.
+    const double s = observed.spline.ArcLengthAt(observed.spline.Closest(observed.points[k]).t);
+    if (s < cm.observed.start_m - epsilon || s > cm.observed.end_m + epsilon) continue;
+    const std::size_t j = std::min(
+        cm.pairs.size() - 1,
+        static_cast<std::size_t>(std::max(0.0, std::round((s - cm.observed.start_m) / epsilon))));
+    const Eigen::Vector2d& paired = cm.pairs[j].second;
+    const double angle = scan.BeamAngle(beam);
+    const std::optional<BeamPrediction> pred =
+        PredictBeam(x, robot_T_laser, angle, spline, scan.max_range_m, options_.min_incidence_sine);
+    if (!pred) {
+      ++record->rejected_beams;
+      continue;
+    }
+    const Eigen::Vector2d hit = world_T_laser * Eigen::Vector2d(pred->range_m * std::cos(angle),
+                                                                pred->range_m * std::sin(angle));
+    if ((hit - paired).norm() > options_.max_correspondence_distance_m) {
+      ++record->rejected_beams;
+      continue;
+    }
+    const double nu = scan.ranges_m[beam] - pred->range_m;
+    const double variance = RangeVariance(options_, scan.ranges_m[beam]);
+    // Individual chi-square gate with the local covariance of pose and the 4 control points.
+    Eigen::Matrix<double, 1, 11> h;
+    h << pred->d_range_d_pose, pred->d_range_d_controls;
+    Eigen::Index idx[11] = {0, 1, 2};
+    const Eigen::Index c0 = landmark.index + 2 * static_cast<Eigen::Index>(pred->first_control);
+    for (int c = 0; c < 8; ++c) idx[3 + c] = c0 + c;
+    double s_beam = variance;
+    for (int a = 0; a < 11; ++a)
+      for (int b = 0; b < 11; ++b) s_beam += h(a) * p(idx[a], idx[b]) * h(b);
+    if (nu * nu > beam_gate_ * s_beam) {
+      ++record->rejected_beams;
+      continue;
+    }
+    rows.push_back(h);
+    firsts.push_back(pred->first_control);
+    innovations.push_back(nu);
+    variances.push_back(variance);
+    record->beams.push_back(beam);
+  }
+  if (rows.empty()) return;
+  const Eigen::Index k = static_cast<Eigen::Index>(rows.size());
+  Eigen::MatrixXd h_robot(k, 3);
+  Eigen::MatrixXd h_spline = Eigen::MatrixXd::Zero(k, landmark.size());
+  Eigen::VectorXd nu(k);
+  Eigen::VectorXd r(k);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    const std::size_t u = static_cast<std::size_t>(i);
+    h_robot.row(i) = rows[u].head<3>();
+    h_spline.row(i).segment<8>(2 * static_cast<Eigen::Index>(firsts[u])) = rows[u].tail<8>();
+    nu(i) = innovations[u];
+    r(i) = variances[u];
+  }
+  if (!ekf_.Correct(h_robot, {JacobianBlock{landmark.index, h_spline}}, nu,
+                    r.asDiagonal().toDenseMatrix())) {
+    record->rejected_beams += static_cast<int>(record->beams.size());
+    record->beams.clear();
+  }
+}
+
+bool EkfBSplineSlam::AddSpline(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+                               const std::vector<std::size_t>& beams) {
+  const BeamPoints b = MakeBeamPoints(scan, pose(), robot_T_laser, beams, options_);
+  const std::optional<kernel::BSplineFitOperator> op =
+      kernel::CubicBSplineFitOperator(b.points, options_.map_fit);
+  if (!op) return false;
+  const Eigen::Index n = op->m.rows();
+  std::vector<Eigen::Index> columns(beams.size());
+  for (std::size_t k = 0; k < beams.size(); ++k) columns[k] = static_cast<Eigen::Index>(k);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(2 * n);
+  Eigen::MatrixXd g_r = Eigen::MatrixXd::Zero(2 * n, 3);
+  const double floor = options_.control_point_sigma_floor_m;
+  Eigen::MatrixXd q = floor * floor * Eigen::MatrixXd::Identity(2 * n, 2 * n);
+  AddBeamColumns(op->m, columns, b, &g, &g_r, &q);
+  const Eigen::Index index = ekf_.Append(g, g_r, q);
+  splines_.push_back({next_id_++, index, op->knots, 1});
+  return true;
+}
+
+bool EkfBSplineSlam::ExtendSpline(Landmark* landmark, const kernel::Scan& scan,
+                                  const kernel::Pose2& robot_T_laser,
+                                  const std::vector<std::size_t>& beams, bool at_end) {
+  // The old curve as samples C(u_j) = sum_a N_a(u_j) X_a, linear in its control points.
+  const CubicBSpline old = SplineOf(*landmark);
+  const int samples = std::max(
+      4, static_cast<int>(std::ceil(old.Length() / options_.extension_sample_spacing_m)) + 1);
+  std::vector<CubicBSpline::Basis> basis;
+  std::vector<Eigen::Vector2d> points;
+  const BeamPoints b = MakeBeamPoints(scan, pose(), robot_T_laser, beams, options_);
+  const std::size_t m_new = beams.size();
+  // Data order along the extended curve: old samples then the new points (at its end), or the
+  // new points from the farthest then the old samples (at its start).
+  if (!at_end) points.assign(b.points.rbegin(), b.points.rend());
+  for (int j = 0; j < samples; ++j) {
+    const double u = old.ParameterAtArcLength(old.Length() * j / (samples - 1));
+    basis.push_back(old.BasisAt(u));
+    points.push_back(old.Point(u));
+  }
+  if (at_end) points.insert(points.end(), b.points.begin(), b.points.end());
+  const std::optional<kernel::BSplineFitOperator> op =
+      kernel::CubicBSplineFitOperator(points, options_.map_fit);
+  if (!op) return false;
+
+  const Eigen::Index n = op->m.rows();
+  const Eigen::Index old_first = at_end ? 0 : static_cast<Eigen::Index>(m_new);
+  Eigen::MatrixXd g_b = Eigen::MatrixXd::Zero(2 * n, landmark->size());
+  for (int j = 0; j < samples; ++j) {
+    const auto col = op->m.col(old_first + j);
+    const CubicBSpline::Basis& bj = basis[static_cast<std::size_t>(j)];
+    for (int a = 0; a < 4; ++a) {
+      const Eigen::Index c = 2 * static_cast<Eigen::Index>(bj.first + static_cast<std::size_t>(a));
+      for (Eigen::Index i = 0; i < n; ++i) {
+        g_b(2 * i, c) += col(i) * bj.values[a];
+        g_b(2 * i + 1, c + 1) += col(i) * bj.values[a];
+      }
+    }
+  }
+  Eigen::VectorXd g = g_b * ekf_.state().segment(landmark->index, landmark->size());
+  std::vector<Eigen::Index> columns(m_new);
+  for (std::size_t k = 0; k < m_new; ++k) {
+    columns[k] =
+        at_end ? samples + static_cast<Eigen::Index>(k) : static_cast<Eigen::Index>(m_new - 1 - k);
+  }
+  Eigen::MatrixXd g_r = Eigen::MatrixXd::Zero(2 * n, 3);
+  Eigen::MatrixXd q = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  AddBeamColumns(op->m, columns, b, &g, &g_r, &q);
+
+  const Eigen::Index old_index = landmark->index, old_size = landmark->size();
+  const Eigen::Index index = ekf_.ReplaceBlock(old_index, old_size, g, g_r, g_b, q);
+  for (Landmark& l : splines_) {
+    if (l.index > old_index) l.index -= old_size;
+  }
+  landmark->index = index;
+  landmark->knots = op->knots;
+  return true;
+}
+
+}  // namespace splam::estimation
