@@ -11,6 +11,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "apps/bspline_experiment.h"
 #include "apps/commands.h"
 #include "apps/run_picture.h"
 #include "estimation/chi_square.h"
@@ -27,11 +28,12 @@ namespace {
 
 struct ExperimentArgs {
   std::string name = "corridor-lines";
-  int runs = 20;
+  int runs = 0;  // 0: the experiment's default (corridor-lines 20, complex-bspline 10)
+  int max_scans = 0;
   int steps = 160;
   double speed_mps = 1.0;
   std::uint64_t seed = 1;
-  std::string out = "runs/experiment-corridor-lines";
+  std::string out;
   bool corners = true;
   double corner_floor_m = 0.01;
   double odometry_floor = 1e-4;
@@ -298,12 +300,17 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
   auto args = std::make_shared<ExperimentArgs>();
   CLI::App* cmd =
       app->add_subcommand("experiment", "Reproduce a published experiment on the simulator.");
-  cmd->add_option("name", args->name, "Experiment: corridor-lines (paper 001 section 6)")
-      ->check(CLI::IsMember({"corridor-lines"}))
+  cmd->add_option("name", args->name,
+                  "Experiment: corridor-lines (paper 001 section 6) or complex-bspline (paper 000 "
+                  "Figs. 15-17)")
+      ->check(CLI::IsMember({"corridor-lines", "complex-bspline"}))
       ->capture_default_str();
-  cmd->add_option("--runs", args->runs, "Seeded runs")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  cmd->add_option("--runs", args->runs,
+                  "Seeded runs (default: 20 corridor-lines, 10 complex-bspline)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-scans", args->max_scans,
+                  "complex-bspline: stop each route after this many scans (0 = the whole route)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--steps", args->steps, "Steps (scans) of the straight run")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -312,7 +319,7 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Seed of the first run; run i uses seed + i")
       ->capture_default_str();
-  cmd->add_option("--out", args->out, "Output directory")->capture_default_str();
+  cmd->add_option("--out", args->out, "Output directory (default runs/experiment-<name>)");
   cmd->add_flag("!--no-corners", args->corners, "Use lines only, no corner landmarks");
   cmd->add_option("--line-floor-scale", args->line_floor_scale,
                   "Scale of the line noise floors (1 mm, 0.5 mrad)")
@@ -324,7 +331,21 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
                   "Odometry noise floors per step (m and rad)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->callback([args, exit_code] { *exit_code = RunCorridorLines(*args); });
+  cmd->callback([args, exit_code] {
+    if (args->name == "complex-bspline") {
+      BSplineExperimentArgs b;
+      b.runs = args->runs > 0 ? args->runs : b.runs;
+      b.seed = args->seed;
+      b.max_scans = args->max_scans;
+      b.out = args->out.empty() ? b.out : args->out;
+      *exit_code = RunComplexBSpline(b);
+      return;
+    }
+    ExperimentArgs a = *args;
+    a.runs = a.runs > 0 ? a.runs : 20;
+    a.out = a.out.empty() ? "runs/experiment-corridor-lines" : a.out;
+    *exit_code = RunCorridorLines(a);
+  });
 }
 
 }  // namespace splam::apps

@@ -25,6 +25,7 @@ constexpr double kRealOdometryScale = 3.0;
 struct SlamArgs {
   std::string method = "ekf-lines";
   std::string association = "curvature";  // ekf-bspline
+  double max_curve_range_m = 0.0;         // ekf-bspline
   std::string log;
   std::string out;
   std::string world;
@@ -115,6 +116,7 @@ int RunSlam(const SlamArgs& args) {
     estimation::EkfBSplineSlamOptions options;
     options.odometry = odometry_noise;
     options.association = args.association;
+    options.max_curve_range_m = args.max_curve_range_m;
     options.range_sigma_floor_m = urg ? 0.0 : sigma;
     options.range_sigma_fraction = sigma_fraction;
     problem = options.Validate();
@@ -277,6 +279,11 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
       ->check(CLI::IsMember({"pedraza", "curvature"}))
       ->capture_default_str();
   cmd->add_option("log", args->log, "CARMEN log (simulated or real)")->required();
+  cmd->add_option("--max-curve-range", args->max_curve_range_m,
+                  "ekf-bspline: beams longer than this (metres) are not used for curves; 0 = the "
+                  "laser's maximum range")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_option("--out", args->out, "Output directory (default runs/slam-<log>)");
   cmd->add_option("--world", args->world,
                   "World to draw under the map (default: world.yaml beside the log, if any)");

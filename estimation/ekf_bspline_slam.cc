@@ -122,7 +122,10 @@ std::string EkfBSplineSlamOptions::Validate() const {
       !(beam_gate_probability > 0 && beam_gate_probability < 1))
     return "bad beam gates";
   if (!(min_incidence_sine >= 0 && min_incidence_sine < 1)) return "bad min_incidence_sine";
-  if (!(min_new_curve_length_m >= 0) || min_new_curve_points < 4) return "bad new-curve limits";
+  if (!(min_new_curve_length_m >= 0) || min_new_curve_points < 4 || min_observations_to_add < 1 ||
+      candidate_max_age_scans < 1)
+    return "bad new-curve limits";
+  if (!(max_curve_range_m >= 0)) return "max_curve_range_m must be >= 0";
   if (!(min_extension_length_m > 0) || !(end_tolerance_m >= 0) || !(extension_sample_spacing_m > 0))
     return "bad extension parameters";
   if (!(control_point_sigma_floor_m >= 0)) return "control_point_sigma_floor_m must be >= 0";
@@ -159,7 +162,10 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
                                            const kernel::Pose2& robot_T_laser) {
   BSplineUpdateReport report;
   if (!healthy()) return report;
-  const std::vector<SplineCurve> curves = kernel::ExtractCurves(scan, options_.extraction);
+  ++scans_;
+  const std::vector<SplineCurve> curves = kernel::ExtractCurves(
+      options_.max_curve_range_m > 0 ? scan.Clipped(options_.max_curve_range_m) : scan,
+      options_.extraction);
   report.observed_curves = static_cast<int>(curves.size());
 
   // Association at the predicted pose: every observed curve against every map spline whose
@@ -278,9 +284,36 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
       ++report.ignored_curves;
       continue;
     }
+    // Match a candidate (a control point within d_min); promote it when seen often enough.
+    const std::vector<Eigen::Vector2d> world_controls =
+        kernel::Transformed(curves[i], pose() * robot_T_laser).spline.control_points();
+    Candidate* match = nullptr;
+    for (Candidate& c : candidates_) {
+      if (c.last_scan == scans_) continue;
+      for (const Eigen::Vector2d& a : world_controls) {
+        for (const Eigen::Vector2d& b : c.control_points)
+          match = (a - b).norm() <= d_min ? &c : match;
+      }
+      if (match != nullptr) break;
+    }
+    if (match == nullptr) {
+      candidates_.push_back({{}, 0, scans_});
+      match = &candidates_.back();
+    }
+    match->control_points = world_controls;
+    match->last_scan = scans_;
+    if (++match->observations < options_.min_observations_to_add) {
+      ++report.candidates;
+      continue;
+    }
+    match->observations = -1;  // promoted: removed below
     if (AddSpline(scan, robot_T_laser, curves[i].beams))
       report.created.push_back({splines_.back().id, curves[i].beams});
   }
+  std::erase_if(candidates_, [&](const Candidate& c) {
+    return c.observations < 0 ||
+           scans_ - c.last_scan > static_cast<std::size_t>(options_.candidate_max_age_scans);
+  });
   return report;
 }
 

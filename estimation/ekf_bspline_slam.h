@@ -46,10 +46,18 @@ struct EkfBSplineSlamOptions {
   // Beams meeting the map curve at a grazing angle (sine below this) are not used.
   double min_incidence_sine = 0.2;
 
-  // A curve that no map spline comes near (no control points within d_min) becomes a new spline
-  // when it is at least this long and has this many points.
+  // A curve that no map spline comes near (no control points within d_min) is new. It becomes a
+  // candidate when it is at least this long and has this many points, and a map spline once a
+  // candidate has been seen (a curve within d_min of it) in min_observations_to_add scans, none
+  // more than candidate_max_age_scans after the previous. People and clutter seen once never
+  // enter the state. 1 adds new curves at once.
   double min_new_curve_length_m = 0.5;
   int min_new_curve_points = 10;
+  int min_observations_to_add = 3;
+  int candidate_max_age_scans = 10;
+  // Beams longer than this are not used for curves, metres (0: the laser's maximum range):
+  // far points are sparse and their curves poor.
+  double max_curve_range_m = 0.0;
   // A map spline whose matched stretch reaches its end is extended by the observed curve's
   // continuation when that is at least this long, metres.
   double min_extension_length_m = 0.2;
@@ -86,6 +94,7 @@ struct BSplineUpdateReport {
   std::vector<SplineAssociationRecord> associations;
   std::vector<SplineChangeRecord> created, extended;
   int ignored_curves = 0;  // near the map but not associated, or too small to start a spline
+  int candidates = 0;      // new curves kept as (or matched to) candidates
 };
 
 // One map spline as it is drawn and evaluated.
@@ -153,6 +162,15 @@ class EkfBSplineSlam {
   EkfCore ekf_;
   std::vector<Landmark> splines_;
   int next_id_ = 0;
+  // Candidate new splines: the latest sighting's control points (world frame), how often and
+  // when last seen.
+  struct Candidate {
+    std::vector<Eigen::Vector2d> control_points;
+    int observations;
+    std::size_t last_scan;
+  };
+  std::vector<Candidate> candidates_;
+  std::size_t scans_ = 0;
 };
 
 }  // namespace splam::estimation

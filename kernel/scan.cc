@@ -44,4 +44,12 @@ std::vector<std::size_t> Scan::HitIndices() const {
   return indices;
 }
 
+Scan Scan::Clipped(double range_m) const {
+  Scan clipped = *this;
+  for (double& r : clipped.ranges_m) {
+    if (r > range_m && !std::isnan(r)) r = kNoReturn;
+  }
+  return clipped;
+}
+
 }  // namespace splam::kernel

@@ -42,6 +42,8 @@ struct Scan {
   bool IsNoReturn(std::size_t i) const;
   // Angular extent from the first to the last beam.
   double FieldOfView() const;
+  // A copy whose hits beyond range_m read as no-returns.
+  Scan Clipped(double range_m) const;
   // The hits as points in the sensor frame, in beam order.
   std::vector<Eigen::Vector2d> HitPoints() const;
   // Beam indices of HitPoints().

@@ -267,25 +267,46 @@ RayHit RayCaster::CastBruteForce(const kernel::Ray2& ray, double max_range_m) co
   return hit;
 }
 
-bool RayCaster::Collides(const Eigen::Vector2d& center, double radius_m) const {
+template <class Visit>
+bool RayCaster::VisitNear(const Eigen::Vector2d& center, double radius_m, Visit visit) const {
   const double cs = options_.cell_size_m;
-  const int x0 = std::clamp(
-      static_cast<int>(std::floor((center.x() - radius_m - origin_.x()) / cs)), 0, nx_ - 1);
-  const int x1 = std::clamp(
-      static_cast<int>(std::floor((center.x() + radius_m - origin_.x()) / cs)), 0, nx_ - 1);
-  const int y0 = std::clamp(
-      static_cast<int>(std::floor((center.y() - radius_m - origin_.y()) / cs)), 0, ny_ - 1);
-  const int y1 = std::clamp(
-      static_cast<int>(std::floor((center.y() + radius_m - origin_.y()) / cs)), 0, ny_ - 1);
+  auto cell = [&](double v, double origin, int n) {
+    return std::clamp(static_cast<int>(std::floor((v - origin) / cs)), 0, n - 1);
+  };
+  const int x0 = cell(center.x() - radius_m, origin_.x(), nx_);
+  const int x1 = cell(center.x() + radius_m, origin_.x(), nx_);
+  const int y0 = cell(center.y() - radius_m, origin_.y(), ny_);
+  const int y1 = cell(center.y() + radius_m, origin_.y(), ny_);
   for (int iy = y0; iy <= y1; ++iy) {
     for (int ix = x0; ix <= x1; ++ix) {
       const std::size_t c = static_cast<std::size_t>(iy) * nx_ + ix;
       for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
-        if (Distance(refs_[cell_items_[k]], center) < radius_m) return true;
+        if (visit(refs_[cell_items_[k]])) return true;
       }
     }
   }
+  return false;
+}
+
+bool RayCaster::Collides(const Eigen::Vector2d& center, double radius_m) const {
+  if (VisitNear(center, radius_m,
+                [&](const Ref& ref) { return Distance(ref, center) < radius_m; })) {
+    return true;
+  }
   return IsInsideObstacle(center);
+}
+
+RayHit RayCaster::Nearest(const Eigen::Vector2d& p, double max_distance_m) const {
+  RayHit best;
+  VisitNear(p, max_distance_m, [&](const Ref& ref) {
+    const double d = Distance(ref, p);
+    if (d <= max_distance_m && (best.obstacle < 0 || d < best.range_m)) {
+      best.range_m = d;
+      best.obstacle = ref.obstacle;
+    }
+    return false;
+  });
+  return best;
 }
 
 bool RayCaster::IsInsideObstacle(const Eigen::Vector2d& p) const {

@@ -40,6 +40,9 @@ class RayCaster {
   // True when a disc of `radius_m` around `center` touches an obstacle boundary or the center
   // lies inside a closed obstacle.
   bool Collides(const Eigen::Vector2d& center, double radius_m) const;
+  // The nearest obstacle boundary within max_distance_m of p: range_m is the distance, obstacle
+  // its index (kNoHit and -1 when nothing is that close).
+  RayHit Nearest(const Eigen::Vector2d& p, double max_distance_m) const;
   // True when p lies inside a solid obstacle: a polygon, circle, ellipse or closed spline (the
   // closed splines sampled at 32 points per piece; open polylines have no inside).
   bool IsInsideObstacle(const Eigen::Vector2d& p) const;
@@ -54,6 +57,10 @@ class RayCaster {
 
   double Intersect(const Ref& ref, const kernel::Ray2& ray, double t_max) const;
   double Distance(const Ref& ref, const Eigen::Vector2d& p) const;
+  // Calls visit(ref) for the primitives registered in the cells within radius_m of center (a
+  // primitive may come more than once) until it returns true; true if it did.
+  template <class Visit>
+  bool VisitNear(const Eigen::Vector2d& center, double radius_m, Visit visit) const;
   void Register(std::uint32_t ref, const kernel::Box2& box,
                 std::vector<std::vector<std::uint32_t>>* cells) const;
 

@@ -71,6 +71,35 @@ TEST(FitCubicBSpline, DegenerateInputsGiveDefinedResults) {
   EXPECT_NEAR(line->Length(), 4 * std::sqrt(2.0), 1e-6);
 }
 
+TEST(CubicBSplineFitOperator, PropertyReproducesTheFitAndIsAffine) {
+  // X = M D gives FitCubicBSpline's control points, and every row of M sums to 1: translating
+  // the data translates the control points (a least-squares fit of an affine-invariant basis).
+  Random random(67);
+  for (int trial = 0; trial < 50; ++trial) {
+    std::vector<Eigen::Vector2d> points;
+    const double radius = random.Uniform(0.5, 3.0);
+    const int m = 10 + static_cast<int>(random.Index(200));
+    for (int k = 0; k < m; ++k) {
+      const double a = 2.0 * k / m;
+      points.emplace_back(radius * std::cos(a) + random.Gaussian(0.01),
+                          radius * std::sin(a) + random.Gaussian(0.01));
+    }
+    const auto fit = FitCubicBSpline(points);
+    const auto op = CubicBSplineFitOperator(points);
+    ASSERT_TRUE(fit && op);
+    ASSERT_EQ(op->knots, fit->knots());
+    ASSERT_EQ(op->m.cols(), m);
+    ASSERT_EQ(static_cast<std::size_t>(op->m.rows()), fit->control_points().size());
+    for (Eigen::Index i = 0; i < op->m.rows(); ++i) {
+      Eigen::Vector2d x = Eigen::Vector2d::Zero();
+      for (int k = 0; k < m; ++k) x += op->m(i, k) * points[static_cast<std::size_t>(k)];
+      EXPECT_LT((x - fit->control_points()[static_cast<std::size_t>(i)]).norm(), 1e-9);
+      EXPECT_NEAR(op->m.row(i).sum(), 1.0, 1e-9);
+    }
+  }
+  EXPECT_FALSE(CubicBSplineFitOperator({{0, 0}, {0, 0}, {0, 0}, {0, 0}}).has_value());
+}
+
 TEST(BSplineFitOptions, Validate) {
   EXPECT_EQ(BSplineFitOptions().Validate(), "");
   BSplineFitOptions o;

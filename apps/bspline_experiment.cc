@@ -1,0 +1,261 @@
+#include "apps/bspline_experiment.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "apps/commands.h"
+#include "apps/run_picture.h"
+#include "apps/slam_methods.h"
+#include "estimation/ekf_bspline_slam.h"
+#include "estimation/metrics.h"
+#include "io/plot.h"
+#include "io/render.h"
+#include "kernel/angle.h"
+#include "sim/builtin_worlds.h"
+#include "sim/simulator.h"
+
+namespace splam::apps {
+namespace {
+
+// How many of the beams hit each obstacle (-1: none).
+std::map<int, int> Votes(const std::vector<std::size_t>& beams, const std::vector<int>& obstacles) {
+  std::map<int, int> votes;
+  for (const std::size_t b : beams) ++votes[obstacles[b]];
+  return votes;
+}
+// The obstacle most of the beams hit.
+int MajorityObstacle(const std::vector<std::size_t>& beams, const std::vector<int>& obstacles) {
+  int best = -1, count = 0;
+  for (const auto& [obstacle, n] : Votes(beams, obstacles)) {
+    if (n > count) best = obstacle, count = n;
+  }
+  return best;
+}
+
+struct RunResult {
+  kernel::Trajectory estimate;
+  std::vector<estimation::MapSpline> map;
+  int associations = 0, wrong_associations = 0;
+  long beams = 0, wrong_beams = 0;
+  double map_error_m = 0.0;  // mean distance of map curve points to the nearest obstacle
+  double ms_per_scan = 0.0;
+  bool healthy = true;
+};
+
+RunResult RunFilter(const std::vector<sim::SensorFrame>& frames, const sim::RayCaster& caster,
+                    const estimation::EkfBSplineSlamOptions& options) {
+  RunResult result;
+  estimation::EkfBSplineSlam slam(frames.front().odometry_pose,
+                                  Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal(), options);
+  // Map spline id -> the obstacles it was made from: those that gave at least 10 % of the beams
+  // of its creation or of an extension (a segment may run over two touching obstacles).
+  std::map<int, std::set<int>> spline_obstacles;
+  auto record = [&](const estimation::SplineChangeRecord& c, const std::vector<int>& obstacles) {
+    for (const auto& [obstacle, n] : Votes(c.beams, obstacles)) {
+      if (10 * n >= static_cast<int>(c.beams.size()))
+        spline_obstacles[c.map_spline].insert(obstacle);
+    }
+  };
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const sim::SensorFrame& f = frames[i];
+    if (i > 0) slam.Predict(frames[i - 1].odometry_pose.Between(f.odometry_pose));
+    const estimation::BSplineUpdateReport r = slam.Update(f.scan);
+    if (!slam.healthy()) {
+      result.healthy = false;
+      break;
+    }
+    // Associations are judged against what the spline was made of before this scan.
+    for (const auto& a : r.associations) {
+      if (a.beams.empty()) continue;
+      const std::set<int>& truth = spline_obstacles[a.map_spline];
+      ++result.associations;
+      result.wrong_associations += !truth.contains(MajorityObstacle(a.beams, f.beam_obstacles));
+      for (const std::size_t b : a.beams) {
+        ++result.beams;
+        result.wrong_beams += !truth.contains(f.beam_obstacles[b]);
+      }
+    }
+    for (const auto& c : r.created) record(c, f.beam_obstacles);
+    for (const auto& c : r.extended) record(c, f.beam_obstacles);
+    result.estimate.push_back({f.time_s, slam.pose()});
+  }
+  result.ms_per_scan =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
+      static_cast<double>(frames.size());
+  result.map = slam.MapSplines();
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (const estimation::MapSpline& s : result.map) {
+    for (const Eigen::Vector2d& p : s.spline.ResampleByArcLength(0.05)) {
+      const sim::RayHit near = caster.Nearest(p, 2.0);
+      sum += near.obstacle >= 0 ? near.range_m : 2.0;
+      ++n;
+    }
+  }
+  result.map_error_m = n > 0 ? sum / static_cast<double>(n) : 0.0;
+  return result;
+}
+
+struct Summary {
+  std::vector<double> rmse, max, heading_rmse, map_error, wrong_fraction, wrong_beam_fraction, ms;
+};
+double Mean(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+double Std(const std::vector<double>& v) {
+  const double m = Mean(v);
+  double s = 0.0;
+  for (double x : v) s += (x - m) * (x - m);
+  return v.empty() ? 0.0 : std::sqrt(s / static_cast<double>(v.size()));
+}
+
+}  // namespace
+
+int RunComplexBSpline(const BSplineExperimentArgs& args) {
+  const sim::World world = *sim::BuiltinWorld("complex");
+  const sim::RayCaster caster(world);
+  sim::SimulatorOptions sim_options;
+  sim_options.laser = sim::LaserOptions::Urg04lx();
+  std::filesystem::create_directories(args.out);
+  const std::vector<std::string> methods = {"pedraza", "curvature"};
+  std::map<std::string, Summary> summaries;
+  Summary odometry_summary;
+  for (int run = 0; run < args.runs; ++run) {
+    const std::uint64_t seed = args.seed + static_cast<std::uint64_t>(run);
+    sim::Simulator simulator(caster, sim_options, *world.start, seed);
+    sim::RouteOptions route_options;
+    if (args.max_scans > 0) route_options.max_steps = args.max_scans - 1;
+    sim::RouteRun route = sim::FollowRoute(&simulator, world.route, route_options);
+    if (!route.completed && args.max_scans == 0) {
+      fmt::print(stderr, "splam experiment: seed {}: the route failed: {}\n", seed, route.message);
+      return kExitIncomplete;
+    }
+    kernel::Trajectory truth, odometry;
+    for (const sim::SensorFrame& f : route.frames) {
+      truth.push_back({f.time_s, f.true_pose});
+      odometry.push_back({f.time_s, f.odometry_pose});
+    }
+    const estimation::TrajectoryError o = estimation::CompareToTruth(truth, odometry);
+    odometry_summary.rmse.push_back(o.rmse_position_m);
+    odometry_summary.max.push_back(o.max_position_m);
+    odometry_summary.heading_rmse.push_back(o.rmse_heading_rad);
+    std::vector<std::tuple<std::string, io::Rgb, kernel::Trajectory>> plotted = {
+        {"odometry", io::palette::kOdometry, odometry}};
+    for (const std::string& method : methods) {
+      estimation::EkfBSplineSlamOptions options;
+      options.association = method;
+      const RunResult r = RunFilter(route.frames, caster, options);
+      if (!r.healthy) {
+        fmt::print(stderr, "splam experiment: seed {}, {}: the filter failed\n", seed, method);
+        return kExitIncomplete;
+      }
+      const estimation::TrajectoryError e = estimation::CompareToTruth(truth, r.estimate);
+      Summary& s = summaries[method];
+      s.rmse.push_back(e.rmse_position_m);
+      s.max.push_back(e.max_position_m);
+      s.heading_rmse.push_back(e.rmse_heading_rad);
+      s.map_error.push_back(r.map_error_m);
+      s.wrong_fraction.push_back(
+          r.associations > 0 ? static_cast<double>(r.wrong_associations) / r.associations : 0.0);
+      s.wrong_beam_fraction.push_back(
+          r.beams > 0 ? static_cast<double>(r.wrong_beams) / static_cast<double>(r.beams) : 0.0);
+      s.ms.push_back(r.ms_per_scan);
+      fmt::print(
+          "seed {} {:9}: position RMSE {:.3f} m (odometry {:.3f}), max {:.3f} m, map error {:.3f} "
+          "m, wrong associations {}/{}, {:.2f} ms/scan\n",
+          seed, method, e.rmse_position_m, o.rmse_position_m, e.max_position_m, r.map_error_m,
+          r.wrong_associations, r.associations, r.ms_per_scan);
+      plotted.emplace_back(method,
+                           method == "pedraza" ? io::Rgb{0.95, 0.55, 0.0} : io::palette::kEstimate,
+                           r.estimate);
+      if (run == 0) {
+        RunPicture picture;
+        picture.title = fmt::format("complex, URG-04LX, {} association (seed {}): {} splines",
+                                    method, seed, r.map.size());
+        picture.world = &world;
+        picture.world_color = io::Rgb{0.75, 0.75, 0.75};
+        picture.truth = truth;
+        picture.odometry = odometry;
+        picture.estimates = {{method, r.estimate}};
+        DrawSplineMap(r.map, options.extraction, &picture);
+        const std::string base = args.out + "/map_" + method;
+        if (std::string err = SaveRunPicture(picture, {base + ".svg", base + ".png"});
+            !err.empty()) {
+          fmt::print(stderr, "splam experiment: {}\n", err);
+          return kExitBadInput;
+        }
+      }
+    }
+    if (run == 0) {
+      if (std::string err = SaveErrorPlot(
+              fmt::format("complex, URG-04LX: errors against ground truth (seed {})", seed), truth,
+              plotted, {args.out + "/errors.svg", args.out + "/errors.png"});
+          !err.empty()) {
+        fmt::print(stderr, "splam experiment: {}\n", err);
+        return kExitBadInput;
+      }
+    }
+  }
+
+  nlohmann::ordered_json report;
+  report["experiment"] = "complex-bspline (paper 000 Figs. 15-17)";
+  report["runs"] = args.runs;
+  std::string table = fmt::format(
+      "| method ({} seeds) | position RMSE (m) | max position error (m) | heading RMSE (deg) | map "
+      "error (m) | wrong associations | wrong beams | time per scan (ms) |\n"
+      "|---|---|---|---|---|---|---|---|\n",
+      args.runs);
+  auto row = [&](const std::string& name, const Summary& s, bool filter) {
+    std::string r =
+        fmt::format("| {} | {:.3f} +- {:.3f} | {:.3f} +- {:.3f} | {:.2f} +- {:.2f} |", name,
+                    Mean(s.rmse), Std(s.rmse), Mean(s.max), Std(s.max),
+                    kernel::RadToDeg(Mean(s.heading_rmse)), kernel::RadToDeg(Std(s.heading_rmse)));
+    if (!filter) return r + " - | - | - | - |\n";
+    return r + fmt::format(" {:.4f} +- {:.4f} | {:.2f} % | {:.2f} % | {:.2f} |\n",
+                           Mean(s.map_error), Std(s.map_error), 100 * Mean(s.wrong_fraction),
+                           100 * Mean(s.wrong_beam_fraction), Mean(s.ms));
+  };
+  table += row("odometry", odometry_summary, false);
+  report["odometry"] = {{"rmse_position_m", Mean(odometry_summary.rmse)},
+                        {"max_position_m", Mean(odometry_summary.max)}};
+  for (const std::string& method : methods) {
+    const Summary& s = summaries[method];
+    table += row(method, s, true);
+    report[method] = {{"rmse_position_m", Mean(s.rmse)},
+                      {"rmse_position_std_m", Std(s.rmse)},
+                      {"max_position_m", Mean(s.max)},
+                      {"rmse_heading_rad", Mean(s.heading_rmse)},
+                      {"map_error_m", Mean(s.map_error)},
+                      {"wrong_association_fraction", Mean(s.wrong_fraction)},
+                      {"wrong_beam_fraction", Mean(s.wrong_beam_fraction)},
+                      {"ms_per_scan", Mean(s.ms)},
+                      {"per_seed_rmse_position_m", s.rmse}};
+  }
+  int curvature_wins = 0;
+  for (int i = 0; i < args.runs; ++i)
+    curvature_wins += summaries["curvature"].rmse[i] < summaries["pedraza"].rmse[i];
+  report["curvature_lower_rmse_in_seeds"] = curvature_wins;
+  table +=
+      fmt::format("\nThe curvature association has the lower position RMSE in {} of {} seeds.\n",
+                  curvature_wins, args.runs);
+  fmt::print("\n{}", table);
+  std::ofstream(args.out + "/table.md") << table;
+  std::ofstream(args.out + "/report.json") << report.dump(2) << "\n";
+  fmt::print(
+      "wrote {}/{{table.md, report.json, errors.svg, errors.png, map_pedraza.svg/png, "
+      "map_curvature.svg/png}}\n",
+      args.out);
+  return kExitOk;
+}
+
+}  // namespace splam::apps

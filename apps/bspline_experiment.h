@@ -1,0 +1,25 @@
+#ifndef SPLAM_APPS_BSPLINE_EXPERIMENT_H_
+#define SPLAM_APPS_BSPLINE_EXPERIMENT_H_
+
+#include <cstdint>
+#include <string>
+
+namespace splam::apps {
+
+// complex-bspline (paper 000 Figs. 15-17): EKF-SLAM with B-splines in the `complex` world along
+// its built-in route with a URG-04LX, once with Pedraza's association and once with paper 000's
+// curvature association, over `runs` seeds. Writes x, y, theta errors over time (odometry and
+// both associations), a table (position and heading RMSE, maximum error, map accuracy as the
+// mean distance from the map curves to the true obstacles, wrong associations counted with the
+// simulator's record of which obstacle each beam hit, time per scan) and the maps.
+struct BSplineExperimentArgs {
+  int runs = 10;
+  std::uint64_t seed = 1;
+  int max_scans = 0;  // 0: the whole route
+  std::string out = "runs/experiment-complex-bspline";
+};
+int RunComplexBSpline(const BSplineExperimentArgs& args);
+
+}  // namespace splam::apps
+
+#endif  // SPLAM_APPS_BSPLINE_EXPERIMENT_H_
