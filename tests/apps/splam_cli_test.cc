@@ -1,6 +1,7 @@
 // End-to-end tests of the `splam` binary: exit codes, messages and the files it writes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -213,6 +214,54 @@ TEST(SplamCli, SlamWithLinesOnASimulatedOfficeBeatsOdometry) {
   EXPECT_LT(report["relations"]["estimate"]["translation_m"]["mean"].get<double>(),
             report["relations"]["odometry"]["translation_m"]["mean"].get<double>());
   EXPECT_TRUE(fs::exists(dir / "ekf" / "eval_errors.png"));
+}
+
+TEST(SplamCli, SlamWithBSplinesOnTheComplexWorldBeatsOdometry) {
+  const fs::path dir = Temp("slam_bspline");
+  ASSERT_EQ(Splam("simulate --world complex --seed 4 --out " + (dir / "sim").string()).status, 0);
+  for (const char* association : {"pedraza", "curvature"}) {
+    const fs::path out = dir / association;
+    const Output r = Splam("slam --method ekf-bspline --association " + std::string(association) +
+                           " " + (dir / "sim" / "log.clf").string() + " --out " + out.string());
+    ASSERT_EQ(r.status, 0) << r.text;
+    for (const char* file : {"trajectory.txt", "map.txt", "map.dxf", "map.png", "errors.png"})
+      EXPECT_TRUE(fs::exists(out / file)) << file;
+    const auto summary = nlohmann::json::parse(Slurp(out / "summary.json"));
+    EXPECT_EQ(summary["association"], association);
+    EXPECT_TRUE(summary["health"]["healthy"].get<bool>());
+    const double ekf = summary["error"]["estimate"]["rmse_position_m"].get<double>();
+    const double odometry = summary["error"]["odometry"]["rmse_position_m"].get<double>();
+    EXPECT_LT(ekf, 0.06);
+    EXPECT_LT(ekf, odometry / 4);
+    const int splines = summary["map"]["splines"].get<int>();
+    EXPECT_GT(splines, 8);
+    EXPECT_GT(summary["associations"]["beams_used"].get<int>(), 10000);
+    // The text map has one line per spline; the DXF one POINT per control point.
+    const std::string text = Slurp(out / "map.txt");
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), splines + 2);
+    const auto dxf = io::ReadDxf((out / "map.dxf").string());
+    ASSERT_TRUE(dxf.ok());
+    EXPECT_EQ(dxf.value->points.size(), summary["map"]["control_points"].get<std::size_t>());
+    EXPECT_GT(dxf.value->segments.size(), 100u);
+  }
+}
+
+TEST(SplamCli, ComplexBSplineExperimentComparesBothAssociations) {
+  const fs::path dir = Temp("experiment_bspline");
+  const Output r =
+      Splam("experiment complex-bspline --runs 2 --max-scans 800 --out " + dir.string());
+  ASSERT_EQ(r.status, 0) << r.text;
+  const auto report = nlohmann::json::parse(Slurp(dir / "report.json"));
+  for (const char* method : {"pedraza", "curvature"}) {
+    EXPECT_LT(report[method]["rmse_position_m"].get<double>(),
+              report["odometry"]["rmse_position_m"].get<double>())
+        << method;
+    EXPECT_LT(report[method]["map_error_m"].get<double>(), 0.05) << method;
+    EXPECT_LT(report[method]["wrong_association_fraction"].get<double>(), 0.05) << method;
+    EXPECT_EQ(report[method]["per_seed_rmse_position_m"].size(), 2u);
+  }
+  for (const char* file : {"table.md", "errors.png", "map_pedraza.png", "map_curvature.png"})
+    EXPECT_TRUE(fs::exists(dir / file)) << file;
 }
 
 TEST(SplamCli, SlamAndEvalRejectBadInput) {
