@@ -1,11 +1,21 @@
-// EKF-SLAM cost per scan against the number of landmarks (issue 4): one prediction and the
-// update with 5 re-observed lines, in a map of N line landmarks (state size 3 + 2N).
+// EKF-SLAM cost against map size.
+// - BM_EkfLinesScan (issue 4): one prediction and the update with 5 re-observed lines, in a map
+//   of N line landmarks (state size 3 + 2N).
+// - BM_EkfCorrection (issue 5): one correction with 30 beams against one spline of 20 control
+//   points in a state of N control points: the step that dominates the B-spline EKF, O(N^2).
+// - BM_EkfBSplineComplexScan (issue 5): a whole B-spline EKF step (prediction, curve extraction,
+//   association, corrections) on URG-04LX scans of the `complex` route, with the map built so far.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 
+#include "estimation/ekf_bspline_slam.h"
+#include "estimation/ekf_core.h"
 #include "estimation/ekf_line_slam.h"
 #include "kernel/angle.h"
+#include "kernel/random.h"
+#include "sim/builtin_worlds.h"
+#include "sim/simulator.h"
 
 namespace {
 
@@ -49,6 +59,66 @@ BENCHMARK(BM_EkfLinesScan)
     ->Arg(200)
     ->Arg(500)
     ->Unit(benchmark::kMicrosecond);
+
+void BM_EkfCorrection(benchmark::State& state) {
+  const Eigen::Index n = 3 + 2 * state.range(0);
+  splam::kernel::Random random(3);
+  splam::estimation::EkfCore ekf(Pose2(), Eigen::Matrix3d::Identity() * 1e-2);
+  // Landmarks correlated with the pose, as after a run.
+  Eigen::MatrixXd g_r(n - 3, 3);
+  for (Eigen::Index i = 0; i < g_r.size(); ++i) g_r.data()[i] = random.Uniform(-1, 1);
+  ekf.Append(Eigen::VectorXd::Zero(n - 3), g_r, Eigen::MatrixXd::Identity(n - 3, n - 3) * 1e-2);
+  Eigen::MatrixXd h_r(30, 3), h_b(30, 40);
+  for (Eigen::Index i = 0; i < h_r.size(); ++i) h_r.data()[i] = random.Uniform(-1, 1);
+  for (Eigen::Index i = 0; i < h_b.size(); ++i) h_b.data()[i] = random.Uniform(-0.1, 0.1);
+  const Eigen::VectorXd nu = Eigen::VectorXd::Zero(30);
+  const Eigen::MatrixXd r = Eigen::MatrixXd::Identity(30, 30) * 1e-2;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        ekf.Correct(h_r, {splam::estimation::JacobianBlock{n - 40, h_b}}, nu, r));
+  }
+  state.counters["control_points"] = static_cast<double>(state.range(0));
+}
+BENCHMARK(BM_EkfCorrection)
+    ->Arg(100)
+    ->Arg(250)
+    ->Arg(500)
+    ->Arg(1000)
+    ->Arg(2000)
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_EkfBSplineComplexScan(benchmark::State& state) {
+  const splam::sim::World world = *splam::sim::BuiltinWorld("complex");
+  const splam::sim::RayCaster caster(world);
+  splam::sim::SimulatorOptions sim_options;
+  sim_options.laser = splam::sim::LaserOptions::Urg04lx();
+  splam::sim::Simulator simulator(caster, sim_options, *world.start, 1);
+  const auto frames = splam::sim::FollowRoute(&simulator, world.route, {}).frames;
+  splam::estimation::EkfBSplineSlamOptions options;
+  options.association = state.range(0) == 0 ? "pedraza" : "curvature";
+  std::size_t i = 0, control_points = 0;
+  std::unique_ptr<splam::estimation::EkfBSplineSlam> slam;
+  for (auto _ : state) {
+    if (i % frames.size() == 0) {  // start the route again
+      state.PauseTiming();
+      slam = std::make_unique<splam::estimation::EkfBSplineSlam>(
+          *world.start, Eigen::Matrix3d::Identity() * 1e-6, options);
+      i = 0;
+      state.ResumeTiming();
+    }
+    if (i > 0) slam->Predict(frames[i - 1].odometry_pose.Between(frames[i].odometry_pose));
+    benchmark::DoNotOptimize(slam->Update(frames[i].scan).beams_used);
+    control_points = std::max(control_points, slam->num_control_points());
+    ++i;
+  }
+  state.SetLabel(options.association);
+  state.counters["max_control_points"] = static_cast<double>(control_points);
+}
+BENCHMARK(BM_EkfBSplineComplexScan)
+    ->Arg(0)
+    ->Arg(1)
+    ->Iterations(1484)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -215,21 +215,37 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
     accepted.push_back(&m);
   }
 
-  // Corrections, one per accepted match, each at the state the previous ones left.
-  std::vector<bool> matched(observed.size(), false);
+  // One correction with the selected beams of every accepted match: a single pass over P.
+  BeamBatch batch;
   for (const Match* m : accepted) {
     SplineAssociationRecord record;
     record.observed_curve = m->curve;
     record.map_spline = splines_[m->landmark].id;
     record.used_features = m->match.used_features;
-    CorrectWith(scan, robot_T_laser, observed[m->curve], curves[m->curve].beams, *m, &record);
-    report.beams_rejected += record.rejected_beams;
-    if (!record.beams.empty()) {
-      matched[m->curve] = true;
-      report.beams_used += static_cast<int>(record.beams.size());
-      ++splines_[m->landmark].observations;
-    }
+    SelectBeams(scan, robot_T_laser, observed[m->curve], curves[m->curve].beams, *m, &record,
+                &batch);
     report.associations.push_back(std::move(record));
+  }
+  const Eigen::Index rows = static_cast<Eigen::Index>(batch.nu.size());
+  if (rows > 0) {
+    const Eigen::VectorXd r = Eigen::Map<const Eigen::VectorXd>(batch.variance.data(), rows);
+    if (!ekf_.Correct(batch.h_robot.topRows(rows), batch.blocks,
+                      Eigen::Map<const Eigen::VectorXd>(batch.nu.data(), rows),
+                      r.asDiagonal().toDenseMatrix())) {
+      for (SplineAssociationRecord& record : report.associations) {
+        record.rejected_beams += static_cast<int>(record.beams.size());
+        record.beams.clear();
+      }
+    }
+  }
+  std::vector<bool> matched(observed.size(), false);
+  for (std::size_t a = 0; a < accepted.size(); ++a) {
+    const SplineAssociationRecord& record = report.associations[a];
+    report.beams_rejected += record.rejected_beams;
+    if (record.beams.empty()) continue;
+    matched[accepted[a]->curve] = true;
+    report.beams_used += static_cast<int>(record.beams.size());
+    ++splines_[accepted[a]->landmark].observations;
   }
   report.matched_curves = static_cast<int>(std::count(matched.begin(), matched.end(), true));
 
@@ -317,9 +333,10 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
   return report;
 }
 
-void EkfBSplineSlam::CorrectWith(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+void EkfBSplineSlam::SelectBeams(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                                  const SplineCurve& observed, const std::vector<std::size_t>& beams,
-                                 const Match& match, SplineAssociationRecord* record) {
+                                 const Match& match, SplineAssociationRecord* record,
+                                 BeamBatch* batch) const {
   const Landmark& landmark = splines_[match.landmark];
   const CubicBSpline spline = SplineOf(landmark);
   const CurveMatch& cm = match.match;
@@ -340,9 +357,6 @@ void EkfBSplineSlam::CorrectWith(const kernel::Scan& scan, const kernel::Pose2& 
   const kernel::Pose2 x = pose();
   const kernel::Pose2 world_T_laser = x * robot_T_laser;
   const Eigen::MatrixXd& p = ekf_.covariance();
-  std::vector<Eigen::Matrix<double, 1, 11>> rows;  // (pose, 8 control coordinates)
-  std::vector<std::size_t> firsts;
-  std::vector<double> innovations, variances;
   for (const std::size_t k : candidates) {
     const std::size_t beam = beams[k];
     // The map point the association paired with this measured point.
@@ -380,29 +394,13 @@ void EkfBSplineSlam::CorrectWith(const kernel::Scan& scan, const kernel::Pose2& 
       ++record->rejected_beams;
       continue;
     }
-    rows.push_back(h);
-    firsts.push_back(pred->first_control);
-    innovations.push_back(nu);
-    variances.push_back(variance);
+    const Eigen::Index row = static_cast<Eigen::Index>(batch->nu.size());
+    if (row == batch->h_robot.rows()) batch->h_robot.conservativeResize(2 * row + 32, 3);
+    batch->h_robot.row(row) = h.head<3>();
+    batch->blocks.push_back({c0, h.tail<8>(), row});
+    batch->nu.push_back(nu);
+    batch->variance.push_back(variance);
     record->beams.push_back(beam);
-  }
-  if (rows.empty()) return;
-  const Eigen::Index k = static_cast<Eigen::Index>(rows.size());
-  Eigen::MatrixXd h_robot(k, 3);
-  Eigen::MatrixXd h_spline = Eigen::MatrixXd::Zero(k, landmark.size());
-  Eigen::VectorXd nu(k);
-  Eigen::VectorXd r(k);
-  for (Eigen::Index i = 0; i < k; ++i) {
-    const std::size_t u = static_cast<std::size_t>(i);
-    h_robot.row(i) = rows[u].head<3>();
-    h_spline.row(i).segment<8>(2 * static_cast<Eigen::Index>(firsts[u])) = rows[u].tail<8>();
-    nu(i) = innovations[u];
-    r(i) = variances[u];
-  }
-  if (!ekf_.Correct(h_robot, {JacobianBlock{landmark.index, h_spline}}, nu,
-                    r.asDiagonal().toDenseMatrix())) {
-    record->rejected_beams += static_cast<int>(record->beams.size());
-    record->beams.clear();
   }
 }
 

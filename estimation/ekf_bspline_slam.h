@@ -115,8 +115,8 @@ class EkfBSplineSlam {
 
   void Predict(const kernel::Pose2& odometry_increment);
   // Extracts curves from the scan (laser at robot_T_laser), associates them with the map,
-  // corrects the state with the associated beams (one correction per associated curve), then
-  // extends partially associated splines and adds new ones.
+  // corrects the state with the associated beams (one batch correction), then extends partially
+  // associated splines and adds new ones.
   BSplineUpdateReport Update(const kernel::Scan& scan,
                              const kernel::Pose2& robot_T_laser = kernel::Pose2());
 
@@ -143,10 +143,19 @@ class EkfBSplineSlam {
 
   kernel::CubicBSpline SplineOf(const Landmark& landmark) const;
   // Corrects with the beams of `observed` inside the match; fills the record.
-  // `observed` is in the world frame, `beams` its points' beam indices.
-  void CorrectWith(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+  // The rows of one correction: per beam, its Jacobian by the pose and by the 8 control
+  // coordinates that shape the curve where it hits, its innovation and variance.
+  struct BeamBatch {
+    Eigen::MatrixXd h_robot = Eigen::MatrixXd(0, 3);  // first nu.size() rows in use
+    std::vector<JacobianBlock> blocks;
+    std::vector<double> nu, variance;
+  };
+  // Adds the beams of `observed` inside the match that pass the correspondence test and the
+  // innovation gate; fills the record. `observed` is in the world frame, `beams` its points'
+  // beam indices.
+  void SelectBeams(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                    const kernel::SplineCurve& observed, const std::vector<std::size_t>& beams,
-                   const Match& match, SplineAssociationRecord* record);
+                   const Match& match, SplineAssociationRecord* record, BeamBatch* batch) const;
   // Appends the control points fitted to the beams' points as a new spline.
   bool AddSpline(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                  const std::vector<std::size_t>& beams);

@@ -1,6 +1,7 @@
 #include "estimation/ekf_core.h"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 
 #include "estimation/models.h"
 #include "kernel/angle.h"
@@ -30,11 +31,15 @@ bool EkfCore::Correct(const Eigen::MatrixXd& h_robot, const std::vector<Jacobian
   if (!healthy()) return false;
   // P H^T touches only the robot columns and the blocks' columns.
   Eigen::MatrixXd pht = p_.leftCols<3>() * h_robot.transpose();
-  for (const JacobianBlock& b : blocks)
-    pht.noalias() += p_.middleCols(b.start, b.jacobian.cols()) * b.jacobian.transpose();
+  for (const JacobianBlock& b : blocks) {
+    pht.middleCols(b.first_row, b.jacobian.rows()).noalias() +=
+        p_.middleCols(b.start, b.jacobian.cols()) * b.jacobian.transpose();
+  }
   Eigen::MatrixXd s = h_robot * pht.topRows<3>() + r;
-  for (const JacobianBlock& b : blocks)
-    s.noalias() += b.jacobian * pht.middleRows(b.start, b.jacobian.cols());
+  for (const JacobianBlock& b : blocks) {
+    s.middleRows(b.first_row, b.jacobian.rows()).noalias() +=
+        b.jacobian * pht.middleRows(b.start, b.jacobian.cols());
+  }
   s = 0.5 * (s + s.transpose()).eval();
   const Eigen::LLT<Eigen::MatrixXd> llt(s);
   if (llt.info() != Eigen::Success) return false;
@@ -43,7 +48,17 @@ bool EkfCore::Correct(const Eigen::MatrixXd& h_robot, const std::vector<Jacobian
   // P -= L L^T with L = P H^T U^-1, S = U^T U: only the lower triangle is updated, then mirrored.
   const Eigen::MatrixXd l = llt.matrixU().transpose().solve(pht.transpose()).transpose();
   p_.selfadjointView<Eigen::Lower>().rankUpdate(l, -1.0);
-  for (Eigen::Index j = 1; j < p_.cols(); ++j) p_.col(j).head(j) = p_.row(j).head(j).transpose();
+  // Mirror the lower triangle, a block of columns at a time (transposing single rows would walk
+  // the column-major matrix with a stride of N).
+  constexpr Eigen::Index kBlock = 64;
+  for (Eigen::Index j = 0; j < p_.cols(); j += kBlock) {
+    const Eigen::Index w = std::min(kBlock, p_.cols() - j);
+    // The diagonal block: its strict upper part from its lower part.
+    auto diagonal = p_.block(j, j, w, w);
+    diagonal.triangularView<Eigen::StrictlyUpper>() = diagonal.transpose();
+    // Everything above the diagonal block from the rows to its left.
+    if (j > 0) p_.block(0, j, j, w) = p_.block(j, 0, w, j).transpose();
+  }
   CheckHealth();
   return true;
 }
@@ -84,7 +99,9 @@ void EkfCore::Negate(Eigen::Index i) {
 
 void EkfCore::CheckHealth() {
   if (!health_.empty()) return;
-  if (!x_.allFinite() || !p_.allFinite()) {
+  // The state and the diagonal only (O(N)): a non-finite covariance entry reaches the diagonal
+  // with the next correction.
+  if (!x_.allFinite() || !p_.diagonal().allFinite()) {
     health_ = "state or covariance is not finite";
   } else if ((p_.diagonal().array() <= 0.0).any()) {
     health_ = "covariance lost a positive diagonal entry";

@@ -12,10 +12,12 @@
 // a few landmark blocks, and replacing or appending landmark blocks (SPEC §4, §8).
 namespace splam::estimation {
 
-// One nonzero column block of a measurement Jacobian H: columns [start, start + jacobian.cols()).
+// One nonzero block of a measurement Jacobian H: rows [first_row, first_row + jacobian.rows()),
+// columns [start, start + jacobian.cols()).
 struct JacobianBlock {
   Eigen::Index start = 0;
-  Eigen::MatrixXd jacobian;  // k x w
+  Eigen::MatrixXd jacobian;
+  Eigen::Index first_row = 0;
 };
 
 class EkfCore {
@@ -26,8 +28,8 @@ class EkfCore {
   // model of SPEC §2: the robot block and the robot-landmark cross-covariances change, O(N).
   void Predict(const kernel::Pose2& u, const Eigen::Matrix3d& q_u);
 
-  // Correction with innovation nu (k) and noise R (k x k), H = [h_robot, 0.., blocks, 0..]
-  // (blocks must not overlap the robot columns or each other):
+  // Correction with innovation nu (k) and noise R (k x k), H = [h_robot, 0..] + the blocks
+  // (which must not reach into the robot columns; they may overlap each other and then add up):
   //   S = H P H^T + R,  K = P H^T S^-1,  X += K nu,  P -= (P H^T) S^-1 (P H^T)^T,
   // the last as one symmetric rank-k update (O(k N^2), no N x N temporaries). The heading is
   // wrapped afterwards. False, with the state unchanged, when S is not positive definite.
