@@ -49,6 +49,27 @@ double Percentile(std::vector<double> v, double q) {
   return v[k];
 }
 
+// Median time per scan in 8 equal bins of the map size (landmarks or control points).
+nlohmann::ordered_json TimeByMapSize(const std::vector<double>& ms,
+                                     const std::vector<std::size_t>& map_size) {
+  nlohmann::ordered_json bins = nlohmann::ordered_json::array();
+  if (ms.empty()) return bins;
+  const std::size_t top = *std::max_element(map_size.begin(), map_size.end()) + 1;
+  const std::size_t width = (top + 7) / 8;
+  for (std::size_t lo = 0; lo < top; lo += width) {
+    std::vector<double> in;
+    for (std::size_t i = 0; i < ms.size(); ++i) {
+      if (map_size[i] >= lo && map_size[i] < lo + width) in.push_back(ms[i]);
+    }
+    if (in.empty()) continue;
+    bins.push_back({{"map_size_from", lo},
+                    {"map_size_to", lo + width - 1},
+                    {"scans", in.size()},
+                    {"median_ms", Percentile(in, 0.5)}});
+  }
+  return bins;
+}
+
 nlohmann::ordered_json ErrorJson(const estimation::TrajectoryError& e) {
   return {{"matched_poses", e.matched},
           {"rmse_position_m", e.rmse_position_m},
@@ -142,6 +163,7 @@ int RunSlam(const SlamArgs& args) {
       args.max_scans > 0 ? std::min<std::size_t>(args.max_scans, lasers.size()) : lasers.size();
   io::Trajectory estimate, odometry;
   std::vector<double> step_ms, nees;
+  std::vector<std::size_t> map_size;  // after each step
   const auto wall_start = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < n; ++i) {
     const io::LaserMessage& m = *lasers[i];
@@ -150,6 +172,7 @@ int RunSlam(const SlamArgs& args) {
     slam->Update(m.scan, m.robot_pose.Between(m.laser_pose));
     step_ms.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    map_size.push_back(slam->MapSize());
     if (!slam->healthy()) {
       fmt::print(stderr, "splam slam: the filter failed at scan {} (t = {} s): {}\n", i,
                  m.stamp.ipc_timestamp_s, slam->health());
@@ -205,6 +228,7 @@ int RunSlam(const SlamArgs& args) {
       {"median", Percentile(step_ms, 0.5)},
       {"p95", Percentile(step_ms, 0.95)},
       {"max", Percentile(step_ms, 1.0)}};
+  summary["time_per_scan_vs_map_size"] = TimeByMapSize(step_ms, map_size);
   summary.update(slam->Statistics());
   const Eigen::Matrix3d p = slam->pose_covariance();
   summary["health"] = {

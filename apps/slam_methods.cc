@@ -24,6 +24,9 @@ class LineSlam : public SlamMethod {
   }
   kernel::Pose2 pose() const override { return slam_.pose(); }
   Eigen::Matrix3d pose_covariance() const override { return slam_.pose_covariance(); }
+  std::size_t MapSize() const override {
+    return static_cast<std::size_t>(slam_.state().size() - 3) / 2;
+  }
   bool healthy() const override { return slam_.healthy(); }
   std::string health() const override { return slam_.health(); }
   std::string MapDescription() const override {
@@ -76,6 +79,9 @@ class BSplineSlam : public SlamMethod {
   }
   kernel::Pose2 pose() const override { return slam_.pose(); }
   Eigen::Matrix3d pose_covariance() const override { return slam_.pose_covariance(); }
+  std::size_t MapSize() const override {
+    return static_cast<std::size_t>(slam_.state().size() - 3) / 2;
+  }
   bool healthy() const override { return slam_.healthy(); }
   std::string health() const override { return slam_.health(); }
   std::string MapDescription() const override {

@@ -26,6 +26,8 @@ class SlamMethod {
   virtual Eigen::Matrix3d pose_covariance() const = 0;
   virtual bool healthy() const = 0;
   virtual std::string health() const = 0;
+  // Number of 2-vectors in the state besides the pose: landmarks, or control points.
+  virtual std::size_t MapSize() const = 0;
   // "12 lines, 3 corners"
   virtual std::string MapDescription() const = 0;
   virtual void DrawMap(RunPicture* picture) const = 0;
