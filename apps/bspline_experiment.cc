@@ -42,7 +42,8 @@ int MajorityObstacle(const std::vector<std::size_t>& beams, const std::vector<in
 struct RunResult {
   kernel::Trajectory estimate;
   std::vector<estimation::MapSpline> map;
-  int associations = 0, wrong_associations = 0;
+  int associations = 0, wrong_associations = 0, with_features = 0;
+  double mean_nees = 0.0;  // of the pose, over the run
   long beams = 0, wrong_beams = 0;
   double map_error_m = 0.0;  // mean distance of map curve points to the nearest obstacle
   double ms_per_scan = 0.0;
@@ -77,6 +78,7 @@ RunResult RunFilter(const std::vector<sim::SensorFrame>& frames, const sim::RayC
       if (a.beams.empty()) continue;
       const std::set<int>& truth = spline_obstacles[a.map_spline];
       ++result.associations;
+      result.with_features += a.used_features;
       result.wrong_associations += !truth.contains(MajorityObstacle(a.beams, f.beam_obstacles));
       for (const std::size_t b : a.beams) {
         ++result.beams;
@@ -86,6 +88,8 @@ RunResult RunFilter(const std::vector<sim::SensorFrame>& frames, const sim::RayC
     for (const auto& c : r.created) record(c, f.beam_obstacles);
     for (const auto& c : r.extended) record(c, f.beam_obstacles);
     result.estimate.push_back({f.time_s, slam.pose()});
+    result.mean_nees += estimation::PoseNees(f.true_pose, slam.pose(), slam.pose_covariance()) /
+                        static_cast<double>(frames.size());
   }
   result.ms_per_scan =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
@@ -105,7 +109,8 @@ RunResult RunFilter(const std::vector<sim::SensorFrame>& frames, const sim::RayC
 }
 
 struct Summary {
-  std::vector<double> rmse, max, heading_rmse, map_error, wrong_fraction, wrong_beam_fraction, ms;
+  std::vector<double> rmse, max, heading_rmse, map_error, wrong_fraction, wrong_beam_fraction, ms,
+      feature_fraction, nees;
 };
 double Mean(const std::vector<double>& v) {
   double s = 0.0;
@@ -126,6 +131,12 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
   const sim::RayCaster caster(world);
   sim::SimulatorOptions sim_options;
   sim_options.laser = sim::LaserOptions::Urg04lx();
+  // The same scale on the simulator's odometry noise and on the filter's model of it.
+  const double scale = args.odometry_noise_scale;
+  sim_options.odometry.forward_per_m *= scale;
+  sim_options.odometry.lateral_per_m *= scale;
+  sim_options.odometry.rotation_per_rad *= scale;
+  sim_options.odometry.rotation_per_m *= scale;
   std::filesystem::create_directories(args.out);
   const std::vector<std::string> methods = {"pedraza", "curvature"};
   std::map<std::string, Summary> summaries;
@@ -154,6 +165,10 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
     for (const std::string& method : methods) {
       estimation::EkfBSplineSlamOptions options;
       options.association = method;
+      options.odometry.forward_per_m *= scale;
+      options.odometry.lateral_per_m *= scale;
+      options.odometry.rotation_per_rad *= scale;
+      options.odometry.rotation_per_m *= scale;
       const RunResult r = RunFilter(route.frames, caster, options);
       if (!r.healthy) {
         fmt::print(stderr, "splam experiment: seed {}, {}: the filter failed\n", seed, method);
@@ -170,6 +185,9 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
       s.wrong_beam_fraction.push_back(
           r.beams > 0 ? static_cast<double>(r.wrong_beams) / static_cast<double>(r.beams) : 0.0);
       s.ms.push_back(r.ms_per_scan);
+      s.feature_fraction.push_back(
+          r.associations > 0 ? static_cast<double>(r.with_features) / r.associations : 0.0);
+      s.nees.push_back(r.mean_nees);
       fmt::print(
           "seed {} {:9}: position RMSE {:.3f} m (odometry {:.3f}), max {:.3f} m, map error {:.3f} "
           "m, wrong associations {}/{}, {:.2f} ms/scan\n",
@@ -210,20 +228,25 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
   nlohmann::ordered_json report;
   report["experiment"] = "complex-bspline (paper 000 Figs. 15-17)";
   report["runs"] = args.runs;
+  report["odometry_noise_scale"] = scale;
   std::string table = fmt::format(
-      "| method ({} seeds) | position RMSE (m) | max position error (m) | heading RMSE (deg) | map "
-      "error (m) | wrong associations | wrong beams | time per scan (ms) |\n"
-      "|---|---|---|---|---|---|---|---|\n",
-      args.runs);
+      "| method ({} seeds, odometry noise x{}) | position RMSE (m) | max position error (m) | "
+      "heading RMSE (deg) | map "
+      "error (m) | wrong associations | wrong beams | associations with paired features | mean "
+      "NEES (3 dof) | time per scan (ms) |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n",
+      args.runs, scale);
   auto row = [&](const std::string& name, const Summary& s, bool filter) {
     std::string r =
         fmt::format("| {} | {:.3f} +- {:.3f} | {:.3f} +- {:.3f} | {:.2f} +- {:.2f} |", name,
                     Mean(s.rmse), Std(s.rmse), Mean(s.max), Std(s.max),
                     kernel::RadToDeg(Mean(s.heading_rmse)), kernel::RadToDeg(Std(s.heading_rmse)));
-    if (!filter) return r + " - | - | - | - |\n";
-    return r + fmt::format(" {:.4f} +- {:.4f} | {:.2f} % | {:.2f} % | {:.2f} |\n",
-                           Mean(s.map_error), Std(s.map_error), 100 * Mean(s.wrong_fraction),
-                           100 * Mean(s.wrong_beam_fraction), Mean(s.ms));
+    if (!filter) return r + " - | - | - | - | - | - |\n";
+    return r +
+           fmt::format(" {:.4f} +- {:.4f} | {:.2f} % | {:.2f} % | {:.1f} % | {:.1f} | {:.2f} |\n",
+                       Mean(s.map_error), Std(s.map_error), 100 * Mean(s.wrong_fraction),
+                       100 * Mean(s.wrong_beam_fraction), 100 * Mean(s.feature_fraction),
+                       Mean(s.nees), Mean(s.ms));
   };
   table += row("odometry", odometry_summary, false);
   report["odometry"] = {{"rmse_position_m", Mean(odometry_summary.rmse)},
@@ -239,6 +262,8 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
                       {"wrong_association_fraction", Mean(s.wrong_fraction)},
                       {"wrong_beam_fraction", Mean(s.wrong_beam_fraction)},
                       {"ms_per_scan", Mean(s.ms)},
+                      {"paired_feature_fraction", Mean(s.feature_fraction)},
+                      {"mean_nees", Mean(s.nees)},
                       {"per_seed_rmse_position_m", s.rmse}};
   }
   int curvature_wins = 0;

@@ -16,6 +16,9 @@ struct BSplineExperimentArgs {
   int runs = 10;
   std::uint64_t seed = 1;
   int max_scans = 0;  // 0: the whole route
+  // Scale of the simulator's odometry noise (and of the filter's model of it): a harder test of
+  // the associations, whose predicted curves then land farther from the observed ones.
+  double odometry_noise_scale = 1.0;
   std::string out = "runs/experiment-complex-bspline";
 };
 int RunComplexBSpline(const BSplineExperimentArgs& args);

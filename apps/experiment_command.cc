@@ -30,6 +30,7 @@ struct ExperimentArgs {
   std::string name = "corridor-lines";
   int runs = 0;  // 0: the experiment's default (corridor-lines 20, complex-bspline 10)
   int max_scans = 0;
+  double odometry_noise_scale = 1.0;  // complex-bspline
   int steps = 160;
   double speed_mps = 1.0;
   std::uint64_t seed = 1;
@@ -320,6 +321,10 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--seed", args->seed, "Seed of the first run; run i uses seed + i")
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output directory (default runs/experiment-<name>)");
+  cmd->add_option("--odometry-noise", args->odometry_noise_scale,
+                  "complex-bspline: scale of the odometry noise (simulated and modelled)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_flag("!--no-corners", args->corners, "Use lines only, no corner landmarks");
   cmd->add_option("--line-floor-scale", args->line_floor_scale,
                   "Scale of the line noise floors (1 mm, 0.5 mrad)")
@@ -337,6 +342,7 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       b.runs = args->runs > 0 ? args->runs : b.runs;
       b.seed = args->seed;
       b.max_scans = args->max_scans;
+      b.odometry_noise_scale = args->odometry_noise_scale;
       b.out = args->out.empty() ? b.out : args->out;
       *exit_code = RunComplexBSpline(b);
       return;
