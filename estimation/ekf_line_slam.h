@@ -91,7 +91,7 @@ class EkfLineSlam {
   // robot block and the robot-landmark cross-covariances change.
   void Predict(const kernel::Pose2& odometry_increment);
   // Extracts lines (and corners) from a scan taken by a laser at robot_T_laser, associates them,
-  // corrects the state (Joseph form) and adds new landmarks.
+  // corrects the state (EkfCore::Correct) and adds new landmarks.
   UpdateReport Update(const kernel::Scan& scan,
                       const kernel::Pose2& robot_T_laser = kernel::Pose2());
   // The same from already extracted features, given in the laser frame.

@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
                                options);
 
   // 3. Every scan: predict with the odometry increment, then update with the scan's lines and
-  //    corners (extraction, Mahalanobis association with a chi-square gate, Joseph-form
+  //    corners (extraction, Mahalanobis association with a chi-square gate, EKF
   //    correction, new landmarks).
   splam::kernel::Trajectory truth, estimate, odometry;
   for (std::size_t i = 0; i < run.frames.size(); ++i) {
