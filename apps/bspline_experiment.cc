@@ -74,12 +74,16 @@ RunResult RunFilter(const std::vector<sim::SensorFrame>& frames, const sim::RayC
       break;
     }
     // Associations are judged against what the spline was made of before this scan.
+    // An association (an accepted match, whether or not its beams then passed the
+    // correspondence test and the gate) is wrong when most of its stretch's beams hit an
+    // obstacle the spline was not made from.
     for (const auto& a : r.associations) {
-      if (a.beams.empty()) continue;
+      if (a.matched_beams.empty()) continue;
       const std::set<int>& truth = spline_obstacles[a.map_spline];
       ++result.associations;
       result.with_features += a.used_features;
-      result.wrong_associations += !truth.contains(MajorityObstacle(a.beams, f.beam_obstacles));
+      result.wrong_associations +=
+          !truth.contains(MajorityObstacle(a.matched_beams, f.beam_obstacles));
       for (const std::size_t b : a.beams) {
         ++result.beams;
         result.wrong_beams += !truth.contains(f.beam_obstacles[b]);

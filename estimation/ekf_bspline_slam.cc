@@ -351,6 +351,7 @@ void EkfBSplineSlam::SelectBeams(const kernel::Scan& scan, const kernel::Pose2& 
     if (arc[k] < cm.observed.start_m || arc[k] > cm.observed.end_m || arc[k] - last < spacing)
       continue;
     candidates.push_back(k);
+    record->matched_beams.push_back(beams[k]);
     last = arc[k];
   }
 

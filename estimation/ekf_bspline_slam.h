@@ -79,8 +79,11 @@ struct SplineAssociationRecord {
   std::size_t observed_curve = 0;  // index into the scan's curves
   int map_spline = 0;              // id of the map spline
   bool used_features = false;      // paper 000's association paired features
-  std::vector<std::size_t> beams;  // beams used in the correction
-  int rejected_beams = 0;          // failed the correspondence or the innovation gate
+  // Beams of the matched stretch considered for the correction (spaced along it), and those
+  // used: the others failed the correspondence test or the innovation gate.
+  std::vector<std::size_t> matched_beams;
+  std::vector<std::size_t> beams;
+  int rejected_beams = 0;
 };
 // A new map spline, or one extended, and the beams that made it.
 struct SplineChangeRecord {
