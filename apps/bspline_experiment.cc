@@ -169,6 +169,7 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
     for (const std::string& method : methods) {
       estimation::EkfBSplineSlamOptions options;
       options.association = method;
+      options.max_correspondence_distance_m = args.max_correspondence_distance_m;
       options.odometry.forward_per_m *= scale;
       options.odometry.lateral_per_m *= scale;
       options.odometry.rotation_per_rad *= scale;
@@ -233,6 +234,7 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
   report["experiment"] = "complex-bspline (paper 000 Figs. 15-17)";
   report["runs"] = args.runs;
   report["odometry_noise_scale"] = scale;
+  report["max_correspondence_distance_m"] = args.max_correspondence_distance_m;
   std::string table = fmt::format(
       "| method ({} seeds, odometry noise x{}) | position RMSE (m) | max position error (m) | "
       "heading RMSE (deg) | map "

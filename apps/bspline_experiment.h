@@ -19,6 +19,9 @@ struct BSplineExperimentArgs {
   // Scale of the simulator's odometry noise (and of the filter's model of it): a harder test of
   // the associations, whose predicted curves then land farther from the observed ones.
   double odometry_noise_scale = 1.0;
+  // The correspondence test of every beam (EkfBSplineSlamOptions::max_correspondence_distance_m);
+  // a large value switches it off, leaving the association's stretches unchecked.
+  double max_correspondence_distance_m = 0.15;
   std::string out = "runs/experiment-complex-bspline";
 };
 int RunComplexBSpline(const BSplineExperimentArgs& args);

@@ -30,7 +30,8 @@ struct ExperimentArgs {
   std::string name = "corridor-lines";
   int runs = 0;  // 0: the experiment's default (corridor-lines 20, complex-bspline 10)
   int max_scans = 0;
-  double odometry_noise_scale = 1.0;  // complex-bspline
+  double odometry_noise_scale = 1.0;            // complex-bspline
+  double max_correspondence_distance_m = 0.15;  // complex-bspline
   int steps = 160;
   double speed_mps = 1.0;
   std::uint64_t seed = 1;
@@ -325,6 +326,11 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
                   "complex-bspline: scale of the odometry noise (simulated and modelled)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_option("--max-correspondence", args->max_correspondence_distance_m,
+                  "complex-bspline: largest distance (m) between a beam's predicted hit and the "
+                  "map point its association paired it with; large values switch the test off")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_flag("!--no-corners", args->corners, "Use lines only, no corner landmarks");
   cmd->add_option("--line-floor-scale", args->line_floor_scale,
                   "Scale of the line noise floors (1 mm, 0.5 mrad)")
@@ -343,6 +349,7 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       b.seed = args->seed;
       b.max_scans = args->max_scans;
       b.odometry_noise_scale = args->odometry_noise_scale;
+      b.max_correspondence_distance_m = args->max_correspondence_distance_m;
       b.out = args->out.empty() ? b.out : args->out;
       *exit_code = RunComplexBSpline(b);
       return;
