@@ -137,10 +137,7 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
   sim_options.laser = sim::LaserOptions::Urg04lx();
   // The same scale on the simulator's odometry noise and on the filter's model of it.
   const double scale = args.odometry_noise_scale;
-  sim_options.odometry.forward_per_m *= scale;
-  sim_options.odometry.lateral_per_m *= scale;
-  sim_options.odometry.rotation_per_rad *= scale;
-  sim_options.odometry.rotation_per_m *= scale;
+  sim_options.odometry = sim_options.odometry.Scaled(scale);
   std::filesystem::create_directories(args.out);
   const std::vector<std::string> methods = {"pedraza", "curvature"};
   std::map<std::string, Summary> summaries;
@@ -170,10 +167,7 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
       estimation::EkfBSplineSlamOptions options;
       options.association = method;
       options.max_correspondence_distance_m = args.max_correspondence_distance_m;
-      options.odometry.forward_per_m *= scale;
-      options.odometry.lateral_per_m *= scale;
-      options.odometry.rotation_per_rad *= scale;
-      options.odometry.rotation_per_m *= scale;
+      options.odometry = options.odometry.Scaled(scale);
       const RunResult r = RunFilter(route.frames, caster, options);
       if (!r.healthy) {
         fmt::print(stderr, "splam experiment: seed {}, {}: the filter failed\n", seed, method);

@@ -67,10 +67,7 @@ int RunSimulate(const SimulateArgs& args) {
   else
     options.laser = sim::LaserOptions::Lms200(1.0);
   options.enable_sonar = args.sonar;
-  options.odometry.forward_per_m *= args.odometry_noise_scale;
-  options.odometry.lateral_per_m *= args.odometry_noise_scale;
-  options.odometry.rotation_per_rad *= args.odometry_noise_scale;
-  options.odometry.rotation_per_m *= args.odometry_noise_scale;
+  options.odometry = options.odometry.Scaled(args.odometry_noise_scale);
   sim::RouteOptions route_options;
   route_options.max_steps = args.max_steps;
   for (const std::string& problem : {options.Validate(), route_options.Validate()}) {

@@ -115,11 +115,8 @@ int RunSlam(const SlamArgs& args) {
   const bool real = lasers[0]->format == io::LaserMessage::Format::kFlaser;
   const double scale = args.odometry_noise_scale >= 0 ? args.odometry_noise_scale
                                                       : (real ? kRealOdometryScale : 1.0);
-  estimation::OdometryNoiseModel odometry_noise;
-  odometry_noise.forward_per_m *= scale;
-  odometry_noise.lateral_per_m *= scale;
-  odometry_noise.rotation_per_rad *= scale;
-  odometry_noise.rotation_per_m *= scale;
+  const estimation::OdometryNoiseModel odometry_noise =
+      estimation::OdometryNoiseModel().Scaled(scale);
   // The estimate starts at the first odometric pose with a small covariance: the map frame is
   // the odometry frame (for simulated runs, the true frame).
   const kernel::Pose2 start = lasers[0]->robot_pose;

@@ -7,12 +7,28 @@
 namespace splam::apps {
 namespace {
 
-class LineSlam : public SlamMethod {
+// What every EKF-SLAM filter answers the same way.
+template <class Filter, class Options>
+class FilterMethod : public SlamMethod {
  public:
-  LineSlam(const kernel::Pose2& pose, const Eigen::Matrix3d& covariance,
-           const estimation::EkfLineSlamOptions& options)
+  FilterMethod(const kernel::Pose2& pose, const Eigen::Matrix3d& covariance, const Options& options)
       : slam_(pose, covariance, options) {}
   void Predict(const kernel::Pose2& u) override { slam_.Predict(u); }
+  kernel::Pose2 pose() const override { return slam_.pose(); }
+  Eigen::Matrix3d pose_covariance() const override { return slam_.pose_covariance(); }
+  std::size_t MapSize() const override {
+    return static_cast<std::size_t>(slam_.state().size() - 3) / 2;
+  }
+  bool healthy() const override { return slam_.healthy(); }
+  std::string health() const override { return slam_.health(); }
+
+ protected:
+  Filter slam_;
+};
+
+class LineSlam : public FilterMethod<estimation::EkfLineSlam, estimation::EkfLineSlamOptions> {
+ public:
+  using FilterMethod::FilterMethod;
   void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) override {
     const estimation::UpdateReport r = slam_.Update(scan, robot_T_laser);
     totals_.line_observations += r.line_observations;
@@ -22,13 +38,6 @@ class LineSlam : public SlamMethod {
     totals_.ambiguous += r.ambiguous;
     totals_.too_small += r.too_small;
   }
-  kernel::Pose2 pose() const override { return slam_.pose(); }
-  Eigen::Matrix3d pose_covariance() const override { return slam_.pose_covariance(); }
-  std::size_t MapSize() const override {
-    return static_cast<std::size_t>(slam_.state().size() - 3) / 2;
-  }
-  bool healthy() const override { return slam_.healthy(); }
-  std::string health() const override { return slam_.health(); }
   std::string MapDescription() const override {
     return fmt::format("{} lines, {} corners", slam_.num_lines(), slam_.num_corners());
   }
@@ -56,16 +65,13 @@ class LineSlam : public SlamMethod {
   }
 
  private:
-  estimation::EkfLineSlam slam_;
   estimation::UpdateReport totals_;
 };
 
-class BSplineSlam : public SlamMethod {
+class BSplineSlam
+    : public FilterMethod<estimation::EkfBSplineSlam, estimation::EkfBSplineSlamOptions> {
  public:
-  BSplineSlam(const kernel::Pose2& pose, const Eigen::Matrix3d& covariance,
-              const estimation::EkfBSplineSlamOptions& options)
-      : slam_(pose, covariance, options) {}
-  void Predict(const kernel::Pose2& u) override { slam_.Predict(u); }
+  using FilterMethod::FilterMethod;
   void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) override {
     const estimation::BSplineUpdateReport r = slam_.Update(scan, robot_T_laser);
     observed_ += r.observed_curves;
@@ -77,13 +83,6 @@ class BSplineSlam : public SlamMethod {
     ignored_ += r.ignored_curves;
     for (const auto& a : r.associations) with_features_ += a.used_features && !a.beams.empty();
   }
-  kernel::Pose2 pose() const override { return slam_.pose(); }
-  Eigen::Matrix3d pose_covariance() const override { return slam_.pose_covariance(); }
-  std::size_t MapSize() const override {
-    return static_cast<std::size_t>(slam_.state().size() - 3) / 2;
-  }
-  bool healthy() const override { return slam_.healthy(); }
-  std::string health() const override { return slam_.health(); }
   std::string MapDescription() const override {
     return fmt::format("{} splines, {} control points", slam_.num_splines(),
                        slam_.num_control_points());
@@ -112,7 +111,6 @@ class BSplineSlam : public SlamMethod {
   }
 
  private:
-  estimation::EkfBSplineSlam slam_;
   long observed_ = 0, matched_ = 0, beams_used_ = 0, beams_rejected_ = 0;
   int created_ = 0, extended_ = 0, ignored_ = 0, with_features_ = 0;
 };

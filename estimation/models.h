@@ -35,6 +35,15 @@ struct OdometryNoiseModel {
 
   Eigen::Matrix3d Covariance(const kernel::Pose2& u) const;
   std::string Validate() const;
+  // The model with its four proportional sigmas times `factor` (the floors unchanged).
+  OdometryNoiseModel Scaled(double factor) const {
+    OdometryNoiseModel m = *this;
+    m.forward_per_m *= factor;
+    m.lateral_per_m *= factor;
+    m.rotation_per_rad *= factor;
+    m.rotation_per_m *= factor;
+    return m;
+  }
 };
 
 // --- Lines (SPEC §3-4) --------------------------------------------------------------------

@@ -30,6 +30,11 @@ struct OdometryNoiseOptions {
 
   std::string Validate() const;
   static OdometryNoiseOptions Noiseless() { return {0.0, 0.0, 0.0, 0.0}; }
+  // Every sigma times `factor`.
+  OdometryNoiseOptions Scaled(double factor) const {
+    return {forward_per_m * factor, lateral_per_m * factor, rotation_per_rad * factor,
+            rotation_per_m * factor};
+  }
 };
 
 // The exact motion in the robot frame of a unicycle driven at constant (v, w) for dt: an arc of

@@ -72,10 +72,7 @@ TEST(EkfLineSlam, CorrectsOdometryDriftAgainstTheMap) {
   // noise model (scaled up 3x to make drift visible, and told to the filter). Seeing the walls
   // keeps the estimate on the truth while dead reckoning drifts away.
   EkfLineSlamOptions options = Immediate();
-  options.odometry.forward_per_m *= 3;
-  options.odometry.lateral_per_m *= 3;
-  options.odometry.rotation_per_rad *= 3;
-  options.odometry.rotation_per_m *= 3;
+  options.odometry = options.odometry.Scaled(3);
   EkfLineSlam slam(Pose2(2, 1, 0), Eigen::Matrix3d::Identity() * 1e-6, options);
   kernel::Random random(121);
   Pose2 truth(2, 1, 0), dead_reckoning(2, 1, 0);
