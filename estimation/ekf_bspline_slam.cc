@@ -144,17 +144,25 @@ void EkfBSplineSlam::Predict(const kernel::Pose2& u) {
   ekf_.Predict(u, options_.odometry.Covariance(u));
 }
 
-CubicBSpline EkfBSplineSlam::SplineOf(const Landmark& landmark) const {
+std::optional<CubicBSpline> EkfBSplineSlam::TrySplineOf(const Landmark& landmark) const {
   const Eigen::Index n = landmark.size() / 2;
   std::vector<Eigen::Vector2d> control(static_cast<std::size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i)
     control[static_cast<std::size_t>(i)] = ekf_.state().segment<2>(landmark.index + 2 * i);
-  return *CubicBSpline::Create(std::move(control), landmark.knots);
+  return CubicBSpline::Create(std::move(control), landmark.knots);
+}
+
+CubicBSpline EkfBSplineSlam::SplineOf(const Landmark& landmark) const {
+  return *TrySplineOf(landmark);  // the knots are valid; the state is finite while healthy
 }
 
 std::vector<MapSpline> EkfBSplineSlam::MapSplines() const {
   std::vector<MapSpline> out;
-  for (const Landmark& l : splines_) out.push_back({l.id, SplineOf(l), l.observations});
+  for (const Landmark& l : splines_) {
+    // An unhealthy filter may hold non-finite control points: those splines are left out.
+    if (std::optional<CubicBSpline> spline = TrySplineOf(l))
+      out.push_back({l.id, std::move(*spline), l.observations});
+  }
   return out;
 }
 
@@ -248,6 +256,7 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
     ++splines_[accepted[a]->landmark].observations;
   }
   report.matched_curves = static_cast<int>(std::count(matched.begin(), matched.end(), true));
+  if (!healthy()) return report;
 
   // Extensions: an observed curve that runs on past the end of the map spline it matched.
   const double tol = options_.end_tolerance_m;

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -146,6 +147,8 @@ class EkfBSplineSlam {
   };
   struct Match;
 
+  // The spline of a landmark from the state; SplineOf needs a healthy filter.
+  std::optional<kernel::CubicBSpline> TrySplineOf(const Landmark& landmark) const;
   kernel::CubicBSpline SplineOf(const Landmark& landmark) const;
   // Corrects with the beams of `observed` inside the match; fills the record.
   // The rows of one correction: per beam, its Jacobian by the pose and by the 8 control
