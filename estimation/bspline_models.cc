@@ -43,4 +43,40 @@ std::optional<BeamPrediction> PredictBeam(const kernel::Pose2& world_T_robot,
   return p;
 }
 
+BeamPoints BeamPointsInWorld(const kernel::Pose2& world_T_robot, const kernel::Pose2& robot_T_laser,
+                             const std::vector<double>& ranges, const std::vector<double>& angles) {
+  BeamPoints b;
+  const Eigen::Matrix2d rotation = world_T_robot.Rotation();
+  const Eigen::Matrix2d d_rotation{{-rotation(1, 0), -rotation(0, 0)},
+                                   {rotation(0, 0), -rotation(1, 0)}};  // dR/dth
+  for (std::size_t k = 0; k < ranges.size(); ++k) {
+    const Eigen::Vector2d direction(std::cos(angles[k]), std::sin(angles[k]));
+    const Eigen::Vector2d in_robot = robot_T_laser * (ranges[k] * direction);
+    b.points.push_back(world_T_robot * in_robot);
+    Eigen::Matrix<double, 2, 3> d;
+    d.leftCols<2>().setIdentity();
+    d.col(2) = d_rotation * in_robot;
+    b.d_pose.push_back(d);
+    b.d_range.push_back(rotation * robot_T_laser.Rotation() * direction);
+  }
+  return b;
+}
+
+Eigen::MatrixXd AddBeamColumns(const Eigen::MatrixXd& m, const std::vector<Eigen::Index>& columns,
+                               const BeamPoints& beams, Eigen::VectorXd* controls,
+                               Eigen::MatrixXd* d_pose) {
+  const Eigen::Index n = m.rows();
+  Eigen::MatrixXd d_ranges =
+      Eigen::MatrixXd::Zero(2 * n, static_cast<Eigen::Index>(columns.size()));
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    const auto col = m.col(columns[k]);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      controls->segment<2>(2 * i) += col(i) * beams.points[k];
+      d_pose->middleRows<2>(2 * i) += col(i) * beams.d_pose[k];
+      d_ranges.col(static_cast<Eigen::Index>(k)).segment<2>(2 * i) = col(i) * beams.d_range[k];
+    }
+  }
+  return d_ranges;
+}
+
 }  // namespace splam::estimation

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <vector>
 
 #include "kernel/bspline.h"
 #include "kernel/pose2.h"
@@ -35,6 +36,28 @@ std::optional<BeamPrediction> PredictBeam(const kernel::Pose2& world_T_robot,
                                           const kernel::Pose2& robot_T_laser, double beam_angle_rad,
                                           const kernel::CubicBSpline& curve, double max_range_m,
                                           double min_incidence_sine = 0.1);
+
+// Measured points in the world frame, D_k = t + R(th) l_T (r_k cos a_k, r_k sin a_k) for a laser
+// at robot_T_laser = l_T on a robot at (t, th), with dD_k/d(x, y, th) and dD_k/dr_k (the beam's
+// world direction).
+struct BeamPoints {
+  std::vector<Eigen::Vector2d> points;
+  std::vector<Eigen::Matrix<double, 2, 3>> d_pose;
+  std::vector<Eigen::Vector2d> d_range;
+};
+BeamPoints BeamPointsInWorld(const kernel::Pose2& world_T_robot, const kernel::Pose2& robot_T_laser,
+                             const std::vector<double>& ranges, const std::vector<double>& angles);
+
+// New control points from measured points (SPEC §8: g(X_r, Z) for augmentation and extension).
+// A least-squares fit is linear in the data, X_i = sum_k M(i, k) D_k (kernel::
+// CubicBSplineFitOperator); the beams' points are the data columns `columns` of M. Adds their part
+// of the interleaved control vector (x_0, y_0, x_1, ...) to *controls and of its Jacobian by the
+// pose to *d_pose (2n x 3), and returns the Jacobian by the ranges (2n x beams). M itself depends
+// on the points only through their chord-length parameters, which are invariant under rigid
+// motion: d_pose is exact, the range Jacobian holds M fixed (as Pedraza et al. do).
+Eigen::MatrixXd AddBeamColumns(const Eigen::MatrixXd& m, const std::vector<Eigen::Index>& columns,
+                               const BeamPoints& beams, Eigen::VectorXd* controls,
+                               Eigen::MatrixXd* d_pose);
 
 }  // namespace splam::estimation
 

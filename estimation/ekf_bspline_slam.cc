@@ -41,61 +41,10 @@ std::vector<double> ApproximateArcLengths(const SplineCurve& curve) {
 
 // Measured points in the world frame at the current pose, D = t + R(th) l_T (r cos a, r sin a),
 // with their derivatives by the pose and by the range.
-struct BeamPoints {
-  std::vector<Eigen::Vector2d> points;
-  std::vector<Eigen::Matrix<double, 2, 3>> d_pose;
-  std::vector<Eigen::Vector2d> d_range;
-  std::vector<double> variance;
-};
-
 // Variance of a measured range: the laser's noise plus the model error.
 double RangeVariance(const EkfBSplineSlamOptions& o, double range_m) {
   const double sigma = o.range_sigma_floor_m + o.range_sigma_fraction * range_m;
   return sigma * sigma + o.model_sigma_m * o.model_sigma_m;
-}
-
-BeamPoints MakeBeamPoints(const kernel::Scan& scan, const kernel::Pose2& world_T_robot,
-                          const kernel::Pose2& robot_T_laser, const std::vector<std::size_t>& beams,
-                          const EkfBSplineSlamOptions& options) {
-  BeamPoints b;
-  const kernel::Pose2& x = world_T_robot;
-  const Eigen::Matrix2d rotation = x.Rotation();
-  const Eigen::Matrix2d d_rotation{{-rotation(1, 0), -rotation(0, 0)},
-                                   {rotation(0, 0), -rotation(1, 0)}};  // dR/dth
-  for (const std::size_t k : beams) {
-    const double r = scan.ranges_m[k], a = scan.BeamAngle(k);
-    const Eigen::Vector2d in_laser(r * std::cos(a), r * std::sin(a));
-    const Eigen::Vector2d in_robot = robot_T_laser * in_laser;
-    b.points.push_back(x * in_robot);
-    Eigen::Matrix<double, 2, 3> d;
-    d.leftCols<2>().setIdentity();
-    d.col(2) = d_rotation * in_robot;
-    b.d_pose.push_back(d);
-    b.d_range.push_back(rotation * robot_T_laser.Rotation() *
-                        Eigen::Vector2d(std::cos(a), std::sin(a)));
-    b.variance.push_back(RangeVariance(options, r));
-  }
-  return b;
-}
-
-// The control points of a fit X = (M (x) I2) D where the data columns `columns` of M hold the
-// beams' points: adds their part to g, G_r = dg/dpose and q = G_z diag(var) G_z^T.
-void AddBeamColumns(const Eigen::MatrixXd& m, const std::vector<Eigen::Index>& columns,
-                    const BeamPoints& b, Eigen::VectorXd* g, Eigen::MatrixXd* g_r,
-                    Eigen::MatrixXd* q) {
-  const Eigen::Index n = m.rows();
-  Eigen::MatrixXd g_z = Eigen::MatrixXd::Zero(2 * n, static_cast<Eigen::Index>(columns.size()));
-  for (std::size_t k = 0; k < columns.size(); ++k) {
-    const auto col = m.col(columns[k]);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      g->segment<2>(2 * i) += col(i) * b.points[k];
-      g_r->middleRows<2>(2 * i) += col(i) * b.d_pose[k];
-      g_z.col(static_cast<Eigen::Index>(k)).segment<2>(2 * i) = col(i) * b.d_range[k];
-    }
-  }
-  const Eigen::VectorXd variance = Eigen::Map<const Eigen::VectorXd>(
-      b.variance.data(), static_cast<Eigen::Index>(b.variance.size()));
-  q->noalias() += g_z * variance.asDiagonal() * g_z.transpose();
 }
 
 }  // namespace
@@ -416,7 +365,7 @@ void EkfBSplineSlam::SelectBeams(const kernel::Scan& scan, const kernel::Pose2& 
 
 bool EkfBSplineSlam::AddSpline(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                                const std::vector<std::size_t>& beams) {
-  const BeamPoints b = MakeBeamPoints(scan, pose(), robot_T_laser, beams, options_);
+  const BeamPoints b = Beams(scan, robot_T_laser, beams);
   const std::optional<kernel::BSplineFitOperator> op =
       kernel::CubicBSplineFitOperator(b.points, options_.map_fit);
   if (!op) return false;
@@ -425,12 +374,31 @@ bool EkfBSplineSlam::AddSpline(const kernel::Scan& scan, const kernel::Pose2& ro
   for (std::size_t k = 0; k < beams.size(); ++k) columns[k] = static_cast<Eigen::Index>(k);
   Eigen::VectorXd g = Eigen::VectorXd::Zero(2 * n);
   Eigen::MatrixXd g_r = Eigen::MatrixXd::Zero(2 * n, 3);
+  const Eigen::MatrixXd g_z = AddBeamColumns(op->m, columns, b, &g, &g_r);
   const double floor = options_.control_point_sigma_floor_m;
-  Eigen::MatrixXd q = floor * floor * Eigen::MatrixXd::Identity(2 * n, 2 * n);
-  AddBeamColumns(op->m, columns, b, &g, &g_r, &q);
+  const Eigen::MatrixXd q = g_z * RangeVariances(scan, beams).asDiagonal() * g_z.transpose() +
+                            floor * floor * Eigen::MatrixXd::Identity(2 * n, 2 * n);
   const Eigen::Index index = ekf_.Append(g, g_r, q);
   splines_.push_back({next_id_++, index, op->knots, 1});
   return true;
+}
+
+BeamPoints EkfBSplineSlam::Beams(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+                                 const std::vector<std::size_t>& beams) const {
+  std::vector<double> ranges, angles;
+  for (const std::size_t k : beams) {
+    ranges.push_back(scan.ranges_m[k]);
+    angles.push_back(scan.BeamAngle(k));
+  }
+  return BeamPointsInWorld(pose(), robot_T_laser, ranges, angles);
+}
+
+Eigen::VectorXd EkfBSplineSlam::RangeVariances(const kernel::Scan& scan,
+                                               const std::vector<std::size_t>& beams) const {
+  Eigen::VectorXd v(static_cast<Eigen::Index>(beams.size()));
+  for (std::size_t k = 0; k < beams.size(); ++k)
+    v(static_cast<Eigen::Index>(k)) = RangeVariance(options_, scan.ranges_m[beams[k]]);
+  return v;
 }
 
 bool EkfBSplineSlam::ExtendSpline(Landmark* landmark, const kernel::Scan& scan,
@@ -442,7 +410,7 @@ bool EkfBSplineSlam::ExtendSpline(Landmark* landmark, const kernel::Scan& scan,
       4, static_cast<int>(std::ceil(old.Length() / options_.extension_sample_spacing_m)) + 1);
   std::vector<CubicBSpline::Basis> basis;
   std::vector<Eigen::Vector2d> points;
-  const BeamPoints b = MakeBeamPoints(scan, pose(), robot_T_laser, beams, options_);
+  const BeamPoints b = Beams(scan, robot_T_laser, beams);
   const std::size_t m_new = beams.size();
   // Data order along the extended curve: old samples then the new points (at its end), or the
   // new points from the farthest then the old samples (at its start).
@@ -478,8 +446,8 @@ bool EkfBSplineSlam::ExtendSpline(Landmark* landmark, const kernel::Scan& scan,
         at_end ? samples + static_cast<Eigen::Index>(k) : static_cast<Eigen::Index>(m_new - 1 - k);
   }
   Eigen::MatrixXd g_r = Eigen::MatrixXd::Zero(2 * n, 3);
-  Eigen::MatrixXd q = Eigen::MatrixXd::Zero(2 * n, 2 * n);
-  AddBeamColumns(op->m, columns, b, &g, &g_r, &q);
+  const Eigen::MatrixXd g_z = AddBeamColumns(op->m, columns, b, &g, &g_r);
+  const Eigen::MatrixXd q = g_z * RangeVariances(scan, beams).asDiagonal() * g_z.transpose();
 
   const Eigen::Index old_index = landmark->index, old_size = landmark->size();
   const Eigen::Index index = ekf_.ReplaceBlock(old_index, old_size, g, g_r, g_b, q);

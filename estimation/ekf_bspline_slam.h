@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "estimation/bspline_models.h"
 #include "estimation/ekf_core.h"
 #include "estimation/models.h"
 #include "estimation/spline_association.h"
@@ -164,6 +165,11 @@ class EkfBSplineSlam {
   void SelectBeams(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                    const kernel::SplineCurve& observed, const std::vector<std::size_t>& beams,
                    const Match& match, SplineAssociationRecord* record, BeamBatch* batch) const;
+  // The beams' points at the current pose, and their range variances.
+  BeamPoints Beams(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+                   const std::vector<std::size_t>& beams) const;
+  Eigen::VectorXd RangeVariances(const kernel::Scan& scan,
+                                 const std::vector<std::size_t>& beams) const;
   // Appends the control points fitted to the beams' points as a new spline.
   bool AddSpline(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                  const std::vector<std::size_t>& beams);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "kernel/angle.h"
+#include "kernel/bspline_fit.h"
 #include "kernel/random.h"
 
 namespace splam::estimation {
@@ -103,6 +104,67 @@ TEST(CubicBSplineBasis, MatchesTheCurveAndSumsToOne) {
       }
       EXPECT_NEAR(sum, 1.0, 1e-12);
       EXPECT_LT((point - curve.Point(t)).norm(), 1e-9);
+    }
+  }
+}
+
+TEST(AddBeamColumns, PropertyNewControlPointJacobiansMatchNumericDifferentiation) {
+  // A new map spline X = (M (x) I2) D(pose, ranges) from the beams that see a curved wall.
+  Random random(19);
+  for (int trial = 0; trial < 30; ++trial) {
+    const Pose2 pose(random.Uniform(-3, 3), random.Uniform(-3, 3), random.Uniform(-3, 3));
+    const Pose2 laser(random.Uniform(-0.2, 0.2), random.Uniform(-0.1, 0.1),
+                      random.Uniform(-0.1, 0.1));
+    std::vector<double> ranges, angles;
+    for (int k = 0; k < 40; ++k) {
+      angles.push_back(-0.6 + 0.03 * k);
+      ranges.push_back(2.0 + 0.3 * std::sin(0.1 * k) + random.Uniform(0, 0.5) * 0.01 * k);
+    }
+    auto controls_at = [&](const Pose2& x, const std::vector<double>& r, const Eigen::MatrixXd* m,
+                           Eigen::MatrixXd* d_pose, Eigen::MatrixXd* d_ranges) {
+      const BeamPoints b = BeamPointsInWorld(x, laser, r, angles);
+      const Eigen::MatrixXd op = m != nullptr ? *m : kernel::CubicBSplineFitOperator(b.points)->m;
+      std::vector<Eigen::Index> columns(r.size());
+      for (std::size_t k = 0; k < r.size(); ++k) columns[k] = static_cast<Eigen::Index>(k);
+      Eigen::VectorXd g = Eigen::VectorXd::Zero(2 * op.rows());
+      Eigen::MatrixXd g_r = Eigen::MatrixXd::Zero(2 * op.rows(), 3);
+      const Eigen::MatrixXd g_z = AddBeamColumns(op, columns, b, &g, &g_r);
+      if (d_pose != nullptr) *d_pose = g_r;
+      if (d_ranges != nullptr) *d_ranges = g_z;
+      return std::pair{g, op};
+    };
+    Eigen::MatrixXd d_pose, d_ranges;
+    const auto [g, m] = controls_at(pose, ranges, nullptr, &d_pose, &d_ranges);
+    // The fit reproduces the points: the control points are those of FitCubicBSpline.
+    const auto fit = kernel::FitCubicBSpline(BeamPointsInWorld(pose, laser, ranges, angles).points);
+    ASSERT_TRUE(fit.has_value());
+    for (std::size_t i = 0; i < fit->control_points().size(); ++i)
+      EXPECT_LT((g.segment<2>(2 * static_cast<Eigen::Index>(i)) - fit->control_points()[i]).norm(),
+                1e-9);
+    // Pose: exact, since the fit's parameters are invariant under rigid motion (M recomputed).
+    const double h = 1e-6;
+    for (int j = 0; j < 3; ++j) {
+      Eigen::Vector3d dp = Eigen::Vector3d::Zero();
+      dp(j) = h;
+      const Eigen::Vector3d xp = pose.ToVector() + dp, xm = pose.ToVector() - dp;
+      const Eigen::VectorXd plus =
+          controls_at(Pose2(xp(0), xp(1), xp(2)), ranges, nullptr, nullptr, nullptr).first;
+      const Eigen::VectorXd minus =
+          controls_at(Pose2(xm(0), xm(1), xm(2)), ranges, nullptr, nullptr, nullptr).first;
+      EXPECT_LT(((plus - minus) / (2 * h) - d_pose.col(j)).cwiseAbs().maxCoeff(), 1e-6) << j;
+    }
+    // Ranges: with M held fixed, as documented.
+    for (std::size_t k = 0; k < ranges.size(); k += 7) {
+      std::vector<double> plus_r = ranges, minus_r = ranges;
+      plus_r[k] += h;
+      minus_r[k] -= h;
+      const Eigen::VectorXd plus = controls_at(pose, plus_r, &m, nullptr, nullptr).first;
+      const Eigen::VectorXd minus = controls_at(pose, minus_r, &m, nullptr, nullptr).first;
+      EXPECT_LT(((plus - minus) / (2 * h) - d_ranges.col(static_cast<Eigen::Index>(k)))
+                    .cwiseAbs()
+                    .maxCoeff(),
+                1e-6)
+          << k;
     }
   }
 }
