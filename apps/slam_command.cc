@@ -2,6 +2,7 @@
 #include <fmt/core.h>
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -182,6 +183,7 @@ int RunSlam(const SlamArgs& args) {
     }
     if ((i + 1) % 1000 == 0) {
       fmt::print("  {}/{} scans, {} in the map\n", i + 1, n, slam->MapDescription());
+      std::fflush(stdout);
     }
   }
   const double wall_s =
