@@ -87,7 +87,10 @@ EkfBSplineSlam::EkfBSplineSlam(const kernel::Pose2& initial_pose,
     : options_(options),
       association_(MakeSplineAssociation(options.association, options.association_options)),
       beam_gate_(ChiSquareQuantile(options.beam_gate_probability, 1)),
-      ekf_(initial_pose, initial_covariance) {}
+      ekf_(initial_pose, initial_covariance) {
+  if (std::string problem = options.Validate(); !problem.empty())
+    ekf_.Fail("invalid options: " + problem);
+}
 
 void EkfBSplineSlam::Predict(const kernel::Pose2& u) {
   ekf_.Predict(u, options_.odometry.Covariance(u));

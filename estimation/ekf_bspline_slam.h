@@ -69,8 +69,8 @@ struct EkfBSplineSlamOptions {
   double end_tolerance_m = 0.05;
   // The old curve enters the refit of an extension as samples this far apart, metres.
   double extension_sample_spacing_m = 0.05;
-  // Added to the variance of new control points (x and y), metres: the fit's covariance from
-  // the range noise alone ignores the model error.
+  // Standard deviation added in quadrature to x and y of every new control point, metres: the
+  // fit's covariance from the range noise alone ignores the model error.
   double control_point_sigma_floor_m = 0.01;
 
   std::string Validate() const;
@@ -117,6 +117,7 @@ struct MapSpline {
 // where the beam meets the associated map spline (PredictBeam), with analytic Jacobians.
 class EkfBSplineSlam {
  public:
+  // Invalid options leave the filter unhealthy (health() says why); it then ignores input.
   EkfBSplineSlam(const kernel::Pose2& initial_pose, const Eigen::Matrix3d& initial_covariance,
                  const EkfBSplineSlamOptions& options = {});
 

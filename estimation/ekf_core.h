@@ -62,6 +62,10 @@ class EkfCore {
   bool healthy() const { return health_.empty(); }
   const std::string& health() const { return health_; }
   void CheckHealth();
+  // Marks the filter unhealthy with this message (e.g. invalid options); it then ignores input.
+  void Fail(std::string message) {
+    if (health_.empty()) health_ = std::move(message);
+  }
 
  private:
   Eigen::VectorXd x_;

@@ -143,6 +143,17 @@ TEST(EkfBSplineSlamOptions, Validate) {
   o = EkfBSplineSlamOptions();
   o.range_sigma_fraction = o.model_sigma_m = 0.0;
   EXPECT_NE(o.Validate(), "");
+  // A filter with invalid options says so and ignores input instead of crashing.
+  o = EkfBSplineSlamOptions();
+  o.association = "nearest";
+  EkfBSplineSlam slam(kernel::Pose2(), Eigen::Matrix3d::Identity(), o);
+  EXPECT_FALSE(slam.healthy());
+  EXPECT_NE(slam.health().find("association"), std::string::npos);
+  kernel::Scan scan;
+  scan.angular_step_rad = 0.01;
+  scan.max_range_m = 4.0;
+  scan.ranges_m.assign(100, 2.0);
+  EXPECT_EQ(slam.Update(scan).observed_curves, 0);
 }
 
 }  // namespace
