@@ -7,4 +7,6 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh -DSPLAM_BUILD_TESTS=OFF -DSPLAM_BUILD_BENCHMARKS=OFF -DSPLAM_BUILD_EXAMPLES=OFF
 build/apps/splam simulate --world complex --seed 1 --out runs/complex
-echo "Open runs/complex/run.png (or run.svg) to see the run."
+build/apps/splam slam --method ekf-bspline --association curvature runs/complex/log.clf \
+  --out runs/complex-bspline
+echo "Open runs/complex/run.png (the run) and runs/complex-bspline/map.png (its B-spline map)."
