@@ -221,7 +221,9 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
     const double os = m->match.observed.start_m, oe = m->match.observed.end_m;
     const std::vector<double> arc = ApproximateArcLengths(o);
     const std::vector<std::size_t>& beams = curves[m->curve].beams;
-    // (observed stretch beyond, map end it continues, which map end)
+    // Each part of the observed curve beyond the stretch: [from, to] in observed arc length,
+    // whether the map stretch reaches the map curve's end on that side, and which end (the map
+    // curve's end, else its start).
     struct Side {
       double from, to;
       bool map_end_reached, at_map_end;
@@ -264,15 +266,15 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
     // Match a candidate (a control point within d_min); promote it when seen often enough.
     const std::vector<Eigen::Vector2d> world_controls =
         kernel::Transformed(curves[i], pose() * robot_T_laser).spline.control_points();
-    Candidate* match = nullptr;
-    for (Candidate& c : candidates_) {
-      if (c.last_scan == scans_) continue;
-      for (const Eigen::Vector2d& a : world_controls) {
-        for (const Eigen::Vector2d& b : c.control_points)
-          match = (a - b).norm() <= d_min ? &c : match;
-      }
-      if (match != nullptr) break;
-    }
+    auto near = [&](const Candidate& c) {
+      return c.last_scan != scans_ &&
+             std::any_of(world_controls.begin(), world_controls.end(), [&](const auto& a) {
+               return std::any_of(c.control_points.begin(), c.control_points.end(),
+                                  [&](const auto& b) { return (a - b).norm() <= d_min; });
+             });
+    };
+    const auto found = std::find_if(candidates_.begin(), candidates_.end(), near);
+    Candidate* match = found != candidates_.end() ? &*found : nullptr;
     if (match == nullptr) {
       candidates_.push_back({{}, 0, scans_});
       match = &candidates_.back();
