@@ -45,22 +45,33 @@ bool EkfCore::Correct(const Eigen::MatrixXd& h_robot, const std::vector<Jacobian
   if (llt.info() != Eigen::Success) return false;
   x_.noalias() += pht * llt.solve(nu);
   x_(2) = kernel::WrapAngle(x_(2));
-  // P -= L L^T with L = P H^T U^-1, S = U^T U: only the lower triangle is updated, then mirrored.
+  // P -= L L^T with L = P H^T U^-1, S = U^T U. A few rows (line and corner landmarks): one
+  // full matrix product, a single pass over P. Many rows (the beams of a B-spline scan): update
+  // the lower triangle only (half the arithmetic), then mirror it.
   const Eigen::MatrixXd l = llt.matrixU().transpose().solve(pht.transpose()).transpose();
-  p_.selfadjointView<Eigen::Lower>().rankUpdate(l, -1.0);
-  // Mirror the lower triangle, a block of columns at a time (transposing single rows would walk
-  // the column-major matrix with a stride of N).
-  constexpr Eigen::Index kBlock = 64;
-  for (Eigen::Index j = 0; j < p_.cols(); j += kBlock) {
-    const Eigen::Index w = std::min(kBlock, p_.cols() - j);
-    // The diagonal block: its strict upper part from its lower part.
-    auto diagonal = p_.block(j, j, w, w);
-    diagonal.triangularView<Eigen::StrictlyUpper>() = diagonal.transpose();
-    // Everything above the diagonal block from the rows to its left.
-    if (j > 0) p_.block(0, j, j, w) = p_.block(j, 0, w, j).transpose();
+  constexpr Eigen::Index kFewRows = 4;
+  if (l.cols() <= kFewRows) {
+    p_.noalias() -= l * l.transpose();
+    // Rounding may break the symmetry slowly; restore it now and then.
+    if (++corrections_ % 64 == 0) MirrorLowerTriangle();
+  } else {
+    p_.selfadjointView<Eigen::Lower>().rankUpdate(l, -1.0);
+    MirrorLowerTriangle();
   }
   CheckHealth();
   return true;
+}
+
+void EkfCore::MirrorLowerTriangle() {
+  // A block of columns at a time: transposing single rows would walk the column-major matrix
+  // with a stride of N.
+  constexpr Eigen::Index kBlock = 64;
+  for (Eigen::Index j = 0; j < p_.cols(); j += kBlock) {
+    const Eigen::Index w = std::min(kBlock, p_.cols() - j);
+    auto diagonal = p_.block(j, j, w, w);
+    diagonal.triangularView<Eigen::StrictlyUpper>() = diagonal.transpose();
+    if (j > 0) p_.block(0, j, j, w) = p_.block(j, 0, w, j).transpose();
+  }
 }
 
 Eigen::Index EkfCore::ReplaceBlock(Eigen::Index start, Eigen::Index size, const Eigen::VectorXd& g,

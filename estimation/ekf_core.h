@@ -31,8 +31,8 @@ class EkfCore {
   // Correction with innovation nu (k) and noise R (k x k), H = [h_robot, 0..] + the blocks
   // (which must not reach into the robot columns; they may overlap each other and then add up):
   //   S = H P H^T + R,  K = P H^T S^-1,  X += K nu,  P -= (P H^T) S^-1 (P H^T)^T,
-  // the last as one symmetric rank-k update (O(k N^2), no N x N temporaries). The heading is
-  // wrapped afterwards. False, with the state unchanged, when S is not positive definite.
+  // the last as one rank-k update (O(k N^2), no N x N temporaries). The heading is wrapped
+  // afterwards. False, with the state unchanged, when S is not positive definite.
   bool Correct(const Eigen::MatrixXd& h_robot, const std::vector<JacobianBlock>& blocks,
                const Eigen::VectorXd& nu, const Eigen::MatrixXd& r);
 
@@ -68,9 +68,13 @@ class EkfCore {
   }
 
  private:
+  // P's upper triangle from its lower one.
+  void MirrorLowerTriangle();
+
   Eigen::VectorXd x_;
   Eigen::MatrixXd p_;
   std::string health_;
+  std::size_t corrections_ = 0;
 };
 
 }  // namespace splam::estimation
