@@ -1,0 +1,39 @@
+#ifndef SPLAM_GRAPH_EXPLORATION_GRAPH_H_
+#define SPLAM_GRAPH_EXPLORATION_GRAPH_H_
+
+#include <Eigen/Core>
+#include <boost/graph/adjacency_list.hpp>
+#include <vector>
+
+#include "kernel/pose2.h"
+
+// The graph that exploration builds (paper 003 §3.1, SPEC §9): a node per configuration where
+// the robot sensed, an edge per collision-free path between two of them.
+namespace splam::graph {
+
+struct NodeData {
+  kernel::Pose2 configuration;  // world frame
+};
+
+struct EdgeData {
+  // The collision-free path between the two nodes (world frame, from the lower to the higher
+  // vertex index) and its length, metres. Lengths are never shorter than the straight line
+  // between the two configurations, which keeps the A* heuristics admissible.
+  std::vector<Eigen::Vector2d> path;
+  double length_m = 0.0;
+};
+
+// Undirected, vertices in a vector (stable indices: exploration never removes nodes).
+using ExplorationGraph =
+    boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, NodeData, EdgeData>;
+using Vertex = boost::graph_traits<ExplorationGraph>::vertex_descriptor;
+
+// Adds a node at configuration q; returns its vertex.
+Vertex AddNode(ExplorationGraph* graph, const kernel::Pose2& q);
+// Adds an edge along `path` (whose ends should be the two configurations); its length is the
+// polyline's length, or the straight-line distance when the path is empty.
+void AddEdge(ExplorationGraph* graph, Vertex a, Vertex b, std::vector<Eigen::Vector2d> path = {});
+
+}  // namespace splam::graph
+
+#endif  // SPLAM_GRAPH_EXPLORATION_GRAPH_H_
