@@ -182,8 +182,9 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
     record.observed_curve = m->curve;
     record.map_spline = splines_[m->landmark].id;
     record.used_features = m->match.used_features;
-    SelectBeams(scan, robot_T_laser, observed[m->curve], curves[m->curve].beams, *m, &record,
-                &batch);
+    // The state has not changed since the association: the described map curve is current.
+    SelectBeams(scan, robot_T_laser, observed[m->curve], curves[m->curve].beams, *m,
+                map_curves[m->landmark]->spline, &record, &batch);
     report.associations.push_back(std::move(record));
   }
   const Eigen::Index rows = static_cast<Eigen::Index>(batch.nu.size());
@@ -298,10 +299,9 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
 
 void EkfBSplineSlam::SelectBeams(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                                  const SplineCurve& observed, const std::vector<std::size_t>& beams,
-                                 const Match& match, SplineAssociationRecord* record,
-                                 BeamBatch* batch) const {
+                                 const Match& match, const CubicBSpline& spline,
+                                 SplineAssociationRecord* record, BeamBatch* batch) const {
   const Landmark& landmark = splines_[match.landmark];
-  const CubicBSpline spline = SplineOf(landmark);
   const CurveMatch& cm = match.match;
   const double epsilon = options_.association_options.epsilon_m;
   // Beams in the observed stretch, spaced along it.

@@ -162,10 +162,11 @@ class EkfBSplineSlam {
   };
   // Adds the beams of `observed` inside the match that pass the correspondence test and the
   // innovation gate; fills the record. `observed` is in the world frame, `beams` its points'
-  // beam indices.
+  // beam indices, `map_spline` the matched landmark's curve at the current state.
   void SelectBeams(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                    const kernel::SplineCurve& observed, const std::vector<std::size_t>& beams,
-                   const Match& match, SplineAssociationRecord* record, BeamBatch* batch) const;
+                   const Match& match, const kernel::CubicBSpline& map_spline,
+                   SplineAssociationRecord* record, BeamBatch* batch) const;
   // The beams' points at the current pose, and their range variances.
   BeamPoints Beams(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                    const std::vector<std::size_t>& beams) const;
