@@ -1,0 +1,48 @@
+#ifndef SPLAM_KERNEL_LOCAL_SAFE_REGION_H_
+#define SPLAM_KERNEL_LOCAL_SAFE_REGION_H_
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "kernel/pose2.h"
+#include "kernel/scan.h"
+
+namespace splam::kernel {
+
+// A free arc of the LSR boundary: directions in which nothing was hit within the LSR radius
+// (free, unexplored), from start_angle_rad counter-clockwise to end_angle_rad, world frame.
+struct FrontierArc {
+  double start_angle_rad = 0.0;
+  double end_angle_rad = 0.0;  // >= start_angle_rad
+  double AngularWidth() const { return end_angle_rad - start_angle_rad; }
+};
+
+// Local safe region (SPEC §9, Oriolo et al. 2004): the star-shaped region around the sensor
+// bounded by the range reading in every direction, clipped at the LSR radius r. Outside the
+// sensor's field of view nothing is known, so there the region has radius 0. Invalid readings
+// (NaN) count as obstacles next to the sensor (at 1 % of r, as do shorter readings): the region
+// is never larger than what was seen free, and its boundary is a simple polygon.
+class LocalSafeRegion {
+ public:
+  // From a scan taken by a sensor at world_T_laser; radius_m > 0.
+  static LocalSafeRegion FromScan(const Scan& scan, const Pose2& world_T_laser, double radius_m);
+
+  const Eigen::Vector2d& center() const { return center_; }
+  double radius() const { return radius_; }
+  // The boundary as a simple polygon, counter-clockwise: the sensor position (unless the scan
+  // covers the full circle), then the clipped reading of every beam.
+  const std::vector<Eigen::Vector2d>& boundary() const { return boundary_; }
+  const std::vector<FrontierArc>& frontiers() const { return frontiers_; }
+  // True when p lies inside or on the boundary; exact (CGAL's filtered predicates).
+  bool Contains(const Eigen::Vector2d& p) const;
+
+ private:
+  Eigen::Vector2d center_ = Eigen::Vector2d::Zero();
+  double radius_ = 0.0;
+  std::vector<Eigen::Vector2d> boundary_;
+  std::vector<FrontierArc> frontiers_;
+};
+
+}  // namespace splam::kernel
+
+#endif  // SPLAM_KERNEL_LOCAL_SAFE_REGION_H_

@@ -1,0 +1,95 @@
+// Local safe regions: star-shaped regions from scans, their frontier arcs, exact containment.
+#include "kernel/local_safe_region.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "kernel/angle.h"
+#include "kernel/random.h"
+
+namespace splam::kernel {
+namespace {
+
+// A URG-04LX-like scan: 240 deg at 0.36 deg.
+Scan UrgScan(double range) {
+  Scan s;
+  s.angular_step_rad = DegToRad(0.36);
+  s.start_angle_rad = -DegToRad(0.36) * 333;
+  s.max_range_m = 4.0;
+  s.ranges_m.assign(667, range);
+  return s;
+}
+
+TEST(LocalSafeRegion, OpenSpaceIsOneFrontierOverTheFieldOfView) {
+  const Pose2 pose(1, 2, 0.5);
+  const LocalSafeRegion lsr = LocalSafeRegion::FromScan(UrgScan(Scan::kNoReturn), pose, 2.0);
+  ASSERT_EQ(lsr.frontiers().size(), 1u);
+  EXPECT_NEAR(lsr.frontiers()[0].start_angle_rad, 0.5 - DegToRad(0.36) * 333, 1e-12);
+  EXPECT_NEAR(lsr.frontiers()[0].AngularWidth(), DegToRad(0.36) * 666, 1e-12);
+  const Eigen::Vector2d ahead(std::cos(0.5), std::sin(0.5));
+  EXPECT_TRUE(lsr.Contains(pose.translation() + 1.9 * ahead));
+  EXPECT_FALSE(lsr.Contains(pose.translation() + 2.1 * ahead));
+  EXPECT_FALSE(lsr.Contains(pose.translation() - 0.5 * ahead));  // behind: never seen
+}
+
+TEST(LocalSafeRegion, ObstaclesSplitTheFrontier) {
+  // Beams 200-299 and 500-519 hit something at 1 m: three free arcs remain.
+  Scan scan = UrgScan(Scan::kNoReturn);
+  for (int i = 200; i < 300; ++i) scan.ranges_m[static_cast<std::size_t>(i)] = 1.0;
+  for (int i = 500; i < 520; ++i) scan.ranges_m[static_cast<std::size_t>(i)] = 1.0;
+  const LocalSafeRegion lsr = LocalSafeRegion::FromScan(scan, Pose2(), 2.0);
+  ASSERT_EQ(lsr.frontiers().size(), 3u);
+  EXPECT_NEAR(lsr.frontiers()[0].end_angle_rad, scan.BeamAngle(199), 1e-12);
+  EXPECT_NEAR(lsr.frontiers()[1].start_angle_rad, scan.BeamAngle(300), 1e-12);
+  EXPECT_NEAR(lsr.frontiers()[1].end_angle_rad, scan.BeamAngle(499), 1e-12);
+  EXPECT_NEAR(lsr.frontiers()[2].start_angle_rad, scan.BeamAngle(520), 1e-12);
+  // Readings beyond the radius are free too; shorter ones are not.
+  scan.ranges_m.assign(667, 2.5);
+  EXPECT_EQ(LocalSafeRegion::FromScan(scan, Pose2(), 2.0).frontiers().size(), 1u);
+  scan.ranges_m.assign(667, 1.5);
+  EXPECT_TRUE(LocalSafeRegion::FromScan(scan, Pose2(), 2.0).frontiers().empty());
+}
+
+TEST(LocalSafeRegion, FullCircleArcsJoinAcrossTheSeam) {
+  Scan scan;
+  scan.angular_step_rad = 2.0 * kPi / 360;
+  scan.start_angle_rad = -kPi;
+  scan.ranges_m.assign(360, Scan::kNoReturn);
+  for (std::size_t i = 100; i < 200; ++i) scan.ranges_m[i] = 0.5;
+  const LocalSafeRegion lsr = LocalSafeRegion::FromScan(scan, Pose2(), 1.0);
+  ASSERT_EQ(lsr.frontiers().size(), 1u);
+  EXPECT_NEAR(lsr.frontiers()[0].AngularWidth(), 2.0 * kPi / 360 * 259, 1e-9);
+  EXPECT_TRUE(lsr.Contains(Eigen::Vector2d(-0.9, 0.0)));  // at the seam (angle pi)
+}
+
+TEST(LocalSafeRegion, PropertyEveryBeamRayCrossesTheBoundaryAtItsClippedReading) {
+  // Star-shaped: along each beam, points before the clipped reading are inside and points
+  // beyond it are outside, whatever the readings (hits, no-returns, invalid) and the pose.
+  Random random(71);
+  for (int trial = 0; trial < 100; ++trial) {
+    Scan scan = UrgScan(0.0);
+    for (double& r : scan.ranges_m) {
+      const double u = random.Uniform(0, 1);
+      r = u < 0.05  ? std::numeric_limits<double>::quiet_NaN()
+          : u < 0.3 ? Scan::kNoReturn
+                    : random.Uniform(0.1, 3.5);
+    }
+    const Pose2 pose(random.Uniform(-5, 5), random.Uniform(-5, 5), random.Uniform(-3, 3));
+    const double radius = random.Uniform(0.5, 3.0);
+    const LocalSafeRegion lsr = LocalSafeRegion::FromScan(scan, pose, radius);
+    for (int k = 0; k < 20; ++k) {
+      const std::size_t i = 1 + random.Index(scan.size() - 2);
+      const double r = scan.ranges_m[i];
+      const double reach = std::isnan(r) ? 0.01 * radius : std::clamp(r, 0.01 * radius, radius);
+      const double a = pose.theta() + scan.BeamAngle(i);
+      const Eigen::Vector2d d(std::cos(a), std::sin(a));
+      EXPECT_TRUE(lsr.Contains(pose.translation() + 0.999 * reach * d));
+      EXPECT_FALSE(lsr.Contains(pose.translation() + 1.001 * reach * d));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace splam::kernel
