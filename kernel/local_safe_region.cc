@@ -3,6 +3,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 
@@ -48,6 +50,52 @@ LocalSafeRegion LocalSafeRegion::FromScan(const Scan& scan, const Pose2& world_T
     arcs.pop_back();
   }
   return lsr;
+}
+
+Eigen::Vector2d LocalSafeRegion::ArcPoint(double angle_rad) const {
+  return center_ + radius_ * Eigen::Vector2d(std::cos(angle_rad), std::sin(angle_rad));
+}
+
+bool Overlaps(const LocalSafeRegion& a, const LocalSafeRegion& b) {
+  const std::vector<Eigen::Vector2d>& pa = a.boundary();
+  const std::vector<Eigen::Vector2d>& pb = b.boundary();
+  if (pa.size() < 3 || pb.size() < 3) return false;
+  if ((a.center() - b.center()).norm() > a.radius() + b.radius()) return false;
+  if (a.Contains(pb.front()) || b.Contains(pa.front())) return true;
+  // Otherwise they share a point only if their boundaries cross.
+  std::vector<CgalKernel::Segment_2> sb;
+  std::vector<Eigen::AlignedBox2d> boxes_b;
+  for (std::size_t j = 0; j < pb.size(); ++j) {
+    const Eigen::Vector2d& p = pb[j];
+    const Eigen::Vector2d& q = pb[(j + 1) % pb.size()];
+    sb.emplace_back(CgalPoint(p.x(), p.y()), CgalPoint(q.x(), q.y()));
+    boxes_b.emplace_back(p.cwiseMin(q), p.cwiseMax(q));
+  }
+  for (std::size_t i = 0; i < pa.size(); ++i) {
+    const Eigen::Vector2d& p = pa[i];
+    const Eigen::Vector2d& q = pa[(i + 1) % pa.size()];
+    const Eigen::AlignedBox2d box(p.cwiseMin(q), p.cwiseMax(q));
+    const CgalKernel::Segment_2 s(CgalPoint(p.x(), p.y()), CgalPoint(q.x(), q.y()));
+    for (std::size_t j = 0; j < sb.size(); ++j) {
+      if (box.intersects(boxes_b[j]) && CGAL::do_intersect(s, sb[j])) return true;
+    }
+  }
+  return false;
+}
+
+std::vector<FrontierArc> ArcPartsInside(const LocalSafeRegion& owner, const FrontierArc& arc,
+                                        const LocalSafeRegion& other, double spacing_rad) {
+  std::vector<FrontierArc> parts;
+  const int steps = std::max(1, static_cast<int>(std::ceil(arc.AngularWidth() / spacing_rad)));
+  bool inside = false;
+  for (int k = 0; k <= steps; ++k) {
+    const double angle = arc.start_angle_rad + arc.AngularWidth() * k / steps;
+    const bool in = other.Contains(owner.ArcPoint(angle));
+    if (in && !inside) parts.push_back({angle, angle});
+    if (in) parts.back().end_angle_rad = angle;
+    inside = in;
+  }
+  return parts;
 }
 
 bool LocalSafeRegion::Contains(const Eigen::Vector2d& p) const {

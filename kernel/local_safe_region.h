@@ -35,6 +35,8 @@ class LocalSafeRegion {
   const std::vector<FrontierArc>& frontiers() const { return frontiers_; }
   // True when p lies inside or on the boundary; exact (CGAL's filtered predicates).
   bool Contains(const Eigen::Vector2d& p) const;
+  // The point of a frontier arc at `angle_rad` (on the circle of radius r).
+  Eigen::Vector2d ArcPoint(double angle_rad) const;
 
  private:
   Eigen::Vector2d center_ = Eigen::Vector2d::Zero();
@@ -42,6 +44,18 @@ class LocalSafeRegion {
   std::vector<Eigen::Vector2d> boundary_;
   std::vector<FrontierArc> frontiers_;
 };
+
+// True when the two regions share a point: a boundary vertex of one lies in the other, or two
+// boundary edges meet (exact segment-intersection predicates; edges far apart are culled by
+// their boxes first). Overlapping regions are joined by a safe path through the overlap (REG's
+// CURR_INTERSECTION adds an edge then).
+bool Overlaps(const LocalSafeRegion& a, const LocalSafeRegion& b);
+
+// The parts of `arc` (a frontier arc of `owner`) that lie inside `other`, as angular intervals
+// of the arc, found by classifying points spacing_rad apart with the exact containment test
+// (exact at those points; a covered piece narrower than the spacing can be missed).
+std::vector<FrontierArc> ArcPartsInside(const LocalSafeRegion& owner, const FrontierArc& arc,
+                                        const LocalSafeRegion& other, double spacing_rad);
 
 }  // namespace splam::kernel
 

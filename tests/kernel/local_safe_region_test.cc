@@ -91,5 +91,64 @@ TEST(LocalSafeRegion, PropertyEveryBeamRayCrossesTheBoundaryAtItsClippedReading)
   }
 }
 
+TEST(LocalSafeRegion, OverlapNeedsASharedPoint) {
+  const Scan open = UrgScan(Scan::kNoReturn);
+  const LocalSafeRegion a = LocalSafeRegion::FromScan(open, Pose2(0, 0, 0), 2.0);
+  EXPECT_TRUE(Overlaps(a, LocalSafeRegion::FromScan(open, Pose2(3, 0, kPi), 2.0)));
+  EXPECT_FALSE(Overlaps(a, LocalSafeRegion::FromScan(open, Pose2(5, 0, kPi), 2.0)));
+  // Walls at 1 m all round: two such regions 2.5 m apart do not touch, though their radii do.
+  const Scan walled = UrgScan(1.0);
+  const LocalSafeRegion c = LocalSafeRegion::FromScan(walled, Pose2(0, 0, 0), 2.0);
+  EXPECT_FALSE(Overlaps(c, LocalSafeRegion::FromScan(walled, Pose2(2.5, 0, kPi), 2.0)));
+  EXPECT_TRUE(Overlaps(c, LocalSafeRegion::FromScan(walled, Pose2(1.9, 0, kPi), 2.0)));
+}
+
+TEST(LocalSafeRegion, PropertyOverlapAgreesWithSampledCommonPoints) {
+  // Whenever a sample point lies in both regions they overlap; and overlapping regions of
+  // positive area share sample points on a fine enough grid (checked one way only: a grid can
+  // miss a sliver).
+  Random random(73);
+  int overlapping = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    LocalSafeRegion lsr[2];
+    for (LocalSafeRegion& l : lsr) {
+      Scan scan = UrgScan(0.0);
+      for (double& r : scan.ranges_m)
+        r = random.Uniform(0, 1) < 0.4 ? Scan::kNoReturn : random.Uniform(0.3, 3.0);
+      l = LocalSafeRegion::FromScan(
+          scan, Pose2(random.Uniform(-2, 2), random.Uniform(-2, 2), random.Uniform(-3, 3)), 2.0);
+    }
+    bool common = false;
+    for (double x = -4; x <= 4 && !common; x += 0.1) {
+      for (double y = -4; y <= 4 && !common; y += 0.1)
+        common = lsr[0].Contains({x, y}) && lsr[1].Contains({x, y});
+    }
+    const bool overlaps = Overlaps(lsr[0], lsr[1]);
+    EXPECT_EQ(overlaps, Overlaps(lsr[1], lsr[0])) << trial;  // symmetric
+    EXPECT_TRUE(overlaps || !common) << trial;
+    overlapping += overlaps;
+  }
+  EXPECT_GT(overlapping, 10);
+  EXPECT_LT(overlapping, 60);
+}
+
+TEST(LocalSafeRegion, FrontierPartInsideAnotherRegion) {
+  // The frontier of an open region at the origin (r = 2) inside an open region at (2, 0) that
+  // faces it: the arc points within 2 m of (2, 0), i.e. angles in [-60, 60] deg.
+  const Scan open = UrgScan(Scan::kNoReturn);
+  const LocalSafeRegion a = LocalSafeRegion::FromScan(open, Pose2(0, 0, 0), 2.0);
+  const LocalSafeRegion b = LocalSafeRegion::FromScan(open, Pose2(2, 0, kPi), 2.0);
+  ASSERT_EQ(a.frontiers().size(), 1u);
+  const double spacing = DegToRad(0.5);
+  const std::vector<FrontierArc> parts = ArcPartsInside(a, a.frontiers()[0], b, spacing);
+  ASSERT_EQ(parts.size(), 1u);
+  EXPECT_NEAR(parts[0].start_angle_rad, -kPi / 3, spacing);
+  EXPECT_NEAR(parts[0].end_angle_rad, kPi / 3, spacing);
+  // Nothing of it lies in a region far away.
+  EXPECT_TRUE(ArcPartsInside(a, a.frontiers()[0],
+                             LocalSafeRegion::FromScan(open, Pose2(9, 0, 0), 2.0), spacing)
+                  .empty());
+}
+
 }  // namespace
 }  // namespace splam::kernel
