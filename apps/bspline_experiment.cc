@@ -116,17 +116,8 @@ struct Summary {
   std::vector<double> rmse, max, heading_rmse, map_error, wrong_fraction, wrong_beam_fraction, ms,
       feature_fraction, nees;
 };
-double Mean(const std::vector<double>& v) {
-  double s = 0.0;
-  for (double x : v) s += x;
-  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
-}
-double Std(const std::vector<double>& v) {
-  const double m = Mean(v);
-  double s = 0.0;
-  for (double x : v) s += (x - m) * (x - m);
-  return v.empty() ? 0.0 : std::sqrt(s / static_cast<double>(v.size()));
-}
+double Mean(const std::vector<double>& v) { return estimation::MeanStd(v).first; }
+double Std(const std::vector<double>& v) { return estimation::MeanStd(v).second; }
 
 }  // namespace
 

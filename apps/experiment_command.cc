@@ -227,11 +227,7 @@ int RunCorridorLines(const ExperimentArgs& args) {
       report["distances"].push_back(
           {{"name", distances[k].name}, {"true_m", truth}, {"mapped_runs", 0}});
     } else {
-      double mean = 0, var = 0;
-      for (double x : v) mean += x;
-      mean /= static_cast<double>(v.size());
-      for (double x : v) var += (x - mean) * (x - mean);
-      const double std = std::sqrt(var / static_cast<double>(v.size()));
+      const auto [mean, std] = estimation::MeanStd(v);
       const double error = 100.0 * std::abs(mean - truth) / truth;
       row = fmt::format("| {} | {:.3f} | {:.3f} +- {:.3f} | {:.2f} | {}/{} |\n", distances[k].name,
                         truth, mean, std, error, v.size(), args.runs);

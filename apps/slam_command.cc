@@ -136,7 +136,9 @@ int RunSlam(const SlamArgs& args) {
     options.odometry = odometry_noise;
     options.association = args.association;
     options.max_curve_range_m = args.max_curve_range_m;
-    options.range_sigma_floor_m = urg ? 0.0 : sigma;
+    // The simulator's URG noise has no constant part; a --range-sigma given is used as it is.
+    options.range_sigma_floor_m =
+        args.range_sigma_m >= 0 ? args.range_sigma_m : (urg ? 0.0 : sigma);
     options.range_sigma_fraction = sigma_fraction;
     problem = options.Validate();
     if (problem.empty()) slam = MakeBSplineSlam(start, start_covariance, options);

@@ -7,26 +7,13 @@
 #include "estimation/bspline_models.h"
 #include "estimation/chi_square.h"
 #include "kernel/bspline_fit.h"
+#include "kernel/shapes.h"
 
 namespace splam::estimation {
 namespace {
 
 using kernel::CubicBSpline;
 using kernel::SplineCurve;
-
-// Axis-aligned box of a set of points.
-struct Box {
-  Eigen::Vector2d lo, hi;
-  double Gap(const Box& o) const { return (lo - o.hi).cwiseMax(o.lo - hi).cwiseMax(0.0).norm(); }
-};
-Box BoxOf(const std::vector<Eigen::Vector2d>& points) {
-  Box b{points.front(), points.front()};
-  for (const Eigen::Vector2d& p : points) {
-    b.lo = b.lo.cwiseMin(p);
-    b.hi = b.hi.cwiseMax(p);
-  }
-  return b;
-}
 
 // Approximate arc length of every measured point along its curve: the chord length along the
 // points scaled to the curve's length (the fit's parameters are chord lengths too).
@@ -39,8 +26,6 @@ std::vector<double> ApproximateArcLengths(const SplineCurve& curve) {
   return s;
 }
 
-// Measured points in the world frame at the current pose, D = t + R(th) l_T (r cos a, r sin a),
-// with their derivatives by the pose and by the range.
 // Variance of a measured range: the laser's noise plus the model error.
 double RangeVariance(const EkfBSplineSlamOptions& o, double range_m) {
   const double sigma = o.range_sigma_floor_m + o.range_sigma_fraction * range_m;
@@ -134,16 +119,18 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
   std::vector<SplineCurve> observed;
   for (const SplineCurve& c : curves) observed.push_back(kernel::Transformed(c, world_T_laser));
   const double d_min = options_.association_options.d_min_m;
-  std::vector<Box> map_boxes;
+  // Boxes of the map splines' control points, straight from the state.
+  std::vector<kernel::Box2> map_boxes(splines_.size());
   std::vector<std::optional<SplineCurve>> map_curves(splines_.size());
-  for (const Landmark& l : splines_) {
-    const CubicBSpline spline = SplineOf(l);
-    map_boxes.push_back(BoxOf(spline.control_points()));
+  for (std::size_t l = 0; l < splines_.size(); ++l) {
+    for (Eigen::Index i = 0; i < splines_[l].size(); i += 2)
+      map_boxes[l].Extend(ekf_.state().segment<2>(splines_[l].index + i));
   }
   std::vector<Match> matches;
   std::vector<bool> near_map(observed.size(), false);
   for (std::size_t i = 0; i < observed.size(); ++i) {
-    const Box box = BoxOf(observed[i].spline.control_points());
+    kernel::Box2 box;
+    for (const Eigen::Vector2d& p : observed[i].spline.control_points()) box.Extend(p);
     for (std::size_t l = 0; l < splines_.size(); ++l) {
       if (box.Gap(map_boxes[l]) > d_min) continue;
       if (!map_curves[l])
@@ -266,7 +253,7 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
     }
     // Match a candidate (a control point within d_min); promote it when seen often enough.
     const std::vector<Eigen::Vector2d> world_controls =
-        kernel::Transformed(curves[i], pose() * robot_T_laser).spline.control_points();
+        curves[i].spline.Transformed(pose() * robot_T_laser).control_points();
     auto near = [&](const Candidate& c) {
       return c.last_scan != scans_ &&
              std::any_of(world_controls.begin(), world_controls.end(), [&](const auto& a) {

@@ -7,9 +7,6 @@
 #include "kernel/angle.h"
 
 namespace splam::estimation {
-namespace {
-
-// Mean and (population) standard deviation.
 std::pair<double, double> MeanStd(const std::vector<double>& v) {
   if (v.empty()) return {0.0, 0.0};
   double sum = 0.0, sum2 = 0.0;
@@ -18,8 +15,6 @@ std::pair<double, double> MeanStd(const std::vector<double>& v) {
   for (double x : v) sum2 += (x - mean) * (x - mean);
   return {mean, std::sqrt(sum2 / static_cast<double>(v.size()))};
 }
-
-}  // namespace
 
 TrajectoryError CompareToTruth(const kernel::Trajectory& unsorted_truth,
                                const kernel::Trajectory& estimate) {

@@ -2,6 +2,7 @@
 #define SPLAM_ESTIMATION_METRICS_H_
 
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 #include "kernel/pose2.h"
@@ -10,6 +11,9 @@
 // Standard ways to score a SLAM run: against ground truth (simulated runs) and with the
 // relations metric of Kümmerle et al. 2009 (logs with a .relations file).
 namespace splam::estimation {
+
+// Mean and population standard deviation; (0, 0) for no values.
+std::pair<double, double> MeanStd(const std::vector<double>& v);
 
 struct TrajectoryError {
   std::size_t matched = 0;  // estimate poses with a truth pose at the same time

@@ -32,6 +32,10 @@ struct Box2 {
   }
   bool IsEmpty() const { return (min.array() > max.array()).any(); }
   Eigen::Vector2d Size() const { return max - min; }
+  // Distance between the two boxes, 0 when they touch or overlap (both non-empty).
+  double Gap(const Box2& b) const {
+    return (min - b.max).cwiseMax(b.min - max).cwiseMax(0.0).norm();
+  }
 };
 
 // Every Intersect* function returns the smallest ray parameter t with t_min < t < t_max at
