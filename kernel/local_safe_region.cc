@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "kernel/angle.h"
 
@@ -26,6 +27,7 @@ LocalSafeRegion LocalSafeRegion::FromScan(const Scan& scan, const Pose2& world_T
   lsr.center_ = world_T_laser.translation();
   lsr.radius_ = radius_m;
   const bool full_circle = scan.FieldOfView() + scan.angular_step_rad >= 2.0 * kPi - 1e-9;
+  lsr.full_circle_ = full_circle;
   if (!full_circle) lsr.boundary_.push_back(lsr.center_);
   bool in_arc = false;
   for (std::size_t i = 0; i < scan.size(); ++i) {
@@ -96,6 +98,33 @@ std::vector<FrontierArc> ArcPartsInside(const LocalSafeRegion& owner, const Fron
     inside = in;
   }
   return parts;
+}
+
+double SegmentClearance(const LocalSafeRegion& region, const Eigen::Vector2d& a,
+                        const Eigen::Vector2d& b) {
+  const std::vector<Eigen::Vector2d>& pts = region.boundary();
+  const std::size_t n = pts.size();
+  if (n < 3) return 0.0;
+  const CgalKernel::Segment_2 s(CgalPoint(a.x(), a.y()), CgalPoint(b.x(), b.y()));
+  const Eigen::AlignedBox2d box(a.cwiseMin(b), a.cwiseMax(b));
+  double best_sq = std::numeric_limits<double>::infinity();
+  // Edge i joins vertex i to vertex i + 1; vertex 0 is the sensor of a partial-circle region.
+  const std::size_t first = region.full_circle() ? 0 : 1;
+  const std::size_t last = region.full_circle() ? n : n - 1;
+  for (std::size_t i = first; i < last; ++i) {
+    const Eigen::Vector2d& p = pts[i];
+    const Eigen::Vector2d& q = pts[(i + 1) % n];
+    // The gap between the boxes is a lower bound of the distance; skip edges that cannot win.
+    const Eigen::AlignedBox2d edge_box(p.cwiseMin(q), p.cwiseMax(q));
+    const double gap =
+        std::max({0.0, edge_box.min().x() - box.max().x(), box.min().x() - edge_box.max().x()});
+    const double gap_y =
+        std::max({0.0, edge_box.min().y() - box.max().y(), box.min().y() - edge_box.max().y()});
+    if (gap * gap + gap_y * gap_y >= best_sq) continue;
+    const CgalKernel::Segment_2 e(CgalPoint(p.x(), p.y()), CgalPoint(q.x(), q.y()));
+    best_sq = std::min(best_sq, CGAL::to_double(CGAL::squared_distance(s, e)));
+  }
+  return std::sqrt(best_sq);
 }
 
 bool LocalSafeRegion::Contains(const Eigen::Vector2d& p) const {

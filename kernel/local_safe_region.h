@@ -37,12 +37,15 @@ class LocalSafeRegion {
   bool Contains(const Eigen::Vector2d& p) const;
   // The point of a frontier arc at `angle_rad` (on the circle of radius r).
   Eigen::Vector2d ArcPoint(double angle_rad) const;
+  // True when the scan covered the full circle (the boundary has no vertex at the sensor).
+  bool full_circle() const { return full_circle_; }
 
  private:
   Eigen::Vector2d center_ = Eigen::Vector2d::Zero();
   double radius_ = 0.0;
   std::vector<Eigen::Vector2d> boundary_;
   std::vector<FrontierArc> frontiers_;
+  bool full_circle_ = false;
 };
 
 // True when the two regions share a point: a boundary vertex of one lies in the other, or two
@@ -56,6 +59,15 @@ bool Overlaps(const LocalSafeRegion& a, const LocalSafeRegion& b);
 // (exact at those points; a covered piece narrower than the spacing can be missed).
 std::vector<FrontierArc> ArcPartsInside(const LocalSafeRegion& owner, const FrontierArc& arc,
                                         const LocalSafeRegion& other, double spacing_rad);
+
+// How far the segment a-b stays from the boundary of `region`: the smallest distance between the
+// segment and a boundary edge (0 when it crosses the boundary). The two edges that meet at the
+// sensor of a partial-circle region are left out: they only bound what the sensor did not see,
+// and a robot standing at the sensor is inside them. A disc of radius rho swept along a-b stays
+// inside the region when `a` is inside and the clearance exceeds rho (up to the obstacle parts
+// that poke between two beams, less than the beam spacing times the range).
+double SegmentClearance(const LocalSafeRegion& region, const Eigen::Vector2d& a,
+                        const Eigen::Vector2d& b);
 
 }  // namespace splam::kernel
 

@@ -150,5 +150,67 @@ TEST(LocalSafeRegion, FrontierPartInsideAnotherRegion) {
                   .empty());
 }
 
+// A full-circle scan inside a corridor |y| <= 1 (exact ranges), one beam per degree.
+Scan CorridorScan() {
+  Scan scan;
+  scan.angular_step_rad = 2.0 * kPi / 360;
+  scan.start_angle_rad = -kPi;
+  scan.max_range_m = 4.0;
+  for (int i = 0; i < 360; ++i) {
+    const double s = std::abs(std::sin(scan.BeamAngle(static_cast<std::size_t>(i))));
+    scan.ranges_m.push_back(s < 1e-9 ? Scan::kNoReturn : 1.0 / s);
+  }
+  return scan;
+}
+
+TEST(LocalSafeRegion, ClearanceOfASegmentFromTheWalls) {
+  const LocalSafeRegion lsr = LocalSafeRegion::FromScan(CorridorScan(), Pose2(), 3.0);
+  // Along the axis the walls are 1 m away; the boundary's chords cut in by less than 1 mm near
+  // the axis and the frontier caps are 3 m away.
+  EXPECT_NEAR(SegmentClearance(lsr, {0, 0}, {1.5, 0}), 1.0, 2e-3);
+  EXPECT_NEAR(SegmentClearance(lsr, {0, 0}, {1.5, 0.5}), 0.5, 2e-3);
+  EXPECT_EQ(SegmentClearance(lsr, {0, 0}, {0, 1.5}), 0.0);  // through the wall
+  // A partial-circle region ignores its two edges at the sensor.
+  const LocalSafeRegion ahead = LocalSafeRegion::FromScan(UrgScan(Scan::kNoReturn), Pose2(), 2.0);
+  EXPECT_NEAR(SegmentClearance(ahead, {0, 0}, {1, 0}), 1.0, 1e-3);
+}
+
+TEST(LocalSafeRegion, PropertyClearanceIsTheDistanceToTheBoundary) {
+  Random random(11);
+  for (int trial = 0; trial < 100; ++trial) {
+    Scan scan = UrgScan(0.0);
+    scan.angular_step_rad = DegToRad(1.0);
+    scan.start_angle_rad = -kPi;
+    scan.ranges_m.assign(360, 0.0);
+    for (double& r : scan.ranges_m) r = random.Uniform(0.5, 3.0);
+    const Pose2 pose(random.Uniform(-5, 5), random.Uniform(-5, 5), random.Uniform(-kPi, kPi));
+    const LocalSafeRegion lsr = LocalSafeRegion::FromScan(scan, pose, 2.0);
+    const double angle = random.Uniform(-kPi, kPi);
+    const Eigen::Vector2d b =
+        pose.translation() +
+        random.Uniform(0.1, 2.5) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    const double clearance = SegmentClearance(lsr, pose.translation(), b);
+    // Brute force: points along the segment against points along the edges.
+    double brute = std::numeric_limits<double>::infinity();
+    const auto& pts = lsr.boundary();
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const Eigen::Vector2d& p = pts[i];
+      const Eigen::Vector2d& q = pts[(i + 1) % pts.size()];
+      for (int k = 0; k <= 10; ++k) {
+        const Eigen::Vector2d e = p + (q - p) * k / 10.0;
+        for (int j = 0; j <= 100; ++j) {
+          brute = std::min(
+              brute, (e - (pose.translation() + (b - pose.translation()) * j / 100.0)).norm());
+        }
+      }
+    }
+    EXPECT_LE(clearance, brute + 1e-9) << "trial " << trial;
+    EXPECT_GE(clearance, brute - 0.02) << "trial " << trial;  // the sampling step
+    if (!lsr.Contains(b)) {
+      EXPECT_EQ(clearance, 0.0) << "trial " << trial;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace splam::kernel
