@@ -11,6 +11,7 @@ void AddRenderCommand(CLI::App* app, int* exit_code);
 void AddSlamCommand(CLI::App* app, int* exit_code);
 void AddEvalCommand(CLI::App* app, int* exit_code);
 void AddExperimentCommand(CLI::App* app, int* exit_code);
+void AddExploreCommand(CLI::App* app, int* exit_code);
 
 // Exit statuses of every command.
 inline constexpr int kExitOk = 0;

@@ -5,6 +5,7 @@
 #include <boost/graph/adjacency_list.hpp>
 #include <vector>
 
+#include "kernel/local_safe_region.h"
 #include "kernel/pose2.h"
 
 // The graph that exploration builds (paper 003 §3.1, SPEC §9): a node per configuration where
@@ -12,7 +13,9 @@
 namespace splam::graph {
 
 struct NodeData {
-  kernel::Pose2 configuration;  // world frame
+  kernel::Pose2 configuration;                 // world frame
+  kernel::LocalSafeRegion lsr;                 // perceived at the configuration
+  std::vector<kernel::FrontierArc> frontiers;  // free frontiers of the LSR not yet explored
 };
 
 struct EdgeData {
@@ -30,9 +33,17 @@ using Vertex = boost::graph_traits<ExplorationGraph>::vertex_descriptor;
 
 // Adds a node at configuration q; returns its vertex.
 Vertex AddNode(ExplorationGraph* graph, const kernel::Pose2& q);
-// Adds an edge along `path` (whose ends should be the two configurations); its length is the
-// polyline's length, or the straight-line distance when the path is empty.
+// Adds an edge along `path` from a to b (its ends should be the two configurations; it is stored
+// from the lower to the higher vertex); its length is the polyline's length, or the straight-line
+// distance when the path is empty.
 void AddEdge(ExplorationGraph* graph, Vertex a, Vertex b, std::vector<Eigen::Vector2d> path = {});
+// True when a and b are joined by an edge.
+bool HasEdge(const ExplorationGraph& graph, Vertex a, Vertex b);
+// The waypoints that lead along the vertex path `vertices` (consecutive vertices must be joined):
+// every edge's path oriented in the direction of travel, without the starting configuration;
+// straight lines for edges without a path.
+std::vector<Eigen::Vector2d> Waypoints(const ExplorationGraph& graph,
+                                       const std::vector<Vertex>& vertices);
 
 }  // namespace splam::graph
 

@@ -238,6 +238,31 @@ void Figure::DrawPolyline(const std::vector<Eigen::Vector2d>& points, Rgb color,
   impl_->AddLegend(legend, color, LegendKind::kLine);
 }
 
+void Figure::DrawPolygon(const std::vector<Eigen::Vector2d>& points, Rgb color, double fill_alpha,
+                         double width_px, const std::string& legend) {
+  if (points.size() < 3) return;
+  cairo_t* cr = impl_->cr;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d q = impl_->ToPixel(points[i]);
+    if (i == 0) {
+      cairo_move_to(cr, q.x(), q.y());
+    } else {
+      cairo_line_to(cr, q.x(), q.y());
+    }
+  }
+  cairo_close_path(cr);
+  SetColor(cr, color, fill_alpha);
+  cairo_fill_preserve(cr);
+  SetColor(cr, color);
+  cairo_set_line_width(cr, width_px);
+  if (width_px > 0.0) {
+    cairo_stroke(cr);
+  } else {
+    cairo_new_path(cr);
+  }
+  impl_->AddLegend(legend, color, LegendKind::kPoints);
+}
+
 void Figure::DrawMarkers(const std::vector<Eigen::Vector2d>& points, Marker marker, Rgb color,
                          double size_px, const std::string& legend) {
   cairo_t* cr = impl_->cr;

@@ -55,6 +55,10 @@ class Figure {
   // A polyline through the points (dashed when `dashed`).
   void DrawPolyline(const std::vector<Eigen::Vector2d>& points, Rgb color, double width_px,
                     const std::string& legend, bool dashed = false);
+  // A closed polygon filled with `color` at fill_alpha (0-1) and outlined at width_px (0: no
+  // outline).
+  void DrawPolygon(const std::vector<Eigen::Vector2d>& points, Rgb color, double fill_alpha,
+                   double width_px, const std::string& legend);
   enum class Marker { kCircle, kDiamond };
   // Open markers of `size_px` (radius) at the points: circles mark inflection points and
   // diamonds corners in every splam picture.

@@ -46,4 +46,11 @@ double MaxAbsDifference(const Pose2& a, const Pose2& b) {
                    std::abs(WrapAngle(a.theta() - b.theta()))});
 }
 
+Pose2 UnicycleIncrement(double v_mps, double w_radps, double dt_s) {
+  const double dth = w_radps * dt_s;
+  if (std::abs(dth) < 1e-12) return Pose2(v_mps * dt_s, 0.0, dth);
+  const double r = v_mps / w_radps;
+  return Pose2(r * std::sin(dth), r * (1.0 - std::cos(dth)), dth);
+}
+
 }  // namespace splam::kernel

@@ -39,6 +39,10 @@ class Pose2 {
 };
 
 // Largest |difference| over x, y and the wrapped angle difference.
+// The exact motion in the robot frame of a unicycle driven at constant (v, w) for dt: an arc of
+// radius v / w, or a straight line when w == 0.
+Pose2 UnicycleIncrement(double v_mps, double w_radps, double dt_s);
+
 double MaxAbsDifference(const Pose2& a, const Pose2& b);
 
 }  // namespace splam::kernel

@@ -20,13 +20,6 @@ std::string OdometryNoiseOptions::Validate() const {
   return "";
 }
 
-kernel::Pose2 UnicycleIncrement(double v_mps, double w_radps, double dt_s) {
-  const double dth = w_radps * dt_s;
-  if (std::abs(dth) < 1e-12) return kernel::Pose2(v_mps * dt_s, 0.0, dth);
-  const double r = v_mps / w_radps;
-  return kernel::Pose2(r * std::sin(dth), r * (1.0 - std::cos(dth)), dth);
-}
-
 kernel::Pose2 CorruptIncrement(const kernel::Pose2& increment, const OdometryNoiseOptions& options,
                                kernel::Random* random) {
   const double d = increment.translation().norm();

@@ -37,9 +37,7 @@ struct OdometryNoiseOptions {
   }
 };
 
-// The exact motion in the robot frame of a unicycle driven at constant (v, w) for dt: an arc of
-// radius v / w, or a straight line when w == 0.
-kernel::Pose2 UnicycleIncrement(double v_mps, double w_radps, double dt_s);
+using kernel::UnicycleIncrement;  // the motion model lives in kernel/pose2.h
 
 // The increment as odometry measures it: `increment` plus noise drawn from `options`.
 kernel::Pose2 CorruptIncrement(const kernel::Pose2& increment, const OdometryNoiseOptions& options,

@@ -1,0 +1,197 @@
+#include "apps/exploration_run.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "apps/simulated_robot.h"
+#include "exploration/coverage.h"
+#include "exploration/perception.h"
+#include "io/plot.h"
+#include "io/render.h"
+#include "sim/ray_caster.h"
+#include "sim/simulator.h"
+
+namespace splam::apps {
+namespace {
+
+constexpr double kCoverageCell = 0.1;  // m
+
+std::unique_ptr<exploration::Localization> MakeLocalization(const std::string& name) {
+  if (name == "ground-truth") return std::make_unique<exploration::GroundTruthLocalization>();
+  if (name == "odometry") return std::make_unique<exploration::OdometryLocalization>();
+  return nullptr;
+}
+
+}  // namespace
+
+ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup) {
+  ExploreOutcome outcome;
+  const auto begin = std::chrono::steady_clock::now();
+  exploration::ExplorerOptions options = setup.options;
+  options.seed = setup.seed;
+  const std::unique_ptr<exploration::Explorer> explorer =
+      exploration::MakeExplorer(setup.explorer, options);
+  std::unique_ptr<exploration::Localization> localization = MakeLocalization(setup.localization);
+  if (!explorer) {
+    outcome.error = "unknown explorer '" + setup.explorer + "' (srt, reg)";
+    return outcome;
+  }
+  if (!localization) {
+    outcome.error = "unknown localisation '" + setup.localization + "' (ground-truth, odometry)";
+    return outcome;
+  }
+  if (!world.start) {
+    outcome.error = "world '" + world.name + "' has no start pose";
+    return outcome;
+  }
+  sim::SimulatorOptions sim_options;
+  sim_options.enable_sonar = setup.sonar;
+  sim_options.odometry = sim_options.odometry.Scaled(setup.odometry_noise_scale);
+  if (const std::string problem = sim_options.Validate(); !problem.empty()) {
+    outcome.error = problem;
+    return outcome;
+  }
+  const sim::RayCaster caster(world);
+  sim::Simulator simulator(caster, sim_options, *world.start, setup.seed);
+  if (!simulator.IsFree(*world.start)) {
+    outcome.error = "the start pose of '" + world.name + "' collides with an obstacle";
+    return outcome;
+  }
+  SimulatedRobot robot(&simulator);
+  outcome.robot_radius_m = robot.description().radius_m;
+  outcome.run = explorer->Run(&robot, localization.get());
+  if (outcome.run.termination == exploration::Termination::kInvalidInput) {
+    outcome.error = outcome.run.message;
+    return outcome;
+  }
+
+  // Coverage: the LSRs at the true poses of the nodes over the reachable free space.
+  const double half_diagonal = kCoverageCell * std::sqrt(0.5);
+  kernel::Box2 bounds = world.Bounds();
+  bounds.min -= Eigen::Vector2d::Constant(0.5);
+  bounds.max += Eigen::Vector2d::Constant(0.5);
+  exploration::CoverageGrid grid(
+      bounds, kCoverageCell, world.start->translation(), [&](const Eigen::Vector2d& c) {
+        return !caster.IsInsideObstacle(c) && caster.Nearest(c, half_diagonal).obstacle < 0;
+      });
+  outcome.reachable_area_m2 = grid.reachable_cells() * kCoverageCell * kCoverageCell;
+  for (const exploration::NodeRecord& node : outcome.run.nodes) {
+    grid.Cover(exploration::SafeRegionAt(node.safe_region_scan, node.true_pose, robot.description(),
+                                         options.lsr_radius_m));
+    outcome.coverage_time_s.push_back(node.time_s);
+    outcome.coverage_fraction.push_back(grid.CoveredFraction());
+  }
+  outcome.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  return outcome;
+}
+
+nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& setup,
+                                 const ExploreOutcome& outcome) {
+  const exploration::ExplorationRun& run = outcome.run;
+  const int nodes = static_cast<int>(boost::num_vertices(run.graph));
+  nlohmann::json report;
+  report["world"] = world.name;
+  report["explorer"] = setup.explorer;
+  report["localization"] = setup.localization;
+  report["seed"] = setup.seed;
+  report["nodes"] = nodes;
+  report["edges"] = boost::num_edges(run.graph);
+  report["distance_m"] = run.distance_m;
+  report["time_s"] = run.time_s;
+  report["coverage_fraction"] = outcome.coverage();
+  report["reachable_free_area_m2"] = outcome.reachable_area_m2;
+  report["termination"] = exploration::TerminationName(run.termination);
+  report["termination_message"] = run.message;
+  report["moves"] = run.moves;
+  report["failed_moves"] = run.failed_moves;
+  report["blocked_steps"] = run.blocked_steps;
+  report["unreachable_frontiers"] = run.unreachable_frontiers;
+  report["planning_wall_s"] = run.planning_wall_s;
+  report["planning_ms_per_node"] = nodes > 0 ? 1e3 * run.planning_wall_s / nodes : 0.0;
+  report["wall_s"] = outcome.wall_s;
+  const exploration::ExplorerOptions& o = setup.options;
+  report["options"] = {{"lsr_radius_m", o.lsr_radius_m},
+                       {"alpha", o.alpha},
+                       {"clearance_margin_m", o.clearance_margin_m},
+                       {"min_frontier_m", o.min_frontier_m},
+                       {"srt_max_attempts", o.srt_max_attempts},
+                       {"reg_piece_factor", o.reg_piece_factor},
+                       {"max_nodes", o.max_nodes},
+                       {"max_time_s", o.max_time_s},
+                       {"sonar", setup.sonar},
+                       {"odometry_noise_scale", setup.odometry_noise_scale}};
+  return report;
+}
+
+std::string SaveExplorationPicture(const sim::World& world, const ExploreOutcome& outcome,
+                                   const std::string& title,
+                                   const std::vector<std::string>& paths) {
+  const exploration::ExplorationRun& run = outcome.run;
+  const graph::ExplorationGraph& g = run.graph;
+  kernel::Box2 area = world.Bounds();
+  io::FigureOptions figure_options;
+  figure_options.title = title;
+  io::Figure figure(area, figure_options);
+  constexpr io::Rgb kRegion{0.20, 0.65, 0.30};
+  constexpr io::Rgb kEdge{0.90, 0.45, 0.05};
+  constexpr io::Rgb kShortcut{0.55, 0.25, 0.70};
+  constexpr io::Rgb kFrontier{0.0, 0.75, 0.0};
+  for (graph::Vertex v = 0; v < boost::num_vertices(g); ++v)
+    figure.DrawPolygon(g[v].lsr.boundary(), kRegion, 0.06, 0.3, "local safe regions");
+  figure.DrawWorld(world);
+  std::vector<kernel::Pose2> truth;
+  for (const exploration::TraceSample& s : run.trace) truth.push_back(s.truth);
+  figure.DrawPath(truth, io::palette::kTrue, 1.0, "true path");
+  for (auto [e, end] = boost::edges(g); e != end; ++e) {
+    const graph::Vertex a = boost::source(*e, g), b = boost::target(*e, g);
+    const graph::Vertex child = std::max(a, b);
+    const bool driven = run.nodes[child].parent == static_cast<int>(std::min(a, b));
+    std::vector<Eigen::Vector2d> path = g[*e].path;
+    if (path.size() < 2)
+      path = {g[a].configuration.translation(), g[b].configuration.translation()};
+    if (driven) {
+      figure.DrawPolyline(path, kEdge, 2.0, run.explorer == "srt" ? "tree edges" : "driven edges");
+    } else {
+      figure.DrawPolyline(path, kShortcut, 1.5, "edges through overlaps", true);
+    }
+  }
+  std::vector<Eigen::Vector2d> nodes;
+  for (graph::Vertex v = 0; v < boost::num_vertices(g); ++v)
+    nodes.push_back(g[v].configuration.translation());
+  figure.DrawMarkers(nodes, io::Figure::Marker::kCircle, kEdge, 3.0, "nodes");
+  if (!nodes.empty())
+    figure.DrawMarkers({nodes.front()}, io::Figure::Marker::kDiamond, io::palette::kEstimate, 7.0,
+                       "start");
+  // SRT keeps no frontier bookkeeping: its free arcs never shrink, so only REG's are drawn.
+  for (graph::Vertex v = 0; run.explorer == "reg" && v < boost::num_vertices(g); ++v) {
+    for (const kernel::FrontierArc& arc : g[v].frontiers) {
+      std::vector<Eigen::Vector2d> points;
+      const int n = std::max(2, static_cast<int>(std::ceil(arc.AngularWidth() / 0.02)));
+      for (int k = 0; k <= n; ++k)
+        points.push_back(g[v].lsr.ArcPoint(arc.start_angle_rad + arc.AngularWidth() * k / n));
+      figure.DrawPolyline(points, kFrontier, 3.0, "open frontiers");
+    }
+  }
+  if (!run.trace.empty())
+    figure.DrawRobot(run.trace.back().truth, outcome.robot_radius_m, io::palette::kTrue);
+  for (const std::string& path : paths) {
+    if (std::string error = figure.Save(path); !error.empty()) return error;
+  }
+  return "";
+}
+
+std::string SaveCoveragePlot(const ExploreOutcome& outcome, const std::string& title,
+                             const std::vector<std::string>& paths) {
+  io::PlotSeries coverage{"explored", io::palette::kTrue, outcome.coverage_time_s, {}};
+  for (double f : outcome.coverage_fraction) coverage.y.push_back(100.0 * f);
+  io::PlotSeries nodes{"nodes", io::palette::kEstimate, outcome.coverage_time_s, {}};
+  for (std::size_t k = 0; k < outcome.coverage_time_s.size(); ++k)
+    nodes.y.push_back(static_cast<double>(k + 1));
+  io::PlotOptions options;
+  options.title = title;
+  options.x_label = "simulated time (s)";
+  return io::SavePlot({{"explored free space (%)", {coverage}}, {"nodes", {nodes}}}, options,
+                      paths);
+}
+
+}  // namespace splam::apps

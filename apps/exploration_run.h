@@ -1,0 +1,54 @@
+#ifndef SPLAM_APPS_EXPLORATION_RUN_H_
+#define SPLAM_APPS_EXPLORATION_RUN_H_
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "exploration/explorer.h"
+#include "sim/world.h"
+
+namespace splam::apps {
+
+// One simulated exploration: which explorer, localisation and seed.
+struct ExploreSetup {
+  std::string explorer = "reg";               // "srt" or "reg"
+  std::string localization = "ground-truth";  // or "odometry"
+  std::uint64_t seed = 1;                     // simulator noise and the explorer's draws
+  double odometry_noise_scale = 1.0;          // times the default odometry noise
+  bool sonar = true;                          // complete the LSR behind the robot with sonar
+  exploration::ExplorerOptions options;       // options.seed is overwritten by `seed`
+};
+
+struct ExploreOutcome {
+  std::string error;  // non-empty when the run could not start (nothing else is valid then)
+  exploration::ExplorationRun run;
+  double robot_radius_m = 0.0;
+  // Explored fraction of the reachable free space (exploration::CoverageGrid, 10 cm cells) after
+  // each node, from the LSRs placed at the nodes' true poses.
+  std::vector<double> coverage_time_s, coverage_fraction;
+  double reachable_area_m2 = 0.0;
+  double wall_s = 0.0;  // whole run, simulation included
+  double coverage() const { return coverage_fraction.empty() ? 0.0 : coverage_fraction.back(); }
+};
+
+// Runs the exploration in `world` from its start pose and evaluates its coverage.
+ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup);
+
+// report.json of a run.
+nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& setup,
+                                 const ExploreOutcome& outcome);
+
+// The graph (or tree) over the world with the nodes' LSRs, the open frontiers and the true
+// path (paper 003 Fig. 17), to each path (.svg or .png); empty on success.
+std::string SaveExplorationPicture(const sim::World& world, const ExploreOutcome& outcome,
+                                   const std::string& title, const std::vector<std::string>& paths);
+
+// Explored fraction and nodes over simulated time, to each path; empty on success.
+std::string SaveCoveragePlot(const ExploreOutcome& outcome, const std::string& title,
+                             const std::vector<std::string>& paths);
+
+}  // namespace splam::apps
+
+#endif  // SPLAM_APPS_EXPLORATION_RUN_H_

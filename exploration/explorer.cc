@@ -1,0 +1,47 @@
+#include "exploration/explorer.h"
+
+#include <cmath>
+
+#include "exploration/reg.h"
+#include "exploration/srt.h"
+
+namespace splam::exploration {
+
+std::string ExplorerOptions::Validate() const {
+  if (!(lsr_radius_m > 0.0) || !std::isfinite(lsr_radius_m)) return "lsr_radius_m must be positive";
+  if (!(alpha > 0.0 && alpha < 1.0)) return "alpha must lie in (0, 1)";
+  if (!(clearance_margin_m >= 0.0)) return "clearance_margin_m must be >= 0";
+  if (!(min_frontier_m >= 0.0)) return "min_frontier_m must be >= 0";
+  if (!(arc_sampling_rad > 0.0)) return "arc_sampling_rad must be positive";
+  if (srt_max_attempts < 1) return "srt_max_attempts must be at least 1";
+  if (!(reg_piece_factor > 0.0)) return "reg_piece_factor must be positive";
+  if (max_nodes < 1) return "max_nodes must be at least 1";
+  if (!(max_time_s > 0.0)) return "max_time_s must be positive";
+  if (max_failed_moves < 1) return "max_failed_moves must be at least 1";
+  if (const std::string problem = motion.Validate(); !problem.empty()) return "motion: " + problem;
+  return "";
+}
+
+std::string TerminationName(Termination termination) {
+  switch (termination) {
+    case Termination::kExplored:
+      return "explored";
+    case Termination::kNodeLimit:
+      return "node_limit";
+    case Termination::kTimeLimit:
+      return "time_limit";
+    case Termination::kStuck:
+      return "stuck";
+    case Termination::kInvalidInput:
+      return "invalid_input";
+  }
+  return "unknown";
+}
+
+std::unique_ptr<Explorer> MakeExplorer(const std::string& name, const ExplorerOptions& options) {
+  if (name == "srt") return std::make_unique<SrtExplorer>(options);
+  if (name == "reg") return std::make_unique<RegExplorer>(options);
+  return nullptr;
+}
+
+}  // namespace splam::exploration

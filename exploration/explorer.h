@@ -1,0 +1,96 @@
+#ifndef SPLAM_EXPLORATION_EXPLORER_H_
+#define SPLAM_EXPLORATION_EXPLORER_H_
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "exploration/localization.h"
+#include "exploration/motion.h"
+#include "exploration/robot_interface.h"
+#include "graph/exploration_graph.h"
+#include "kernel/angle.h"
+#include "kernel/scan.h"
+
+// Sensor-based exploration (SPEC §9): SRT (Oriolo et al. 2004) and REG (paper 003 §3.1).
+namespace splam::exploration {
+
+struct ExplorerOptions {
+  double lsr_radius_m = 3.0;  // r: LSRs are clipped here (below the URG-04LX's 4 m range)
+  // A new node lies alpha * r from the current one, 0 < alpha < 1, and alpha * r plus the robot's
+  // radius and clearance margin must stay inside r. Paper 003 gives no value; with 0.6 SRT's
+  // VALID_CONF starves early in `complex` (see README), 0.8 lets both explorers finish.
+  double alpha = 0.8;
+  // Every straight leg the robot drives keeps its radius plus this margin from the LSR
+  // boundary (covers range noise and the obstacle parts between two beams), m.
+  double clearance_margin_m = 0.05;
+  // Free arcs shorter than this at radius r are not frontiers (slits between obstacles that
+  // the robot cannot pass), m.
+  double min_frontier_m = 0.5;
+  // Spacing of the arc points classified when a frontier part lies inside another LSR, rad.
+  double arc_sampling_rad = kernel::DegToRad(1.0);
+  // SRT: RANDOM_DIR + VALID_CONF attempts before backtracking to the parent.
+  int srt_max_attempts = 30;
+  // REG: FRONT_RAND takes at most factor * 2 r acos(alpha / 2) of arc length, the part of the
+  // circle of radius r around the node that a disc of radius r alpha * r away covers.
+  double reg_piece_factor = 1.0;
+  // Caps, each a stated termination reason: nodes, simulated seconds, moves in a row that fail.
+  int max_nodes = 400;
+  double max_time_s = 3600.0;
+  int max_failed_moves = 10;
+  std::uint64_t seed = 1;  // RANDOM_DIR / FRONT_RAND draws
+  MotionOptions motion;
+
+  std::string Validate() const;
+};
+
+enum class Termination {
+  kExplored,      // nothing left to explore, back at the start
+  kNodeLimit,     // max_nodes reached
+  kTimeLimit,     // max_time_s reached
+  kStuck,         // max_failed_moves moves in a row failed
+  kInvalidInput,  // bad options or a localisation that cannot run on this robot
+};
+std::string TerminationName(Termination termination);
+
+// What the explorer knew and did at one graph node (vertex i of the graph is node i).
+struct NodeRecord {
+  double time_s = 0.0;            // when it was perceived
+  kernel::Pose2 true_pose;        // ground truth (the estimate when the robot has none)
+  kernel::Scan safe_region_scan;  // the full-circle scan that bounded the node's LSR
+  int parent = -1;                // the node it was reached from, -1 for the start
+};
+
+struct ExplorationRun {
+  std::string explorer;      // "srt" or "reg"
+  std::string localization;  // Localization::name()
+  // Nodes at their estimated configurations with LSRs and remaining frontiers; edges are the
+  // driven legs (SRT: the tree) and, for REG, the safe paths through overlapping LSRs.
+  graph::ExplorationGraph graph;
+  std::vector<NodeRecord> nodes;
+  std::vector<TraceSample> trace;  // every time step, the start first
+  Termination termination = Termination::kInvalidInput;
+  std::string message;      // details of the termination
+  double distance_m = 0.0;  // travelled (ground truth), m
+  double time_s = 0.0;      // simulated exploration time, s
+  int moves = 0, failed_moves = 0, blocked_steps = 0;
+  int unreachable_frontiers = 0;  // frontier pieces dropped: no clear leg towards them
+  double planning_wall_s = 0.0;   // wall time spent deciding (not driving or sensing), s
+};
+
+// An exploration strategy. Run() drives the robot until the strategy terminates or a cap stops
+// it; it never throws on bad input (termination kInvalidInput with a message).
+class Explorer {
+ public:
+  virtual ~Explorer() = default;
+  virtual std::string name() const = 0;
+  virtual ExplorationRun Run(RobotInterface* robot, Localization* localization) = 0;
+};
+
+// "srt" or "reg"; nullptr for another name.
+std::unique_ptr<Explorer> MakeExplorer(const std::string& name, const ExplorerOptions& options);
+
+}  // namespace splam::exploration
+
+#endif  // SPLAM_EXPLORATION_EXPLORER_H_

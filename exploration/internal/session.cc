@@ -1,0 +1,186 @@
+#include "exploration/internal/session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "exploration/perception.h"
+#include "graph/frontiers.h"
+
+namespace splam::exploration::internal {
+namespace {
+
+constexpr double kPathSpacing = 0.1;  // m between the stored points of a driven path
+// The polar grid of PathInside's waypoints around the LSR's centre.
+constexpr double kWaypointRadii[] = {0.4, 0.8, 1.2, 1.6, 2.0};  // m
+constexpr int kWaypointDirections = 36;
+
+}  // namespace
+
+Session::Session(const std::string& explorer, const ExplorerOptions& options, RobotInterface* robot,
+                 Localization* localization)
+    : options_(options), robot_(robot), localization_(localization), random_(options.seed) {
+  run_.explorer = explorer;
+  run_.localization = localization->name();
+}
+
+bool Session::Start() {
+  if (const std::string problem = options_.Validate(); !problem.empty()) {
+    run_.termination = Termination::kInvalidInput;
+    run_.message = "invalid explorer options: " + problem;
+    return false;
+  }
+  const double needed = robot_->description().radius_m + options_.clearance_margin_m;
+  if (options_.alpha * options_.lsr_radius_m + needed >= options_.lsr_radius_m) {
+    run_.termination = Termination::kInvalidInput;
+    run_.message = "alpha * r leaves no room for the robot inside the LSR: alpha must be below " +
+                   std::to_string((options_.lsr_radius_m - needed) / options_.lsr_radius_m);
+    return false;
+  }
+  const Perception first = robot_->ReadOdometry();
+  const kernel::Pose2 start = first.true_pose.value_or(first.odometry_pose);
+  if (const std::string problem = localization_->Start(start, first); !problem.empty()) {
+    run_.termination = Termination::kInvalidInput;
+    run_.message = problem;
+    return false;
+  }
+  estimate_ = localization_->Update(first);
+  run_.trace.push_back(
+      {first.time_s, estimate_, first.odometry_pose, first.true_pose.value_or(estimate_)});
+  return true;
+}
+
+graph::Vertex Session::AddNodeHere(int parent) {
+  const Perception perception = robot_->Sense();
+  if (localization_->needs_scans()) {
+    estimate_ = localization_->Update(perception);
+    run_.trace.push_back({perception.time_s, estimate_, perception.odometry_pose,
+                          perception.true_pose.value_or(estimate_)});
+  }
+  NodeRecord record;
+  record.time_s = perception.time_s;
+  record.true_pose = perception.true_pose.value_or(estimate_);
+  record.safe_region_scan = SafeRegionScan(perception, robot_->description());
+  record.parent = parent;
+  const graph::Vertex v = graph::AddNode(&run_.graph, estimate_);
+  graph::NodeData& node = run_.graph[v];
+  node.lsr = SafeRegionAt(record.safe_region_scan, estimate_, robot_->description(),
+                          options_.lsr_radius_m);
+  node.frontiers = LongEnough(node.lsr.frontiers());
+  if (parent >= 0) {
+    // The path driven since the last move began, thinned to kPathSpacing.
+    std::vector<Eigen::Vector2d> path{
+        run_.graph[static_cast<graph::Vertex>(parent)].configuration.translation()};
+    for (std::size_t k = drive_begin_; k < run_.trace.size(); ++k) {
+      const Eigen::Vector2d p = run_.trace[k].estimate.translation();
+      if ((p - path.back()).norm() >= kPathSpacing) path.push_back(p);
+    }
+    if ((estimate_.translation() - path.back()).norm() > 1e-9)
+      path.push_back(estimate_.translation());
+    graph::AddEdge(&run_.graph, static_cast<graph::Vertex>(parent), v, std::move(path));
+  }
+  run_.nodes.push_back(std::move(record));
+  return v;
+}
+
+graph::Vertex Session::NodeAfterFailedMove(graph::Vertex from) {
+  constexpr double kProgress = 0.3;  // m
+  if ((estimate_.translation() - run_.graph[from].configuration.translation()).norm() < kProgress)
+    return from;
+  return AddNodeHere(static_cast<int>(from));
+}
+
+MoveResult Session::Drive(const std::vector<Eigen::Vector2d>& waypoints) {
+  drive_begin_ = run_.trace.size();
+  const MoveResult result = MoveTo(waypoints, estimate_.translation(), options_.motion, robot_,
+                                   localization_, &estimate_, &run_.trace);
+  ++run_.moves;
+  if (result.blocked) ++run_.blocked_steps;
+  if (result.reached) {
+    failures_in_a_row_ = 0;
+  } else {
+    ++run_.failed_moves;
+    ++failures_in_a_row_;
+  }
+  return result;
+}
+
+bool Session::CapReached() {
+  if (failures_in_a_row_ >= options_.max_failed_moves) {
+    run_.termination = Termination::kStuck;
+    run_.message = std::to_string(failures_in_a_row_) + " moves in a row failed";
+    return true;
+  }
+  if (static_cast<int>(boost::num_vertices(run_.graph)) >= options_.max_nodes) {
+    run_.termination = Termination::kNodeLimit;
+    run_.message = "node limit of " + std::to_string(options_.max_nodes) + " reached";
+    return true;
+  }
+  if (!run_.trace.empty() &&
+      run_.trace.back().time_s - run_.trace.front().time_s >= options_.max_time_s) {
+    run_.termination = Termination::kTimeLimit;
+    run_.message = "time limit of " + std::to_string(options_.max_time_s) + " s reached";
+    return true;
+  }
+  return false;
+}
+
+ExplorationRun Session::Finish(Termination termination, const std::string& message) {
+  run_.termination = termination;
+  run_.message = message;
+  run_.distance_m = 0.0;
+  for (std::size_t k = 1; k < run_.trace.size(); ++k) {
+    run_.distance_m +=
+        (run_.trace[k].truth.translation() - run_.trace[k - 1].truth.translation()).norm();
+  }
+  run_.time_s = run_.trace.empty() ? 0.0 : run_.trace.back().time_s - run_.trace.front().time_s;
+  return std::move(run_);
+}
+
+bool Session::LegIsClear(const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& a,
+                         const Eigen::Vector2d& b, bool from_robot) const {
+  const double needed = robot_->description().radius_m + options_.clearance_margin_m;
+  const double length = (b - a).norm();
+  if (!from_robot || length <= needed) return kernel::SegmentClearance(lsr, a, b) > needed;
+  // The robot may stand closer to the boundary than `needed` (the sonar's part of the boundary
+  // is conservative); the leg must then not get any closer and must be fully clear after its
+  // first `needed` metres.
+  const double start = kernel::SegmentClearance(lsr, a, a);
+  const Eigen::Vector2d away = a + (b - a) * (needed / length);
+  return kernel::SegmentClearance(lsr, a, b) >= std::min(needed, start) - 1e-9 &&
+         kernel::SegmentClearance(lsr, away, b) > needed;
+}
+
+std::optional<std::vector<Eigen::Vector2d>> Session::PathInside(const kernel::LocalSafeRegion& lsr,
+                                                                const Eigen::Vector2d& from,
+                                                                const Eigen::Vector2d& to) const {
+  if (LegIsClear(lsr, from, to)) return std::vector<Eigen::Vector2d>{to};
+  std::vector<std::pair<double, Eigen::Vector2d>> candidates;
+  for (double radius : kWaypointRadii) {
+    for (int k = 0; k < kWaypointDirections; ++k) {
+      const double angle = 2.0 * kernel::kPi * k / kWaypointDirections;
+      const Eigen::Vector2d w =
+          lsr.center() + radius * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+      candidates.emplace_back((w - from).norm() + (to - w).norm(), w);
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [length, w] : candidates) {
+    if (LegIsClear(lsr, from, w) && LegIsClear(lsr, w, to, /*from_robot=*/false))
+      return std::vector<Eigen::Vector2d>{w, to};
+  }
+  return std::nullopt;
+}
+
+std::vector<kernel::FrontierArc> Session::LongEnough(
+    const std::vector<kernel::FrontierArc>& arcs) const {
+  std::vector<kernel::FrontierArc> kept;
+  for (const kernel::FrontierArc& arc : arcs) {
+    if (graph::ArcLength(arc, options_.lsr_radius_m) >= options_.min_frontier_m)
+      kept.push_back(arc);
+  }
+  return kept;
+}
+
+}  // namespace splam::exploration::internal

@@ -1,0 +1,92 @@
+#ifndef SPLAM_EXPLORATION_INTERNAL_SESSION_H_
+#define SPLAM_EXPLORATION_INTERNAL_SESSION_H_
+
+#include <Eigen/Core>
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "exploration/explorer.h"
+#include "kernel/local_safe_region.h"
+#include "kernel/random.h"
+
+// What SRT and REG share: the robot, the localisation, the run record, the caps, and the
+// geometry of safe legs.
+namespace splam::exploration::internal {
+
+class Session {
+ public:
+  Session(const std::string& explorer, const ExplorerOptions& options, RobotInterface* robot,
+          Localization* localization);
+
+  // Validates the options, reads the first perception and starts the localisation; false (with
+  // the run's termination and message set) when the run cannot start.
+  bool Start();
+  // Senses here and adds a node (its LSR at the current estimate, its frontiers the LSR's free
+  // arcs of at least min_frontier_m). With parent >= 0 the node is joined to it along the path
+  // driven since the last Drive() began.
+  graph::Vertex AddNodeHere(int parent);
+  // Where the robot is after a move from node `from` that failed: a new node (child of `from`)
+  // when it got more than 0.3 m away, else `from` itself (no node is added).
+  graph::Vertex NodeAfterFailedMove(graph::Vertex from);
+  // MOVE_TO through the waypoints; counts moves and failures.
+  MoveResult Drive(const std::vector<Eigen::Vector2d>& waypoints);
+  // True when a cap is reached; the termination is then set.
+  bool CapReached();
+  // Ends the run: fills distance and time and returns the record.
+  ExplorationRun Finish(Termination termination, const std::string& message);
+
+  // True when the disc of the robot, driven straight from a to b, keeps radius + margin from the
+  // boundary of `lsr` (a must lie inside it). When the robot's disc is known free at a
+  // (`from_robot`: it stands there, or a is a node's configuration) and is already closer, the leg
+  // must not get closer and must be fully clear after its first radius + margin.
+  bool LegIsClear(const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& a,
+                  const Eigen::Vector2d& b, bool from_robot = true) const;
+  // A path for the robot's disc from `from` (where it stands) to `to` inside `lsr`, as waypoints
+  // after `from`: the straight leg when it is clear, else the shortest clear two-leg path
+  // through a waypoint of a polar grid around the LSR's centre (radii 0.4-2 m, every 10 deg),
+  // which takes the robot square through doors; nullopt when neither exists.
+  std::optional<std::vector<Eigen::Vector2d>> PathInside(const kernel::LocalSafeRegion& lsr,
+                                                         const Eigen::Vector2d& from,
+                                                         const Eigen::Vector2d& to) const;
+  // The free arcs of an LSR long enough to be frontiers.
+  std::vector<kernel::FrontierArc> LongEnough(const std::vector<kernel::FrontierArc>& arcs) const;
+
+  const kernel::Pose2& estimate() const { return estimate_; }
+  graph::ExplorationGraph& graph() { return run_.graph; }
+  ExplorationRun& run() { return run_; }
+  kernel::Random& random() { return random_; }
+  const ExplorerOptions& options() const { return options_; }
+
+  // Adds the wall time of its scope to the run's planning time.
+  class PlanningTimer {
+   public:
+    explicit PlanningTimer(Session* session)
+        : session_(session), begin_(std::chrono::steady_clock::now()) {}
+    ~PlanningTimer() {
+      session_->run_.planning_wall_s +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - begin_).count();
+    }
+    PlanningTimer(const PlanningTimer&) = delete;
+    PlanningTimer& operator=(const PlanningTimer&) = delete;
+
+   private:
+    Session* session_;
+    std::chrono::steady_clock::time_point begin_;
+  };
+
+ private:
+  ExplorerOptions options_;
+  RobotInterface* robot_;
+  Localization* localization_;
+  kernel::Random random_;
+  ExplorationRun run_;
+  kernel::Pose2 estimate_;
+  std::size_t drive_begin_ = 0;  // trace index where the last Drive() began
+  int failures_in_a_row_ = 0;
+};
+
+}  // namespace splam::exploration::internal
+
+#endif  // SPLAM_EXPLORATION_INTERNAL_SESSION_H_

@@ -1,0 +1,48 @@
+#ifndef SPLAM_EXPLORATION_LOCALIZATION_H_
+#define SPLAM_EXPLORATION_LOCALIZATION_H_
+
+#include <string>
+
+#include "exploration/robot_interface.h"
+#include "kernel/pose2.h"
+
+namespace splam::exploration {
+
+// Where the robot believes it is: the explorer plans with this estimate only. Implementations
+// range from ground truth (an oracle, for studying exploration alone) to full SLAM methods.
+class Localization {
+ public:
+  virtual ~Localization() = default;
+  virtual std::string name() const = 0;
+  // True when Update() needs laser scans; otherwise the explorer reads odometry only while
+  // driving (faster) and senses the laser only at the nodes.
+  virtual bool needs_scans() const { return false; }
+  // Starts at `start` (world frame, assumed known, as the papers do) with the first reading.
+  // Empty when ready, else why this localisation cannot run on this robot.
+  virtual std::string Start(const kernel::Pose2& start, const Perception& first) = 0;
+  // The estimate after a new reading (odometry always, laser when needs_scans()).
+  virtual kernel::Pose2 Update(const Perception& perception) = 0;
+};
+
+// The simulator's ground truth; Perception::true_pose must be present.
+class GroundTruthLocalization : public Localization {
+ public:
+  std::string name() const override { return "ground-truth"; }
+  std::string Start(const kernel::Pose2& start, const Perception& first) override;
+  kernel::Pose2 Update(const Perception& perception) override;
+};
+
+// Dead reckoning: the start pose composed with the odometry accumulated since.
+class OdometryLocalization : public Localization {
+ public:
+  std::string name() const override { return "odometry"; }
+  std::string Start(const kernel::Pose2& start, const Perception& first) override;
+  kernel::Pose2 Update(const Perception& perception) override;
+
+ private:
+  kernel::Pose2 world_T_odometry_;  // maps the odometry frame into the world
+};
+
+}  // namespace splam::exploration
+
+#endif  // SPLAM_EXPLORATION_LOCALIZATION_H_

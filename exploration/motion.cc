@@ -1,0 +1,137 @@
+#include "exploration/motion.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "kernel/angle.h"
+
+namespace splam::exploration {
+namespace {
+
+// Distance from p to the segment a-b.
+double DistanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                         const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double len_sq = ab.squaredNorm();
+  const double t = len_sq > 0.0 ? std::clamp((p - a).dot(ab) / len_sq, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
+}
+
+}  // namespace
+
+std::string MotionOptions::Validate() const {
+  if (linear_speeds_mps.empty() || angular_speeds_radps.empty())
+    return "list_U needs at least one linear and one angular speed";
+  const bool any_forward = std::any_of(linear_speeds_mps.begin(), linear_speeds_mps.end(),
+                                       [](double v) { return v > 0.0; });
+  const bool any_turn = std::any_of(angular_speeds_radps.begin(), angular_speeds_radps.end(),
+                                    [](double w) { return w != 0.0; });
+  if (!any_forward || !any_turn)
+    return "list_U needs a positive linear and a nonzero angular speed";
+  for (double v : linear_speeds_mps) {
+    if (!std::isfinite(v)) return "linear speeds must be finite";
+  }
+  for (double w : angular_speeds_radps) {
+    if (!std::isfinite(w)) return "angular speeds must be finite";
+  }
+  if (!(horizon_s > 0.0)) return "horizon_s must be positive";
+  if (!(turn_in_place_above_rad > 0.0)) return "turn_in_place_above_rad must be positive";
+  if (back_off_steps < 0) return "back_off_steps must be >= 0";
+  if (!(heading_weight_m_per_rad >= 0.0) || !(cross_track_weight >= 0.0))
+    return "cost weights must be >= 0";
+  if (!(goal_tolerance_m > 0.0) || !(waypoint_tolerance_m > 0.0))
+    return "tolerances must be positive";
+  if (!(timeout_base_s > 0.0) || !(timeout_per_meter_s >= 0.0)) return "timeouts must be positive";
+  return "";
+}
+
+std::vector<ControlInput> MotionOptions::ListU() const {
+  std::vector<ControlInput> list;
+  for (double v : linear_speeds_mps) {
+    for (double w : angular_speeds_radps) {
+      if (v != 0.0 || w != 0.0) list.push_back({v, w});
+    }
+  }
+  return list;
+}
+
+ControlInput BestU(const kernel::Pose2& pose, const Eigen::Vector2d& leg_start,
+                   const Eigen::Vector2d& goal, const std::vector<ControlInput>& list_u,
+                   const MotionOptions& options) {
+  ControlInput best;
+  double best_cost = std::numeric_limits<double>::infinity();
+  const Eigen::Vector2d to_goal_now = goal - pose.translation();
+  const bool turn_first =
+      to_goal_now.norm() > options.goal_tolerance_m &&
+      std::abs(kernel::WrapAngle(std::atan2(to_goal_now.y(), to_goal_now.x()) - pose.theta())) >
+          options.turn_in_place_above_rad;
+  for (const ControlInput& u : list_u) {
+    if (turn_first && u.v_mps != 0.0) continue;
+    const kernel::Pose2 next =
+        pose * kernel::UnicycleIncrement(u.v_mps, u.w_radps, options.horizon_s);
+    const Eigen::Vector2d to_goal = goal - next.translation();
+    const double distance = to_goal.norm();
+    const double bearing = kernel::WrapAngle(std::atan2(to_goal.y(), to_goal.x()) - next.theta());
+    const double cost =
+        distance +
+        options.heading_weight_m_per_rad * std::abs(bearing) * std::min(1.0, distance / 0.5) +
+        options.cross_track_weight * DistanceToSegment(next.translation(), leg_start, goal);
+    if (cost < best_cost) {
+      best_cost = cost;
+      best = u;
+    }
+  }
+  return best;
+}
+
+MoveResult MoveTo(const std::vector<Eigen::Vector2d>& waypoints, const Eigen::Vector2d& start,
+                  const MotionOptions& options, RobotInterface* robot, Localization* localization,
+                  kernel::Pose2* estimate, std::vector<TraceSample>* trace) {
+  MoveResult result;
+  const std::vector<ControlInput> list_u = options.ListU();
+  double length = 0.0;
+  Eigen::Vector2d previous = start;
+  for (const Eigen::Vector2d& w : waypoints) {
+    length += (w - previous).norm();
+    previous = w;
+  }
+  const double dt = robot->description().time_step_s;
+  const int max_steps = static_cast<int>(
+      std::ceil((options.timeout_base_s + options.timeout_per_meter_s * length) / dt));
+  Eigen::Vector2d leg_start = start;
+  std::size_t next = 0;
+  const auto localize = [&] {
+    const Perception perception =
+        localization->needs_scans() ? robot->Sense() : robot->ReadOdometry();
+    *estimate = localization->Update(perception);
+    trace->push_back({perception.time_s, *estimate, perception.odometry_pose,
+                      perception.true_pose.value_or(*estimate)});
+  };
+  while (next < waypoints.size()) {
+    const bool last = next + 1 == waypoints.size();
+    const double tolerance = last ? options.goal_tolerance_m : options.waypoint_tolerance_m;
+    if ((estimate->translation() - waypoints[next]).norm() <= tolerance) {
+      leg_start = waypoints[next++];
+      ++result.waypoints_reached;
+      continue;
+    }
+    if (result.steps >= max_steps) {
+      result.message = "timeout: goal not reached within the move's time budget";
+      return result;
+    }
+    const ControlInput u = BestU(*estimate, leg_start, waypoints[next], list_u, options);
+    if (!robot->Step(u.v_mps, u.w_radps)) {
+      result.blocked = true;
+      result.message = "blocked: the robot refused a step that would collide";
+      for (int k = 0; k < options.back_off_steps && robot->Step(-0.1, 0.0); ++k) localize();
+      return result;
+    }
+    ++result.steps;
+    localize();
+  }
+  result.reached = true;
+  return result;
+}
+
+}  // namespace splam::exploration

@@ -1,0 +1,38 @@
+#ifndef SPLAM_EXPLORATION_REG_H_
+#define SPLAM_EXPLORATION_REG_H_
+
+#include "exploration/explorer.h"
+
+namespace splam::exploration {
+
+// Random Exploration Graph (paper 003 §3.1, Figs 8-9; SPEC §9). Each iteration at the current
+// node q:
+//  - CURR_INTERSECTION: for every node whose LSR overlaps q's, the frontier parts of either
+//    that lie inside the other's LSR are removed from it, and an edge is added when a safe path
+//    through the overlap exists (a waypoint in both LSRs reached by clear straight legs);
+//  - FRONTIERS / FRONT_RAND: a random remaining free arc of q; its target is the midpoint of the
+//    arc, or of its leading piece when the arc is longer than what one new LSR covers; the
+//    piece leaves q's frontiers; q goes on the frontier-control list if frontiers remain;
+//  - DISPLACEMENT: q_dest = alpha * r along the target direction (the nearest direction in the
+//    piece that the robot's disc can reach inside the LSR, straight or through one waypoint;
+//    failing that, half as far; a piece with none is unreachable);
+//  - MOVE_TO, perceive, VERIFIES: the part of the piece the new LSR does not cover goes back
+//    to q's frontiers; ADD the node with the driven edge;
+//  - with no frontier left at q: FIND_PATH (bidirectional A* by graph distance) to the nearest
+//    listed node that still has frontiers, drive there, and it leaves the list.
+// The run ends when the list is empty and q has no frontier: the robot returns to the start.
+// The start node is in the graph from the beginning; as it has no neighbours at the first
+// iteration this equals the paper's late insertion.
+class RegExplorer : public Explorer {
+ public:
+  explicit RegExplorer(const ExplorerOptions& options) : options_(options) {}
+  std::string name() const override { return "reg"; }
+  ExplorationRun Run(RobotInterface* robot, Localization* localization) override;
+
+ private:
+  ExplorerOptions options_;
+};
+
+}  // namespace splam::exploration
+
+#endif  // SPLAM_EXPLORATION_REG_H_

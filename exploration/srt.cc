@@ -1,0 +1,74 @@
+#include "exploration/srt.h"
+
+#include <cmath>
+#include <optional>
+
+#include "exploration/internal/session.h"
+
+namespace splam::exploration {
+namespace {
+
+// RANDOM_DIR: a direction uniform over the union of the arcs (drawing uniform directions until
+// one falls in a free arc gives the same distribution).
+double RandomDirection(const std::vector<kernel::FrontierArc>& arcs, kernel::Random* random) {
+  double total = 0.0;
+  for (const kernel::FrontierArc& arc : arcs) total += arc.AngularWidth();
+  double u = random->Uniform(0.0, total);
+  for (const kernel::FrontierArc& arc : arcs) {
+    if (u <= arc.AngularWidth()) return arc.start_angle_rad + u;
+    u -= arc.AngularWidth();
+  }
+  return arcs.back().end_angle_rad;
+}
+
+}  // namespace
+
+ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localization) {
+  internal::Session session("srt", options_, robot, localization);
+  if (!session.Start()) return session.Finish(session.run().termination, session.run().message);
+  graph::ExplorationGraph& g = session.graph();
+  graph::Vertex current = session.AddNodeHere(-1);
+  const double step = options_.alpha * options_.lsr_radius_m;
+  while (!session.CapReached()) {
+    std::optional<std::vector<Eigen::Vector2d>> path;  // to the new node's configuration
+    {
+      internal::Session::PlanningTimer timer(&session);
+      const graph::NodeData& node = g[current];
+      const Eigen::Vector2d here = node.configuration.translation();
+      for (int attempt = 0; attempt < options_.srt_max_attempts && !node.frontiers.empty();
+           ++attempt) {
+        const double theta = RandomDirection(node.frontiers, &session.random());
+        const Eigen::Vector2d candidate =
+            node.lsr.center() + step * Eigen::Vector2d(std::cos(theta), std::sin(theta));
+        // VALID_CONF: outside the LSR of every other node, and reachable inside this one.
+        bool valid = true;
+        for (graph::Vertex v = 0; v < boost::num_vertices(g) && valid; ++v) {
+          if (v == current) continue;
+          const kernel::LocalSafeRegion& other = g[v].lsr;
+          valid =
+              (candidate - other.center()).norm() > other.radius() || !other.Contains(candidate);
+        }
+        if (valid) path = session.PathInside(node.lsr, here, candidate);
+        if (path) break;
+      }
+    }
+    if (path) {
+      current = session.Drive(*path).reached ? session.AddNodeHere(static_cast<int>(current))
+                                             : session.NodeAfterFailedMove(current);
+      continue;
+    }
+    const int parent = session.run().nodes[current].parent;
+    if (parent < 0) return session.Finish(Termination::kExplored, "back at the root, nothing left");
+    // Backtrack along the tree edge; a failed move leaves the robot between the two nodes,
+    // where a new node (child of the one it left) is perceived.
+    const graph::Vertex target = static_cast<graph::Vertex>(parent);
+    if (session.Drive(graph::Waypoints(g, {current, target})).reached) {
+      current = target;
+    } else {
+      current = session.NodeAfterFailedMove(current);
+    }
+  }
+  return session.Finish(session.run().termination, session.run().message);
+}
+
+}  // namespace splam::exploration
