@@ -43,8 +43,7 @@ CoverageGrid::CoverageGrid(const kernel::Box2& bounds, double cell_m, const Eige
 
 void CoverageGrid::Cover(const kernel::LocalSafeRegion& region) {
   if (region.boundary().size() < 3) return;
-  // Rasterise the polygon with OpenCV in cell coordinates (8 bits of sub-cell precision); a cell
-  // is filled when its centre is inside.
+  // Rasterise the polygon with OpenCV in cell coordinates (8 bits of sub-cell precision).
   constexpr int kShift = 8;
   std::vector<cv::Point> polygon;
   polygon.reserve(region.boundary().size());

@@ -21,7 +21,8 @@ class CoverageGrid {
   CoverageGrid(const kernel::Box2& bounds, double cell_m, const Eigen::Vector2d& start,
                const std::function<bool(const Eigen::Vector2d&)>& is_free);
 
-  // Marks the cells whose centre lies inside the region.
+  // Marks the cells the region's rasterisation touches (OpenCV fillPoly: the cells whose centre
+  // is inside plus those its boundary crosses, a band of at most one cell).
   void Cover(const kernel::LocalSafeRegion& region);
   int reachable_cells() const { return reachable_; }
   // Covered reachable cells over reachable cells (0 when nothing is reachable).
