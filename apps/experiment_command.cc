@@ -13,6 +13,7 @@
 
 #include "apps/bspline_experiment.h"
 #include "apps/commands.h"
+#include "apps/exploration_experiment.h"
 #include "apps/run_picture.h"
 #include "estimation/chi_square.h"
 #include "estimation/ekf_line_slam.h"
@@ -299,12 +300,12 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
   CLI::App* cmd =
       app->add_subcommand("experiment", "Reproduce a published experiment on the simulator.");
   cmd->add_option("name", args->name,
-                  "Experiment: corridor-lines (paper 001 section 6) or complex-bspline (paper 000 "
-                  "Figs. 15-17)")
-      ->check(CLI::IsMember({"corridor-lines", "complex-bspline"}))
+                  "Experiment: corridor-lines (paper 001 section 6), complex-bspline (paper 000 "
+                  "Figs. 15-17) or exploration (paper 003 Fig. 18)")
+      ->check(CLI::IsMember({"corridor-lines", "complex-bspline", "exploration"}))
       ->capture_default_str();
   cmd->add_option("--runs", args->runs,
-                  "Seeded runs (default: 20 corridor-lines, 10 complex-bspline)")
+                  "Seeded runs (default: 20 corridor-lines, 10 complex-bspline and exploration)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--max-scans", args->max_scans,
                   "complex-bspline: stop each route after this many scans (0 = the whole route)")
@@ -339,6 +340,14 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->callback([args, exit_code] {
+    if (args->name == "exploration") {
+      ExplorationExperimentArgs x;
+      x.runs = args->runs > 0 ? args->runs : x.runs;
+      x.seed = args->seed;
+      x.out = args->out.empty() ? x.out : args->out;
+      *exit_code = RunExplorationExperiment(x);
+      return;
+    }
     if (args->name == "complex-bspline") {
       BSplineExperimentArgs b;
       b.runs = args->runs > 0 ? args->runs : b.runs;

@@ -53,6 +53,11 @@ std::string SavePlot(const std::vector<PlotPanel>& panels, const PlotOptions& op
     }
   }
   if (!(x_lo < x_hi)) x_lo = 0.0, x_hi = 1.0;
+  bool any_bars = false;
+  for (const PlotPanel& panel : panels) {
+    for (const PlotSeries& s : panel.series) any_bars = any_bars || s.bars;
+  }
+  if (any_bars) x_lo -= 0.5, x_hi += 0.5;  // room for the outer bars
   const double width = options.width_px;
   const double height =
       kTitle + static_cast<double>(panels.size()) * (options.panel_height_px + kGap) + kBottom;
@@ -118,7 +123,22 @@ std::string SavePlot(const std::vector<PlotPanel>& panels, const PlotOptions& op
       cairo_save(cr);
       cairo_rectangle(cr, kLeft, top, plot_w, h);
       cairo_clip(cr);
+      const int bar_series = static_cast<int>(std::count_if(
+          panel.series.begin(), panel.series.end(), [](const PlotSeries& s) { return s.bars; }));
+      int bar_index = 0;
       for (const PlotSeries& s : panel.series) {
+        if (s.bars) {
+          const double w = 0.8 / bar_series;
+          const double offset = (bar_index++ - 0.5 * (bar_series - 1)) * w;
+          for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+            const double x0 = px(s.x[i] + offset - 0.5 * w), x1 = px(s.x[i] + offset + 0.5 * w);
+            cairo_rectangle(cr, x0, py(std::max(0.0, s.y[i])), x1 - x0,
+                            std::abs(py(s.y[i]) - py(0.0)));
+          }
+          cairo_set_source_rgb(cr, s.color.r, s.color.g, s.color.b);
+          cairo_fill(cr);
+          continue;
+        }
         for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
           if (i == 0)
             cairo_move_to(cr, px(s.x[i]), py(s.y[i]));

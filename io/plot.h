@@ -12,6 +12,9 @@ struct PlotSeries {
   std::string label;
   Rgb color;
   std::vector<double> x, y;  // same length
+  // Drawn as bars from 0 to y at each x (grouped side by side with the panel's other bar series,
+  // x one apart), instead of a line.
+  bool bars = false;
 };
 
 // One chart; panels of a plot share the x axis and are stacked top to bottom.
