@@ -330,8 +330,34 @@ TEST(SplamCli, SlamRunsOnTheRealMitLog) {
   EXPECT_GT(report["relations"]["estimate"]["relations_used"].get<int>(), 50);
 }
 
+TEST(SplamCli, ExploreWritesTheGraphCoverageAndReport) {
+  const fs::path out = Temp("explore");
+  const Output run = Splam("explore --explorer reg --world complex --seed 2 --out " + out.string());
+  ASSERT_EQ(run.status, 0) << run.text;
+  for (const char* f : {"report.json", "graph.svg", "graph.png", "explored.svg", "explored.png",
+                        "truth.txt", "odometry.txt", "estimate.txt"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const nlohmann::json report = nlohmann::json::parse(Slurp(out / "report.json"));
+  EXPECT_EQ(report["termination"], "explored");
+  EXPECT_GT(report["coverage_fraction"].get<double>(), 0.97);
+  EXPECT_GT(report["distance_m"].get<double>(), 50.0);
+  EXPECT_GT(report["nodes"].get<int>(), 20);
+  EXPECT_EQ(report["blocked_steps"].get<int>(), 0);
+  // A cap is a stated, non-zero exit; bad options name the problem.
+  const Output capped =
+      Splam("explore --explorer srt --max-nodes 3 --out " + Temp("explore_cap").string());
+  EXPECT_EQ(capped.status, 3) << capped.text;
+  EXPECT_NE(capped.text.find("node_limit"), std::string::npos) << capped.text;
+  const Output bad = Splam("explore --alpha 0.95 --out " + Temp("explore_bad").string());
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.text.find("alpha"), std::string::npos) << bad.text;
+  const Output no_world = Splam("explore --world nowhere.yaml");
+  EXPECT_EQ(no_world.status, 2);
+  EXPECT_NE(no_world.text.find("nowhere.yaml"), std::string::npos) << no_world.text;
+}
+
 TEST(SplamCli, EveryCommandHasHelp) {
-  for (const char* command : {"", "simulate", "render", "slam", "eval", "experiment"}) {
+  for (const char* command : {"", "simulate", "render", "slam", "eval", "experiment", "explore"}) {
     const Output r = Splam(std::string(command) + " --help");
     EXPECT_EQ(r.status, 0) << command;
     EXPECT_NE(r.text.find("Usage"), std::string::npos) << r.text;
