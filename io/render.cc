@@ -62,6 +62,17 @@ struct Figure::Impl {
     return {(p.x() - area.min.x() + options.margin_m) * ppm,
             (area.max.y() - p.y() + options.margin_m) * ppm};
   }
+  // Starts a path through the points (world coordinates).
+  void Trace(const std::vector<Eigen::Vector2d>& points) const {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Eigen::Vector2d q = ToPixel(points[i]);
+      if (i == 0) {
+        cairo_move_to(cr, q.x(), q.y());
+      } else {
+        cairo_line_to(cr, q.x(), q.y());
+      }
+    }
+  }
   void AddLegend(const std::string& label, Rgb color, LegendKind kind) {
     if (label.empty()) return;
     for (const LegendEntry& e : legend) {
@@ -221,14 +232,7 @@ void Figure::DrawPolyline(const std::vector<Eigen::Vector2d>& points, Rgb color,
                           const std::string& legend, bool dashed) {
   if (points.empty()) return;
   cairo_t* cr = impl_->cr;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector2d q = impl_->ToPixel(points[i]);
-    if (i == 0) {
-      cairo_move_to(cr, q.x(), q.y());
-    } else {
-      cairo_line_to(cr, q.x(), q.y());
-    }
-  }
+  impl_->Trace(points);
   SetColor(cr, color);
   cairo_set_line_width(cr, width_px);
   const double dash[] = {4.0, 3.0};
@@ -242,14 +246,7 @@ void Figure::DrawPolygon(const std::vector<Eigen::Vector2d>& points, Rgb color, 
                          double width_px, const std::string& legend) {
   if (points.size() < 3) return;
   cairo_t* cr = impl_->cr;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector2d q = impl_->ToPixel(points[i]);
-    if (i == 0) {
-      cairo_move_to(cr, q.x(), q.y());
-    } else {
-      cairo_line_to(cr, q.x(), q.y());
-    }
-  }
+  impl_->Trace(points);
   cairo_close_path(cr);
   SetColor(cr, color, fill_alpha);
   cairo_fill_preserve(cr);
