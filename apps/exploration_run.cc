@@ -81,6 +81,10 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
     outcome.coverage_time_s.push_back(node.time_s);
     outcome.coverage_fraction.push_back(grid.CoveredFraction());
   }
+  if (!outcome.coverage_time_s.empty() && outcome.run.time_s > outcome.coverage_time_s.back()) {
+    outcome.coverage_time_s.push_back(outcome.run.time_s);  // the way home adds no area
+    outcome.coverage_fraction.push_back(outcome.coverage_fraction.back());
+  }
   outcome.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   return outcome;
 }
@@ -186,7 +190,7 @@ std::string SaveCoveragePlot(const ExploreOutcome& outcome, const std::string& t
   for (double f : outcome.coverage_fraction) coverage.y.push_back(100.0 * f);
   io::PlotSeries nodes{"nodes", io::palette::kEstimate, outcome.coverage_time_s, {}};
   for (std::size_t k = 0; k < outcome.coverage_time_s.size(); ++k)
-    nodes.y.push_back(static_cast<double>(k + 1));
+    nodes.y.push_back(static_cast<double>(std::min(k + 1, outcome.run.nodes.size())));
   io::PlotOptions options;
   options.title = title;
   options.x_label = "simulated time (s)";

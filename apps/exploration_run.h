@@ -26,7 +26,7 @@ struct ExploreOutcome {
   exploration::ExplorationRun run;
   double robot_radius_m = 0.0;
   // Explored fraction of the reachable free space (exploration::CoverageGrid, 10 cm cells) after
-  // each node, from the LSRs placed at the nodes' true poses.
+  // each node (and at the end of the run), from the LSRs placed at the nodes' true poses.
   std::vector<double> coverage_time_s, coverage_fraction;
   double reachable_area_m2 = 0.0;
   double wall_s = 0.0;  // whole run, simulation included
