@@ -72,10 +72,14 @@ int RunExplorationExperiment(const ExplorationExperimentArgs& args) {
         std::ofstream(dir + "/report.json")
             << ExplorationReport(world, setup, outcome).dump(2) << "\n";
         if (i == 0) {
-          SaveExplorationPicture(
-              world, outcome,
-              fmt::format("{} | {} | seed {}", world_name, explorers[e], setup.seed),
-              {dir + "/graph.svg", dir + "/graph.png"});
+          if (std::string error = SaveExplorationPicture(
+                  world, outcome,
+                  fmt::format("{} | {} | seed {}", world_name, explorers[e], setup.seed),
+                  {dir + "/graph.svg", dir + "/graph.png"});
+              !error.empty()) {
+            fmt::print(stderr, "splam experiment: {}\n", error);
+            return kExitBadInput;
+          }
         }
         fmt::print("{} {} seed {}: {} nodes, {:.1f} m, {:.1f} s, {:.1f} % explored, {}\n",
                    world_name, explorers[e], setup.seed, boost::num_vertices(outcome.run.graph),

@@ -21,7 +21,9 @@ constexpr double kPathOffsets[] = {0.0, 0.3, -0.3, 0.6, -0.6, 0.9, -0.9};  // m
 class Reg {
  public:
   Reg(const ExplorerOptions& options, RobotInterface* robot, Localization* localization)
-      : options_(options), session_("reg", options, robot, localization), g_(session_.graph()) {}
+      : session_("reg", options, robot, localization),
+        options_(session_.options()),
+        g_(session_.graph()) {}
 
   ExplorationRun Run();
 
@@ -42,14 +44,14 @@ class Reg {
   void List(Vertex v);
   void Unlist(Vertex v);
 
-  ExplorerOptions options_;
   internal::Session session_;
+  const ExplorerOptions& options_;  // the session's
   graph::ExplorationGraph& g_;
   std::vector<Vertex> list_;  // the frontier-control list
 };
 
 ExplorationRun Reg::Run() {
-  if (!session_.Start()) return session_.Finish(session_.run().termination, session_.run().message);
+  if (!session_.Start()) return session_.Finish();
   const Vertex start = session_.AddNodeHere(-1);
   Vertex current = start;
   const double max_piece = options_.reg_piece_factor * 2.0 * std::acos(options_.alpha / 2.0);
@@ -63,12 +65,12 @@ ExplorationRun Reg::Run() {
       // FRONTIERS / FRONT_RAND, until a piece with a clear leg is found.
       std::vector<kernel::FrontierArc>& frontiers = g_[current].frontiers;
       while (!frontiers.empty() && !destination) {
-        const std::size_t k = static_cast<std::size_t>(
-            session_.random().Uniform(0.0, static_cast<double>(frontiers.size())));
-        const kernel::FrontierArc arc = frontiers[std::min(k, frontiers.size() - 1)];
+        const std::size_t k =
+            std::min(frontiers.size() - 1, static_cast<std::size_t>(session_.random().Uniform(
+                                               0.0, static_cast<double>(frontiers.size()))));
+        const kernel::FrontierArc arc = frontiers[k];
         piece = graph::LeadingPiece(arc, max_piece);
-        frontiers.erase(frontiers.begin() +
-                        static_cast<std::ptrdiff_t>(std::min(k, frontiers.size() - 1)));
+        frontiers.erase(frontiers.begin() + static_cast<std::ptrdiff_t>(k));
         for (const kernel::FrontierArc& rest :
              session_.LongEnough(graph::Subtract(arc, {*piece}, 0.0)))
           frontiers.push_back(rest);
@@ -93,10 +95,8 @@ ExplorationRun Reg::Run() {
       // (all of it is dropped when the move failed: the way there is not clear).
       internal::Session::PlanningTimer timer(&session_);
       if (move.reached) {
-        const auto covered = kernel::ArcPartsInside(g_[previous].lsr, *piece, g_[current].lsr,
-                                                    options_.arc_sampling_rad);
         for (const kernel::FrontierArc& rest :
-             session_.LongEnough(graph::Subtract(*piece, covered, options_.arc_sampling_rad)))
+             session_.UncoveredParts(g_[previous].lsr, *piece, g_[current].lsr))
           g_[previous].frontiers.push_back(rest);
       } else {
         ++session_.run().unreachable_frontiers;
@@ -123,7 +123,7 @@ ExplorationRun Reg::Run() {
       current = session_.NodeAfterFailedMove(current);
     }
   }
-  return session_.Finish(session_.run().termination, session_.run().message);
+  return session_.Finish();
 }
 
 void Reg::CurrIntersection(Vertex current) {
@@ -144,9 +144,7 @@ void Reg::CurrIntersection(Vertex current) {
 void Reg::RemoveCovered(Vertex v, const kernel::LocalSafeRegion& other) {
   std::vector<kernel::FrontierArc> kept;
   for (const kernel::FrontierArc& arc : g_[v].frontiers) {
-    const auto covered = kernel::ArcPartsInside(g_[v].lsr, arc, other, options_.arc_sampling_rad);
-    for (const kernel::FrontierArc& rest :
-         session_.LongEnough(graph::Subtract(arc, covered, options_.arc_sampling_rad)))
+    for (const kernel::FrontierArc& rest : session_.UncoveredParts(g_[v].lsr, arc, other))
       kept.push_back(rest);
   }
   g_[v].frontiers = std::move(kept);

@@ -25,7 +25,7 @@ double RandomDirection(const std::vector<kernel::FrontierArc>& arcs, kernel::Ran
 
 ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localization) {
   internal::Session session("srt", options_, robot, localization);
-  if (!session.Start()) return session.Finish(session.run().termination, session.run().message);
+  if (!session.Start()) return session.Finish();
   graph::ExplorationGraph& g = session.graph();
   graph::Vertex current = session.AddNodeHere(-1);
   const double step = options_.alpha * options_.lsr_radius_m;
@@ -68,7 +68,7 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
       current = session.NodeAfterFailedMove(current);
     }
   }
-  return session.Finish(session.run().termination, session.run().message);
+  return session.Finish();
 }
 
 }  // namespace splam::exploration

@@ -173,6 +173,13 @@ std::optional<std::vector<Eigen::Vector2d>> Session::PathInside(const kernel::Lo
   return std::nullopt;
 }
 
+std::vector<kernel::FrontierArc> Session::UncoveredParts(
+    const kernel::LocalSafeRegion& owner, const kernel::FrontierArc& arc,
+    const kernel::LocalSafeRegion& other) const {
+  const auto covered = kernel::ArcPartsInside(owner, arc, other, options_.arc_sampling_rad);
+  return LongEnough(graph::Subtract(arc, covered, options_.arc_sampling_rad));
+}
+
 std::vector<kernel::FrontierArc> Session::LongEnough(
     const std::vector<kernel::FrontierArc>& arcs) const {
   std::vector<kernel::FrontierArc> kept;

@@ -36,6 +36,12 @@ class Session {
   bool CapReached();
   // Ends the run: fills distance and time and returns the record.
   ExplorationRun Finish(Termination termination, const std::string& message);
+  // Ends the run with the termination already set (by Start() or CapReached()).
+  ExplorationRun Finish() { return Finish(run_.termination, run_.message); }
+  // The parts of `arc` (a frontier of `owner`) outside `other`, long enough to stay frontiers.
+  std::vector<kernel::FrontierArc> UncoveredParts(const kernel::LocalSafeRegion& owner,
+                                                  const kernel::FrontierArc& arc,
+                                                  const kernel::LocalSafeRegion& other) const;
 
   // True when the disc of the robot, driven straight from a to b, keeps radius + margin from the
   // boundary of `lsr` (a must lie inside it). When the robot's disc is known free at a
