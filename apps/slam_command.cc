@@ -131,6 +131,11 @@ int RunSlam(const SlamArgs& args) {
     options.extraction.range_sigma_fraction = sigma_fraction;
     problem = options.Validate();
     if (problem.empty()) slam = MakeLineSlam(start, start_covariance, options);
+  } else if (args.method == "topological") {
+    estimation::TopologicalSlamOptions options;
+    options.max_curve_range_m = args.max_curve_range_m;
+    problem = options.Validate();
+    if (problem.empty()) slam = MakeTopologicalSlam(start, options);
   } else {
     estimation::EkfBSplineSlamOptions options;
     options.odometry = odometry_noise;
@@ -148,7 +153,7 @@ int RunSlam(const SlamArgs& args) {
     return kExitBadInput;
   }
   const std::string label =
-      args.method == "ekf-lines" ? args.method : args.method + " (" + args.association + ")";
+      args.method == "ekf-bspline" ? args.method + " (" + args.association + ")" : args.method;
   const std::string out =
       args.out.empty() ? "runs/slam-" + std::filesystem::path(args.log).stem().string() : args.out;
   std::error_code ec;
@@ -180,8 +185,9 @@ int RunSlam(const SlamArgs& args) {
     }
     estimate.push_back({m.stamp.ipc_timestamp_s, slam->pose()});
     odometry.push_back({m.stamp.ipc_timestamp_s, m.robot_pose});
-    if (const auto t = kernel::PoseAt(truth, m.stamp.ipc_timestamp_s, 0.0, 1e-3)) {
-      nees.push_back(estimation::PoseNees(*t, slam->pose(), slam->pose_covariance()));
+    const auto t = kernel::PoseAt(truth, m.stamp.ipc_timestamp_s, 0.0, 1e-3);
+    if (const auto covariance = slam->pose_covariance(); t && covariance) {
+      nees.push_back(estimation::PoseNees(*t, slam->pose(), *covariance));
     }
     if ((i + 1) % 1000 == 0) {
       fmt::print("  {}/{} scans, {} in the map\n", i + 1, n, slam->MapDescription());
@@ -231,13 +237,14 @@ int RunSlam(const SlamArgs& args) {
       {"max", Percentile(step_ms, 1.0)}};
   summary["time_per_scan_vs_map_size"] = TimeByMapSize(step_ms, map_size);
   summary.update(slam->Statistics());
-  const Eigen::Matrix3d p = slam->pose_covariance();
-  summary["health"] = {
-      {"healthy", slam->healthy()},
-      {"message", slam->health()},
-      {"scans_processed", estimate.size()},
-      {"scans_in_log", lasers.size()},
-      {"final_pose_sigma", {std::sqrt(p(0, 0)), std::sqrt(p(1, 1)), std::sqrt(p(2, 2))}}};
+  summary["health"] = {{"healthy", slam->healthy()},
+                       {"message", slam->health()},
+                       {"scans_processed", estimate.size()},
+                       {"scans_in_log", lasers.size()}};
+  if (const auto p = slam->pose_covariance()) {
+    summary["health"]["final_pose_sigma"] = {std::sqrt((*p)(0, 0)), std::sqrt((*p)(1, 1)),
+                                             std::sqrt((*p)(2, 2))};
+  }
   if (!truth.empty()) {
     summary["error"] = {{"estimate", ErrorJson(estimation::CompareToTruth(truth, estimate))},
                         {"odometry", ErrorJson(estimation::CompareToTruth(truth, odometry))}};
@@ -249,11 +256,12 @@ int RunSlam(const SlamArgs& args) {
       sum += v;
       inside += v >= lo && v <= hi;
     }
-    summary["nees"] = {
-        {"mean", nees.empty() ? 0.0 : sum / static_cast<double>(nees.size())},
-        {"fraction_in_95_band",
-         nees.empty() ? 0.0 : static_cast<double>(inside) / static_cast<double>(nees.size())},
-        {"steps", nees.size()}};
+    if (!nees.empty()) {
+      summary["nees"] = {
+          {"mean", sum / static_cast<double>(nees.size())},
+          {"fraction_in_95_band", static_cast<double>(inside) / static_cast<double>(nees.size())},
+          {"steps", nees.size()}};
+    }
     errors.push_back(SaveErrorPlot(
         label + ": error against ground truth", truth,
         {{"odometry", io::palette::kOdometry, odometry}, {label, io::palette::kEstimate, estimate}},
@@ -297,7 +305,7 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
                                       "Run a SLAM method over a CARMEN log; write the trajectory, "
                                       "the map, pictures and a summary.");
   cmd->add_option("--method", args->method, "SLAM method")
-      ->check(CLI::IsMember({"ekf-lines", "ekf-bspline"}))
+      ->check(CLI::IsMember({"ekf-lines", "ekf-bspline", "topological"}))
       ->capture_default_str();
   cmd->add_option("--association", args->association,
                   "ekf-bspline data association: pedraza (end points) or curvature (paper 000)")

@@ -15,7 +15,9 @@ class FilterMethod : public SlamMethod {
       : slam_(pose, covariance, options) {}
   void Predict(const kernel::Pose2& u) override { slam_.Predict(u); }
   kernel::Pose2 pose() const override { return slam_.pose(); }
-  Eigen::Matrix3d pose_covariance() const override { return slam_.pose_covariance(); }
+  std::optional<Eigen::Matrix3d> pose_covariance() const override {
+    return slam_.pose_covariance();
+  }
   std::size_t MapSize() const override {
     return static_cast<std::size_t>(slam_.state().size() - 3) / 2;
   }
@@ -115,7 +117,68 @@ class BSplineSlam
   int created_ = 0, extended_ = 0, ignored_ = 0, with_features_ = 0;
 };
 
+// Topological B-spline SLAM: no covariance; the map is curves with their control points.
+class TopologicalSlamMethod : public SlamMethod {
+ public:
+  TopologicalSlamMethod(const kernel::Pose2& pose,
+                        const estimation::TopologicalSlamOptions& options)
+      : slam_(pose, options) {}
+  void Predict(const kernel::Pose2& u) override { slam_.Predict(u); }
+  void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) override {
+    const estimation::TopologicalUpdateReport r = slam_.Update(scan, robot_T_laser);
+    observed_ += r.observed_curves;
+    associated_ += r.associated_curves;
+    verified_ += r.verified_curves;
+    localized_ += r.localized;
+    fallbacks_ += r.used_fallback;
+    failed_ += r.associated_curves > 0 && !r.localized;
+    created_ += r.added_curves;
+    extended_ += r.extended_curves;
+  }
+  kernel::Pose2 pose() const override { return slam_.pose(); }
+  std::optional<Eigen::Matrix3d> pose_covariance() const override { return std::nullopt; }
+  bool healthy() const override { return slam_.healthy(); }
+  std::string health() const override { return slam_.health(); }
+  std::size_t MapSize() const override { return slam_.num_control_points(); }
+  std::string MapDescription() const override {
+    return fmt::format("{} curves, {} control points", slam_.num_curves(),
+                       slam_.num_control_points());
+  }
+  void DrawMap(RunPicture* picture) const override {
+    DrawSplineMap(slam_.MapSplines(), slam_.options().extraction, picture);
+  }
+  std::vector<std::string> WriteMap(const std::string& dir) const override {
+    const auto splines = slam_.MapSplines();
+    return {io::WriteSplineMapText(dir + "/map.txt", splines),
+            io::WriteSplineMapDxf(dir + "/map.dxf", splines)};
+  }
+  nlohmann::ordered_json Statistics() const override {
+    return {
+        {"map", {{"curves", slam_.num_curves()}, {"control_points", slam_.num_control_points()}}},
+        {"associations",
+         {{"method", "curvature"},
+          {"observed_curves", observed_},
+          {"associated_curves", associated_},
+          {"verified_curves", verified_},
+          {"localized_scans", localized_},
+          {"fallback_to_single_curves", fallbacks_},
+          {"failed_localizations", failed_},
+          {"new_curves", created_},
+          {"extensions", extended_}}}};
+  }
+
+ private:
+  estimation::TopologicalSlam slam_;
+  long observed_ = 0, associated_ = 0, verified_ = 0;
+  int localized_ = 0, fallbacks_ = 0, failed_ = 0, created_ = 0, extended_ = 0;
+};
+
 }  // namespace
+
+std::unique_ptr<SlamMethod> MakeTopologicalSlam(const kernel::Pose2& initial_pose,
+                                                const estimation::TopologicalSlamOptions& options) {
+  return std::make_unique<TopologicalSlamMethod>(initial_pose, options);
+}
 
 std::unique_ptr<SlamMethod> MakeLineSlam(const kernel::Pose2& initial_pose,
                                          const Eigen::Matrix3d& initial_covariance,

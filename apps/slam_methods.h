@@ -4,12 +4,14 @@
 #include <Eigen/Core>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "apps/run_picture.h"
 #include "estimation/ekf_bspline_slam.h"
 #include "estimation/ekf_line_slam.h"
+#include "estimation/topological_slam.h"
 #include "kernel/pose2.h"
 #include "kernel/scan.h"
 
@@ -23,7 +25,8 @@ class SlamMethod {
   virtual void Predict(const kernel::Pose2& odometry_increment) = 0;
   virtual void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) = 0;
   virtual kernel::Pose2 pose() const = 0;
-  virtual Eigen::Matrix3d pose_covariance() const = 0;
+  // The pose covariance; methods without one (topological) return nullopt.
+  virtual std::optional<Eigen::Matrix3d> pose_covariance() const = 0;
   virtual bool healthy() const = 0;
   virtual std::string health() const = 0;
   // Number of 2-vectors in the state besides the pose: landmarks, or control points.
@@ -43,6 +46,8 @@ std::unique_ptr<SlamMethod> MakeLineSlam(const kernel::Pose2& initial_pose,
 std::unique_ptr<SlamMethod> MakeBSplineSlam(const kernel::Pose2& initial_pose,
                                             const Eigen::Matrix3d& initial_covariance,
                                             const estimation::EkfBSplineSlamOptions& options);
+std::unique_ptr<SlamMethod> MakeTopologicalSlam(const kernel::Pose2& initial_pose,
+                                                const estimation::TopologicalSlamOptions& options);
 
 // The map splines drawn as paper 000 Figs. 13 and 16 do: curves, control points (small dots),
 // inflection points (circles) and corners (diamonds).

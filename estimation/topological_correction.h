@@ -1,0 +1,49 @@
+#ifndef SPLAM_ESTIMATION_TOPOLOGICAL_CORRECTION_H_
+#define SPLAM_ESTIMATION_TOPOLOGICAL_CORRECTION_H_
+
+#include <Eigen/Core>
+#include <vector>
+
+// The two weighted least-squares problems of the topological localisation (SPEC §10, paper 003
+// eqs. 6-10), solved with Ceres. Everything Ceres is confined to this header's source file.
+namespace splam::estimation {
+
+// One associated chord: the map's chord (world frame) and the observed chord (robot frame)
+// between the start and end points of a matched stretch, with its reliability weight C_i.
+struct ChordPair {
+  Eigen::Vector2d map_direction = Eigen::Vector2d::UnitX();    // X_ref,F - X_ref,I
+  Eigen::Vector2d robot_direction = Eigen::Vector2d::UnitX();  // p_F - p_I in the robot frame
+  double weight = 1.0;
+};
+
+// One associated point: where the map has it (world) and where the robot sees it (robot frame).
+struct PointPair {
+  Eigen::Vector2d map_point = Eigen::Vector2d::Zero();
+  Eigen::Vector2d robot_point = Eigen::Vector2d::Zero();
+  double weight = 1.0;
+};
+
+struct CorrectionLossOptions {
+  // Residuals beyond these scales are down-weighted (Huber): one wrong chord or point cannot
+  // drag the solution far. Radians and metres.
+  double heading_scale_rad = 0.05;
+  double translation_scale_m = 0.1;
+};
+
+// Angular correction (eq. 8): e_theta = argmin sum_i C_i wrap(phi_ref_i - phi_curr_i(e))^2, where
+// phi_ref is the direction of the map chord and phi_curr(e) = theta + e + direction of the
+// observed chord in the robot frame. The residual is on the wrapped chord direction angle, the
+// bounded form of the paper's slope difference (a slope is infinite for vertical chords).
+// Returns e_theta (0 without chords).
+double SolveHeadingCorrection(const std::vector<ChordPair>& chords, double theta_rad,
+                              const CorrectionLossOptions& loss = {});
+
+// Translational correction (eqs. 9-10) with the heading already corrected: (e_x, e_y) =
+// argmin sum_i C_i |X_ref_i - (t + e + R(theta) p_i)|^2. Returns (e_x, e_y) (zero without points).
+Eigen::Vector2d SolveTranslationCorrection(const std::vector<PointPair>& points,
+                                           const Eigen::Vector2d& translation, double theta_rad,
+                                           const CorrectionLossOptions& loss = {});
+
+}  // namespace splam::estimation
+
+#endif  // SPLAM_ESTIMATION_TOPOLOGICAL_CORRECTION_H_

@@ -1,0 +1,572 @@
+#include "estimation/topological_slam.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "kernel/angle.h"
+
+namespace splam::estimation {
+
+using kernel::CubicBSpline;
+using kernel::Pose2;
+using kernel::SplineCurve;
+
+namespace {
+
+Eigen::Vector2d PointAt(const SplineCurve& c, double s) {
+  return c.spline.Point(c.spline.ParameterAtArcLength(s));
+}
+
+// Arc length of every control point's Greville abscissa (t_{i+1} + t_{i+2} + t_{i+3}) / 3: the
+// place along the curve that the control point shapes most.
+std::vector<double> ControlPointArcs(const CubicBSpline& spline) {
+  const std::vector<double>& t = spline.knots();
+  std::vector<double> arcs(spline.control_points().size());
+  for (std::size_t i = 0; i < arcs.size(); ++i)
+    arcs[i] = spline.ArcLengthAt((t[i + 1] + t[i + 2] + t[i + 3]) / 3.0);
+  return arcs;
+}
+
+// The map curve with `head` control points put before its first and `tail` after its last
+// (paper 003 Fig. 16). The knot vector is extended, not rebuilt: the old interior knots stay, the
+// clamped ends move outward by one knot step h (the mean interior knot spacing) per new control
+// point, so the old curve keeps its shape except in the three spans next to a junction.
+std::optional<CubicBSpline> Spliced(const CubicBSpline& map,
+                                    const std::vector<Eigen::Vector2d>& head,
+                                    const std::vector<Eigen::Vector2d>& tail) {
+  const std::vector<double>& old = map.knots();
+  const std::size_t n = map.control_points().size();
+  const double a = old.front(), b = old.back();
+  const double h = (b - a) / static_cast<double>(n - 3);  // n - 3 spans of a clamped cubic
+  std::vector<double> knots;
+  const auto front = static_cast<double>(head.size()), back = static_cast<double>(tail.size());
+  knots.insert(knots.end(), 4, a - front * h);
+  for (std::size_t k = head.size(); k >= 1; --k)
+    knots.push_back(a - static_cast<double>(k - 1) * h);
+  knots.insert(knots.end(), old.begin() + 4, old.end() - 4);
+  for (std::size_t k = 0; k < tail.size(); ++k) knots.push_back(b + static_cast<double>(k) * h);
+  knots.insert(knots.end(), 4, b + back * h);
+  std::vector<Eigen::Vector2d> points = head;
+  points.insert(points.end(), map.control_points().begin(), map.control_points().end());
+  points.insert(points.end(), tail.begin(), tail.end());
+  return CubicBSpline::Create(std::move(points), std::move(knots));
+}
+
+// The parts of an observed curve (world frame) that continue a map curve beyond the matched
+// stretch (paper 003 Fig. 16), as control points in the map curve's direction: `head` goes before
+// the map curve's first control point, `tail` after its last. The observed control points at the
+// start and end of the matched stretch, and those between, are dropped.
+struct Continuation {
+  std::vector<Eigen::Vector2d> head, tail;
+};
+Continuation ContinuationOf(const CubicBSpline& map, const CubicBSpline& observed,
+                            const CurveMatch& match, const TopologicalSlamOptions& options) {
+  Continuation c;
+  const double lm = map.Length(), lo = observed.Length();
+  const bool forward = match.map.end_m >= match.map.start_m;
+  std::vector<Eigen::Vector2d> points = observed.control_points();
+  std::vector<double> arcs = ControlPointArcs(observed);
+  double s0 = match.observed.start_m, s1 = match.observed.end_m;
+  if (!forward) {  // run the observation the way the map runs
+    std::reverse(points.begin(), points.end());
+    std::reverse(arcs.begin(), arcs.end());
+    for (double& a : arcs) a = lo - a;
+    std::tie(s0, s1) = std::pair{lo - s1, lo - s0};
+  }
+  const double map_lo = std::min(match.map.start_m, match.map.end_m);
+  const double map_hi = std::max(match.map.start_m, match.map.end_m);
+  // Control points closer than half their spacing to the junction would fold the curve there.
+  const double gap = 0.5 * lo / static_cast<double>(points.size() - 1);
+  if (map_hi >= lm - options.end_tolerance_m && lo - s1 >= options.min_extension_length_m) {
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (arcs[i] > s1 + gap) c.tail.push_back(points[i]);
+  }
+  if (map_lo <= options.end_tolerance_m && s0 >= options.min_extension_length_m) {
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (arcs[i] < s0 - gap) c.head.push_back(points[i]);
+  }
+  return c;
+}
+
+}  // namespace
+
+std::string TopologicalSlamOptions::Validate() const {
+  if (std::string e = extraction.Validate(); !e.empty()) return e;
+  if (std::string e = association.Validate(); !e.empty()) return e;
+  if (!(max_curve_range_m >= 0.0)) return "max_curve_range_m must be >= 0";
+  if (!(region_margin_m >= 0.0) || !(region_radius_m > 0.0) || !(region_refresh_m > 0.0))
+    return "the local region needs margin >= 0, radius > 0 and refresh distance > 0";
+  if (correction_rounds < 1) return "correction_rounds must be >= 1";
+  if (!(correction_gain > 0.0 && correction_gain <= 1.0))
+    return "correction_gain must be in (0, 1]";
+  if (!(end_trim_m >= 0.0) || !(min_chord_length_m > 0.0) || !(point_spacing_m >= 0.0))
+    return "end_trim_m and point_spacing_m must be >= 0 and min_chord_length_m positive";
+  if (!(feature_weight > 0.0) || !(line_weight > 0.0) || !(curve_weight > 0.0) ||
+      !(line_flatness_m >= 0.0))
+    return "reliability weights must be positive";
+  if (!(loss.heading_scale_rad > 0.0) || !(loss.translation_scale_m > 0.0))
+    return "loss scales must be positive";
+  if (!(verify_threshold_m > 0.0) || !(max_heading_correction_rad > 0.0) ||
+      !(max_translation_correction_m > 0.0))
+    return "verify_threshold_m and the correction bounds must be positive";
+  if (!(map_update_distance_m >= 0.0) || !(map_update_angle_rad >= 0.0))
+    return "map update thresholds must be >= 0";
+  if (!(min_new_curve_length_m >= 0.0) || min_new_curve_points < 4)
+    return "new curves need a length >= 0 and at least 4 points";
+  if (!(min_extension_length_m > 0.0) || !(end_tolerance_m >= 0.0) || max_control_points < 4)
+    return "bad extension thresholds";
+  if (!(index_cell_m > 0.0)) return "index_cell_m must be positive";
+  return "";
+}
+
+struct TopologicalSlam::Association {
+  int observed = 0;  // index into the scan's curves
+  int map = 0;       // index into curves_
+  CurveMatch match;
+  double reliability = 1.0;  // C_i
+};
+
+bool TopologicalSlam::RegionShape::Near(const Eigen::Vector2d& p, double margin_m) const {
+  const Eigen::Vector2d d = p - center;
+  const double r = d.norm();
+  if (r <= margin_m) return true;
+  if (r > radius_m + margin_m || bearings_rad.empty()) return false;
+  const double b = std::atan2(d.y(), d.x());
+  const auto it = std::lower_bound(bearings_rad.begin(), bearings_rad.end(), b);
+  std::size_t hi = static_cast<std::size_t>(it - bearings_rad.begin());
+  std::size_t lo = hi == 0 ? bearings_rad.size() - 1 : hi - 1;
+  if (hi == bearings_rad.size()) hi = 0;
+  if (!full_circle && (b < bearings_rad.front() || b > bearings_rad.back())) {
+    // Outside the field of view of a partial region: only the margin around its sides counts.
+    return false;
+  }
+  return r <= std::max(ranges_m[lo], ranges_m[hi]) + margin_m;
+}
+
+TopologicalSlam::TopologicalSlam(const Pose2& initial_pose, const TopologicalSlamOptions& options)
+    : options_(options),
+      health_(options.Validate()),
+      association_(options.association),
+      pose_(initial_pose) {}
+
+void TopologicalSlam::Predict(const Pose2& odometry_increment) {
+  if (healthy()) pose_ = pose_ * odometry_increment;
+}
+
+void TopologicalSlam::SetRegion(const kernel::LocalSafeRegion& region) {
+  RegionShape shape;
+  shape.center = region.center();
+  shape.full_circle = region.full_circle();
+  shape.radius_m = region.radius();
+  std::vector<std::pair<double, double>> polar;
+  for (const Eigen::Vector2d& v : region.boundary()) {
+    const Eigen::Vector2d d = v - region.center();
+    if (d.norm() < 1e-9) continue;  // the sensor vertex of a partial region
+    polar.emplace_back(std::atan2(d.y(), d.x()), d.norm());
+  }
+  std::sort(polar.begin(), polar.end());
+  for (const auto& [b, r] : polar) {
+    shape.bearings_rad.push_back(b);
+    shape.ranges_m.push_back(r);
+  }
+  region_ = std::move(shape);
+}
+
+void TopologicalSlam::SetLocalRegion(const kernel::LocalSafeRegion& region) {
+  if (!healthy()) return;
+  SetRegion(region);
+  node_pending_ = true;
+}
+
+std::size_t TopologicalSlam::num_control_points() const {
+  std::size_t n = 0;
+  for (const SplineCurve& c : curves_) n += c.spline.control_points().size();
+  return n;
+}
+
+std::vector<MapSpline> TopologicalSlam::MapSplines() const {
+  std::vector<MapSpline> out;
+  for (std::size_t i = 0; i < curves_.size(); ++i)
+    out.push_back({static_cast<int>(i), curves_[i].spline, observations_[i]});
+  return out;
+}
+
+std::int64_t TopologicalSlam::CellKey(const Eigen::Vector2d& p) const {
+  const auto ix = static_cast<std::int64_t>(std::floor(p.x() / options_.index_cell_m));
+  const auto iy = static_cast<std::int64_t>(std::floor(p.y() / options_.index_cell_m));
+  return (ix << 32) ^ (iy & 0xffffffff);
+}
+
+void TopologicalSlam::Register(int curve) {
+  const SplineCurve& c = curves_[static_cast<std::size_t>(curve)];
+  std::vector<std::int64_t> keys;
+  for (const Eigen::Vector2d& p : c.spline.control_points()) keys.push_back(CellKey(p));
+  const std::size_t stride = std::max<std::size_t>(
+      1, static_cast<std::size_t>(0.25 * options_.index_cell_m / options_.extraction.epsilon_m));
+  for (std::size_t k = 0; k < c.samples.size(); k += stride) keys.push_back(CellKey(c.samples[k]));
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  for (std::int64_t key : keys) cells_[key].push_back(curve);
+  curve_cells_[static_cast<std::size_t>(curve)] = std::move(keys);
+}
+
+void TopologicalSlam::Unregister(int curve) {
+  for (std::int64_t key : curve_cells_[static_cast<std::size_t>(curve)]) {
+    std::vector<int>& list = cells_[key];
+    list.erase(std::remove(list.begin(), list.end(), curve), list.end());
+  }
+  curve_cells_[static_cast<std::size_t>(curve)].clear();
+}
+
+void TopologicalSlam::AddMapCurve(SplineCurve curve) {
+  curves_.push_back(std::move(curve));
+  observations_.push_back(1);
+  curve_cells_.emplace_back();
+  Register(static_cast<int>(curves_.size() - 1));
+}
+
+std::vector<int> TopologicalSlam::LocalCurves() const {
+  std::vector<int> candidates;
+  if (!region_) return candidates;
+  const double reach = region_->radius_m + options_.region_margin_m;
+  const double cell = options_.index_cell_m;
+  const auto lo_x = static_cast<std::int64_t>(std::floor((region_->center.x() - reach) / cell));
+  const auto hi_x = static_cast<std::int64_t>(std::floor((region_->center.x() + reach) / cell));
+  const auto lo_y = static_cast<std::int64_t>(std::floor((region_->center.y() - reach) / cell));
+  const auto hi_y = static_cast<std::int64_t>(std::floor((region_->center.y() + reach) / cell));
+  for (std::int64_t ix = lo_x; ix <= hi_x; ++ix) {
+    for (std::int64_t iy = lo_y; iy <= hi_y; ++iy) {
+      const auto it = cells_.find((ix << 32) ^ (iy & 0xffffffff));
+      if (it != cells_.end())
+        candidates.insert(candidates.end(), it->second.begin(), it->second.end());
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  std::vector<int> local;
+  const std::size_t stride =
+      std::max<std::size_t>(1, static_cast<std::size_t>(0.1 / options_.extraction.epsilon_m));
+  for (int i : candidates) {
+    const std::vector<Eigen::Vector2d>& samples = curves_[static_cast<std::size_t>(i)].samples;
+    for (std::size_t k = 0; k < samples.size(); k += stride) {
+      if (region_->Near(samples[k], options_.region_margin_m)) {
+        local.push_back(i);
+        break;
+      }
+    }
+  }
+  return local;
+}
+
+std::vector<TopologicalSlam::Association> TopologicalSlam::Associate(
+    const std::vector<SplineCurve>& observed, const Pose2& pose,
+    const std::vector<int>& local) const {
+  std::vector<Association> out;
+  for (std::size_t i = 0; i < observed.size(); ++i) {
+    const SplineCurve world = kernel::Transformed(observed[i], pose);
+    std::optional<Association> best;
+    for (int m : local) {
+      std::optional<CurveMatch> match =
+          association_.Match(world, curves_[static_cast<std::size_t>(m)]);
+      if (!match || match->pairs.size() < 2) continue;
+      const double length = match->observed.end_m - match->observed.start_m;
+      if (best && length <= best->match.observed.end_m - best->match.observed.start_m) continue;
+      best = Association{static_cast<int>(i), m, std::move(*match), 1.0};
+    }
+    if (!best) continue;
+    // Reliability: paired features, else a straight stretch, else a smooth curve.
+    if (best->match.used_features) {
+      best->reliability = options_.feature_weight;
+    } else {
+      const CurveStretch& s = best->match.observed;
+      const Eigen::Vector2d a = PointAt(observed[i], s.start_m);
+      const Eigen::Vector2d b = PointAt(observed[i], s.end_m);
+      const Eigen::Vector2d n = Eigen::Vector2d(a.y() - b.y(), b.x() - a.x()).normalized();
+      double flatness = 0.0;
+      const double step = std::max(0.05, (s.end_m - s.start_m) / 20.0);
+      for (double t = s.start_m; t <= s.end_m; t += step)
+        flatness = std::max(flatness, std::abs(n.dot(PointAt(observed[i], t) - a)));
+      best->reliability =
+          flatness <= options_.line_flatness_m ? options_.line_weight : options_.curve_weight;
+    }
+    out.push_back(std::move(*best));
+  }
+  return out;
+}
+
+namespace {
+
+// The pair index of a point at observed arc length s inside a match (pairs are epsilon apart).
+std::size_t PairIndex(const CurveMatch& match, double s, double epsilon) {
+  const double k = std::round((s - match.observed.start_m) / epsilon);
+  return std::min(match.pairs.size() - 1, static_cast<std::size_t>(std::max(0.0, k)));
+}
+
+// The start and end of a matched stretch, `trim` inside it when it is long enough.
+std::pair<double, double> TrimmedEnds(const CurveStretch& s, double trim) {
+  if (s.end_m - s.start_m <= 4.0 * trim) return {s.start_m, s.end_m};
+  return {s.start_m + trim, s.end_m - trim};
+}
+
+}  // namespace
+
+Pose2 TopologicalSlam::Correct(const std::vector<SplineCurve>& observed,
+                               const std::vector<Association>& associations,
+                               const Pose2& pose) const {
+  const double epsilon = options_.association.epsilon_m;
+  auto map_of = [&](const Association& a) -> const CubicBSpline& {
+    return curves_[static_cast<std::size_t>(a.map)].spline;
+  };
+  // Angular correction: one chord per matched stretch, between its (trimmed) start and end. The
+  // map ends of the chord are the projections of the observed ends, placed at the estimate, onto
+  // the matched map curve: a point of a smooth curve is known only up to a slide along it, and
+  // the association's arc-length pairs would carry the prediction's along-curve error.
+  std::vector<ChordPair> chords;
+  for (const Association& a : associations) {
+    const SplineCurve& o = observed[static_cast<std::size_t>(a.observed)];
+    const CurveMatch& m = a.match;
+    const auto [s0, s1] = TrimmedEnds(m.observed, options_.end_trim_m);
+    const Eigen::Vector2d p0 = PointAt(o, s0);
+    const Eigen::Vector2d p1 = PointAt(o, s1);
+    const double chord = (p1 - p0).norm();
+    if (chord < options_.min_chord_length_m) continue;
+    const Eigen::Vector2d m0 = map_of(a).Closest(pose * p0).point;
+    const Eigen::Vector2d m1 = map_of(a).Closest(pose * p1).point;
+    chords.push_back({m1 - m0, p1 - p0, a.reliability * chord * chord});
+  }
+  const double theta = pose.theta() + SolveHeadingCorrection(chords, pose.theta(), options_.loss);
+  const Pose2 turned(pose.translation(), theta);
+
+  // Translational correction: start, end and intermediate points of every stretch, each paired
+  // with its projection onto the map curve at the corrected heading, and the paired features
+  // (physical points: paired with the map feature).
+  std::vector<PointPair> points;
+  for (const Association& a : associations) {
+    const SplineCurve& o = observed[static_cast<std::size_t>(a.observed)];
+    const CurveMatch& m = a.match;
+    const CubicBSpline& map = map_of(a);
+    const auto [s0, s1] = TrimmedEnds(m.observed, options_.end_trim_m);
+    auto on_curve = [&](double s) {
+      const Eigen::Vector2d p = PointAt(o, s);
+      points.push_back({map.Closest(turned * p).point, p, a.reliability});
+    };
+    on_curve(s0);
+    on_curve(s1);
+    if (options_.point_spacing_m > 0.0) {
+      for (double s = s0 + options_.point_spacing_m; s < s1 - 0.5 * options_.point_spacing_m;
+           s += options_.point_spacing_m)
+        on_curve(s);
+    }
+    if (!m.used_features) continue;
+    for (const kernel::CurveFeature& f : o.features) {  // physical points: both components
+      if (f.arc_length_m < m.observed.start_m || f.arc_length_m > m.observed.end_m) continue;
+      points.push_back({m.pairs[PairIndex(m, f.arc_length_m, epsilon)].second,
+                        PointAt(o, f.arc_length_m), a.reliability});
+    }
+  }
+  const Eigen::Vector2d e =
+      SolveTranslationCorrection(points, pose.translation(), theta, options_.loss);
+  return Pose2(pose.translation() + e, theta);
+}
+
+bool TopologicalSlam::Verifies(const SplineCurve& observed, const Association& a,
+                               const Pose2& pose) const {
+  const CurveMatch& m = a.match;
+  const CubicBSpline& map = curves_[static_cast<std::size_t>(a.map)].spline;
+  const double threshold = options_.verify_threshold_m;
+  const auto [s0, s1] = TrimmedEnds(m.observed, options_.end_trim_m);
+  for (double s : {s0, s1}) {
+    if (map.Closest(pose * PointAt(observed, s)).distance > threshold) return false;
+  }
+  // The whole stretch must lie on the map curve, not just its ends.
+  if (options_.verify_rms_m > 0.0) {
+    double sum = 0.0;
+    int n = 0;
+    for (double s = s0; s <= s1;
+         s += options_.point_spacing_m > 0.0 ? options_.point_spacing_m : 0.1) {
+      const double d = map.Closest(pose * PointAt(observed, s)).distance;
+      sum += d * d;
+      ++n;
+    }
+    if (n > 0 && std::sqrt(sum / n) > options_.verify_rms_m) return false;
+  }
+  if (!m.used_features) return true;
+  for (const kernel::CurveFeature& f : observed.features) {
+    if (f.arc_length_m < m.observed.start_m || f.arc_length_m > m.observed.end_m) continue;
+    const Eigen::Vector2d& target =
+        m.pairs[PairIndex(m, f.arc_length_m, options_.association.epsilon_m)].second;
+    if ((pose * PointAt(observed, f.arc_length_m) - target).norm() > threshold) return false;
+  }
+  return true;
+}
+
+bool TopologicalSlam::NearMap(const std::vector<Eigen::Vector2d>& points, int except) const {
+  const double d_min = options_.association.d_min_m;
+  std::vector<int> candidates;
+  for (const Eigen::Vector2d& p : points) {
+    for (double dx : {-d_min, 0.0, d_min}) {
+      for (double dy : {-d_min, 0.0, d_min}) {
+        const auto it = cells_.find(CellKey(p + Eigen::Vector2d(dx, dy)));
+        if (it != cells_.end())
+          candidates.insert(candidates.end(), it->second.begin(), it->second.end());
+      }
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  for (int c : candidates) {
+    if (c == except) continue;
+    const CubicBSpline& spline = curves_[static_cast<std::size_t>(c)].spline;
+    for (const Eigen::Vector2d& p : points)
+      if (spline.Closest(p).distance <= d_min) return true;
+  }
+  return false;
+}
+
+void TopologicalSlam::ExtendMap(const std::vector<SplineCurve>& observed,
+                                const std::vector<Association>& verified,
+                                TopologicalUpdateReport* report) {
+  std::vector<bool> associated(observed.size(), false);
+  std::vector<bool> extended(curves_.size(), false);
+  for (const Association& a : verified) {
+    associated[static_cast<std::size_t>(a.observed)] = true;
+    ++observations_[static_cast<std::size_t>(a.map)];
+    if (extended[static_cast<std::size_t>(a.map)]) continue;  // its match is stale now
+    const SplineCurve world =
+        kernel::Transformed(observed[static_cast<std::size_t>(a.observed)], pose_);
+    const CubicBSpline& map = curves_[static_cast<std::size_t>(a.map)].spline;
+    Continuation c = ContinuationOf(map, world.spline, a.match, options_);
+    // A continuation that runs onto another map curve would duplicate it.
+    if (!c.head.empty() && NearMap(c.head, a.map)) c.head.clear();
+    if (!c.tail.empty() && NearMap(c.tail, a.map)) c.tail.clear();
+    const std::size_t total = c.head.size() + map.control_points().size() + c.tail.size();
+    if ((c.head.empty() && c.tail.empty()) ||
+        total > static_cast<std::size_t>(options_.max_control_points))
+      continue;
+    std::optional<CubicBSpline> spliced = Spliced(map, c.head, c.tail);
+    if (!spliced) continue;
+    Unregister(a.map);
+    curves_[static_cast<std::size_t>(a.map)] =
+        kernel::DescribeCurve(std::move(*spliced), options_.extraction);
+    Register(a.map);
+    extended[static_cast<std::size_t>(a.map)] = true;
+    ++report->extended_curves;
+  }
+  for (std::size_t i = 0; i < observed.size(); ++i) {
+    if (associated[i]) continue;
+    const SplineCurve& o = observed[i];
+    if (static_cast<int>(o.points.size()) < options_.min_new_curve_points ||
+        o.spline.Length() < options_.min_new_curve_length_m)
+      continue;
+    SplineCurve world = kernel::Transformed(o, pose_);
+    std::vector<Eigen::Vector2d> probe = world.spline.control_points();
+    if (NearMap(probe, -1)) continue;
+    AddMapCurve(std::move(world));
+    ++report->added_curves;
+  }
+}
+
+TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
+                                                const Pose2& robot_T_laser) {
+  TopologicalUpdateReport report;
+  if (!healthy()) return report;
+  const kernel::Scan clipped =
+      options_.max_curve_range_m > 0.0 ? scan.Clipped(options_.max_curve_range_m) : scan;
+  std::vector<SplineCurve> observed;  // robot frame
+  for (const SplineCurve& c : kernel::ExtractCurves(clipped, options_.extraction))
+    observed.push_back(kernel::Transformed(c, robot_T_laser));
+  report.observed_curves = static_cast<int>(observed.size());
+
+  const Pose2 predicted = pose_;
+  if (!region_ || (predicted.translation() - region_->center).norm() > options_.region_refresh_m)
+    SetRegion(kernel::LocalSafeRegion::FromScan(scan, predicted * robot_T_laser,
+                                                options_.region_radius_m));
+  const std::vector<int> local = LocalCurves();
+  report.local_map_curves = static_cast<int>(local.size());
+
+  // Associate and correct, each round at the pose the previous one corrected.
+  Pose2 pose = predicted;
+  std::vector<Association> first, associations;
+  for (int round = 0; round < options_.correction_rounds; ++round) {
+    std::vector<Association> found = Associate(observed, pose, local);
+    if (round == 0) first = found;
+    if (found.empty()) break;  // keep the previous round's associations and pose
+    associations = std::move(found);
+    pose = Correct(observed, associations, pose);
+  }
+  report.associated_curves = static_cast<int>(first.size());
+
+  // VERIFY_LOCALIZATION: the whole set, else the best hypothesis of a single curve.
+  std::vector<Association> verified;
+  auto verifying = [&](const std::vector<Association>& set, const Pose2& at) {
+    std::vector<Association> ok;
+    for (const Association& a : set)
+      if (Verifies(observed[static_cast<std::size_t>(a.observed)], a, at)) ok.push_back(a);
+    return ok;
+  };
+  auto plausible = [&](const Pose2& corrected) {
+    return std::abs(kernel::WrapAngle(corrected.theta() - predicted.theta())) <=
+               options_.max_heading_correction_rad &&
+           (corrected.translation() - predicted.translation()).norm() <=
+               options_.max_translation_correction_m;
+  };
+  if (!associations.empty()) {
+    if (plausible(pose)) verified = verifying(associations, pose);
+    if (verified.size() == associations.size()) {
+      report.localized = true;
+    } else {
+      verified.clear();
+      report.used_fallback = true;
+      Pose2 best_pose = predicted;
+      for (const Association& a : first) {
+        const Pose2 hypothesis = Correct(observed, {a}, predicted);
+        if (!plausible(hypothesis)) continue;
+        std::vector<Association> agree = verifying(first, hypothesis);
+        if (agree.size() > verified.size()) {
+          verified = std::move(agree);
+          best_pose = hypothesis;
+        }
+      }
+      if (!verified.empty()) {
+        report.localized = true;
+        pose = Correct(observed, verified, predicted);
+        std::vector<Association> joint;
+        if (plausible(pose)) joint = verifying(verified, pose);
+        if (joint.empty()) {
+          pose = best_pose;
+        } else {
+          verified = std::move(joint);
+        }
+      } else {
+        pose = predicted;
+      }
+    }
+  }
+  report.verified_curves = static_cast<int>(verified.size());
+  if (report.localized && static_cast<int>(verified.size()) < options_.min_verified_curves) {
+    report.localized = false;  // too little to trust: keep the prediction, do not map
+    pose = predicted;
+  }
+  const double k = options_.correction_gain;
+  pose_ = Pose2(predicted.translation() + k * (pose.translation() - predicted.translation()),
+                predicted.theta() + k * kernel::WrapAngle(pose.theta() - predicted.theta()));
+  report.heading_correction_rad = kernel::WrapAngle(pose_.theta() - predicted.theta());
+  report.translation_correction = pose_.translation() - predicted.translation();
+
+  // Map extension, when due, and not after a failed localisation (the map would be corrupted).
+  const bool due = node_pending_ || !last_map_update_ ||
+                   (pose_.translation() - last_map_update_->translation()).norm() >=
+                       options_.map_update_distance_m ||
+                   std::abs(kernel::WrapAngle(pose_.theta() - last_map_update_->theta())) >=
+                       options_.map_update_angle_rad;
+  if (due && (report.localized || first.empty())) {
+    ExtendMap(observed, verified, &report);
+    report.map_updated = true;
+    last_map_update_ = pose_;
+    node_pending_ = false;
+  }
+  return report;
+}
+
+}  // namespace splam::estimation

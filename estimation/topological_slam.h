@@ -1,0 +1,194 @@
+#ifndef SPLAM_ESTIMATION_TOPOLOGICAL_SLAM_H_
+#define SPLAM_ESTIMATION_TOPOLOGICAL_SLAM_H_
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "estimation/ekf_bspline_slam.h"
+#include "estimation/spline_association.h"
+#include "estimation/topological_correction.h"
+#include "kernel/local_safe_region.h"
+#include "kernel/pose2.h"
+#include "kernel/scan.h"
+#include "kernel/spline_extraction.h"
+
+namespace splam::estimation {
+
+struct TopologicalSlamOptions {
+  // How curves are extracted from every scan (segmentation, fit, curvature, features).
+  kernel::SplineExtractionOptions extraction;
+  // Paper 000's curvature association (inflection points and corners paired by type and
+  // curvature), with its coarse test of mu_min control points within d_min.
+  SplineAssociationOptions association;
+  // Beams longer than this are not used for curves, metres (0: the laser's maximum range).
+  double max_curve_range_m = 0.0;
+
+  // The local region (SPEC §10): association only against the map curves that have a point
+  // inside the LSR of the last exploration node, widened by this margin (the curves lie on the
+  // LSR's boundary), metres.
+  double region_margin_m = 0.3;
+  // Without an explorer (a log), or when the robot has driven more than region_refresh_m from
+  // the last node's LSR (REG's FIND_PATH through the graph), the LSR of radius region_radius_m
+  // of the current scan becomes the region: a virtual node. REG's r and alpha r, metres.
+  double region_radius_m = 3.0;
+  double region_refresh_m = 2.4;
+
+  // Associate, correct the heading, correct the translation; repeated this many times, each
+  // round associating at the pose the previous one corrected.
+  int correction_rounds = 2;
+  // The start and end points of a matched stretch are taken this far inside it: the last span of
+  // a fitted B-spline bends with the noise of the last few points (metres).
+  double end_trim_m = 0.2;
+  // Chords shorter than this give no heading (their direction is noise), metres.
+  double min_chord_length_m = 0.5;
+  // The translational correction pairs the start and end points of every matched stretch and,
+  // between them, points this far apart along it (and the paired features); 0: only the start
+  // and end points, as paper 003 writes eqs. 9-10. Intermediate points average the range noise
+  // that makes the two end points alone jitter by centimetres. Metres.
+  double point_spacing_m = 0.2;
+  // Reliability C_i of a matched stretch (eq. 8): curves whose features paired weigh most, then
+  // straight stretches (no sample farther than line_flatness_m from the chord), then smooth
+  // curves. The weight of a chord is C_i times its squared length in m^2 (the direction error of a
+  // chord falls as 1 / length).
+  double feature_weight = 3.0;
+  double line_weight = 2.0;
+  double curve_weight = 1.0;
+  double line_flatness_m = 0.02;
+  CorrectionLossOptions loss;
+
+  // Fraction of the verified correction applied at each scan (1: all of it, as paper 003 does
+  // at its nodes). Applied at every scan of a 10 Hz laser, the full correction passes the
+  // centimetre jitter of the two-step solution into the pose and, through map extension, into
+  // the map; a gain below 1 averages it over a few scans (a constant-gain observer).
+  double correction_gain = 0.3;  // measured on `complex`: 1 drifts (see README)
+  // A correction larger than this cannot come from odometry drift since the last update: it is
+  // a wrong association (a round obstacle fits any rotation about its centre) and fails
+  // verification. Radians and metres.
+  double max_heading_correction_rad = 0.1;
+  double max_translation_correction_m = 0.3;
+  // VERIFY_LOCALIZATION: after the correction every matched start and end point must lie within
+  // this distance of its map curve, and every paired feature of its map feature, metres.
+  double verify_threshold_m = 0.15;
+  // A localisation that verifies fewer curves than this keeps the odometric prediction.
+  int min_verified_curves = 2;
+  // ... and the root mean square distance of the stretch's points to the map curve must stay
+  // under this (0: not checked), metres.
+  double verify_rms_m = 0.05;
+
+  // The map is extended when the robot has moved this far or turned this much since the last
+  // extension (and at every exploration node), metres and radians.
+  double map_update_distance_m = 0.5;
+  double map_update_angle_rad = 0.35;
+  // A curve no map curve comes near (no point within association.d_min_m) becomes a new object
+  // when it is at least this long and has this many points.
+  double min_new_curve_length_m = 0.5;
+  int min_new_curve_points = 10;
+  // A map curve whose matched stretch reaches its end (within end_tolerance_m) is extended by
+  // splicing when the observation continues at least min_extension_length_m beyond it, metres.
+  double min_extension_length_m = 0.3;
+  double end_tolerance_m = 0.1;
+  int max_control_points = 400;  // a map curve stops growing here
+
+  // Side of the grid cells that index the map curves, metres.
+  double index_cell_m = 1.0;
+
+  std::string Validate() const;
+};
+
+struct TopologicalUpdateReport {
+  int observed_curves = 0;
+  int local_map_curves = 0;  // map curves in the local region
+  int associated_curves = 0;
+  bool localized = false;      // a correction passed VERIFY_LOCALIZATION
+  bool used_fallback = false;  // ... with individual curves, after the whole set failed
+  int verified_curves = 0;
+  double heading_correction_rad = 0.0;
+  Eigen::Vector2d translation_correction = Eigen::Vector2d::Zero();
+  bool map_updated = false;
+  int added_curves = 0, extended_curves = 0;
+};
+
+// Topological B-spline SLAM (SPEC §10, paper 003 §3.2): no covariance. The pose is predicted
+// with odometry, corrected by the curves associated in the local region (heading, then
+// translation, as weighted least squares), and the map of curves grows by new objects and by
+// splicing control points onto the curves that the robot sees continue. The cost of an update
+// depends on the curves in the local region, not on the size of the map: the map curves are
+// found through a uniform grid.
+class TopologicalSlam {
+ public:
+  // Invalid options leave it unhealthy (health() says why); it then ignores input.
+  explicit TopologicalSlam(const kernel::Pose2& initial_pose,
+                           const TopologicalSlamOptions& options = {});
+
+  void Predict(const kernel::Pose2& odometry_increment);
+  // The LSR of the newest exploration node (world frame, placed at the estimate); the map is
+  // extended at the next update.
+  void SetLocalRegion(const kernel::LocalSafeRegion& region);
+  TopologicalUpdateReport Update(const kernel::Scan& scan,
+                                 const kernel::Pose2& robot_T_laser = kernel::Pose2());
+
+  kernel::Pose2 pose() const { return pose_; }
+  std::size_t num_curves() const { return curves_.size(); }
+  std::size_t num_control_points() const;
+  // The map curves with their samples, curvature and features (world frame).
+  const std::vector<kernel::SplineCurve>& curves() const { return curves_; }
+  std::vector<MapSpline> MapSplines() const;
+  bool healthy() const { return health_.empty(); }
+  const std::string& health() const { return health_; }
+  const TopologicalSlamOptions& options() const { return options_; }
+
+  // Adds a curve to the map as it is (world frame), e.g. a prior map or a benchmark's.
+  void AddMapCurve(kernel::SplineCurve curve);
+
+ private:
+  struct Association;
+  // The local region as a star-shaped radial function: the range of its boundary by bearing.
+  struct RegionShape {
+    Eigen::Vector2d center = Eigen::Vector2d::Zero();
+    std::vector<double> bearings_rad, ranges_m;  // sorted by bearing in (-pi, pi]
+    bool full_circle = false;
+    double radius_m = 0.0;
+    // True when p lies inside the region or within margin_m beyond its boundary (the boundary
+    // taken at the larger range of the two vertices around p's bearing).
+    bool Near(const Eigen::Vector2d& p, double margin_m) const;
+  };
+  void SetRegion(const kernel::LocalSafeRegion& region);
+
+  std::vector<int> LocalCurves() const;
+  std::vector<Association> Associate(const std::vector<kernel::SplineCurve>& observed,
+                                     const kernel::Pose2& pose,
+                                     const std::vector<int>& local) const;
+  // The heading-then-translation correction of `pose` from the associations.
+  kernel::Pose2 Correct(const std::vector<kernel::SplineCurve>& observed,
+                        const std::vector<Association>& associations,
+                        const kernel::Pose2& pose) const;
+  bool Verifies(const kernel::SplineCurve& observed, const Association& association,
+                const kernel::Pose2& pose) const;
+  // True when some map curve other than `except` passes within d_min of a point.
+  bool NearMap(const std::vector<Eigen::Vector2d>& points, int except) const;
+  void ExtendMap(const std::vector<kernel::SplineCurve>& observed,
+                 const std::vector<Association>& verified, TopologicalUpdateReport* report);
+  void Register(int curve);
+  void Unregister(int curve);
+  std::int64_t CellKey(const Eigen::Vector2d& p) const;
+
+  TopologicalSlamOptions options_;
+  std::string health_;
+  CurvatureAssociation association_;
+  kernel::Pose2 pose_;
+  std::vector<kernel::SplineCurve> curves_;
+  std::vector<int> observations_;
+  std::unordered_map<std::int64_t, std::vector<int>> cells_;
+  std::vector<std::vector<std::int64_t>> curve_cells_;
+  std::optional<RegionShape> region_;
+  bool node_pending_ = false;  // a node was set: extend the map at the next update
+  std::optional<kernel::Pose2> last_map_update_;
+};
+
+}  // namespace splam::estimation
+
+#endif  // SPLAM_ESTIMATION_TOPOLOGICAL_SLAM_H_
