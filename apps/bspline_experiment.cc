@@ -99,16 +99,7 @@ RunResult RunFilter(const std::vector<sim::SensorFrame>& frames, const sim::RayC
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
       static_cast<double>(frames.size());
   result.map = slam.MapSplines();
-  double sum = 0.0;
-  std::size_t n = 0;
-  for (const estimation::MapSpline& s : result.map) {
-    for (const Eigen::Vector2d& p : s.spline.ResampleByArcLength(0.05)) {
-      const sim::RayHit near = caster.Nearest(p, 2.0);
-      sum += near.obstacle >= 0 ? near.range_m : 2.0;
-      ++n;
-    }
-  }
-  result.map_error_m = n > 0 ? sum / static_cast<double>(n) : 0.0;
+  result.map_error_m = MeanDistanceToObstacles(caster, result.map);
   return result;
 }
 

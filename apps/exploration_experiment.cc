@@ -57,6 +57,7 @@ int RunExplorationExperiment(const ExplorationExperimentArgs& args) {
     for (std::size_t e = 0; e < explorers.size(); ++e) {
       for (int i = 0; i < args.runs; ++i) {
         ExploreSetup setup;
+        setup.localization = "ground-truth";  // Fig. 18 studies exploration alone
         setup.explorer = explorers[e];
         setup.seed = args.seed + static_cast<std::uint64_t>(i);
         setup.options.alpha = args.alpha;

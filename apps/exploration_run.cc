@@ -1,9 +1,12 @@
 #include "apps/exploration_run.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
+#include "apps/run_picture.h"
 #include "apps/simulated_robot.h"
+#include "estimation/metrics.h"
 #include "exploration/coverage.h"
 #include "exploration/perception.h"
 #include "io/plot.h"
@@ -16,10 +19,48 @@ namespace {
 
 constexpr double kCoverageCell = 0.1;  // m
 
-std::unique_ptr<exploration::Localization> MakeLocalization(const std::string& name) {
-  if (name == "ground-truth") return std::make_unique<exploration::GroundTruthLocalization>();
-  if (name == "odometry") return std::make_unique<exploration::OdometryLocalization>();
+// The localisation called `name`; the SLAM methods use the simulator's noise models (URG-04LX
+// ranges, the odometry model scaled like the simulation's).
+std::shared_ptr<exploration::Localization> MakeLocalization(const ExploreSetup& setup) {
+  const std::string& name = setup.localization;
+  if (name == "ground-truth") return std::make_shared<exploration::GroundTruthLocalization>();
+  if (name == "odometry") return std::make_shared<exploration::OdometryLocalization>();
+  if (name == "topological" || name == "ekf-lines" || name == "ekf-bspline") {
+    SlamSettings settings;
+    settings.method = name;
+    settings.odometry_noise_scale = std::max(setup.odometry_noise_scale, 0.05);
+    return std::make_shared<SlamLocalization>(settings);
+  }
   return nullptr;
+}
+
+// The true, odometric and estimated trajectories of a run.
+struct Trajectories {
+  kernel::Trajectory truth, odometry, estimate;
+};
+Trajectories TrajectoriesOf(const exploration::ExplorationRun& run) {
+  Trajectories t;
+  for (const exploration::TraceSample& s : run.trace) {
+    t.truth.push_back({s.time_s, s.truth});
+    t.odometry.push_back({s.time_s, s.odometry});
+    t.estimate.push_back({s.time_s, s.estimate});
+  }
+  return t;
+}
+
+nlohmann::json ErrorJson(const estimation::TrajectoryError& e) {
+  return {{"rmse_position_m", e.rmse_position_m},
+          {"max_position_m", e.max_position_m},
+          {"rmse_heading_rad", e.rmse_heading_rad},
+          {"max_heading_rad", e.max_heading_rad}};
+}
+
+double Quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  const auto k = static_cast<std::ptrdiff_t>(
+      std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size()))));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[static_cast<std::size_t>(k)];
 }
 
 }  // namespace
@@ -31,13 +72,14 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
   options.seed = setup.seed;
   const std::unique_ptr<exploration::Explorer> explorer =
       exploration::MakeExplorer(setup.explorer, options);
-  std::unique_ptr<exploration::Localization> localization = MakeLocalization(setup.localization);
+  std::shared_ptr<exploration::Localization> localization = MakeLocalization(setup);
   if (!explorer) {
     outcome.error = "unknown explorer '" + setup.explorer + "' (srt, reg)";
     return outcome;
   }
   if (!localization) {
-    outcome.error = "unknown localisation '" + setup.localization + "' (ground-truth, odometry)";
+    outcome.error = "unknown localisation '" + setup.localization +
+                    "' (ground-truth, odometry, topological, ekf-lines, ekf-bspline)";
     return outcome;
   }
   if (!world.start) {
@@ -60,6 +102,7 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
   SimulatedRobot robot(&simulator);
   outcome.robot_radius_m = robot.description().radius_m;
   outcome.run = explorer->Run(&robot, localization.get());
+  outcome.slam = std::dynamic_pointer_cast<SlamLocalization>(localization);
   if (outcome.run.termination == exploration::Termination::kInvalidInput) {
     outcome.error = outcome.run.message;
     return outcome;
@@ -113,6 +156,50 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
   report["planning_wall_s"] = run.planning_wall_s;
   report["planning_ms_per_node"] = nodes > 0 ? 1e3 * run.planning_wall_s / nodes : 0.0;
   report["wall_s"] = outcome.wall_s;
+  const Trajectories t = TrajectoriesOf(run);
+  report["trajectory_error"] = {
+      {"estimate", ErrorJson(estimation::CompareToTruth(t.truth, t.estimate))},
+      {"odometry", ErrorJson(estimation::CompareToTruth(t.truth, t.odometry))}};
+  if (outcome.slam && outcome.slam->method()) {
+    const SlamMethod& slam = *outcome.slam->method();
+    const std::vector<double>& ms = outcome.slam->update_ms();
+    const std::vector<estimation::MapSpline> splines = slam.MapSplines();
+    std::size_t control_points = 0;
+    for (const estimation::MapSpline& s : splines)
+      control_points += s.spline.control_points().size();
+    nlohmann::json map = {{"description", slam.MapDescription()}};
+    if (!splines.empty()) {
+      map["curves"] = splines.size();
+      map["control_points"] = control_points;
+      map["mean_distance_to_obstacles_m"] = MeanDistanceToObstacles(sim::RayCaster(world), splines);
+    }
+    // Time per localisation step by map size (curves): flat for the topological SLAM.
+    nlohmann::json by_size = nlohmann::json::array();
+    const std::vector<std::size_t>& sizes = outcome.slam->map_curves();
+    const std::size_t top = sizes.empty() ? 0 : *std::max_element(sizes.begin(), sizes.end());
+    const std::size_t width = std::max<std::size_t>(1, (top + 4) / 5);
+    for (std::size_t lo = 0; lo <= top; lo += width) {
+      std::vector<double> in;
+      for (std::size_t k = 0; k < ms.size(); ++k)
+        if (sizes[k] >= lo && sizes[k] < lo + width) in.push_back(ms[k]);
+      if (!in.empty())
+        by_size.push_back({{"map_curves_from", lo},
+                           {"map_curves_to", lo + width - 1},
+                           {"steps", in.size()},
+                           {"median_ms", Quantile(in, 0.5)}});
+    }
+    report["slam"] = {
+        {"method", setup.localization},
+        {"healthy", slam.healthy()},
+        {"health", slam.health()},
+        {"map", map},
+        {"associations",
+         nlohmann::json::parse(
+             slam.Statistics().value("associations", nlohmann::ordered_json{}).dump())},
+        {"localization_steps", ms.size()},
+        {"ms_per_step", {{"median", Quantile(ms, 0.5)}, {"p95", Quantile(ms, 0.95)}}},
+        {"ms_per_step_by_map_curves", by_size}};
+  }
   const exploration::ExplorerOptions& o = setup.options;
   report["options"] = {{"lsr_radius_m", o.lsr_radius_m},
                        {"alpha", o.alpha},
@@ -182,6 +269,31 @@ std::string SaveExplorationPicture(const sim::World& world, const ExploreOutcome
     if (std::string error = figure.Save(path); !error.empty()) return error;
   }
   return "";
+}
+
+std::string SaveSlamMapPicture(const sim::World& world, const ExploreOutcome& outcome,
+                               const std::string& title, const std::vector<std::string>& paths) {
+  if (!outcome.slam || !outcome.slam->method()) return "no SLAM map to draw";
+  const Trajectories t = TrajectoriesOf(outcome.run);
+  RunPicture picture;
+  picture.title = title + " | " + outcome.slam->method()->MapDescription();
+  picture.world = &world;
+  picture.world_color = io::Rgb{0.75, 0.75, 0.75};
+  picture.truth = t.truth;
+  picture.odometry = t.odometry;
+  picture.estimates = {{outcome.slam->name() + " estimate", t.estimate}};
+  outcome.slam->method()->DrawMap(&picture);
+  picture.pixels_per_meter = 40.0;
+  return SaveRunPicture(picture, paths);
+}
+
+std::string SaveTrajectoryErrorPlot(const ExploreOutcome& outcome, const std::string& title,
+                                    const std::vector<std::string>& paths) {
+  const Trajectories t = TrajectoriesOf(outcome.run);
+  return SaveErrorPlot(title, t.truth,
+                       {{"odometry", io::palette::kOdometry, t.odometry},
+                        {outcome.run.localization, io::palette::kEstimate, t.estimate}},
+                       paths);
 }
 
 std::string SaveCoveragePlot(const ExploreOutcome& outcome, const std::string& title,

@@ -2,10 +2,12 @@
 #define SPLAM_APPS_EXPLORATION_RUN_H_
 
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "apps/slam_localization.h"
 #include "exploration/explorer.h"
 #include "sim/world.h"
 
@@ -13,12 +15,13 @@ namespace splam::apps {
 
 // One simulated exploration: which explorer, localisation and seed.
 struct ExploreSetup {
-  std::string explorer = "reg";               // "srt" or "reg"
-  std::string localization = "ground-truth";  // or "odometry"
-  std::uint64_t seed = 1;                     // simulator noise and the explorer's draws
-  double odometry_noise_scale = 1.0;          // times the default odometry noise
-  bool sonar = true;                          // complete the LSR behind the robot with sonar
-  exploration::ExplorerOptions options;       // options.seed is overwritten by `seed`
+  std::string explorer = "reg";  // "srt" or "reg"
+  // "ground-truth", "odometry", or a SLAM method: "topological", "ekf-lines", "ekf-bspline".
+  std::string localization = "topological";
+  std::uint64_t seed = 1;                // simulator noise and the explorer's draws
+  double odometry_noise_scale = 1.0;     // times the default odometry noise
+  bool sonar = true;                     // complete the LSR behind the robot with sonar
+  exploration::ExplorerOptions options;  // options.seed is overwritten by `seed`
 };
 
 struct ExploreOutcome {
@@ -30,6 +33,8 @@ struct ExploreOutcome {
   std::vector<double> coverage_time_s, coverage_fraction;
   double reachable_area_m2 = 0.0;
   double wall_s = 0.0;  // whole run, simulation included
+  // The SLAM method when the localisation is one (its map, timings); null otherwise.
+  std::shared_ptr<SlamLocalization> slam;
   double coverage() const { return coverage_fraction.empty() ? 0.0 : coverage_fraction.back(); }
 };
 
@@ -44,6 +49,16 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
 // path (paper 003 Fig. 17), to each path (.svg or .png); empty on success.
 std::string SaveExplorationPicture(const sim::World& world, const ExploreOutcome& outcome,
                                    const std::string& title, const std::vector<std::string>& paths);
+
+// The SLAM map (curves, control points, features; or lines and corners) over the true world with
+// the true, odometric and estimated trajectories, to each path; empty on success. Needs a SLAM
+// localisation.
+std::string SaveSlamMapPicture(const sim::World& world, const ExploreOutcome& outcome,
+                               const std::string& title, const std::vector<std::string>& paths);
+
+// x, y and theta error over time of the estimate and of odometry, to each path; empty on success.
+std::string SaveTrajectoryErrorPlot(const ExploreOutcome& outcome, const std::string& title,
+                                    const std::vector<std::string>& paths);
 
 // Explored fraction and nodes over simulated time, to each path; empty on success.
 std::string SaveCoveragePlot(const ExploreOutcome& outcome, const std::string& title,

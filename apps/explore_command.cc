@@ -1,5 +1,7 @@
 // splam explore: autonomous exploration of a simulated world with SRT or REG.
 #include <fmt/core.h>
+#include <fmt/format.h>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 
@@ -7,6 +9,7 @@
 #include "apps/exploration_run.h"
 #include "io/trajectory.h"
 #include "io/world_file.h"
+#include "kernel/angle.h"
 
 namespace splam::apps {
 namespace {
@@ -34,10 +37,17 @@ int RunExplore(const ExploreArgs& args) {
     fmt::print(stderr, "splam explore: {}\n", problem);
     return kExitBadInput;
   }
-  const ExploreSetup& setup = args.setup;
+  ExploreSetup setup = args.setup;
   fmt::print("splam explore: {} with {} localisation in '{}', seed {}\n", setup.explorer,
              setup.localization, world.value->name, setup.seed);
   std::fflush(stdout);
+  const auto begin = std::chrono::steady_clock::now();
+  setup.options.on_node = [&begin](int nodes, double time_s) {
+    if (nodes % 10 != 0) return;
+    fmt::print("  {} nodes, {:.0f} s simulated, {:.1f} s wall\n", nodes, time_s,
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
+    std::fflush(stdout);
+  };
   const ExploreOutcome outcome = RunExploration(*world.value, setup);
   if (!outcome.error.empty()) {
     fmt::print(stderr, "splam explore: {}\n", outcome.error);
@@ -58,21 +68,33 @@ int RunExplore(const ExploreArgs& args) {
       fmt::format("{} | {} | {} | seed {} | {} nodes, {:.0f} m, {:.0f} s, {:.1f} % explored",
                   world.value->name, setup.explorer, setup.localization, setup.seed, nodes,
                   run.distance_m, run.time_s, 100.0 * outcome.coverage());
+  std::vector<std::string> written = {"report.json",  "graph.svg",   "graph.png",  "explored.svg",
+                                      "explored.png", "errors.svg",  "errors.png", "truth.txt",
+                                      "odometry.txt", "estimate.txt"};
   io::Trajectory truth, odometry, estimate;
   for (const exploration::TraceSample& s : run.trace) {
     truth.push_back({s.time_s, s.truth});
     odometry.push_back({s.time_s, s.odometry});
     estimate.push_back({s.time_s, s.estimate});
   }
-  std::ofstream(out + "/report.json")
-      << ExplorationReport(*world.value, setup, outcome).dump(2) << "\n";
-  for (const std::string& error :
-       {SaveExplorationPicture(*world.value, outcome, title,
-                               {out + "/graph.svg", out + "/graph.png"}),
-        SaveCoveragePlot(outcome, title, {out + "/explored.svg", out + "/explored.png"}),
-        io::WriteTrajectory(out + "/truth.txt", truth, "ground truth"),
-        io::WriteTrajectory(out + "/odometry.txt", odometry, "odometry"),
-        io::WriteTrajectory(out + "/estimate.txt", estimate, setup.localization + " estimate")}) {
+  const nlohmann::json report = ExplorationReport(*world.value, setup, outcome);
+  std::ofstream(out + "/report.json") << report.dump(2) << "\n";
+  std::vector<std::string> errors = {
+      SaveExplorationPicture(*world.value, outcome, title,
+                             {out + "/graph.svg", out + "/graph.png"}),
+      SaveCoveragePlot(outcome, title, {out + "/explored.svg", out + "/explored.png"}),
+      SaveTrajectoryErrorPlot(outcome, title + ": error against ground truth",
+                              {out + "/errors.svg", out + "/errors.png"}),
+      io::WriteTrajectory(out + "/truth.txt", truth, "ground truth"),
+      io::WriteTrajectory(out + "/odometry.txt", odometry, "odometry"),
+      io::WriteTrajectory(out + "/estimate.txt", estimate, setup.localization + " estimate")};
+  if (outcome.slam && outcome.slam->method()) {
+    errors.push_back(
+        SaveSlamMapPicture(*world.value, outcome, title, {out + "/map.svg", out + "/map.png"}));
+    for (const std::string& e : outcome.slam->method()->WriteMap(out)) errors.push_back(e);
+    written.insert(written.end(), {"map.svg", "map.png", "map.txt", "map.dxf"});
+  }
+  for (const std::string& error : errors) {
     if (!error.empty()) {
       fmt::print(stderr, "splam explore: {}\n", error);
       return kExitBadInput;
@@ -80,12 +102,28 @@ int RunExplore(const ExploreArgs& args) {
   }
   fmt::print(
       "{} nodes, {} edges, {:.1f} m, {:.1f} s simulated, {:.1f} % of {:.0f} m^2 reachable free "
-      "space explored\nterminated: {} ({})\nplanning {:.2f} ms per node, wall time {:.2f} s\n"
-      "wrote {}/{{report.json, graph.svg, graph.png, explored.svg, explored.png, truth.txt, "
-      "odometry.txt, estimate.txt}}\n",
+      "space explored\nterminated: {} ({})\nplanning {:.2f} ms per node, wall time {:.2f} s\n",
       nodes, boost::num_edges(run.graph), run.distance_m, run.time_s, 100.0 * outcome.coverage(),
       outcome.reachable_area_m2, exploration::TerminationName(run.termination), run.message,
-      nodes > 0 ? 1e3 * run.planning_wall_s / nodes : 0.0, outcome.wall_s, out);
+      nodes > 0 ? 1e3 * run.planning_wall_s / nodes : 0.0, outcome.wall_s);
+  const nlohmann::json& e = report["trajectory_error"];
+  fmt::print(
+      "position RMSE: estimate {:.3f} m, odometry {:.3f} m; heading RMSE: {:.2f} deg, {:.2f} "
+      "deg\n",
+      e["estimate"]["rmse_position_m"].get<double>(),
+      e["odometry"]["rmse_position_m"].get<double>(),
+      kernel::RadToDeg(e["estimate"]["rmse_heading_rad"].get<double>()),
+      kernel::RadToDeg(e["odometry"]["rmse_heading_rad"].get<double>()));
+  if (report.contains("slam")) {
+    const nlohmann::json& map = report["slam"]["map"];
+    fmt::print("map: {}", map["description"].get<std::string>());
+    if (map.contains("mean_distance_to_obstacles_m"))
+      fmt::print(", {:.3f} m mean distance to the true obstacles",
+                 map["mean_distance_to_obstacles_m"].get<double>());
+    fmt::print("; {:.2f} ms per localisation step (median)\n",
+               report["slam"]["ms_per_step"]["median"].get<double>());
+  }
+  fmt::print("wrote {}/{{{}}}\n", out, fmt::join(written, ", "));
   return run.termination == exploration::Termination::kExplored ? kExitOk : kExitIncomplete;
 }
 
@@ -111,8 +149,10 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output directory (default runs/explore-<explorer>-<world>)");
   cmd->add_option("--localization", setup.localization,
-                  "Where the explorer believes it is: the simulator's ground truth or odometry")
-      ->check(CLI::IsMember({"ground-truth", "odometry"}))
+                  "Where the explorer believes it is: a SLAM method (the SPLAM loop), odometry "
+                  "alone, or the simulator's ground truth")
+      ->check(
+          CLI::IsMember({"topological", "ekf-lines", "ekf-bspline", "odometry", "ground-truth"}))
       ->capture_default_str();
   cmd->add_option("--odometry-noise", setup.odometry_noise_scale,
                   "Scale of the default odometry noise (0 = perfect odometry)")

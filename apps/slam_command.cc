@@ -116,38 +116,19 @@ int RunSlam(const SlamArgs& args) {
   const bool real = lasers[0]->format == io::LaserMessage::Format::kFlaser;
   const double scale = args.odometry_noise_scale >= 0 ? args.odometry_noise_scale
                                                       : (real ? kRealOdometryScale : 1.0);
-  const estimation::OdometryNoiseModel odometry_noise =
-      estimation::OdometryNoiseModel().Scaled(scale);
   // The estimate starts at the first odometric pose with a small covariance: the map frame is
   // the odometry frame (for simulated runs, the true frame).
-  const kernel::Pose2 start = lasers[0]->robot_pose;
-  const Eigen::Matrix3d start_covariance = Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal();
-  std::unique_ptr<SlamMethod> slam;
+  SlamSettings settings;
+  settings.method = args.method;
+  settings.association = args.association;
+  settings.max_curve_range_m = args.max_curve_range_m;
+  settings.odometry_noise_scale = scale;
+  settings.range_sigma_m = sigma;
+  settings.range_sigma_fraction = sigma_fraction;
+  // The simulator's URG noise has no constant part; a --range-sigma given is used as it is.
+  settings.beam_sigma_floor_m = args.range_sigma_m >= 0 ? args.range_sigma_m : (urg ? 0.0 : sigma);
   std::string problem;
-  if (args.method == "ekf-lines") {
-    estimation::EkfLineSlamOptions options;
-    options.odometry = odometry_noise;
-    options.extraction.range_sigma_m = sigma;
-    options.extraction.range_sigma_fraction = sigma_fraction;
-    problem = options.Validate();
-    if (problem.empty()) slam = MakeLineSlam(start, start_covariance, options);
-  } else if (args.method == "topological") {
-    estimation::TopologicalSlamOptions options;
-    options.max_curve_range_m = args.max_curve_range_m;
-    problem = options.Validate();
-    if (problem.empty()) slam = MakeTopologicalSlam(start, options);
-  } else {
-    estimation::EkfBSplineSlamOptions options;
-    options.odometry = odometry_noise;
-    options.association = args.association;
-    options.max_curve_range_m = args.max_curve_range_m;
-    // The simulator's URG noise has no constant part; a --range-sigma given is used as it is.
-    options.range_sigma_floor_m =
-        args.range_sigma_m >= 0 ? args.range_sigma_m : (urg ? 0.0 : sigma);
-    options.range_sigma_fraction = sigma_fraction;
-    problem = options.Validate();
-    if (problem.empty()) slam = MakeBSplineSlam(start, start_covariance, options);
-  }
+  std::unique_ptr<SlamMethod> slam = MakeSlamMethod(settings, lasers[0]->robot_pose, &problem);
   if (!problem.empty()) {
     fmt::print(stderr, "splam slam: {}\n", problem);
     return kExitBadInput;

@@ -89,6 +89,8 @@ class BSplineSlam
     return fmt::format("{} splines, {} control points", slam_.num_splines(),
                        slam_.num_control_points());
   }
+  std::size_t MapCurves() const override { return slam_.num_splines(); }
+  std::vector<estimation::MapSpline> MapSplines() const override { return slam_.MapSplines(); }
   void DrawMap(RunPicture* picture) const override {
     DrawSplineMap(slam_.MapSplines(), slam_.options().extraction, picture);
   }
@@ -140,6 +142,9 @@ class TopologicalSlamMethod : public SlamMethod {
   bool healthy() const override { return slam_.healthy(); }
   std::string health() const override { return slam_.health(); }
   std::size_t MapSize() const override { return slam_.num_control_points(); }
+  std::size_t MapCurves() const override { return slam_.num_curves(); }
+  std::vector<estimation::MapSpline> MapSplines() const override { return slam_.MapSplines(); }
+  void AtNode(const kernel::LocalSafeRegion& lsr) override { slam_.SetLocalRegion(lsr); }
   std::string MapDescription() const override {
     return fmt::format("{} curves, {} control points", slam_.num_curves(),
                        slam_.num_control_points());
@@ -175,21 +180,52 @@ class TopologicalSlamMethod : public SlamMethod {
 
 }  // namespace
 
-std::unique_ptr<SlamMethod> MakeTopologicalSlam(const kernel::Pose2& initial_pose,
-                                                const estimation::TopologicalSlamOptions& options) {
-  return std::make_unique<TopologicalSlamMethod>(initial_pose, options);
+std::unique_ptr<SlamMethod> MakeSlamMethod(const SlamSettings& settings, const kernel::Pose2& start,
+                                           std::string* problem) {
+  const Eigen::Matrix3d start_covariance = Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal();
+  const estimation::OdometryNoiseModel odometry =
+      estimation::OdometryNoiseModel().Scaled(settings.odometry_noise_scale);
+  if (settings.method == "ekf-lines") {
+    estimation::EkfLineSlamOptions options;
+    options.odometry = odometry;
+    options.extraction.range_sigma_m = settings.range_sigma_m;
+    options.extraction.range_sigma_fraction = settings.range_sigma_fraction;
+    if ((*problem = options.Validate()).empty())
+      return std::make_unique<LineSlam>(start, start_covariance, options);
+  } else if (settings.method == "ekf-bspline") {
+    estimation::EkfBSplineSlamOptions options;
+    options.odometry = odometry;
+    options.association = settings.association;
+    options.max_curve_range_m = settings.max_curve_range_m;
+    options.range_sigma_floor_m = settings.beam_sigma_floor_m;
+    options.range_sigma_fraction = settings.range_sigma_fraction;
+    if ((*problem = options.Validate()).empty())
+      return std::make_unique<BSplineSlam>(start, start_covariance, options);
+  } else if (settings.method == "topological") {
+    estimation::TopologicalSlamOptions options;
+    options.max_curve_range_m = settings.max_curve_range_m;
+    if ((*problem = options.Validate()).empty())
+      return std::make_unique<TopologicalSlamMethod>(start, options);
+  } else {
+    *problem =
+        "unknown SLAM method '" + settings.method + "' (ekf-lines, ekf-bspline, topological)";
+  }
+  return nullptr;
 }
 
-std::unique_ptr<SlamMethod> MakeLineSlam(const kernel::Pose2& initial_pose,
-                                         const Eigen::Matrix3d& initial_covariance,
-                                         const estimation::EkfLineSlamOptions& options) {
-  return std::make_unique<LineSlam>(initial_pose, initial_covariance, options);
-}
-
-std::unique_ptr<SlamMethod> MakeBSplineSlam(const kernel::Pose2& initial_pose,
-                                            const Eigen::Matrix3d& initial_covariance,
-                                            const estimation::EkfBSplineSlamOptions& options) {
-  return std::make_unique<BSplineSlam>(initial_pose, initial_covariance, options);
+double MeanDistanceToObstacles(const sim::RayCaster& caster,
+                               const std::vector<estimation::MapSpline>& splines) {
+  constexpr double kCap = 2.0;  // m
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (const estimation::MapSpline& s : splines) {
+    for (const Eigen::Vector2d& p : s.spline.ResampleByArcLength(0.05)) {
+      const sim::RayHit near = caster.Nearest(p, kCap);
+      sum += near.obstacle >= 0 ? near.range_m : kCap;
+      ++n;
+    }
+  }
+  return n > 0 ? sum / static_cast<double>(n) : 0.0;
 }
 
 void DrawSplineMap(const std::vector<estimation::MapSpline>& splines,

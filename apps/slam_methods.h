@@ -12,8 +12,10 @@
 #include "estimation/ekf_bspline_slam.h"
 #include "estimation/ekf_line_slam.h"
 #include "estimation/topological_slam.h"
+#include "kernel/local_safe_region.h"
 #include "kernel/pose2.h"
 #include "kernel/scan.h"
+#include "sim/ray_caster.h"
 
 namespace splam::apps {
 
@@ -38,16 +40,35 @@ class SlamMethod {
   virtual std::vector<std::string> WriteMap(const std::string& dir) const = 0;
   // Map size and association counts for summary.json.
   virtual nlohmann::ordered_json Statistics() const = 0;
+  // Map curves and control points (0 for line maps).
+  virtual std::size_t MapCurves() const { return 0; }
+  // The map as spline curves (world frame) when it is one; empty otherwise.
+  virtual std::vector<estimation::MapSpline> MapSplines() const { return {}; }
+  // A new exploration node with its local safe region (placed at the estimate). The topological
+  // SLAM associates against the curves in the newest node's LSR and extends its map there.
+  virtual void AtNode(const kernel::LocalSafeRegion& /*lsr*/) {}
 };
 
-std::unique_ptr<SlamMethod> MakeLineSlam(const kernel::Pose2& initial_pose,
-                                         const Eigen::Matrix3d& initial_covariance,
-                                         const estimation::EkfLineSlamOptions& options);
-std::unique_ptr<SlamMethod> MakeBSplineSlam(const kernel::Pose2& initial_pose,
-                                            const Eigen::Matrix3d& initial_covariance,
-                                            const estimation::EkfBSplineSlamOptions& options);
-std::unique_ptr<SlamMethod> MakeTopologicalSlam(const kernel::Pose2& initial_pose,
-                                                const estimation::TopologicalSlamOptions& options);
+// What MakeSlamMethod needs besides the start pose: the method and the sensors' noise.
+struct SlamSettings {
+  std::string method = "topological";     // "ekf-lines", "ekf-bspline" or "topological"
+  std::string association = "curvature";  // ekf-bspline: "curvature" or "pedraza"
+  double max_curve_range_m = 0.0;         // B-spline methods; 0: the laser's range
+  double odometry_noise_scale = 1.0;      // times the simulator's odometry noise model
+  double range_sigma_m = 0.003;           // line fitting: sigma = this + fraction * range
+  double range_sigma_fraction = 0.01;     // (defaults: Hokuyo URG-04LX)
+  double beam_sigma_floor_m = 0.0;        // ekf-bspline beam model: floor + fraction * range
+};
+
+// The method of `settings`, starting at `start` (EKFs with a small covariance); nullptr with
+// *problem set for an unknown method or invalid options.
+std::unique_ptr<SlamMethod> MakeSlamMethod(const SlamSettings& settings, const kernel::Pose2& start,
+                                           std::string* problem);
+
+// Map accuracy: the mean distance from points 5 cm apart along the map curves to the nearest true
+// obstacle (capped at 2 m), metres; 0 for an empty map.
+double MeanDistanceToObstacles(const sim::RayCaster& caster,
+                               const std::vector<estimation::MapSpline>& splines);
 
 // The map splines drawn as paper 000 Figs. 13 and 16 do: curves, control points (small dots),
 // inflection points (circles) and corners (diamonds).

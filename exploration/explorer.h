@@ -2,6 +2,7 @@
 #define SPLAM_EXPLORATION_EXPLORER_H_
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -41,6 +42,9 @@ struct ExplorerOptions {
   int max_failed_moves = 10;
   std::uint64_t seed = 1;  // RANDOM_DIR / FRONT_RAND draws
   MotionOptions motion;
+  // Called after every new node with the number of nodes and the simulated time (progress
+  // reports); may be empty.
+  std::function<void(int nodes, double time_s)> on_node;
 
   std::string Validate() const;
 };

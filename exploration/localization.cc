@@ -4,7 +4,8 @@
 
 namespace splam::exploration {
 
-std::string GroundTruthLocalization::Start(const kernel::Pose2& /*start*/,
+std::string GroundTruthLocalization::Start(const RobotDescription& /*robot*/,
+                                           const kernel::Pose2& /*start*/,
                                            const Perception& first) {
   if (!first.true_pose) return "ground-truth localisation needs a robot that reports its true pose";
   return "";
@@ -15,7 +16,8 @@ kernel::Pose2 GroundTruthLocalization::Update(const Perception& perception) {
   return *perception.true_pose;
 }
 
-std::string OdometryLocalization::Start(const kernel::Pose2& start, const Perception& first) {
+std::string OdometryLocalization::Start(const RobotDescription& /*robot*/,
+                                        const kernel::Pose2& start, const Perception& first) {
   world_T_odometry_ = start * first.odometry_pose.Inverse();
   return "";
 }

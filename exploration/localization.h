@@ -4,6 +4,7 @@
 #include <string>
 
 #include "exploration/robot_interface.h"
+#include "kernel/local_safe_region.h"
 #include "kernel/pose2.h"
 
 namespace splam::exploration {
@@ -17,18 +18,24 @@ class Localization {
   // True when Update() needs laser scans; otherwise the explorer reads odometry only while
   // driving (faster) and senses the laser only at the nodes.
   virtual bool needs_scans() const { return false; }
-  // Starts at `start` (world frame, assumed known, as the papers do) with the first reading.
-  // Empty when ready, else why this localisation cannot run on this robot.
-  virtual std::string Start(const kernel::Pose2& start, const Perception& first) = 0;
+  // Starts at `start` (world frame, assumed known, as the papers do) with the first reading of
+  // `robot`. Empty when ready, else why this localisation cannot run on this robot.
+  virtual std::string Start(const RobotDescription& robot, const kernel::Pose2& start,
+                            const Perception& first) = 0;
   // The estimate after a new reading (odometry always, laser when needs_scans()).
   virtual kernel::Pose2 Update(const Perception& perception) = 0;
+  // The explorer added a node here; `lsr` is its local safe region, placed at the estimate.
+  // SLAM methods may use it (the topological SLAM associates against the map curves in the
+  // newest node's LSR and extends its map at the nodes).
+  virtual void AtNode(const kernel::LocalSafeRegion& /*lsr*/) {}
 };
 
 // The simulator's ground truth; Perception::true_pose must be present.
 class GroundTruthLocalization : public Localization {
  public:
   std::string name() const override { return "ground-truth"; }
-  std::string Start(const kernel::Pose2& start, const Perception& first) override;
+  std::string Start(const RobotDescription& robot, const kernel::Pose2& start,
+                    const Perception& first) override;
   kernel::Pose2 Update(const Perception& perception) override;
 };
 
@@ -36,7 +43,8 @@ class GroundTruthLocalization : public Localization {
 class OdometryLocalization : public Localization {
  public:
   std::string name() const override { return "odometry"; }
-  std::string Start(const kernel::Pose2& start, const Perception& first) override;
+  std::string Start(const RobotDescription& robot, const kernel::Pose2& start,
+                    const Perception& first) override;
   kernel::Pose2 Update(const Perception& perception) override;
 
  private:

@@ -39,7 +39,8 @@ bool Session::Start() {
   }
   const Perception first = robot_->ReadOdometry();
   const kernel::Pose2 start = first.true_pose.value_or(first.odometry_pose);
-  if (const std::string problem = localization_->Start(start, first); !problem.empty()) {
+  if (const std::string problem = localization_->Start(robot_->description(), start, first);
+      !problem.empty()) {
     run_.termination = Termination::kInvalidInput;
     run_.message = problem;
     return false;
@@ -67,6 +68,7 @@ graph::Vertex Session::AddNodeHere(int parent) {
   node.lsr = SafeRegionAt(record.safe_region_scan, estimate_, robot_->description(),
                           options_.lsr_radius_m);
   node.frontiers = LongEnough(node.lsr.frontiers());
+  localization_->AtNode(node.lsr);
   if (parent >= 0) {
     // The path driven since the last move began, thinned to kPathSpacing.
     std::vector<Eigen::Vector2d> path{
@@ -80,6 +82,7 @@ graph::Vertex Session::AddNodeHere(int parent) {
     graph::AddEdge(&run_.graph, static_cast<graph::Vertex>(parent), v, std::move(path));
   }
   run_.nodes.push_back(std::move(record));
+  if (options_.on_node) options_.on_node(static_cast<int>(run_.nodes.size()), perception.time_s);
   return v;
 }
 

@@ -49,7 +49,7 @@ TEST(MoveTo, PropertyReachesTheGoalAlongTheLegFromAnyHeading) {
         random.Uniform(0.5, 3.0) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
     FreeRobot robot(start);
     OdometryLocalization localization;
-    ASSERT_EQ(localization.Start(start, robot.ReadOdometry()), "");
+    ASSERT_EQ(localization.Start(robot.description(), start, robot.ReadOdometry()), "");
     kernel::Pose2 estimate = start;
     std::vector<TraceSample> trace;
     const MoveResult result =
