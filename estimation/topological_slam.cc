@@ -460,8 +460,13 @@ void TopologicalSlam::ExtendMap(const std::vector<SplineCurve>& observed,
         o.spline.Length() < options_.min_new_curve_length_m)
       continue;
     SplineCurve world = kernel::Transformed(o, pose_);
-    std::vector<Eigen::Vector2d> probe = world.spline.control_points();
-    if (NearMap(probe, -1)) continue;
+    const std::vector<Eigen::Vector2d>& probe = world.spline.control_points();
+    // New objects come from the local region, where the map is kept: a far piece of a wall is
+    // spliced onto it once the robot is near, not started as a second object.
+    const auto inside = std::count_if(probe.begin(), probe.end(), [&](const Eigen::Vector2d& p) {
+      return region_->Near(p, options_.region_margin_m);
+    });
+    if (2 * static_cast<std::size_t>(inside) < probe.size() || NearMap(probe, -1)) continue;
     AddMapCurve(std::move(world));
     ++report->added_curves;
   }

@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh -DSPLAM_BUILD_TESTS=OFF -DSPLAM_BUILD_BENCHMARKS=OFF -DSPLAM_BUILD_EXAMPLES=OFF
-build/apps/splam simulate --world complex --seed 1 --out runs/complex
-build/apps/splam slam --method ekf-bspline --association curvature runs/complex/log.clf \
-  --out runs/complex-bspline
-echo "Open runs/complex/run.png (the run) and runs/complex-bspline/map.png (its B-spline map)."
+# The main job: REG exploration with topological B-spline SLAM in the built-in `complex` world.
+build/apps/splam explore --out runs/explore
+echo "Open runs/explore/map.png (map over the true world), runs/explore/graph.png (exploration"
+echo "graph) and runs/explore/errors.png (x, y, theta error); numbers in runs/explore/report.json."
