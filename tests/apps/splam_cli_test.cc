@@ -23,8 +23,10 @@ struct Output {
   std::string text;  // stdout and stderr
 };
 
-Output Splam(const std::string& args) {
-  const std::string command = std::string(SPLAM_BINARY) + " " + args + " 2>&1";
+// Runs `splam args` (in directory `cwd` when given) and collects its output and exit status.
+Output Splam(const std::string& args, const fs::path& cwd = {}) {
+  const std::string command = (cwd.empty() ? "" : "cd '" + cwd.string() + "' && ") +
+                              std::string(SPLAM_BINARY) + " " + args + " 2>&1";
   Output out;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return out;
@@ -332,7 +334,10 @@ TEST(SplamCli, SlamRunsOnTheRealMitLog) {
 
 TEST(SplamCli, ExploreWritesTheGraphCoverageAndReport) {
   const fs::path out = Temp("explore");
-  const Output run = Splam("explore --explorer reg --world complex --seed 2 --out " + out.string());
+  const Output run = Splam(
+      "explore --explorer reg --localization ground-truth --world complex "
+      "--seed 2 --out " +
+      out.string());
   ASSERT_EQ(run.status, 0) << run.text;
   for (const char* f : {"report.json", "graph.svg", "graph.png", "explored.svg", "explored.png",
                         "truth.txt", "odometry.txt", "estimate.txt"})
@@ -354,6 +359,29 @@ TEST(SplamCli, ExploreWritesTheGraphCoverageAndReport) {
   const Output no_world = Splam("explore --world nowhere.yaml");
   EXPECT_EQ(no_world.status, 2);
   EXPECT_NE(no_world.text.find("nowhere.yaml"), std::string::npos) << no_world.text;
+}
+
+TEST(SplamCli, ExploreWithoutArgumentsRunsTheMainJob) {
+  // REG with topological B-spline SLAM in `complex` (seed 1 measured: 0.49 m position RMSE
+  // against odometry's 0.59 m, 36 curves 0.28 m from the true obstacles on average).
+  const fs::path dir = Temp("explore_main");
+  fs::create_directories(dir);
+  const Output run = Splam("explore", dir);
+  ASSERT_EQ(run.status, 0) << run.text;
+  EXPECT_NE(run.text.find("position RMSE"), std::string::npos) << run.text;
+  const fs::path out = dir / "runs/explore-reg-complex";
+  for (const char* f : {"report.json", "graph.png", "map.png", "map.svg", "map.txt", "map.dxf",
+                        "errors.png", "explored.png", "estimate.txt"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const nlohmann::json report = nlohmann::json::parse(Slurp(out / "report.json"));
+  EXPECT_EQ(report["localization"], "topological");
+  EXPECT_GT(report["coverage_fraction"].get<double>(), 0.95);
+  const nlohmann::json& map = report["slam"]["map"];
+  EXPECT_GT(map["curves"].get<int>(), 10);
+  EXPECT_GT(map["control_points"].get<int>(), 100);
+  EXPECT_LT(map["mean_distance_to_obstacles_m"].get<double>(), 0.5);
+  EXPECT_LT(report["trajectory_error"]["estimate"]["rmse_position_m"].get<double>(), 1.0);
+  EXPECT_GT(report["slam"]["localization_steps"].get<int>(), 1000);
 }
 
 TEST(SplamCli, EveryCommandHasHelp) {
