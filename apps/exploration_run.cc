@@ -28,16 +28,15 @@ std::shared_ptr<exploration::Localization> MakeLocalization(const ExploreSetup& 
   if (name == "topological" || name == "ekf-lines" || name == "ekf-bspline") {
     SlamSettings settings;
     settings.method = name;
+    // An EKF needs some odometry noise even when the simulation has none.
     settings.odometry_noise_scale = std::max(setup.odometry_noise_scale, 0.05);
     return std::make_shared<SlamLocalization>(settings);
   }
   return nullptr;
 }
 
-// The true, odometric and estimated trajectories of a run.
-struct Trajectories {
-  kernel::Trajectory truth, odometry, estimate;
-};
+}  // namespace
+
 Trajectories TrajectoriesOf(const exploration::ExplorationRun& run) {
   Trajectories t;
   for (const exploration::TraceSample& s : run.trace) {
@@ -47,23 +46,6 @@ Trajectories TrajectoriesOf(const exploration::ExplorationRun& run) {
   }
   return t;
 }
-
-nlohmann::json ErrorJson(const estimation::TrajectoryError& e) {
-  return {{"rmse_position_m", e.rmse_position_m},
-          {"max_position_m", e.max_position_m},
-          {"rmse_heading_rad", e.rmse_heading_rad},
-          {"max_heading_rad", e.max_heading_rad}};
-}
-
-double Quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  const auto k = static_cast<std::ptrdiff_t>(
-      std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size()))));
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  return v[static_cast<std::size_t>(k)];
-}
-
-}  // namespace
 
 ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup) {
   ExploreOutcome outcome;
@@ -173,21 +155,6 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
       map["control_points"] = control_points;
       map["mean_distance_to_obstacles_m"] = MeanDistanceToObstacles(sim::RayCaster(world), splines);
     }
-    // Time per localisation step by map size (curves): flat for the topological SLAM.
-    nlohmann::json by_size = nlohmann::json::array();
-    const std::vector<std::size_t>& sizes = outcome.slam->map_curves();
-    const std::size_t top = sizes.empty() ? 0 : *std::max_element(sizes.begin(), sizes.end());
-    const std::size_t width = std::max<std::size_t>(1, (top + 4) / 5);
-    for (std::size_t lo = 0; lo <= top; lo += width) {
-      std::vector<double> in;
-      for (std::size_t k = 0; k < ms.size(); ++k)
-        if (sizes[k] >= lo && sizes[k] < lo + width) in.push_back(ms[k]);
-      if (!in.empty())
-        by_size.push_back({{"map_curves_from", lo},
-                           {"map_curves_to", lo + width - 1},
-                           {"steps", in.size()},
-                           {"median_ms", Quantile(in, 0.5)}});
-    }
     report["slam"] = {
         {"method", setup.localization},
         {"healthy", slam.healthy()},
@@ -197,8 +164,8 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
          nlohmann::json::parse(
              slam.Statistics().value("associations", nlohmann::ordered_json{}).dump())},
         {"localization_steps", ms.size()},
-        {"ms_per_step", {{"median", Quantile(ms, 0.5)}, {"p95", Quantile(ms, 0.95)}}},
-        {"ms_per_step_by_map_curves", by_size}};
+        {"ms_per_step", {{"median", Percentile(ms, 0.5)}, {"p95", Percentile(ms, 0.95)}}},
+        {"ms_per_step_by_map_curves", TimeByMapSize(ms, outcome.slam->map_curves())}};
   }
   const exploration::ExplorerOptions& o = setup.options;
   report["options"] = {{"lsr_radius_m", o.lsr_radius_m},

@@ -9,6 +9,7 @@
 
 #include "apps/slam_localization.h"
 #include "exploration/explorer.h"
+#include "kernel/trajectory.h"
 #include "sim/world.h"
 
 namespace splam::apps {
@@ -37,6 +38,12 @@ struct ExploreOutcome {
   std::shared_ptr<SlamLocalization> slam;
   double coverage() const { return coverage_fraction.empty() ? 0.0 : coverage_fraction.back(); }
 };
+
+// The true, odometric and estimated trajectories of a run (from its trace).
+struct Trajectories {
+  kernel::Trajectory truth, odometry, estimate;
+};
+Trajectories TrajectoriesOf(const exploration::ExplorationRun& run);
 
 // Runs the exploration in `world` from its start pose and evaluates its coverage.
 ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup);

@@ -71,12 +71,7 @@ int RunExplore(const ExploreArgs& args) {
   std::vector<std::string> written = {"report.json",  "graph.svg",   "graph.png",  "explored.svg",
                                       "explored.png", "errors.svg",  "errors.png", "truth.txt",
                                       "odometry.txt", "estimate.txt"};
-  io::Trajectory truth, odometry, estimate;
-  for (const exploration::TraceSample& s : run.trace) {
-    truth.push_back({s.time_s, s.truth});
-    odometry.push_back({s.time_s, s.odometry});
-    estimate.push_back({s.time_s, s.estimate});
-  }
+  const Trajectories t = TrajectoriesOf(run);
   const nlohmann::json report = ExplorationReport(*world.value, setup, outcome);
   std::ofstream(out + "/report.json") << report.dump(2) << "\n";
   std::vector<std::string> errors = {
@@ -85,9 +80,9 @@ int RunExplore(const ExploreArgs& args) {
       SaveCoveragePlot(outcome, title, {out + "/explored.svg", out + "/explored.png"}),
       SaveTrajectoryErrorPlot(outcome, title + ": error against ground truth",
                               {out + "/errors.svg", out + "/errors.png"}),
-      io::WriteTrajectory(out + "/truth.txt", truth, "ground truth"),
-      io::WriteTrajectory(out + "/odometry.txt", odometry, "odometry"),
-      io::WriteTrajectory(out + "/estimate.txt", estimate, setup.localization + " estimate")};
+      io::WriteTrajectory(out + "/truth.txt", t.truth, "ground truth"),
+      io::WriteTrajectory(out + "/odometry.txt", t.odometry, "odometry"),
+      io::WriteTrajectory(out + "/estimate.txt", t.estimate, setup.localization + " estimate")};
   if (outcome.slam && outcome.slam->method()) {
     errors.push_back(
         SaveSlamMapPicture(*world.value, outcome, title, {out + "/map.svg", out + "/map.png"}));

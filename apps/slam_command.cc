@@ -42,43 +42,6 @@ struct SlamArgs {
   double odometry_noise_scale = -1.0;
 };
 
-double Percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  const std::size_t k =
-      std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
-
-// Median time per scan in 8 equal bins of the map size (landmarks or control points).
-nlohmann::ordered_json TimeByMapSize(const std::vector<double>& ms,
-                                     const std::vector<std::size_t>& map_size) {
-  nlohmann::ordered_json bins = nlohmann::ordered_json::array();
-  if (ms.empty()) return bins;
-  const std::size_t top = *std::max_element(map_size.begin(), map_size.end()) + 1;
-  const std::size_t width = (top + 7) / 8;
-  for (std::size_t lo = 0; lo < top; lo += width) {
-    std::vector<double> in;
-    for (std::size_t i = 0; i < ms.size(); ++i) {
-      if (map_size[i] >= lo && map_size[i] < lo + width) in.push_back(ms[i]);
-    }
-    if (in.empty()) continue;
-    bins.push_back({{"map_size_from", lo},
-                    {"map_size_to", lo + width - 1},
-                    {"scans", in.size()},
-                    {"median_ms", Percentile(in, 0.5)}});
-  }
-  return bins;
-}
-
-nlohmann::ordered_json ErrorJson(const estimation::TrajectoryError& e) {
-  return {{"matched_poses", e.matched},
-          {"rmse_position_m", e.rmse_position_m},
-          {"max_position_m", e.max_position_m},
-          {"rmse_heading_rad", e.rmse_heading_rad},
-          {"max_heading_rad", e.max_heading_rad}};
-}
-
 int RunSlam(const SlamArgs& args) {
   io::CarmenReadOptions read_options;
   read_options.flaser_angular_step_rad = kernel::DegToRad(args.flaser_step_deg);

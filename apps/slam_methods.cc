@@ -2,10 +2,19 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+
 #include "io/map_export.h"
 
 namespace splam::apps {
 namespace {
+
+// map.txt and map.dxf of a spline map; the errors, if any.
+std::vector<std::string> WriteSplineMap(const std::string& dir,
+                                        const std::vector<estimation::MapSpline>& splines) {
+  return {io::WriteSplineMapText(dir + "/map.txt", splines),
+          io::WriteSplineMapDxf(dir + "/map.dxf", splines)};
+}
 
 // What every EKF-SLAM filter answers the same way.
 template <class Filter, class Options>
@@ -95,9 +104,7 @@ class BSplineSlam
     DrawSplineMap(slam_.MapSplines(), slam_.options().extraction, picture);
   }
   std::vector<std::string> WriteMap(const std::string& dir) const override {
-    const auto splines = slam_.MapSplines();
-    return {io::WriteSplineMapText(dir + "/map.txt", splines),
-            io::WriteSplineMapDxf(dir + "/map.dxf", splines)};
+    return WriteSplineMap(dir, slam_.MapSplines());
   }
   nlohmann::ordered_json Statistics() const override {
     return {
@@ -153,9 +160,7 @@ class TopologicalSlamMethod : public SlamMethod {
     DrawSplineMap(slam_.MapSplines(), slam_.options().extraction, picture);
   }
   std::vector<std::string> WriteMap(const std::string& dir) const override {
-    const auto splines = slam_.MapSplines();
-    return {io::WriteSplineMapText(dir + "/map.txt", splines),
-            io::WriteSplineMapDxf(dir + "/map.dxf", splines)};
+    return WriteSplineMap(dir, slam_.MapSplines());
   }
   nlohmann::ordered_json Statistics() const override {
     return {
@@ -211,6 +216,42 @@ std::unique_ptr<SlamMethod> MakeSlamMethod(const SlamSettings& settings, const k
         "unknown SLAM method '" + settings.method + "' (ekf-lines, ekf-bspline, topological)";
   }
   return nullptr;
+}
+
+double Percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  const std::size_t k =
+      std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())));
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return v[k];
+}
+
+nlohmann::ordered_json TimeByMapSize(const std::vector<double>& ms,
+                                     const std::vector<std::size_t>& map_size) {
+  nlohmann::ordered_json bins = nlohmann::ordered_json::array();
+  if (ms.empty()) return bins;
+  const std::size_t top = *std::max_element(map_size.begin(), map_size.end()) + 1;
+  const std::size_t width = (top + 7) / 8;
+  for (std::size_t lo = 0; lo < top; lo += width) {
+    std::vector<double> in;
+    for (std::size_t i = 0; i < ms.size(); ++i) {
+      if (map_size[i] >= lo && map_size[i] < lo + width) in.push_back(ms[i]);
+    }
+    if (in.empty()) continue;
+    bins.push_back({{"map_size_from", lo},
+                    {"map_size_to", lo + width - 1},
+                    {"scans", in.size()},
+                    {"median_ms", Percentile(in, 0.5)}});
+  }
+  return bins;
+}
+
+nlohmann::ordered_json ErrorJson(const estimation::TrajectoryError& e) {
+  return {{"matched_poses", e.matched},
+          {"rmse_position_m", e.rmse_position_m},
+          {"max_position_m", e.max_position_m},
+          {"rmse_heading_rad", e.rmse_heading_rad},
+          {"max_heading_rad", e.max_heading_rad}};
 }
 
 double MeanDistanceToObstacles(const sim::RayCaster& caster,

@@ -11,6 +11,7 @@
 #include "apps/run_picture.h"
 #include "estimation/ekf_bspline_slam.h"
 #include "estimation/ekf_line_slam.h"
+#include "estimation/metrics.h"
 #include "estimation/topological_slam.h"
 #include "kernel/local_safe_region.h"
 #include "kernel/pose2.h"
@@ -64,6 +65,14 @@ struct SlamSettings {
 // *problem set for an unknown method or invalid options.
 std::unique_ptr<SlamMethod> MakeSlamMethod(const SlamSettings& settings, const kernel::Pose2& start,
                                            std::string* problem);
+
+// The q-quantile (0..1) of v by nth_element; 0 for an empty v.
+double Percentile(std::vector<double> v, double q);
+// Median time per step in 8 equal bins of the map size (landmarks, control points or curves).
+nlohmann::ordered_json TimeByMapSize(const std::vector<double>& ms,
+                                     const std::vector<std::size_t>& map_size);
+// A trajectory error as summary.json and report.json write it.
+nlohmann::ordered_json ErrorJson(const estimation::TrajectoryError& e);
 
 // Map accuracy: the mean distance from points 5 cm apart along the map curves to the nearest true
 // obstacle (capped at 2 m), metres; 0 for an empty map.

@@ -137,10 +137,8 @@ bool TopologicalSlam::RegionShape::Near(const Eigen::Vector2d& p, double margin_
   std::size_t hi = static_cast<std::size_t>(it - bearings_rad.begin());
   std::size_t lo = hi == 0 ? bearings_rad.size() - 1 : hi - 1;
   if (hi == bearings_rad.size()) hi = 0;
-  if (!full_circle && (b < bearings_rad.front() || b > bearings_rad.back())) {
-    // Outside the field of view of a partial region: only the margin around its sides counts.
-    return false;
-  }
+  // Outside the field of view of a partial region only the margin around the sensor counts.
+  if (!full_circle && (b < bearings_rad.front() || b > bearings_rad.back())) return false;
   return r <= std::max(ranges_m[lo], ranges_m[hi]) + margin_m;
 }
 
@@ -193,9 +191,8 @@ std::vector<MapSpline> TopologicalSlam::MapSplines() const {
 }
 
 std::int64_t TopologicalSlam::CellKey(const Eigen::Vector2d& p) const {
-  const auto ix = static_cast<std::int64_t>(std::floor(p.x() / options_.index_cell_m));
-  const auto iy = static_cast<std::int64_t>(std::floor(p.y() / options_.index_cell_m));
-  return (ix << 32) ^ (iy & 0xffffffff);
+  return CellKey(static_cast<std::int64_t>(std::floor(p.x() / options_.index_cell_m)),
+                 static_cast<std::int64_t>(std::floor(p.y() / options_.index_cell_m)));
 }
 
 void TopologicalSlam::Register(int curve) {
@@ -237,7 +234,7 @@ std::vector<int> TopologicalSlam::LocalCurves() const {
   const auto hi_y = static_cast<std::int64_t>(std::floor((region_->center.y() + reach) / cell));
   for (std::int64_t ix = lo_x; ix <= hi_x; ++ix) {
     for (std::int64_t iy = lo_y; iy <= hi_y; ++iy) {
-      const auto it = cells_.find((ix << 32) ^ (iy & 0xffffffff));
+      const auto it = cells_.find(CellKey(ix, iy));
       if (it != cells_.end())
         candidates.insert(candidates.end(), it->second.begin(), it->second.end());
     }
@@ -303,6 +300,22 @@ std::size_t PairIndex(const CurveMatch& match, double s, double epsilon) {
   return std::min(match.pairs.size() - 1, static_cast<std::size_t>(std::max(0.0, k)));
 }
 
+// The features of `observed` (robot frame) inside the matched stretch, each with the map point
+// the association paired it with: physical points, compared in both coordinates. Empty when the
+// match paired no features.
+std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> FeaturePairs(const SplineCurve& observed,
+                                                                      const CurveMatch& m,
+                                                                      double epsilon) {
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> out;
+  if (!m.used_features) return out;
+  for (const kernel::CurveFeature& f : observed.features) {
+    if (f.arc_length_m < m.observed.start_m || f.arc_length_m > m.observed.end_m) continue;
+    out.emplace_back(PointAt(observed, f.arc_length_m),
+                     m.pairs[PairIndex(m, f.arc_length_m, epsilon)].second);
+  }
+  return out;
+}
+
 // The start and end of a matched stretch, `trim` inside it when it is long enough.
 std::pair<double, double> TrimmedEnds(const CurveStretch& s, double trim) {
   if (s.end_m - s.start_m <= 4.0 * trim) return {s.start_m, s.end_m};
@@ -358,12 +371,8 @@ Pose2 TopologicalSlam::Correct(const std::vector<SplineCurve>& observed,
            s += options_.point_spacing_m)
         on_curve(s);
     }
-    if (!m.used_features) continue;
-    for (const kernel::CurveFeature& f : o.features) {  // physical points: both components
-      if (f.arc_length_m < m.observed.start_m || f.arc_length_m > m.observed.end_m) continue;
-      points.push_back({m.pairs[PairIndex(m, f.arc_length_m, epsilon)].second,
-                        PointAt(o, f.arc_length_m), a.reliability});
-    }
+    for (const auto& [robot, map_point] : FeaturePairs(o, m, epsilon))
+      points.push_back({map_point, robot, a.reliability});
   }
   const Eigen::Vector2d e =
       SolveTranslationCorrection(points, pose.translation(), theta, options_.loss);
@@ -391,13 +400,8 @@ bool TopologicalSlam::Verifies(const SplineCurve& observed, const Association& a
     }
     if (n > 0 && std::sqrt(sum / n) > options_.verify_rms_m) return false;
   }
-  if (!m.used_features) return true;
-  for (const kernel::CurveFeature& f : observed.features) {
-    if (f.arc_length_m < m.observed.start_m || f.arc_length_m > m.observed.end_m) continue;
-    const Eigen::Vector2d& target =
-        m.pairs[PairIndex(m, f.arc_length_m, options_.association.epsilon_m)].second;
-    if ((pose * PointAt(observed, f.arc_length_m) - target).norm() > threshold) return false;
-  }
+  for (const auto& [robot, map_point] : FeaturePairs(observed, m, options_.association.epsilon_m))
+    if ((pose * robot - map_point).norm() > threshold) return false;
   return true;
 }
 

@@ -175,6 +175,9 @@ class TopologicalSlam {
   void Register(int curve);
   void Unregister(int curve);
   std::int64_t CellKey(const Eigen::Vector2d& p) const;
+  static std::int64_t CellKey(std::int64_t ix, std::int64_t iy) {
+    return (ix << 32) ^ (iy & 0xffffffff);
+  }
 
   TopologicalSlamOptions options_;
   std::string health_;
