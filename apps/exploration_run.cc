@@ -134,6 +134,7 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
   report["moves"] = run.moves;
   report["failed_moves"] = run.failed_moves;
   report["blocked_steps"] = run.blocked_steps;
+  report["replanned_moves"] = run.replanned_moves;
   report["unreachable_frontiers"] = run.unreachable_frontiers;
   report["planning_wall_s"] = run.planning_wall_s;
   report["planning_ms_per_node"] = nodes > 0 ? 1e3 * run.planning_wall_s / nodes : 0.0;

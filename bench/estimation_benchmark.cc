@@ -5,13 +5,21 @@
 //   points in a state of N control points: the step that dominates the B-spline EKF, O(N^2).
 // - BM_EkfBSplineComplexScan (issue 5): a whole B-spline EKF step (prediction, curve extraction,
 //   association, corrections) on URG-04LX scans of the `complex` route, with the map built so far.
+// - BM_TopologicalComplexScan (issue 7): a whole topological B-spline SLAM step on the same
+//   scans, in a map of max(N, M) curves: the M curves of `complex` mapped on a first pass of the
+//   route, completed to N by copies of them in far rooms. Association looks only at the local
+//   region, so the time must not grow with N.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
+#include <vector>
 
 #include "estimation/ekf_bspline_slam.h"
 #include "estimation/ekf_core.h"
 #include "estimation/ekf_line_slam.h"
+#include "estimation/topological_slam.h"
 #include "kernel/angle.h"
 #include "kernel/random.h"
 #include "sim/builtin_worlds.h"
@@ -117,6 +125,58 @@ void BM_EkfBSplineComplexScan(benchmark::State& state) {
 BENCHMARK(BM_EkfBSplineComplexScan)
     ->Arg(0)
     ->Arg(1)
+    ->Iterations(1484)
+    ->Unit(benchmark::kMillisecond);
+
+void BM_TopologicalComplexScan(benchmark::State& state) {
+  const std::size_t n = static_cast<std::size_t>(state.range(0));
+  const splam::sim::World world = *splam::sim::BuiltinWorld("complex");
+  const splam::sim::RayCaster caster(world);
+  splam::sim::SimulatorOptions sim_options;
+  sim_options.laser = splam::sim::LaserOptions::Urg04lx();
+  splam::sim::Simulator simulator(caster, sim_options, *world.start, 1);
+  const auto frames = splam::sim::FollowRoute(&simulator, world.route, {}).frames;
+  // First pass: the map of the world.
+  std::vector<splam::kernel::SplineCurve> room;
+  {
+    splam::estimation::TopologicalSlam slam(*world.start);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      if (i > 0) slam.Predict(frames[i - 1].odometry_pose.Between(frames[i].odometry_pose));
+      slam.Update(frames[i].scan);
+    }
+    room = slam.curves();
+  }
+  std::vector<splam::kernel::SplineCurve> prior = room;
+  for (int copy = 1; prior.size() < n; ++copy) {  // rooms 40 m apart along x and y
+    const Eigen::Vector2d offset(40.0 * (copy % 8), 40.0 * (copy / 8));
+    for (std::size_t k = 0; k < room.size() && prior.size() < n; ++k) {
+      std::vector<Eigen::Vector2d> points = room[k].spline.control_points();
+      for (Eigen::Vector2d& p : points) p += offset;
+      prior.push_back(splam::kernel::DescribeCurve(
+          *splam::kernel::CubicBSpline::Create(std::move(points), room[k].spline.knots())));
+    }
+  }
+  std::size_t i = 0, curves = 0;
+  std::unique_ptr<splam::estimation::TopologicalSlam> slam;
+  for (auto _ : state) {
+    if (i % frames.size() == 0) {  // start the route again in the prior map
+      state.PauseTiming();
+      slam = std::make_unique<splam::estimation::TopologicalSlam>(*world.start);
+      for (const auto& curve : prior) slam->AddMapCurve(curve);
+      i = 0;
+      state.ResumeTiming();
+    }
+    if (i > 0) slam->Predict(frames[i - 1].odometry_pose.Between(frames[i].odometry_pose));
+    benchmark::DoNotOptimize(slam->Update(frames[i].scan).local_map_curves);
+    curves = std::max(curves, slam->num_curves());
+    ++i;
+  }
+  state.counters["map_curves"] = static_cast<double>(curves);
+}
+BENCHMARK(BM_TopologicalComplexScan)
+    ->Arg(10)
+    ->Arg(100)
+    ->Arg(500)
     ->Iterations(1484)
     ->Unit(benchmark::kMillisecond);
 

@@ -79,6 +79,7 @@ struct ExplorationRun {
   double distance_m = 0.0;  // travelled (ground truth), m
   double time_s = 0.0;      // simulated exploration time, s
   int moves = 0, failed_moves = 0, blocked_steps = 0;
+  int replanned_moves = 0;        // blocked moves re-planned inside a freshly perceived LSR
   int unreachable_frontiers = 0;  // frontier pieces dropped: no clear leg towards them
   double planning_wall_s = 0.0;   // wall time spent deciding (not driving or sensing), s
 };

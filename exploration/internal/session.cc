@@ -95,8 +95,27 @@ graph::Vertex Session::NodeAfterFailedMove(graph::Vertex from) {
 
 MoveResult Session::Drive(const std::vector<Eigen::Vector2d>& waypoints) {
   drive_begin_ = run_.trace.size();
-  const MoveResult result = MoveTo(waypoints, estimate_.translation(), options_.motion, robot_,
-                                   localization_, &estimate_, &run_.trace);
+  MoveResult result = MoveTo(waypoints, estimate_.translation(), options_.motion, robot_,
+                             localization_, &estimate_, &run_.trace);
+  if (result.blocked && !waypoints.empty()) {
+    // The waypoints were planned in an older map frame (an edge stored when the estimate was
+    // different): re-plan to the goal once inside the region the robot perceives now.
+    const Perception perception = robot_->Sense();
+    if (localization_->needs_scans()) {
+      estimate_ = localization_->Update(perception);
+      run_.trace.push_back({perception.time_s, estimate_, perception.odometry_pose,
+                            perception.true_pose.value_or(estimate_)});
+    }
+    const kernel::LocalSafeRegion here =
+        SafeRegionAt(SafeRegionScan(perception, robot_->description()), estimate_,
+                     robot_->description(), options_.lsr_radius_m);
+    if (auto path = PathInside(here, estimate_.translation(), waypoints.back())) {
+      ++run_.replanned_moves;
+      result = MoveTo(*path, estimate_.translation(), options_.motion, robot_, localization_,
+                      &estimate_, &run_.trace);
+      result.blocked = true;  // the move as a whole was refused a step
+    }
+  }
   ++run_.moves;
   if (result.blocked) ++run_.blocked_steps;
   if (result.reached) {

@@ -30,7 +30,9 @@ class Session {
   // Where the robot is after a move from node `from` that failed: a new node (child of `from`)
   // when it got more than 0.3 m away, else `from` itself (no node is added).
   graph::Vertex NodeAfterFailedMove(graph::Vertex from);
-  // MOVE_TO through the waypoints; counts moves and failures.
+  // MOVE_TO through the waypoints; counts moves and failures. When the robot is refused a step
+  // (the waypoints came from an older estimate), it senses once and re-plans to the last
+  // waypoint inside the LSR it perceives there (PathInside), if that reaches it.
   MoveResult Drive(const std::vector<Eigen::Vector2d>& waypoints);
   // True when a cap is reached; the termination is then set.
   bool CapReached();
