@@ -15,6 +15,7 @@
 #include "apps/commands.h"
 #include "apps/exploration_experiment.h"
 #include "apps/run_picture.h"
+#include "apps/splam_experiment.h"
 #include "estimation/chi_square.h"
 #include "estimation/ekf_line_slam.h"
 #include "estimation/metrics.h"
@@ -301,11 +302,11 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       app->add_subcommand("experiment", "Reproduce a published experiment on the simulator.");
   cmd->add_option("name", args->name,
                   "Experiment: corridor-lines (paper 001 section 6), complex-bspline (paper 000 "
-                  "Figs. 15-17) or exploration (paper 003 Fig. 18)")
-      ->check(CLI::IsMember({"corridor-lines", "complex-bspline", "exploration"}))
+                  "Figs. 15-17), exploration (paper 003 Fig. 18) or splam (paper 003 Figs. "
+                  "19-22: SRT + ekf-lines, SRT + ekf-bspline, REG + topological)")
+      ->check(CLI::IsMember({"corridor-lines", "complex-bspline", "exploration", "splam"}))
       ->capture_default_str();
-  cmd->add_option("--runs", args->runs,
-                  "Seeded runs (default: 20 corridor-lines, 10 complex-bspline and exploration)")
+  cmd->add_option("--runs", args->runs, "Seeded runs (default: 20 corridor-lines, 10 the others)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--max-scans", args->max_scans,
                   "complex-bspline: stop each route after this many scans (0 = the whole route)")
@@ -340,6 +341,14 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->callback([args, exit_code] {
+    if (args->name == "splam") {
+      SplamExperimentArgs x;
+      x.runs = args->runs > 0 ? args->runs : x.runs;
+      x.seed = args->seed;
+      x.out = args->out.empty() ? x.out : args->out;
+      *exit_code = RunSplamExperiment(x);
+      return;
+    }
     if (args->name == "exploration") {
       ExplorationExperimentArgs x;
       x.runs = args->runs > 0 ? args->runs : x.runs;

@@ -1,8 +1,10 @@
 #include "apps/exploration_run.h"
 
+#include <fmt/core.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 
 #include "apps/run_picture.h"
 #include "apps/simulated_robot.h"
@@ -11,6 +13,7 @@
 #include "exploration/perception.h"
 #include "io/plot.h"
 #include "io/render.h"
+#include "io/trajectory.h"
 #include "sim/ray_caster.h"
 #include "sim/simulator.h"
 
@@ -180,6 +183,51 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
                        {"sonar", setup.sonar},
                        {"odometry_noise_scale", setup.odometry_noise_scale}};
   return report;
+}
+
+std::string RunTitle(const sim::World& world, const ExploreSetup& setup,
+                     const ExploreOutcome& outcome) {
+  return fmt::format("{} | {} | {} | seed {} | {} nodes, {:.0f} m, {:.0f} s, {:.1f} % explored",
+                     world.name, setup.explorer, setup.localization, setup.seed,
+                     boost::num_vertices(outcome.run.graph), outcome.run.distance_m,
+                     outcome.run.time_s, 100.0 * outcome.coverage());
+}
+
+std::string WriteExplorationRun(const sim::World& world, const ExploreSetup& setup,
+                                const ExploreOutcome& outcome, const nlohmann::json& report,
+                                const std::string& dir, std::vector<std::string>* written) {
+  const std::string title = RunTitle(world, setup, outcome);
+  const Trajectories t = TrajectoriesOf(outcome.run);
+  std::ofstream(dir + "/report.json") << report.dump(2) << "\n";
+  written->push_back("report.json");
+  const auto save = [&](const std::string& name, std::string error) {
+    if (error.empty()) written->push_back(name);
+    return error;
+  };
+  std::vector<std::string> errors = {
+      save("graph.svg/png",
+           SaveExplorationPicture(world, outcome, title, {dir + "/graph.svg", dir + "/graph.png"})),
+      save("explored.svg/png",
+           SaveCoveragePlot(outcome, title, {dir + "/explored.svg", dir + "/explored.png"})),
+      save("errors.svg/png",
+           SaveTrajectoryErrorPlot(outcome, title + ": error against ground truth",
+                                   {dir + "/errors.svg", dir + "/errors.png"})),
+      save("truth.txt", io::WriteTrajectory(dir + "/truth.txt", t.truth, "ground truth")),
+      save("odometry.txt", io::WriteTrajectory(dir + "/odometry.txt", t.odometry, "odometry")),
+      save("estimate.txt", io::WriteTrajectory(dir + "/estimate.txt", t.estimate,
+                                               setup.localization + " estimate"))};
+  if (outcome.slam && outcome.slam->method()) {
+    errors.push_back(save("map.svg/png", SaveSlamMapPicture(world, outcome, title,
+                                                            {dir + "/map.svg", dir + "/map.png"})));
+    const std::vector<std::string> map_errors = outcome.slam->method()->WriteMap(dir);
+    errors.insert(errors.end(), map_errors.begin(), map_errors.end());
+    if (std::all_of(map_errors.begin(), map_errors.end(), [](auto& e) { return e.empty(); }))
+      written->insert(written->end(), {"map.txt", "map.dxf"});
+  }
+  for (const std::string& error : errors) {
+    if (!error.empty()) return error;
+  }
+  return "";
 }
 
 std::string SaveExplorationPicture(const sim::World& world, const ExploreOutcome& outcome,

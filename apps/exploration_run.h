@@ -52,6 +52,18 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
 nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& setup,
                                  const ExploreOutcome& outcome);
 
+// "complex | reg | topological | seed 1 | 35 nodes, 163 m, 494 s, 99.8 % explored"
+std::string RunTitle(const sim::World& world, const ExploreSetup& setup,
+                     const ExploreOutcome& outcome);
+
+// Writes a run into `dir` (which must exist): `report` as report.json, graph, explored and
+// errors pictures (.svg and .png), truth/odometry/estimate.txt and, with a SLAM localisation,
+// map.svg/png/txt/dxf. The names written are appended to *written. Empty on success, else the
+// first error (the files written before it stay).
+std::string WriteExplorationRun(const sim::World& world, const ExploreSetup& setup,
+                                const ExploreOutcome& outcome, const nlohmann::json& report,
+                                const std::string& dir, std::vector<std::string>* written);
+
 // The graph (or tree) over the world with the nodes' LSRs, the open frontiers and the true
 // path (paper 003 Fig. 17), to each path (.svg or .png); empty on success.
 std::string SaveExplorationPicture(const sim::World& world, const ExploreOutcome& outcome,

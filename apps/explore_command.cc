@@ -7,7 +7,6 @@
 
 #include "apps/commands.h"
 #include "apps/exploration_run.h"
-#include "io/trajectory.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
 
@@ -64,36 +63,12 @@ int RunExplore(const ExploreArgs& args) {
   }
   const exploration::ExplorationRun& run = outcome.run;
   const int nodes = static_cast<int>(boost::num_vertices(run.graph));
-  const std::string title =
-      fmt::format("{} | {} | {} | seed {} | {} nodes, {:.0f} m, {:.0f} s, {:.1f} % explored",
-                  world.value->name, setup.explorer, setup.localization, setup.seed, nodes,
-                  run.distance_m, run.time_s, 100.0 * outcome.coverage());
-  std::vector<std::string> written = {"report.json",  "graph.svg",   "graph.png",  "explored.svg",
-                                      "explored.png", "errors.svg",  "errors.png", "truth.txt",
-                                      "odometry.txt", "estimate.txt"};
-  const Trajectories t = TrajectoriesOf(run);
   const nlohmann::json report = ExplorationReport(*world.value, setup, outcome);
-  std::ofstream(out + "/report.json") << report.dump(2) << "\n";
-  std::vector<std::string> errors = {
-      SaveExplorationPicture(*world.value, outcome, title,
-                             {out + "/graph.svg", out + "/graph.png"}),
-      SaveCoveragePlot(outcome, title, {out + "/explored.svg", out + "/explored.png"}),
-      SaveTrajectoryErrorPlot(outcome, title + ": error against ground truth",
-                              {out + "/errors.svg", out + "/errors.png"}),
-      io::WriteTrajectory(out + "/truth.txt", t.truth, "ground truth"),
-      io::WriteTrajectory(out + "/odometry.txt", t.odometry, "odometry"),
-      io::WriteTrajectory(out + "/estimate.txt", t.estimate, setup.localization + " estimate")};
-  if (outcome.slam && outcome.slam->method()) {
-    errors.push_back(
-        SaveSlamMapPicture(*world.value, outcome, title, {out + "/map.svg", out + "/map.png"}));
-    for (const std::string& e : outcome.slam->method()->WriteMap(out)) errors.push_back(e);
-    written.insert(written.end(), {"map.svg", "map.png", "map.txt", "map.dxf"});
-  }
-  for (const std::string& error : errors) {
-    if (!error.empty()) {
-      fmt::print(stderr, "splam explore: {}\n", error);
-      return kExitBadInput;
-    }
+  std::vector<std::string> written;
+  if (std::string error = WriteExplorationRun(*world.value, setup, outcome, report, out, &written);
+      !error.empty()) {
+    fmt::print(stderr, "splam explore: {}\n", error);
+    return kExitBadInput;
   }
   fmt::print(
       "{} nodes, {} edges, {:.1f} m, {:.1f} s simulated, {:.1f} % of {:.0f} m^2 reachable free "

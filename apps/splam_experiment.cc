@@ -1,0 +1,225 @@
+#include "apps/splam_experiment.h"
+
+#include <fmt/core.h>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <utility>
+#include <vector>
+
+#include "apps/commands.h"
+#include "apps/exploration_run.h"
+#include "estimation/metrics.h"
+#include "io/plot.h"
+#include "kernel/angle.h"
+#include "sim/builtin_worlds.h"
+
+namespace splam::apps {
+namespace {
+
+struct Strategy {
+  std::string figure, explorer, method, label;
+  io::Rgb color;
+};
+
+const std::vector<Strategy>& Strategies() {
+  static const std::vector<Strategy> strategies = {
+      {"fig19", "srt", "ekf-lines", "SRT + EKF lines", {0.90, 0.45, 0.05}},
+      {"fig20", "srt", "ekf-bspline", "SRT + EKF B-splines", {0.10, 0.60, 0.25}},
+      {"fig21", "reg", "topological", "REG + topological B-splines", {0.10, 0.35, 0.85}},
+  };
+  return strategies;
+}
+
+// One trial's numbers, read from its report.json.
+struct Trial {
+  bool explored = false, healthy = false;
+  double rmse_m = 0, max_error_m = 0, rmse_heading_deg = 0;
+  double odometry_rmse_m = 0, odometry_rmse_heading_deg = 0;
+  double map_size = 0;         // control points (spline maps) or landmarks (line maps)
+  double map_curves = 0;       // 0 for line maps
+  double map_accuracy_m = -1;  // mean distance of the map curves to the obstacles; -1: no curves
+  double ms_per_step = 0, wall_s = 0, coverage_percent = 0;
+  std::string map;  // the method's description
+};
+
+Trial TrialOf(const nlohmann::json& report, const ExploreOutcome& outcome) {
+  Trial t;
+  t.explored = outcome.run.termination == exploration::Termination::kExplored;
+  const nlohmann::json& e = report["trajectory_error"];
+  t.rmse_m = e["estimate"]["rmse_position_m"];
+  t.max_error_m = e["estimate"]["max_position_m"];
+  t.rmse_heading_deg = kernel::RadToDeg(e["estimate"]["rmse_heading_rad"].get<double>());
+  t.odometry_rmse_m = e["odometry"]["rmse_position_m"];
+  t.odometry_rmse_heading_deg = kernel::RadToDeg(e["odometry"]["rmse_heading_rad"].get<double>());
+  const nlohmann::json& slam = report["slam"];
+  t.healthy = slam["healthy"];
+  t.map = slam["map"]["description"];
+  t.map_size = static_cast<double>(outcome.slam->method()->MapSize());
+  t.map_curves = static_cast<double>(outcome.slam->method()->MapCurves());
+  t.map_accuracy_m = slam["map"].value("mean_distance_to_obstacles_m", -1.0);
+  t.ms_per_step = slam["ms_per_step"]["median"];
+  t.wall_s = outcome.wall_s;
+  t.coverage_percent = 100.0 * outcome.coverage();
+  return t;
+}
+
+std::string MeanStdText(const std::vector<double>& v, int digits) {
+  const auto [mean, std] = estimation::MeanStd(v);
+  return fmt::format("{:.{}f} +- {:.{}f}", mean, digits, std, digits);
+}
+
+// One number of every trial.
+std::vector<double> Values(const std::vector<Trial>& trials, double Trial::*field) {
+  std::vector<double> out;
+  for (const Trial& t : trials) out.push_back(t.*field);
+  return out;
+}
+
+// The numbers summary.json keeps per trial.
+const std::vector<std::pair<std::string, double Trial::*>>& SummaryFields() {
+  static const std::vector<std::pair<std::string, double Trial::*>> fields = {
+      {"rmse_position_m", &Trial::rmse_m},
+      {"max_position_m", &Trial::max_error_m},
+      {"rmse_heading_deg", &Trial::rmse_heading_deg},
+      {"odometry_rmse_position_m", &Trial::odometry_rmse_m},
+      {"odometry_rmse_heading_deg", &Trial::odometry_rmse_heading_deg},
+      {"map_curves", &Trial::map_curves},
+      {"map_size", &Trial::map_size},
+      {"map_accuracy_m", &Trial::map_accuracy_m},
+      {"ms_per_step_median", &Trial::ms_per_step},
+      {"wall_s", &Trial::wall_s},
+      {"coverage_percent", &Trial::coverage_percent}};
+  return fields;
+}
+
+}  // namespace
+
+int RunSplamExperiment(const SplamExperimentArgs& args) {
+  std::error_code ec;
+  std::filesystem::create_directories(args.out, ec);
+  if (ec) {
+    fmt::print(stderr, "splam experiment: cannot create {}: {}\n", args.out, ec.message());
+    return kExitBadInput;
+  }
+  const sim::World world = *sim::BuiltinWorld("complex");
+  const std::vector<Strategy>& strategies = Strategies();
+  std::vector<std::vector<Trial>> trials(strategies.size());
+  bool all_good = true;
+  for (std::size_t s = 0; s < strategies.size(); ++s) {
+    for (int i = 0; i < args.runs; ++i) {
+      ExploreSetup setup;
+      setup.explorer = strategies[s].explorer;
+      setup.localization = strategies[s].method;
+      setup.seed = args.seed + static_cast<std::uint64_t>(i);
+      const ExploreOutcome outcome = RunExploration(world, setup);
+      if (!outcome.error.empty()) {
+        fmt::print(stderr, "splam experiment: {}\n", outcome.error);
+        return kExitBadInput;
+      }
+      const std::string dir =
+          fmt::format("{}/{}-{}-seed{}", args.out, setup.explorer, setup.localization, setup.seed);
+      std::filesystem::create_directories(dir, ec);
+      const nlohmann::json report = ExplorationReport(world, setup, outcome);
+      std::vector<std::string> written;
+      std::string error = WriteExplorationRun(world, setup, outcome, report, dir, &written);
+      for (const char* picture : {"map", "errors"}) {  // Figs. 19-21: the first seed
+        for (const char* ext : {".svg", ".png"}) {
+          if (i > 0 || !error.empty()) continue;
+          std::filesystem::copy_file(
+              fmt::format("{}/{}{}", dir, picture, ext),
+              fmt::format("{}/{}-{}{}", args.out, strategies[s].figure, picture, ext),
+              std::filesystem::copy_options::overwrite_existing, ec);
+          if (ec) error = fmt::format("cannot copy {}/{}{}: {}", dir, picture, ext, ec.message());
+        }
+      }
+      if (!error.empty()) {
+        fmt::print(stderr, "splam experiment: {}\n", error);
+        return kExitBadInput;
+      }
+      const Trial trial = TrialOf(report, outcome);
+      all_good &= trial.explored && trial.healthy;
+      fmt::print(
+          "{} seed {}: {}, {:.1f} % explored; position RMSE {:.3f} m (odometry {:.3f} m), "
+          "heading {:.2f} deg; map {}; {:.1f} s wall\n",
+          strategies[s].label, setup.seed, exploration::TerminationName(outcome.run.termination),
+          trial.coverage_percent, trial.rmse_m, trial.odometry_rmse_m, trial.rmse_heading_deg,
+          trial.map, trial.wall_s);
+      std::fflush(stdout);
+      trials[s].push_back(trial);
+    }
+  }
+
+  // Fig. 22: every trial's numbers, one bar per strategy.
+  const std::vector<std::pair<std::string, double Trial::*>> figure22 = {
+      {"position RMSE (m)", &Trial::rmse_m},
+      {"heading RMSE (deg)", &Trial::rmse_heading_deg},
+      {"odometry position RMSE (m)", &Trial::odometry_rmse_m},
+      {"map: control points or landmarks", &Trial::map_size},
+      {"wall time (s)", &Trial::wall_s}};
+  std::vector<io::PlotPanel> panels;
+  for (const auto& [label, field] : figure22) {
+    io::PlotPanel panel{label, {}};
+    for (std::size_t s = 0; s < strategies.size(); ++s) {
+      io::PlotSeries series{
+          strategies[s].label, strategies[s].color, {}, Values(trials[s], field), true};
+      for (int i = 0; i < args.runs; ++i) series.x.push_back(i + 1);
+      panel.series.push_back(std::move(series));
+    }
+    panels.push_back(std::move(panel));
+  }
+  io::PlotOptions plot;
+  plot.title = fmt::format("complex: SPLAM strategies, {} trials (paper 003 Fig. 22)", args.runs);
+  plot.x_label = "trial";
+  plot.panel_height_px = 150.0;
+  if (std::string error =
+          io::SavePlot(panels, plot, {args.out + "/fig22.svg", args.out + "/fig22.png"});
+      !error.empty()) {
+    fmt::print(stderr, "splam experiment: {}\n", error);
+    return kExitBadInput;
+  }
+
+  // The table and the summary.
+  std::string table = fmt::format(
+      "# SPLAM strategies in `complex` (paper 003 Figs. 19-22): {} trials each, seeds {}-{}\n\n",
+      args.runs, args.seed, args.seed + static_cast<std::uint64_t>(args.runs) - 1);
+  table +=
+      "| strategy | explored | position RMSE (m) | max position error (m) | heading RMSE (deg) | "
+      "odometry RMSE (m) | odometry heading RMSE (deg) | map curves | map control points or "
+      "landmarks | map accuracy (m) | ms per step (median) | wall time (s) |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  nlohmann::ordered_json summary;
+  summary["experiment"] = "splam (paper 003 section 4.2, Figs. 19-22)";
+  summary["world"] = "complex";
+  summary["seeds"] = {args.seed, args.seed + static_cast<std::uint64_t>(args.runs) - 1};
+  for (std::size_t s = 0; s < strategies.size(); ++s) {
+    const std::vector<Trial>& v = trials[s];
+    int explored = 0;
+    for (const Trial& t : v) explored += t.explored && t.healthy;
+    const auto text = [&v](double Trial::*field, int digits) {
+      return MeanStdText(Values(v, field), digits);
+    };
+    table += fmt::format(
+        "| {} | {}/{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", strategies[s].label,
+        explored, v.size(), text(&Trial::rmse_m, 3), text(&Trial::max_error_m, 3),
+        text(&Trial::rmse_heading_deg, 2), text(&Trial::odometry_rmse_m, 3),
+        text(&Trial::odometry_rmse_heading_deg, 2),
+        v.front().map_curves > 0 ? text(&Trial::map_curves, 1) : "-", text(&Trial::map_size, 0),
+        v.front().map_accuracy_m >= 0 ? text(&Trial::map_accuracy_m, 3) : "-",
+        text(&Trial::ms_per_step, 2), text(&Trial::wall_s, 1));
+    nlohmann::ordered_json& j = summary["strategies"][strategies[s].label];
+    j["explorer"] = strategies[s].explorer;
+    j["method"] = strategies[s].method;
+    j["explored_and_healthy"] = explored;
+    for (const auto& [key, field] : SummaryFields()) j[key] = Values(v, field);
+  }
+  std::ofstream(args.out + "/table.md") << table;
+  std::ofstream(args.out + "/summary.json") << summary.dump(2) << "\n";
+  fmt::print(
+      "{}wrote {}/{{table.md, summary.json, fig19/20/21-map.png, fig19/20/21-errors.png, "
+      "fig22.png, one directory per trial}}\n",
+      table, args.out);
+  return all_good ? kExitOk : kExitIncomplete;
+}
+
+}  // namespace splam::apps
