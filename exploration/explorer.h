@@ -53,7 +53,7 @@ enum class Termination {
   kExplored,      // nothing left to explore, back at the start
   kNodeLimit,     // max_nodes reached
   kTimeLimit,     // max_time_s reached
-  kStuck,         // max_failed_moves moves in a row failed
+  kStuck,         // max_failed_moves moves in a row (or SRT returns from one node) failed
   kInvalidInput,  // bad options or a localisation that cannot run on this robot
 };
 std::string TerminationName(Termination termination);

@@ -1,7 +1,9 @@
 #include "exploration/srt.h"
 
 #include <cmath>
+#include <map>
 #include <optional>
+#include <string>
 
 #include "exploration/internal/session.h"
 
@@ -29,6 +31,7 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
   graph::ExplorationGraph& g = session.graph();
   graph::Vertex current = session.AddNodeHere(-1);
   const double step = options_.alpha * options_.lsr_radius_m;
+  std::map<graph::Vertex, int> failed_returns;  // failed backtracks from each node
   while (!session.CapReached()) {
     std::optional<std::vector<Eigen::Vector2d>> path;  // to the new node's configuration
     {
@@ -64,6 +67,13 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
     const graph::Vertex target = static_cast<graph::Vertex>(parent);
     if (session.Drive(graph::Waypoints(g, {current, target})).reached) {
       current = target;
+    } else if (++failed_returns[current] >= options_.max_failed_moves) {
+      // Each failure adds a node next to `current`, which returns to it and tries again: without
+      // this cap the robot circles here until the time limit.
+      return session.Finish(Termination::kStuck,
+                            "could not return from node " + std::to_string(current) +
+                                " to its parent " + std::to_string(target) + " in " +
+                                std::to_string(options_.max_failed_moves) + " tries");
     } else {
       current = session.NodeAfterFailedMove(current);
     }

@@ -14,6 +14,9 @@ constexpr double kPathSpacing = 0.1;  // m between the stored points of a driven
 // The polar grid of PathInside's waypoints around the LSR's centre.
 constexpr double kWaypointRadii[] = {0.4, 0.8, 1.2, 1.6, 2.0};  // m
 constexpr int kWaypointDirections = 36;
+// Where PathNear looks for a clear goal around one that is not.
+constexpr double kGoalOffsets[] = {0.15, 0.3, 0.45};  // m
+constexpr int kGoalOffsetDirections = 12;
 
 }  // namespace
 
@@ -94,12 +97,16 @@ graph::Vertex Session::NodeAfterFailedMove(graph::Vertex from) {
 }
 
 MoveResult Session::Drive(const std::vector<Eigen::Vector2d>& waypoints) {
+  constexpr int kReplans = 2;
   drive_begin_ = run_.trace.size();
   MoveResult result = MoveTo(waypoints, estimate_.translation(), options_.motion, robot_,
                              localization_, &estimate_, &run_.trace);
-  if (result.blocked && !waypoints.empty()) {
+  std::vector<Eigen::Vector2d> remaining = waypoints;
+  for (int replan = 0; replan < kReplans && result.blocked && !result.reached; ++replan) {
     // The waypoints were planned in an older map frame (an edge stored when the estimate was
-    // different): re-plan to the goal once inside the region the robot perceives now.
+    // different): re-plan inside the region the robot perceives now, to the farthest remaining
+    // waypoint it can reach, and go on from there.
+    remaining.erase(remaining.begin(), remaining.begin() + result.waypoints_reached);
     const Perception perception = robot_->Sense();
     if (localization_->needs_scans()) {
       estimate_ = localization_->Update(perception);
@@ -109,12 +116,17 @@ MoveResult Session::Drive(const std::vector<Eigen::Vector2d>& waypoints) {
     const kernel::LocalSafeRegion here =
         SafeRegionAt(SafeRegionScan(perception, robot_->description()), estimate_,
                      robot_->description(), options_.lsr_radius_m);
-    if (auto path = PathInside(here, estimate_.translation(), waypoints.back())) {
-      ++run_.replanned_moves;
-      result = MoveTo(*path, estimate_.translation(), options_.motion, robot_, localization_,
-                      &estimate_, &run_.trace);
-      result.blocked = true;  // the move as a whole was refused a step
-    }
+    std::optional<std::vector<Eigen::Vector2d>> path;
+    std::size_t k = remaining.size();
+    while (!path && k-- > 0) path = PathNear(here, estimate_.translation(), remaining[k]);
+    if (!path) break;
+    ++run_.replanned_moves;
+    path->insert(path->end(), remaining.begin() + static_cast<std::ptrdiff_t>(k) + 1,
+                 remaining.end());
+    remaining = std::move(*path);
+    result = MoveTo(remaining, estimate_.translation(), options_.motion, robot_, localization_,
+                    &estimate_, &run_.trace);
+    result.blocked = true;  // the move as a whole was refused a step
   }
   ++run_.moves;
   if (result.blocked) ++run_.blocked_steps;
@@ -191,6 +203,21 @@ std::optional<std::vector<Eigen::Vector2d>> Session::PathInside(const kernel::Lo
   for (const auto& [length, w] : candidates) {
     if (LegIsClear(lsr, from, w) && LegIsClear(lsr, w, to, /*from_robot=*/false))
       return std::vector<Eigen::Vector2d>{w, to};
+  }
+  return std::nullopt;
+}
+
+std::optional<std::vector<Eigen::Vector2d>> Session::PathNear(const kernel::LocalSafeRegion& lsr,
+                                                              const Eigen::Vector2d& from,
+                                                              const Eigen::Vector2d& to) const {
+  if (auto path = PathInside(lsr, from, to)) return path;
+  for (double radius : kGoalOffsets) {
+    for (int k = 0; k < kGoalOffsetDirections; ++k) {
+      const double angle = 2.0 * kernel::kPi * k / kGoalOffsetDirections;
+      if (auto path = PathInside(lsr, from,
+                                 to + radius * Eigen::Vector2d(std::cos(angle), std::sin(angle))))
+        return path;
+    }
   }
   return std::nullopt;
 }

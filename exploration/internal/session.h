@@ -31,8 +31,9 @@ class Session {
   // when it got more than 0.3 m away, else `from` itself (no node is added).
   graph::Vertex NodeAfterFailedMove(graph::Vertex from);
   // MOVE_TO through the waypoints; counts moves and failures. When the robot is refused a step
-  // (the waypoints came from an older estimate), it senses once and re-plans to the last
-  // waypoint inside the LSR it perceives there (PathInside), if that reaches it.
+  // (the waypoints came from an older estimate), it senses and re-plans inside the LSR it
+  // perceives there (PathNear) to the farthest remaining waypoint it can reach, then follows
+  // the rest; at most twice per move.
   MoveResult Drive(const std::vector<Eigen::Vector2d>& waypoints);
   // True when a cap is reached; the termination is then set.
   bool CapReached();
@@ -58,6 +59,11 @@ class Session {
   std::optional<std::vector<Eigen::Vector2d>> PathInside(const kernel::LocalSafeRegion& lsr,
                                                          const Eigen::Vector2d& from,
                                                          const Eigen::Vector2d& to) const;
+  // PathInside to `to`, else to the first clear point 0.15, 0.3 or 0.45 m from it (every
+  // 30 deg): a goal placed with an older estimate may lie too close to an obstacle now.
+  std::optional<std::vector<Eigen::Vector2d>> PathNear(const kernel::LocalSafeRegion& lsr,
+                                                       const Eigen::Vector2d& from,
+                                                       const Eigen::Vector2d& to) const;
   // The free arcs of an LSR long enough to be frontiers.
   std::vector<kernel::FrontierArc> LongEnough(const std::vector<kernel::FrontierArc>& arcs) const;
 

@@ -362,8 +362,8 @@ TEST(SplamCli, ExploreWritesTheGraphCoverageAndReport) {
 }
 
 TEST(SplamCli, ExploreWithoutArgumentsRunsTheMainJob) {
-  // REG with topological B-spline SLAM in `complex` (seed 1 measured: 0.49 m position RMSE
-  // against odometry's 0.59 m, 36 curves 0.28 m from the true obstacles on average).
+  // REG with topological B-spline SLAM in `complex` (seed 1 measured: 0.163 m position RMSE
+  // against odometry's 0.664 m, 19 curves 0.081 m from the true obstacles on average).
   const fs::path dir = Temp("explore_main");
   fs::create_directories(dir);
   const Output run = Splam("explore", dir);
@@ -379,9 +379,37 @@ TEST(SplamCli, ExploreWithoutArgumentsRunsTheMainJob) {
   const nlohmann::json& map = report["slam"]["map"];
   EXPECT_GT(map["curves"].get<int>(), 10);
   EXPECT_GT(map["control_points"].get<int>(), 100);
-  EXPECT_LT(map["mean_distance_to_obstacles_m"].get<double>(), 0.5);
-  EXPECT_LT(report["trajectory_error"]["estimate"]["rmse_position_m"].get<double>(), 1.0);
+  EXPECT_LT(map["mean_distance_to_obstacles_m"].get<double>(), 0.2);
+  const nlohmann::json& error = report["trajectory_error"];
+  EXPECT_LT(error["estimate"]["rmse_position_m"].get<double>(),
+            0.5 * error["odometry"]["rmse_position_m"].get<double>());
   EXPECT_GT(report["slam"]["localization_steps"].get<int>(), 1000);
+}
+
+TEST(SplamCli, SplamExperimentComparesTheThreeStrategies) {
+  // One trial (seed 1) of paper 003 Figs. 19-22. Measured: position RMSE 0.162 m (ekf-lines,
+  // odometry 0.458 m), 0.125 m (ekf-bspline, odometry 0.590 m), 0.163 m (topological, odometry
+  // 0.664 m).
+  const fs::path out = Temp("experiment_splam");
+  const Output run = Splam("experiment splam --runs 1 --out " + out.string());
+  ASSERT_EQ(run.status, 0) << run.text;
+  for (const char* f : {"table.md", "summary.json", "fig19-map.png", "fig19-errors.png",
+                        "fig20-map.png", "fig21-map.png", "fig21-errors.svg", "fig22.png",
+                        "reg-topological-seed1/report.json", "srt-ekf-lines-seed1/map.dxf"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const nlohmann::json summary = nlohmann::json::parse(Slurp(out / "summary.json"));
+  ASSERT_EQ(summary["strategies"].size(), 3u);
+  for (const auto& [name, s] : summary["strategies"].items()) {
+    EXPECT_EQ(s["explored_and_healthy"].get<int>(), 1) << name;
+    EXPECT_LT(s["rmse_position_m"][0].get<double>(),
+              0.5 * s["odometry_rmse_position_m"][0].get<double>())
+        << name;
+    EXPECT_GT(s["map_size"][0].get<double>(), 100.0) << name;
+    if (s["method"] != "ekf-lines") {
+      EXPECT_GT(s["map_curves"][0].get<double>(), 10.0) << name;
+      EXPECT_LT(s["map_accuracy_m"][0].get<double>(), 0.15) << name;
+    }
+  }
 }
 
 TEST(SplamCli, EveryCommandHasHelp) {
