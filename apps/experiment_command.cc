@@ -294,6 +294,17 @@ int RunCorridorLines(const ExperimentArgs& args) {
   return kExitOk;
 }
 
+// An experiment's arguments with the shared ones (runs, seed, out) taken from the command line
+// when given, else the experiment's defaults.
+template <typename Args>
+Args WithCommonArgs(const ExperimentArgs& given) {
+  Args args;
+  args.runs = given.runs > 0 ? given.runs : args.runs;
+  args.seed = given.seed;
+  args.out = given.out.empty() ? args.out : given.out;
+  return args;
+}
+
 }  // namespace
 
 void AddExperimentCommand(CLI::App* app, int* exit_code) {
@@ -342,29 +353,18 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->callback([args, exit_code] {
     if (args->name == "splam") {
-      SplamExperimentArgs x;
-      x.runs = args->runs > 0 ? args->runs : x.runs;
-      x.seed = args->seed;
-      x.out = args->out.empty() ? x.out : args->out;
-      *exit_code = RunSplamExperiment(x);
+      *exit_code = RunSplamExperiment(WithCommonArgs<SplamExperimentArgs>(*args));
       return;
     }
     if (args->name == "exploration") {
-      ExplorationExperimentArgs x;
-      x.runs = args->runs > 0 ? args->runs : x.runs;
-      x.seed = args->seed;
-      x.out = args->out.empty() ? x.out : args->out;
-      *exit_code = RunExplorationExperiment(x);
+      *exit_code = RunExplorationExperiment(WithCommonArgs<ExplorationExperimentArgs>(*args));
       return;
     }
     if (args->name == "complex-bspline") {
-      BSplineExperimentArgs b;
-      b.runs = args->runs > 0 ? args->runs : b.runs;
-      b.seed = args->seed;
+      BSplineExperimentArgs b = WithCommonArgs<BSplineExperimentArgs>(*args);
       b.max_scans = args->max_scans;
       b.odometry_noise_scale = args->odometry_noise_scale;
       b.max_correspondence_distance_m = args->max_correspondence_distance_m;
-      b.out = args->out.empty() ? b.out : args->out;
       *exit_code = RunComplexBSpline(b);
       return;
     }

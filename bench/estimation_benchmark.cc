@@ -95,13 +95,22 @@ BENCHMARK(BM_EkfCorrection)
     ->Arg(2000)
     ->Unit(benchmark::kMicrosecond);
 
-void BM_EkfBSplineComplexScan(benchmark::State& state) {
+// The `complex` world's route driven with a URG-04LX (seed 1): its start pose and sensor frames.
+struct ComplexRoute {
+  splam::kernel::Pose2 start;
+  std::vector<splam::sim::SensorFrame> frames;
+};
+ComplexRoute DriveComplexRoute() {
   const splam::sim::World world = *splam::sim::BuiltinWorld("complex");
   const splam::sim::RayCaster caster(world);
   splam::sim::SimulatorOptions sim_options;
   sim_options.laser = splam::sim::LaserOptions::Urg04lx();
   splam::sim::Simulator simulator(caster, sim_options, *world.start, 1);
-  const auto frames = splam::sim::FollowRoute(&simulator, world.route, {}).frames;
+  return {*world.start, splam::sim::FollowRoute(&simulator, world.route, {}).frames};
+}
+
+void BM_EkfBSplineComplexScan(benchmark::State& state) {
+  const auto [start, frames] = DriveComplexRoute();
   splam::estimation::EkfBSplineSlamOptions options;
   options.association = state.range(0) == 0 ? "pedraza" : "curvature";
   std::size_t i = 0, control_points = 0;
@@ -110,7 +119,7 @@ void BM_EkfBSplineComplexScan(benchmark::State& state) {
     if (i % frames.size() == 0) {  // start the route again
       state.PauseTiming();
       slam = std::make_unique<splam::estimation::EkfBSplineSlam>(
-          *world.start, Eigen::Matrix3d::Identity() * 1e-6, options);
+          start, Eigen::Matrix3d::Identity() * 1e-6, options);
       i = 0;
       state.ResumeTiming();
     }
@@ -130,16 +139,11 @@ BENCHMARK(BM_EkfBSplineComplexScan)
 
 void BM_TopologicalComplexScan(benchmark::State& state) {
   const std::size_t n = static_cast<std::size_t>(state.range(0));
-  const splam::sim::World world = *splam::sim::BuiltinWorld("complex");
-  const splam::sim::RayCaster caster(world);
-  splam::sim::SimulatorOptions sim_options;
-  sim_options.laser = splam::sim::LaserOptions::Urg04lx();
-  splam::sim::Simulator simulator(caster, sim_options, *world.start, 1);
-  const auto frames = splam::sim::FollowRoute(&simulator, world.route, {}).frames;
+  const auto [start, frames] = DriveComplexRoute();
   // First pass: the map of the world.
   std::vector<splam::kernel::SplineCurve> room;
   {
-    splam::estimation::TopologicalSlam slam(*world.start);
+    splam::estimation::TopologicalSlam slam(start);
     for (std::size_t i = 0; i < frames.size(); ++i) {
       if (i > 0) slam.Predict(frames[i - 1].odometry_pose.Between(frames[i].odometry_pose));
       slam.Update(frames[i].scan);
@@ -161,7 +165,7 @@ void BM_TopologicalComplexScan(benchmark::State& state) {
   for (auto _ : state) {
     if (i % frames.size() == 0) {  // start the route again in the prior map
       state.PauseTiming();
-      slam = std::make_unique<splam::estimation::TopologicalSlam>(*world.start);
+      slam = std::make_unique<splam::estimation::TopologicalSlam>(start);
       for (const auto& curve : prior) slam->AddMapCurve(curve);
       i = 0;
       state.ResumeTiming();
