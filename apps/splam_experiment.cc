@@ -24,9 +24,9 @@ struct Strategy {
 
 const std::vector<Strategy>& Strategies() {
   static const std::vector<Strategy> strategies = {
-      {"fig19", "srt", "ekf-lines", "SRT + EKF lines", {0.90, 0.45, 0.05}},
-      {"fig20", "srt", "ekf-bspline", "SRT + EKF B-splines", {0.10, 0.60, 0.25}},
-      {"fig21", "reg", "topological", "REG + topological B-splines", {0.10, 0.35, 0.85}},
+      {"fig19", "srt", "ekf-lines", "SRT + ekf-lines", {0.90, 0.45, 0.05}},
+      {"fig20", "srt", "ekf-bspline", "SRT + ekf-bspline", {0.10, 0.60, 0.25}},
+      {"fig21", "reg", "topological", "REG + topological", {0.10, 0.35, 0.85}},
   };
   return strategies;
 }
@@ -154,8 +154,8 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
   const std::vector<std::pair<std::string, double Trial::*>> figure22 = {
       {"position RMSE (m)", &Trial::rmse_m},
       {"heading RMSE (deg)", &Trial::rmse_heading_deg},
-      {"odometry position RMSE (m)", &Trial::odometry_rmse_m},
-      {"map: control points or landmarks", &Trial::map_size},
+      {"odometry RMSE (m)", &Trial::odometry_rmse_m},
+      {"map size", &Trial::map_size},
       {"wall time (s)", &Trial::wall_s}};
   std::vector<io::PlotPanel> panels;
   for (const auto& [label, field] : figure22) {
