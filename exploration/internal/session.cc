@@ -54,13 +54,18 @@ bool Session::Start() {
   return true;
 }
 
-graph::Vertex Session::AddNodeHere(int parent) {
+Perception Session::SenseHere() {
   const Perception perception = robot_->Sense();
   if (localization_->needs_scans()) {
     estimate_ = localization_->Update(perception);
     run_.trace.push_back({perception.time_s, estimate_, perception.odometry_pose,
                           perception.true_pose.value_or(estimate_)});
   }
+  return perception;
+}
+
+graph::Vertex Session::AddNodeHere(int parent) {
+  const Perception perception = SenseHere();
   NodeRecord record;
   record.time_s = perception.time_s;
   record.true_pose = perception.true_pose.value_or(estimate_);
@@ -107,12 +112,7 @@ MoveResult Session::Drive(const std::vector<Eigen::Vector2d>& waypoints) {
     // different): re-plan inside the region the robot perceives now, to the farthest remaining
     // waypoint it can reach, and go on from there.
     remaining.erase(remaining.begin(), remaining.begin() + result.waypoints_reached);
-    const Perception perception = robot_->Sense();
-    if (localization_->needs_scans()) {
-      estimate_ = localization_->Update(perception);
-      run_.trace.push_back({perception.time_s, estimate_, perception.odometry_pose,
-                            perception.true_pose.value_or(estimate_)});
-    }
+    const Perception perception = SenseHere();
     const kernel::LocalSafeRegion here =
         SafeRegionAt(SafeRegionScan(perception, robot_->description()), estimate_,
                      robot_->description(), options_.lsr_radius_m);

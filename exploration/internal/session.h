@@ -91,6 +91,10 @@ class Session {
   };
 
  private:
+  // Senses (odometry, laser, sonar); a localisation that needs scans updates the estimate with
+  // the reading, which is then traced.
+  Perception SenseHere();
+
   ExplorerOptions options_;
   RobotInterface* robot_;
   Localization* localization_;

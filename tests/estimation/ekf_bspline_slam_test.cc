@@ -9,9 +9,12 @@
 #include "estimation/metrics.h"
 #include "sim/builtin_worlds.h"
 #include "sim/simulator.h"
+#include "tests/estimation/map_error.h"
 
 namespace splam::estimation {
 namespace {
+
+using test_util::MapError;
 
 struct DriveResult {
   kernel::Trajectory truth, estimate, odometry;
@@ -47,21 +50,6 @@ DriveResult Drive(const sim::World& world, const EkfBSplineSlamOptions& options,
   }
   run.map = slam->MapSplines();
   return run;
-}
-
-// Mean distance from points every 5 cm along the map curves to the nearest true obstacle.
-double MapError(const sim::World& world, const std::vector<MapSpline>& map) {
-  const sim::RayCaster caster(world);
-  double sum = 0.0;
-  int n = 0;
-  for (const MapSpline& s : map) {
-    for (const Eigen::Vector2d& p : s.spline.ResampleByArcLength(0.05)) {
-      const sim::RayHit near = caster.Nearest(p, 1.0);
-      sum += near.obstacle >= 0 ? near.range_m : 1.0;
-      ++n;
-    }
-  }
-  return n > 0 ? sum / n : 1.0;
 }
 
 class BothAssociations : public testing::TestWithParam<const char*> {};

@@ -14,9 +14,12 @@
 #include "sim/builtin_worlds.h"
 #include "sim/ray_caster.h"
 #include "sim/simulator.h"
+#include "tests/estimation/map_error.h"
 
 namespace splam::estimation {
 namespace {
+
+using test_util::MapError;
 
 Eigen::Vector2d Rotate(double angle, const Eigen::Vector2d& v) {
   return Eigen::Rotation2Dd(angle) * v;
@@ -93,20 +96,6 @@ DriveResult Drive(const sim::World& world, int max_scans, std::uint64_t seed,
   }
   run.map = slam.MapSplines();
   return run;
-}
-
-double MapError(const sim::World& world, const std::vector<MapSpline>& map) {
-  const sim::RayCaster caster(world);
-  double sum = 0.0;
-  int n = 0;
-  for (const MapSpline& s : map) {
-    for (const Eigen::Vector2d& p : s.spline.ResampleByArcLength(0.05)) {
-      const sim::RayHit near = caster.Nearest(p, 1.0);
-      sum += near.obstacle >= 0 ? near.range_m : 1.0;
-      ++n;
-    }
-  }
-  return n > 0 ? sum / n : 1.0;
 }
 
 TEST(TopologicalSlam, CorridorWallsSeenBitByBitAreSplicedOntoOneCurveEach) {
