@@ -123,15 +123,12 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
       const nlohmann::json report = ExplorationReport(world, setup, outcome);
       std::vector<std::string> written;
       std::string error = WriteExplorationRun(world, setup, outcome, report, dir, &written);
-      for (const char* picture : {"map", "errors"}) {  // Figs. 19-21: the first seed
-        for (const char* ext : {".svg", ".png"}) {
-          if (i > 0 || !error.empty()) continue;
-          std::filesystem::copy_file(
-              fmt::format("{}/{}{}", dir, picture, ext),
-              fmt::format("{}/{}-{}{}", args.out, strategies[s].figure, picture, ext),
-              std::filesystem::copy_options::overwrite_existing, ec);
-          if (ec) error = fmt::format("cannot copy {}/{}{}: {}", dir, picture, ext, ec.message());
-        }
+      for (const std::string name : {"map.svg", "map.png", "errors.svg", "errors.png"}) {
+        if (i > 0 || !error.empty()) break;  // Figs. 19-21: the first seed's pictures
+        std::filesystem::copy_file(dir + "/" + name,
+                                   args.out + "/" + strategies[s].figure + "-" + name,
+                                   std::filesystem::copy_options::overwrite_existing, ec);
+        if (ec) error = fmt::format("cannot copy {}/{}: {}", dir, name, ec.message());
       }
       if (!error.empty()) {
         fmt::print(stderr, "splam experiment: {}\n", error);
