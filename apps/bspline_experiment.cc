@@ -12,12 +12,13 @@
 
 #include "apps/commands.h"
 #include "apps/run_picture.h"
-#include "apps/slam_methods.h"
+#include "apps/slam_report.h"
 #include "estimation/ekf_bspline_slam.h"
 #include "estimation/metrics.h"
 #include "io/plot.h"
 #include "io/render.h"
 #include "kernel/angle.h"
+#include "loop/scoring.h"
 #include "sim/builtin_worlds.h"
 #include "sim/simulator.h"
 
@@ -99,7 +100,7 @@ RunResult RunFilter(const std::vector<sim::SensorFrame>& frames, const sim::RayC
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
       static_cast<double>(frames.size());
   result.map = slam.MapSplines();
-  result.map_error_m = MeanDistanceToObstacles(caster, result.map);
+  result.map_error_m = loop::MeanDistanceToObstacles(caster, result.map);
   return result;
 }
 
@@ -186,7 +187,9 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
         picture.truth = truth;
         picture.odometry = odometry;
         picture.estimates = {{method, r.estimate}};
-        DrawSplineMap(r.map, options.extraction, &picture);
+        DrawMap(
+            {.lines = {}, .corners = {}, .splines = r.map, .spline_features = options.extraction},
+            &picture);
         const std::string base = args.out + "/map_" + method;
         if (std::string err = SaveRunPicture(picture, {base + ".svg", base + ".png"});
             !err.empty()) {

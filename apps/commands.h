@@ -12,6 +12,7 @@ void AddSlamCommand(CLI::App* app, int* exit_code);
 void AddEvalCommand(CLI::App* app, int* exit_code);
 void AddExperimentCommand(CLI::App* app, int* exit_code);
 void AddExploreCommand(CLI::App* app, int* exit_code);
+void AddConfigCommand(CLI::App* app, int* exit_code);
 
 // Exit statuses of every command.
 inline constexpr int kExitOk = 0;

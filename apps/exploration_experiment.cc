@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "apps/commands.h"
-#include "apps/exploration_run.h"
+#include "apps/exploration_report.h"
 #include "estimation/metrics.h"
 #include "io/plot.h"
 #include "sim/builtin_worlds.h"

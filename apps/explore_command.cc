@@ -1,12 +1,17 @@
 // splam explore: autonomous exploration of a simulated world with SRT or REG.
 #include <fmt/core.h>
 #include <fmt/format.h>
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "apps/commands.h"
-#include "apps/exploration_run.h"
+#include "apps/exploration_report.h"
+#include "apps/run_config.h"
+#include "io/config.h"
+#include "io/text.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
 
@@ -14,11 +19,81 @@ namespace splam::apps {
 namespace {
 
 struct ExploreArgs {
-  ExploreSetup setup;
+  ExploreSetup setup;  // what the command line gave
+  std::string config_file;
+  std::vector<std::string> sets;
+  std::vector<std::string> given;  // the top-level flags given (explorer, localization, ...)
   std::string world = "complex";
   std::string out;
   double resolution_m_per_px = 0.05;
 };
+
+// The setup: defaults, then the configuration file, then the command line (flags and --set).
+kernel::Status Configure(const ExploreArgs& args, ExploreConfig* config) {
+  std::optional<io::ConfigFile> file;
+  if (!args.config_file.empty()) {
+    io::Result<io::ConfigFile> loaded = io::ConfigFile::Load(args.config_file);
+    if (!loaded.ok()) return loaded.status();
+    file = std::move(*loaded.value);
+  }
+  loop::ExploreSetup& setup = config->setup;
+  const loop::ExploreSetup& flags = args.setup;
+  const auto given = [&](const char* name) {
+    return std::find(args.given.begin(), args.given.end(), name) != args.given.end();
+  };
+  // What decides the defaults of the rest: explorer, localisation, seed, odometry noise.
+  const io::ConfigRoot top = [&](kernel::FieldVisitor& v) {
+    v.Field("explorer", &setup.explorer, "");
+    v.Field("localization", &setup.localization, "");
+    v.Field("seed", &setup.seed, "");
+    v.Field("odometry_noise_scale", &setup.odometry_noise_scale, "");
+  };
+  if (file) {
+    if (kernel::Status s = file->Read(top, /*allow_unknown=*/true); !s.ok()) return s;
+  }
+  if (given("explorer")) setup.explorer = flags.explorer;
+  if (given("localization")) setup.localization = flags.localization;
+  if (given("seed")) setup.seed = flags.seed;
+  if (given("odometry-noise")) setup.odometry_noise_scale = flags.odometry_noise_scale;
+  if (given("no-sonar")) setup.sonar = false;
+  if (setup.explorer != "srt" && setup.explorer != "reg")
+    return kernel::Status::Error("unknown explorer '" + setup.explorer + "' (srt, reg)");
+  if (!loop::IsLocalization(setup.localization))
+    return kernel::Status::Error("unknown localisation '" + setup.localization + "' (" +
+                                 loop::LocalizationNames() + ")");
+  ResetExploreDefaults(config);
+  std::vector<std::string> sets;
+  if (given("lsr-radius"))
+    sets.push_back("local_region.radius_m=" + io::FormatDouble(flags.region.radius_m));
+  if (given("alpha")) sets.push_back("local_region.alpha=" + io::FormatDouble(flags.region.alpha));
+  if (given("max-nodes"))
+    sets.push_back("exploration.max_nodes=" + std::to_string(flags.options.max_nodes));
+  if (given("max-time"))
+    sets.push_back("exploration.max_time_s=" + io::FormatDouble(flags.options.max_time_s));
+  if (given("no-sonar")) sets.push_back("simulator.enable_sonar=false");
+  sets.insert(sets.end(), args.sets.begin(), args.sets.end());
+  const loop::ExploreSetup before = setup;
+  if (kernel::Status s = ApplyConfig(file ? &*file : nullptr, ExploreConfigRoot(config), sets);
+      !s.ok())
+    return s;
+  if (setup.explorer != before.explorer || setup.localization != before.localization ||
+      setup.odometry_noise_scale != before.odometry_noise_scale)
+    return kernel::Status::Error(
+        "--set cannot change explorer, localization or odometry_noise_scale: use their flags");
+  setup.sonar = config->simulator.enable_sonar;
+  setup.simulator = config->simulator;
+  setup.slam_options = config->slam_options ? config->slam_options->Clone() : nullptr;
+  if (std::string p = setup.region.Validate(); !p.empty())
+    return kernel::Status::Error("local_region: " + p);
+  exploration::ExplorerOptions checked = setup.options;
+  checked.lsr_radius_m = setup.region.radius_m;
+  checked.alpha = setup.region.alpha;
+  if (std::string p = checked.Validate(); !p.empty()) return kernel::Status::Error(p);
+  if (std::string p = config->simulator.Validate(); !p.empty())
+    return kernel::Status::Error("simulator: " + p);
+  if (setup.slam_options) return setup.slam_options->Validate().Prefixed(setup.localization);
+  return kernel::Status::Ok();
+}
 
 int RunExplore(const ExploreArgs& args) {
   io::FloorPlanOptions floor_plan;
@@ -32,11 +107,12 @@ int RunExplore(const ExploreArgs& args) {
     fmt::print(stderr, "splam explore: {}: {}\n", args.world, problem);
     return kExitBadInput;
   }
-  if (std::string problem = args.setup.options.Validate(); !problem.empty()) {
-    fmt::print(stderr, "splam explore: {}\n", problem);
+  ExploreConfig config;
+  if (kernel::Status s = Configure(args, &config); !s.ok()) {
+    fmt::print(stderr, "splam explore: {}\n", s.message());
     return kExitBadInput;
   }
-  ExploreSetup setup = args.setup;
+  ExploreSetup& setup = config.setup;
   fmt::print("splam explore: {} with {} localisation in '{}', seed {}\n", setup.explorer,
              setup.localization, world.value->name, setup.seed);
   std::fflush(stdout);
@@ -59,6 +135,13 @@ int RunExplore(const ExploreArgs& args) {
   std::filesystem::create_directories(out, ec);
   if (ec) {
     fmt::print(stderr, "splam explore: cannot create {}: {}\n", out, ec.message());
+    return kExitBadInput;
+  }
+  if (kernel::Status s = io::WriteConfig(
+          out + "/config.yaml", ExploreConfigRoot(&config),
+          "splam explore\nrepeat with: splam explore --config " + out + "/config.yaml");
+      !s.ok()) {
+    fmt::print(stderr, "splam explore: {}\n", s.message());
     return kExitBadInput;
   }
   const exploration::ExplorationRun& run = outcome.run;
@@ -93,7 +176,7 @@ int RunExplore(const ExploreArgs& args) {
     fmt::print("; {:.2f} ms per localisation step (median)\n",
                report["slam"]["ms_per_step"]["median"].get<double>());
   }
-  fmt::print("wrote {}/{{{}}}\n", out, fmt::join(written, ", "));
+  fmt::print("wrote {}/{{config.yaml, {}}}\n", out, fmt::join(written, ", "));
   return run.termination == exploration::Termination::kExplored ? kExitOk : kExitIncomplete;
 }
 
@@ -106,47 +189,74 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
   CLI::App* cmd = app->add_subcommand(
       "explore",
       "Explore a simulated world autonomously with SRT or REG; write the graph with its local "
-      "safe regions, the explored area over time, trajectories and report.json into --out.");
-  cmd->add_option("--explorer", setup.explorer, "Exploration strategy")
+      "safe regions, the explored area over time, trajectories, config.yaml and report.json into "
+      "--out.");
+  std::vector<std::pair<std::string, CLI::Option*>> flags;
+  const auto flag = [&](const std::string& name, CLI::Option* option) {
+    flags.emplace_back(name, option);
+    return option;
+  };
+  flag("explorer", cmd->add_option("--explorer", setup.explorer, "Exploration strategy"))
       ->check(CLI::IsMember({"srt", "reg"}))
       ->capture_default_str();
   cmd->add_option(
          "--world", args->world,
          "Built-in world (corridor, office, complex), a YAML world file or a floor-plan image")
       ->capture_default_str();
-  cmd->add_option("--seed", setup.seed,
-                  "Seed of the simulator's noise and the explorer's random draws")
+  flag("seed", cmd->add_option("--seed", setup.seed,
+                               "Seed of the simulator's noise and the explorer's random draws"))
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output directory (default runs/explore-<explorer>-<world>)");
-  cmd->add_option("--localization", setup.localization,
-                  "Where the explorer believes it is: a SLAM method (the SPLAM loop), odometry "
-                  "alone, or the simulator's ground truth")
-      ->check(
-          CLI::IsMember({"topological", "ekf-lines", "ekf-bspline", "odometry", "ground-truth"}))
+  std::vector<std::string> localizations = {"ground-truth", "odometry"};
+  for (const std::string& n : estimation::SlamRegistry::Global().Names())
+    localizations.push_back(n);
+  flag(
+      "localization",
+      cmd->add_option("--localization", setup.localization,
+                      "Where the explorer believes it is: a SLAM method (the SPLAM loop), odometry "
+                      "alone, or the simulator's ground truth. SLAM methods:\n" +
+                          estimation::SlamRegistry::Global().Describe()))
+      ->check(CLI::IsMember(localizations))
       ->capture_default_str();
-  cmd->add_option("--odometry-noise", setup.odometry_noise_scale,
-                  "Scale of the default odometry noise (0 = perfect odometry)")
+  cmd->add_option("--config", args->config_file,
+                  "YAML options (splam config print --explorer E); command-line flags override it");
+  cmd->add_option("--set", args->sets,
+                  "Override one option, KEY=VALUE with the keys of the configuration file, e.g. "
+                  "exploration.min_frontier_m=0.6 (repeatable)");
+  flag("odometry-noise",
+       cmd->add_option("--odometry-noise", setup.odometry_noise_scale,
+                       "Scale of the default odometry noise (0 = perfect odometry)"))
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  cmd->add_option("--lsr-radius", o.lsr_radius_m, "LSR radius r, m")
+  flag("lsr-radius", cmd->add_option("--lsr-radius", setup.region.radius_m,
+                                     "LSR radius r, m (also the topological SLAM's region)"))
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option("--alpha", o.alpha, "Step alpha * r to a new node, 0 < alpha < 1")
+  flag("alpha", cmd->add_option("--alpha", setup.region.alpha,
+                                "Step alpha * r to a new node, 0 < alpha < 1"))
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  cmd->add_option("--max-nodes", o.max_nodes, "Cap on graph nodes")
+  flag("max-nodes", cmd->add_option("--max-nodes", o.max_nodes, "Cap on graph nodes"))
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option("--max-time", o.max_time_s, "Cap on simulated exploration time, s")
+  flag("max-time",
+       cmd->add_option("--max-time", o.max_time_s, "Cap on simulated exploration time, s"))
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_flag("!--no-sonar", setup.sonar,
-                "LSRs from the laser only (240 deg), without the sonar ring behind the robot");
+  flag(
+      "no-sonar",
+      cmd->add_flag("!--no-sonar", setup.sonar,
+                    "LSRs from the laser only (240 deg), without the sonar ring behind the robot"));
   cmd->add_option("--resolution", args->resolution_m_per_px,
                   "Metres per pixel of a floor-plan image world")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->callback([args, exit_code] { *exit_code = RunExplore(*args); });
+  cmd->callback([args, exit_code, flags] {
+    args->given.clear();
+    for (const auto& [name, option] : flags)
+      if (option->count() > 0) args->given.push_back(name);
+    *exit_code = RunExplore(*args);
+  });
 }
 
 }  // namespace splam::apps

@@ -8,39 +8,188 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "apps/run_config.h"
 #include "apps/run_picture.h"
-#include "apps/slam_methods.h"
+#include "apps/slam_report.h"
 #include "estimation/chi_square.h"
 #include "estimation/metrics.h"
 #include "io/carmen.h"
+#include "io/config.h"
 #include "io/plot.h"
 #include "io/simulation_log.h"
+#include "io/text.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
+#include "loop/log_replay.h"
 
 namespace splam::apps {
 namespace {
 
-constexpr double kRealOdometryScale = 3.0;
-
 struct SlamArgs {
-  std::string method = "ekf-lines";
-  std::string association = "curvature";  // ekf-bspline
-  double max_curve_range_m = 0.0;         // ekf-bspline
+  SlamConfig config;  // method, local region, the method's options
+  std::string config_file;
+  std::vector<std::string> sets;
+  std::string association;        // shortcut for --set <method>.association=
+  double max_curve_range_m = -1;  // shortcut for --set <method>.max_curve_range_m=
   std::string log;
   std::string out;
   std::string world;
   int max_scans = 0;
   double flaser_step_deg = 0.0;
   double flaser_max_range_m = 81.8;
-  // Range noise (line extraction, beam measurements); negative: chosen from the log's laser
-  // type (Hokuyo URG: 1 % of the range; SICK LMS, FLASER logs: 1 cm).
-  double range_sigma_m = -1.0;
-  double range_sigma_fraction = -1.0;
-  // Scale of the default odometry noise model; negative: 1 for simulated logs (ROBOTLASER1),
-  // kRealOdometryScale for real FLASER logs, whose odometry is much worse than the simulator's.
-  double odometry_noise_scale = -1.0;
+  // The sensors' noise; negative: chosen from the log's laser type (loop::SensorNoiseOf).
+  loop::SensorNoiseOverrides noise;
+  bool method_given = false;
 };
+
+// The method and its options: the defaults for the log's sensors, then the configuration file,
+// then the command line. Writes the problem to stderr and returns false on failure.
+bool Configure(const SlamArgs& args, const io::LaserMessage& first, SlamConfig* config,
+               estimation::SensorNoise* noise) {
+  std::optional<io::ConfigFile> file;
+  if (!args.config_file.empty()) {
+    io::Result<io::ConfigFile> loaded = io::ConfigFile::Load(args.config_file);
+    if (!loaded.ok()) {
+      fmt::print(stderr, "splam slam: {}\n", loaded.error);
+      return false;
+    }
+    file = std::move(*loaded.value);
+  }
+  config->method = args.config.method;
+  if (!args.method_given && file)
+    config->method = file->TopLevelString("method").value_or(config->method);
+  const estimation::SlamMethodInfo* info = estimation::SlamRegistry::Global().Find(config->method);
+  if (info == nullptr) {
+    fmt::print(stderr, "splam slam: unknown SLAM method '{}' ({})\n", config->method,
+               SlamMethodNames());
+    return false;
+  }
+  *noise = loop::SensorNoiseOf(first);
+  config->options = info->default_options(*noise);
+  std::vector<std::string> sets = args.sets;
+  if (!args.association.empty())
+    sets.push_back(config->method + ".association=" + args.association);
+  if (args.max_curve_range_m >= 0)
+    sets.push_back(config->method +
+                   ".max_curve_range_m=" + io::FormatDouble(args.max_curve_range_m));
+  const std::string method = config->method;
+  kernel::Status status = ApplyConfig(file ? &*file : nullptr, SlamConfigRoot(config), sets);
+  if (status.ok() && config->method != method) {
+    status = kernel::Status::Error("--set method: choose the method with --method");
+  }
+  if (status.ok() && args.noise.any()) {
+    *noise = loop::SensorNoiseOf(first, args.noise);
+    info->adapt_to_sensors(*noise, config->options.get());
+  }
+  if (status.ok()) status = config->options->Validate().Prefixed(config->method);
+  if (!status.ok()) {
+    fmt::print(stderr, "splam slam: {}\n", status.message());
+    return false;
+  }
+  if (const std::string problem = config->region.Validate(); !problem.empty()) {
+    fmt::print(stderr, "splam slam: local_region: {}\n", problem);
+    return false;
+  }
+  return true;
+}
+
+// trajectory, odometry, truth, map files and pictures; errors appended to *errors.
+void WriteSlamFiles(const std::string& log, const std::string& out, const std::string& label,
+                    const sim::World* world, const estimation::SlamMethod& slam,
+                    const loop::ReplayResult& run, std::vector<std::string>* errors) {
+  const estimation::SlamMap map = slam.Map();
+  for (std::string& e : WriteMap(map, out)) errors->push_back(std::move(e));
+  errors->push_back(
+      io::WriteTrajectory(out + "/trajectory.txt", run.estimate, label + " estimate of " + log));
+  errors->push_back(io::WriteTrajectory(out + "/odometry.txt", run.odometry, "odometry of " + log));
+  if (!run.truth.empty())
+    errors->push_back(io::WriteTrajectory(out + "/truth.txt", run.truth, "ground truth of " + log));
+  RunPicture picture;
+  picture.title = fmt::format("{} on {}: {}", label, std::filesystem::path(log).filename().string(),
+                              slam.MapDescription());
+  picture.world = world;
+  picture.world_color = io::Rgb{0.75, 0.75, 0.75};
+  picture.truth = run.truth;
+  picture.odometry = run.odometry;
+  picture.estimates = {{"estimate", run.estimate}};
+  DrawMap(map, &picture);
+  picture.pixels_per_meter = 40.0;
+  errors->push_back(SaveRunPicture(picture, {out + "/map.svg", out + "/map.png"}));
+  if (!run.truth.empty()) {
+    errors->push_back(SaveErrorPlot(label + ": error against ground truth", run.truth,
+                                    {{"odometry", io::palette::kOdometry, run.odometry},
+                                     {label, io::palette::kEstimate, run.estimate}},
+                                    {out + "/errors.svg", out + "/errors.png"}));
+  }
+}
+
+// Timing, statistics, health, errors and NEES of a replay, as summary.json keeps them.
+nlohmann::ordered_json RunSummary(const estimation::SlamMethod& slam,
+                                  const estimation::SlamStatistics& statistics,
+                                  const loop::ReplayResult& run, const loop::SlamDriver& driver) {
+  const std::vector<double>& step_ms = driver.update_ms();
+  nlohmann::ordered_json summary;
+  summary["scans"] = run.estimate.size();
+  summary["data_duration_s"] = run.data_s();
+  summary["wall_time_s"] = run.wall_s;
+  summary["real_time_factor"] = run.wall_s > 0 ? run.data_s() / run.wall_s : 0.0;
+  summary["time_per_scan_ms"] = {
+      {"mean", step_ms.empty() ? 0.0 : run.wall_s * 1000.0 / static_cast<double>(step_ms.size())},
+      {"median", loop::Percentile(step_ms, 0.5)},
+      {"p95", loop::Percentile(step_ms, 0.95)},
+      {"max", loop::Percentile(step_ms, 1.0)}};
+  summary["time_per_scan_vs_map_size"] =
+      TimeBinsJson(loop::TimeByMapSize(step_ms, driver.map_size()));
+  summary.update(StatisticsJson(statistics));
+  summary["health"] = {{"healthy", slam.healthy()},
+                       {"message", slam.health().message()},
+                       {"scans_processed", run.estimate.size()},
+                       {"scans_in_log", run.scans_in_log}};
+  if (const auto p = slam.pose_covariance()) {
+    summary["health"]["final_pose_sigma"] = {std::sqrt((*p)(0, 0)), std::sqrt((*p)(1, 1)),
+                                             std::sqrt((*p)(2, 2))};
+  }
+  if (!run.truth.empty()) {
+    summary["error"] = {
+        {"estimate", ErrorJson(estimation::CompareToTruth(run.truth, run.estimate))},
+        {"odometry", ErrorJson(estimation::CompareToTruth(run.truth, run.odometry))}};
+    const double lo = estimation::ChiSquareQuantile(0.025, 3),
+                 hi = estimation::ChiSquareQuantile(0.975, 3);
+    double sum = 0.0;
+    std::size_t inside = 0;
+    for (double v : run.nees) {
+      sum += v;
+      inside += v >= lo && v <= hi;
+    }
+    if (!run.nees.empty()) {
+      const double n = static_cast<double>(run.nees.size());
+      summary["nees"] = {{"mean", sum / n},
+                         {"fraction_in_95_band", static_cast<double>(inside) / n},
+                         {"steps", run.nees.size()}};
+    }
+  }
+  return summary;
+}
+
+void PrintSlamSummary(const std::string& label, const estimation::SlamMethod& slam,
+                      const loop::ReplayResult& run, const nlohmann::ordered_json& summary) {
+  fmt::print(
+      "{} scans ({:.0f} s of data) in {:.1f} s: {:.1f}x real time, {:.2f} ms per scan (median "
+      "{:.2f})\n",
+      run.estimate.size(), run.data_s(), run.wall_s, summary["real_time_factor"].get<double>(),
+      summary["time_per_scan_ms"]["mean"].get<double>(),
+      summary["time_per_scan_ms"]["median"].get<double>());
+  fmt::print("map: {}; associations: {}\n", slam.MapDescription(), summary["associations"].dump());
+  if (!run.truth.empty()) {
+    const auto e = estimation::CompareToTruth(run.truth, run.estimate);
+    const auto o = estimation::CompareToTruth(run.truth, run.odometry);
+    fmt::print(
+        "position RMSE: {} {:.3f} m, odometry {:.3f} m; heading RMSE: {:.2f} deg, {:.2f} "
+        "deg\n",
+        label, e.rmse_position_m, o.rmse_position_m, kernel::RadToDeg(e.rmse_heading_rad),
+        kernel::RadToDeg(o.rmse_heading_rad));
+  }
+}
 
 int RunSlam(const SlamArgs& args) {
   io::CarmenReadOptions read_options;
@@ -70,34 +219,17 @@ int RunSlam(const SlamArgs& args) {
     }
     world = std::move(w.value);
   }
-
-  const bool urg = lasers[0]->format == io::LaserMessage::Format::kRobotLaser1 &&
-                   lasers[0]->laser_type == io::kCarmenHokuyoUrg;
-  const double sigma = args.range_sigma_m >= 0 ? args.range_sigma_m : (urg ? 0.003 : 0.01);
-  const double sigma_fraction =
-      args.range_sigma_fraction >= 0 ? args.range_sigma_fraction : (urg ? 0.01 : 0.0);
-  const bool real = lasers[0]->format == io::LaserMessage::Format::kFlaser;
-  const double scale = args.odometry_noise_scale >= 0 ? args.odometry_noise_scale
-                                                      : (real ? kRealOdometryScale : 1.0);
-  // The estimate starts at the first odometric pose with a small covariance: the map frame is
-  // the odometry frame (for simulated runs, the true frame).
-  SlamSettings settings;
-  settings.method = args.method;
-  settings.association = args.association;
-  settings.max_curve_range_m = args.max_curve_range_m;
-  settings.odometry_noise_scale = scale;
-  settings.range_sigma_m = sigma;
-  settings.range_sigma_fraction = sigma_fraction;
-  // The simulator's URG noise has no constant part; a --range-sigma given is used as it is.
-  settings.beam_sigma_floor_m = args.range_sigma_m >= 0 ? args.range_sigma_m : (urg ? 0.0 : sigma);
-  std::string problem;
-  std::unique_ptr<SlamMethod> slam = MakeSlamMethod(settings, lasers[0]->robot_pose, &problem);
-  if (!problem.empty()) {
-    fmt::print(stderr, "splam slam: {}\n", problem);
+  SlamConfig config;
+  estimation::SensorNoise noise;
+  if (!Configure(args, *lasers[0], &config, &noise)) return kExitBadInput;
+  // The estimate starts at the first odometric pose: the map frame is the odometry frame (for
+  // simulated runs, the true frame).
+  auto made = estimation::SlamRegistry::Global().Make(config.method, config.options.get(),
+                                                      {lasers[0]->robot_pose, config.region});
+  if (!made.ok()) {
+    fmt::print(stderr, "splam slam: {}\n", made.error);
     return kExitBadInput;
   }
-  const std::string label =
-      args.method == "ekf-bspline" ? args.method + " (" + args.association + ")" : args.method;
   const std::string out =
       args.out.empty() ? "runs/slam-" + std::filesystem::path(args.log).stem().string() : args.out;
   std::error_code ec;
@@ -106,111 +238,39 @@ int RunSlam(const SlamArgs& args) {
     fmt::print(stderr, "splam slam: cannot create {}: {}\n", out, ec.message());
     return kExitBadInput;
   }
+  std::vector<std::string> errors = {io::WriteConfig(out + "/config.yaml", SlamConfigRoot(&config),
+                                                     "splam slam " + args.log +
+                                                         "\nrepeat with: splam slam --config " +
+                                                         out + "/config.yaml " + args.log)
+                                         .message()};
 
-  const io::Trajectory truth = io::TrueTrajectory(log);
-  const std::size_t n =
-      args.max_scans > 0 ? std::min<std::size_t>(args.max_scans, lasers.size()) : lasers.size();
-  io::Trajectory estimate, odometry;
-  std::vector<double> step_ms, nees;
-  std::vector<std::size_t> map_size;  // after each step
-  const auto wall_start = std::chrono::steady_clock::now();
-  for (std::size_t i = 0; i < n; ++i) {
-    const io::LaserMessage& m = *lasers[i];
-    const auto t0 = std::chrono::steady_clock::now();
-    if (i > 0) slam->Predict(lasers[i - 1]->robot_pose.Between(m.robot_pose));
-    slam->Update(m.scan, m.robot_pose.Between(m.laser_pose));
-    step_ms.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    map_size.push_back(slam->MapSize());
-    if (!slam->healthy()) {
-      fmt::print(stderr, "splam slam: the filter failed at scan {} (t = {} s): {}\n", i,
-                 m.stamp.ipc_timestamp_s, slam->health());
-      break;
-    }
-    estimate.push_back({m.stamp.ipc_timestamp_s, slam->pose()});
-    odometry.push_back({m.stamp.ipc_timestamp_s, m.robot_pose});
-    const auto t = kernel::PoseAt(truth, m.stamp.ipc_timestamp_s, 0.0, 1e-3);
-    if (const auto covariance = slam->pose_covariance(); t && covariance) {
-      nees.push_back(estimation::PoseNees(*t, slam->pose(), *covariance));
-    }
-    if ((i + 1) % 1000 == 0) {
-      fmt::print("  {}/{} scans, {} in the map\n", i + 1, n, slam->MapDescription());
-      std::fflush(stdout);
-    }
+  loop::SlamDriver driver(std::move(*made.value));
+  loop::ReplayOptions replay_options;
+  replay_options.max_scans = static_cast<std::size_t>(args.max_scans);
+  const estimation::SlamMethod& slam = driver.method();
+  replay_options.progress = [&slam](std::size_t done, std::size_t total) {
+    fmt::print("  {}/{} scans, {} in the map\n", done, total, slam.MapDescription());
+    std::fflush(stdout);
+  };
+  const loop::ReplayResult run = loop::ReplayLog(log, &driver, replay_options);
+  if (run.failed_at) {
+    fmt::print(stderr, "splam slam: the filter failed at scan {} (t = {} s): {}\n", *run.failed_at,
+               run.failed_at_time_s, slam.health().message());
   }
-  const double wall_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  const double data_s = estimate.empty() ? 0.0 : estimate.back().time_s - estimate.front().time_s;
-
-  // Files.
-  std::vector<std::string> errors = slam->WriteMap(out);
-  errors.push_back(
-      io::WriteTrajectory(out + "/trajectory.txt", estimate, label + " estimate of " + args.log));
-  errors.push_back(io::WriteTrajectory(out + "/odometry.txt", odometry, "odometry of " + args.log));
-  if (!truth.empty())
-    errors.push_back(io::WriteTrajectory(out + "/truth.txt", truth, "ground truth of " + args.log));
-
-  RunPicture picture;
-  picture.title =
-      fmt::format("{} on {}: {}", label, std::filesystem::path(args.log).filename().string(),
-                  slam->MapDescription());
-  picture.world = world ? &*world : nullptr;
-  picture.world_color = io::Rgb{0.75, 0.75, 0.75};
-  picture.truth = truth;
-  picture.odometry = odometry;
-  picture.estimates = {{"estimate", estimate}};
-  slam->DrawMap(&picture);
-  picture.pixels_per_meter = 40.0;
-  errors.push_back(SaveRunPicture(picture, {out + "/map.svg", out + "/map.png"}));
+  const estimation::SlamStatistics statistics = slam.Statistics();
+  const std::string label = statistics.association.empty()
+                                ? config.method
+                                : config.method + " (" + statistics.association + ")";
+  WriteSlamFiles(args.log, out, label, world ? &*world : nullptr, slam, run, &errors);
 
   nlohmann::ordered_json summary;
-  summary["method"] = args.method;
-  if (args.method == "ekf-bspline") summary["association"] = args.association;
-  summary["odometry_noise_scale"] = scale;
-  summary["range_noise_model"] = {{"range_sigma_m", sigma},
-                                  {"range_sigma_fraction", sigma_fraction}};
+  summary["method"] = config.method;
+  if (!statistics.association.empty()) summary["association"] = statistics.association;
+  summary["odometry_noise_scale"] = noise.odometry_noise_scale;
+  summary["range_noise_model"] = {{"range_sigma_m", noise.range_sigma_m},
+                                  {"range_sigma_fraction", noise.range_sigma_fraction}};
   summary["log"] = args.log;
-  summary["scans"] = estimate.size();
-  summary["data_duration_s"] = data_s;
-  summary["wall_time_s"] = wall_s;
-  summary["real_time_factor"] = wall_s > 0 ? data_s / wall_s : 0.0;
-  summary["time_per_scan_ms"] = {
-      {"mean", step_ms.empty() ? 0.0 : wall_s * 1000.0 / static_cast<double>(step_ms.size())},
-      {"median", Percentile(step_ms, 0.5)},
-      {"p95", Percentile(step_ms, 0.95)},
-      {"max", Percentile(step_ms, 1.0)}};
-  summary["time_per_scan_vs_map_size"] = TimeByMapSize(step_ms, map_size);
-  summary.update(slam->Statistics());
-  summary["health"] = {{"healthy", slam->healthy()},
-                       {"message", slam->health()},
-                       {"scans_processed", estimate.size()},
-                       {"scans_in_log", lasers.size()}};
-  if (const auto p = slam->pose_covariance()) {
-    summary["health"]["final_pose_sigma"] = {std::sqrt((*p)(0, 0)), std::sqrt((*p)(1, 1)),
-                                             std::sqrt((*p)(2, 2))};
-  }
-  if (!truth.empty()) {
-    summary["error"] = {{"estimate", ErrorJson(estimation::CompareToTruth(truth, estimate))},
-                        {"odometry", ErrorJson(estimation::CompareToTruth(truth, odometry))}};
-    const double lo = estimation::ChiSquareQuantile(0.025, 3),
-                 hi = estimation::ChiSquareQuantile(0.975, 3);
-    double sum = 0.0;
-    std::size_t inside = 0;
-    for (double v : nees) {
-      sum += v;
-      inside += v >= lo && v <= hi;
-    }
-    if (!nees.empty()) {
-      summary["nees"] = {
-          {"mean", sum / static_cast<double>(nees.size())},
-          {"fraction_in_95_band", static_cast<double>(inside) / static_cast<double>(nees.size())},
-          {"steps", nees.size()}};
-    }
-    errors.push_back(SaveErrorPlot(
-        label + ": error against ground truth", truth,
-        {{"odometry", io::palette::kOdometry, odometry}, {label, io::palette::kEstimate, estimate}},
-        {out + "/errors.svg", out + "/errors.png"}));
-  }
+  summary.update(RunSummary(slam, statistics, run, driver));
   std::ofstream(out + "/summary.json") << summary.dump(2) << "\n";
   for (const std::string& e : errors) {
     if (!e.empty()) {
@@ -218,26 +278,12 @@ int RunSlam(const SlamArgs& args) {
       return kExitBadInput;
     }
   }
+  PrintSlamSummary(label, slam, run, summary);
   fmt::print(
-      "{} scans ({:.0f} s of data) in {:.1f} s: {:.1f}x real time, {:.2f} ms per scan (median "
-      "{:.2f})\n",
-      estimate.size(), data_s, wall_s, wall_s > 0 ? data_s / wall_s : 0.0,
-      summary["time_per_scan_ms"]["mean"].get<double>(), Percentile(step_ms, 0.5));
-  fmt::print("map: {}; associations: {}\n", slam->MapDescription(), summary["associations"].dump());
-  if (!truth.empty()) {
-    const auto e = estimation::CompareToTruth(truth, estimate);
-    const auto o = estimation::CompareToTruth(truth, odometry);
-    fmt::print(
-        "position RMSE: {} {:.3f} m, odometry {:.3f} m; heading RMSE: {:.2f} deg, {:.2f} "
-        "deg\n",
-        label, e.rmse_position_m, o.rmse_position_m, kernel::RadToDeg(e.rmse_heading_rad),
-        kernel::RadToDeg(o.rmse_heading_rad));
-  }
-  fmt::print(
-      "wrote {}/{{trajectory.txt, odometry.txt, map.txt, map.dxf, map.svg, map.png, "
+      "wrote {}/{{config.yaml, trajectory.txt, odometry.txt, map.txt, map.dxf, map.svg, map.png, "
       "summary.json{}}}\n",
-      out, truth.empty() ? "" : ", truth.txt, errors.svg, errors.png");
-  if (!slam->healthy()) return kExitIncomplete;
+      out, run.truth.empty() ? "" : ", truth.txt, errors.svg, errors.png");
+  if (!slam.healthy()) return kExitIncomplete;
   return kExitOk;
 }
 
@@ -247,20 +293,25 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
   auto args = std::make_shared<SlamArgs>();
   CLI::App* cmd = app->add_subcommand("slam",
                                       "Run a SLAM method over a CARMEN log; write the trajectory, "
-                                      "the map, pictures and a summary.");
-  cmd->add_option("--method", args->method, "SLAM method")
-      ->check(CLI::IsMember({"ekf-lines", "ekf-bspline", "topological"}))
-      ->capture_default_str();
+                                      "the map, pictures, config.yaml and a summary.");
+  CLI::Option* method =
+      cmd->add_option("--method", args->config.method,
+                      "SLAM method:\n" + estimation::SlamRegistry::Global().Describe())
+          ->check(CLI::IsMember(estimation::SlamRegistry::Global().Names()))
+          ->capture_default_str();
+  cmd->add_option("--config", args->config_file,
+                  "YAML options (splam config print --method M); command-line flags override it");
+  cmd->add_option("--set", args->sets,
+                  "Override one option, KEY=VALUE with the keys of the configuration file, e.g. "
+                  "topological.correction_gain=0.5 (repeatable)");
   cmd->add_option("--association", args->association,
                   "ekf-bspline data association: pedraza (end points) or curvature (paper 000)")
-      ->check(CLI::IsMember({"pedraza", "curvature"}))
-      ->capture_default_str();
+      ->check(CLI::IsMember({"pedraza", "curvature"}));
   cmd->add_option("log", args->log, "CARMEN log (simulated or real)")->required();
   cmd->add_option("--max-curve-range", args->max_curve_range_m,
-                  "ekf-bspline: beams longer than this (metres) are not used for curves; 0 = the "
-                  "laser's maximum range")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+                  "B-spline methods: beams longer than this (metres) are not used for curves; 0 = "
+                  "the laser's maximum range")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--out", args->out, "Output directory (default runs/slam-<log>)");
   cmd->add_option("--world", args->world,
                   "World to draw under the map (default: world.yaml beside the log, if any)");
@@ -273,20 +324,22 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
                   "FLASER readings at or above this are no-returns")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option("--range-sigma", args->range_sigma_m,
+  cmd->add_option("--range-sigma", args->noise.range_sigma_m,
                   "Laser range noise, metres (constant part); default from the log's laser type: "
                   "3 mm for a Hokuyo URG, 1 cm for SICK and FLASER logs")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option(
-         "--range-sigma-fraction", args->range_sigma_fraction,
+         "--range-sigma-fraction", args->noise.range_sigma_fraction,
          "Laser range noise, fraction of the range; default 0.01 for a Hokuyo URG, 0 otherwise")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--odometry-noise", args->odometry_noise_scale,
+  cmd->add_option("--odometry-noise", args->noise.odometry_noise_scale,
                   "Scale of the default odometry noise model (3 % of distance and rotation); "
-                  "default 1 for simulated "
-                  "logs and 3 for real FLASER logs")
+                  "default 1 for simulated logs and 3 for real FLASER logs")
       ->check(CLI::NonNegativeNumber);
-  cmd->callback([args, exit_code] { *exit_code = RunSlam(*args); });
+  cmd->callback([args, exit_code, method] {
+    args->method_given = method->count() > 0;
+    *exit_code = RunSlam(*args);
+  });
 }
 
 }  // namespace splam::apps

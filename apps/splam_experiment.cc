@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "apps/commands.h"
-#include "apps/exploration_run.h"
+#include "apps/exploration_report.h"
 #include "estimation/metrics.h"
 #include "io/plot.h"
 #include "kernel/angle.h"
@@ -55,8 +55,8 @@ Trial TrialOf(const nlohmann::json& report, const ExploreOutcome& outcome) {
   const nlohmann::json& slam = report["slam"];
   t.healthy = slam["healthy"];
   t.map = slam["map"]["description"];
-  t.map_size = static_cast<double>(outcome.slam->method()->MapSize());
-  t.map_curves = static_cast<double>(outcome.slam->method()->MapCurves());
+  t.map_size = static_cast<double>(outcome.slam_method()->MapSize());
+  t.map_curves = static_cast<double>(outcome.slam_method()->MapCurves());
   t.map_accuracy_m = slam["map"].value("mean_distance_to_obstacles_m", -1.0);
   t.ms_per_step = slam["ms_per_step"]["median"];
   t.wall_s = outcome.wall_s;

@@ -451,4 +451,35 @@ bool EkfBSplineSlam::ExtendSpline(Landmark* landmark, const kernel::Scan& scan,
   return true;
 }
 
+void EkfBSplineSlamOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Nested("odometry", "odometry noise model", &odometry);
+  v.Nested("extraction", "curves from a scan", &extraction);
+  v.Field("association", &association, "pedraza or curvature (paper 000)");
+  v.Nested("association_options", "parameters of the association", &association_options);
+  v.Nested("map_fit", "fit of map splines (their control points are the state)", &map_fit);
+  v.Field("range_sigma_floor_m", &range_sigma_floor_m, "beam noise: sigma = floor + fraction r, m");
+  v.Field("range_sigma_fraction", &range_sigma_fraction, "beam noise: fraction of the range");
+  v.Field("model_sigma_m", &model_sigma_m, "model error added in quadrature, m");
+  v.Field("beam_spacing_m", &beam_spacing_m, "beams of one correction at least this apart, m");
+  v.Field("max_beams_per_match", &max_beams_per_match, "... and at most this many");
+  v.Field("max_correspondence_distance_m", &max_correspondence_distance_m,
+          "predicted and paired map points of a beam at most this apart, m");
+  v.Field("beam_gate_probability", &beam_gate_probability, "beam innovation gate (1 dof)");
+  v.Field("min_incidence_sine", &min_incidence_sine, "grazing beams below this sine are unused");
+  v.Field("min_new_curve_length_m", &min_new_curve_length_m, "new curves at least, m");
+  v.Field("min_new_curve_points", &min_new_curve_points, "new curves at least, points");
+  v.Field("min_observations_to_add", &min_observations_to_add,
+          "a candidate curve enters the map after this many sightings");
+  v.Field("candidate_max_age_scans", &candidate_max_age_scans,
+          "... none more than this many scans after the previous");
+  v.Field("max_curve_range_m", &max_curve_range_m,
+          "beams longer are not used for curves (0: all), m");
+  v.Field("min_extension_length_m", &min_extension_length_m, "extensions at least, m");
+  v.Field("end_tolerance_m", &end_tolerance_m, "a matched stretch reaches the end within, m");
+  v.Field("extension_sample_spacing_m", &extension_sample_spacing_m,
+          "old curve samples in an extension's refit, m apart");
+  v.Field("control_point_sigma_floor_m", &control_point_sigma_floor_m,
+          "sigma added to new control points, m");
+}
+
 }  // namespace splam::estimation

@@ -9,9 +9,11 @@
 
 #include "estimation/bspline_models.h"
 #include "estimation/ekf_core.h"
+#include "estimation/map_spline.h"
 #include "estimation/models.h"
 #include "estimation/spline_association.h"
 #include "kernel/bspline.h"
+#include "kernel/options.h"
 #include "kernel/pose2.h"
 #include "kernel/scan.h"
 #include "kernel/spline_extraction.h"
@@ -73,6 +75,8 @@ struct EkfBSplineSlamOptions {
   // fit's covariance from the range noise alone ignores the model error.
   double control_point_sigma_floor_m = 0.01;
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 
@@ -102,13 +106,6 @@ struct BSplineUpdateReport {
   std::vector<SplineChangeRecord> created, extended;
   int ignored_curves = 0;  // near the map but not associated, or too small to start a spline
   int candidates = 0;      // new curves kept as (or matched to) candidates
-};
-
-// One map spline as it is drawn and evaluated.
-struct MapSpline {
-  int id = 0;
-  kernel::CubicBSpline spline;  // world frame
-  int observations = 0;
 };
 
 // EKF-SLAM with B-spline obstacles (SPEC §8, Pedraza et al. 2009; paper 000 for the curvature

@@ -287,4 +287,32 @@ std::vector<MapCorner> EkfLineSlam::MapCorners() const {
   return out;
 }
 
+void EkfLineSlamOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Nested("odometry", "odometry noise model", &odometry);
+  v.Nested("extraction", "lines and corners from a scan", &extraction);
+  v.Field("use_corners", &use_corners, "corners as point landmarks");
+  v.Field("line_rho_floor_m", &line_rho_floor_m, "line measurement noise floor (rho), m");
+  v.Field("line_theta_floor_rad", &line_theta_floor_rad,
+          "line measurement noise floor (theta), rad");
+  v.Field("corner_sigma_m", &corner_sigma_m, "corner measurement noise floor, m");
+  v.Field("gate_probability", &gate_probability, "association gate, chi-square probability");
+  v.Field("new_landmark_probability", &new_landmark_probability,
+          "new landmarks only outside this larger gate");
+  v.Field("min_observations_to_add", &min_observations_to_add,
+          "a candidate becomes a landmark after this many sightings");
+  v.Field("candidate_max_age_scans", &candidate_max_age_scans,
+          "... none more than this many scans after the previous");
+  v.Field("candidate_rho_tolerance_m", &candidate_rho_tolerance_m, "candidates match within, m");
+  v.Field("candidate_theta_tolerance_rad", &candidate_theta_tolerance_rad,
+          "candidates match within, rad");
+  v.Field("min_new_line_length_m", &min_new_line_length_m, "new line landmarks at least, m");
+  v.Field("min_new_line_points", &min_new_line_points, "new line landmarks at least, points");
+  v.Field("corner_max_distance_m", &corner_max_distance_m,
+          "corners compared only with corner landmarks within, m");
+  v.Field("max_extension_gap_m", &max_extension_gap_m,
+          "a segment associates across a gap of at most, m");
+  v.Field("max_extension_offset_m", &max_extension_offset_m,
+          "... and extends a line when its ends lie within, m");
+}
+
 }  // namespace splam::estimation

@@ -8,6 +8,7 @@
 #include "estimation/ekf_core.h"
 #include "estimation/models.h"
 #include "kernel/lines.h"
+#include "kernel/options.h"
 #include "kernel/pose2.h"
 #include "kernel/scan.h"
 
@@ -53,6 +54,8 @@ struct EkfLineSlamOptions {
   // ... and extends it only when both its ends lie within this distance of the corrected line.
   double max_extension_offset_m = 0.2;
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 

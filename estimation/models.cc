@@ -108,4 +108,13 @@ Eigen::Vector2d InitializePoint(const kernel::Pose2& x, const Eigen::Vector2d& z
   return x.translation() + Eigen::Vector2d(c * z.x() - s * z.y(), s * z.x() + c * z.y());
 }
 
+void OdometryNoiseModel::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("forward_per_m", &forward_per_m, "forward sigma per m travelled");
+  v.Field("lateral_per_m", &lateral_per_m, "sideways sigma per m travelled");
+  v.Field("rotation_per_rad", &rotation_per_rad, "heading sigma per rad turned");
+  v.Field("rotation_per_m", &rotation_per_m, "heading sigma per m travelled, rad/m");
+  v.Field("translation_floor_m", &translation_floor_m, "translation sigma floor per step, m");
+  v.Field("rotation_floor_rad", &rotation_floor_rad, "rotation sigma floor per step, rad");
+}
+
 }  // namespace splam::estimation

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "kernel/options.h"
 #include "kernel/pose2.h"
 
 // The motion and observation models of EKF-SLAM with lines and corners (SPEC §2, §4), as pure
@@ -34,6 +35,8 @@ struct OdometryNoiseModel {
   double rotation_floor_rad = 1e-4;   // per step
 
   Eigen::Matrix3d Covariance(const kernel::Pose2& u) const;
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
   // The model with its four proportional sigmas times `factor` (the floors unchanged).
   OdometryNoiseModel Scaled(double factor) const {

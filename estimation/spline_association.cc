@@ -163,4 +163,14 @@ std::unique_ptr<SplineAssociation> MakeSplineAssociation(const std::string& name
   return nullptr;
 }
 
+void SplineAssociationOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("d_min_m", &d_min_m, "coarse test: control points at most this far apart are related, m");
+  v.Field("mu_min", &mu_min, "... and curves with this many related pairs are candidates");
+  v.Field("curvature_tolerance", &curvature_tolerance,
+          "paired features' curvatures differ by at most this fraction");
+  v.Field("max_feature_distance_m", &max_feature_distance_m,
+          "paired features at most this apart, m");
+  v.Field("epsilon_m", &epsilon_m, "spacing of the correspondences, m");
+}
+
 }  // namespace splam::estimation

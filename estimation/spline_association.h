@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "kernel/options.h"
 #include "kernel/spline_extraction.h"
 
 // Data association between an observed curve and a map curve (SPEC §7), both in the same frame
@@ -42,6 +43,8 @@ struct SplineAssociationOptions {
   double max_feature_distance_m = 0.3;
   double epsilon_m = 0.01;  // spacing of the correspondences
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 

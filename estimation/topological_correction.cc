@@ -30,7 +30,7 @@ struct PointResidual {
   }
 };
 
-void SolveQuietly(ceres::Problem* problem) {
+void SolveQuietly(ceres::Problem* problem, SolverCounts* counts) {
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_QR;
   options.max_num_iterations = 20;
@@ -38,6 +38,10 @@ void SolveQuietly(ceres::Problem* problem) {
   options.num_threads = 1;
   ceres::Solver::Summary summary;
   ceres::Solve(options, problem, &summary);
+  if (counts != nullptr) {
+    ++counts->runs;
+    counts->failures += summary.termination_type != ceres::CONVERGENCE;
+  }
 }
 
 // The weight multiplies the robust loss of the unweighted residual, so that the Huber scale
@@ -49,7 +53,7 @@ ceres::LossFunction* WeightedHuber(double scale, double weight) {
 }  // namespace
 
 double SolveHeadingCorrection(const std::vector<ChordPair>& chords, double theta_rad,
-                              const CorrectionLossOptions& loss) {
+                              const CorrectionLossOptions& loss, SolverCounts* counts) {
   double e = 0.0;
   if (chords.empty()) return e;
   ceres::Problem problem;
@@ -60,13 +64,14 @@ double SolveHeadingCorrection(const std::vector<ChordPair>& chords, double theta
                                  new ChordAngleResidual{phi_ref, theta_rad + phi_robot}),
                              WeightedHuber(loss.heading_scale_rad, c.weight), &e);
   }
-  SolveQuietly(&problem);
+  SolveQuietly(&problem, counts);
   return e;
 }
 
 Eigen::Vector2d SolveTranslationCorrection(const std::vector<PointPair>& points,
                                            const Eigen::Vector2d& translation, double theta_rad,
-                                           const CorrectionLossOptions& loss) {
+                                           const CorrectionLossOptions& loss,
+                                           SolverCounts* counts) {
   double e[2] = {0.0, 0.0};
   if (points.empty()) return Eigen::Vector2d::Zero();
   const Eigen::Rotation2Dd rotation(theta_rad);
@@ -76,8 +81,13 @@ Eigen::Vector2d SolveTranslationCorrection(const std::vector<PointPair>& points,
                                  p.map_point - (translation + rotation * p.robot_point)}),
                              WeightedHuber(loss.translation_scale_m, p.weight), e);
   }
-  SolveQuietly(&problem);
+  SolveQuietly(&problem, counts);
   return {e[0], e[1]};
+}
+
+void CorrectionLossOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("heading_scale_rad", &heading_scale_rad, "Huber scale of the chord residuals, rad");
+  v.Field("translation_scale_m", &translation_scale_m, "Huber scale of the point residuals, m");
 }
 
 }  // namespace splam::estimation

@@ -4,6 +4,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "kernel/options.h"
+
 // The two weighted least-squares problems of the topological localisation (SPEC §10, paper 003
 // eqs. 6-10), solved with Ceres. Everything Ceres is confined to this header's source file.
 namespace splam::estimation {
@@ -28,6 +30,20 @@ struct CorrectionLossOptions {
   // drag the solution far. Radians and metres.
   double heading_scale_rad = 0.05;
   double translation_scale_m = 0.1;
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
+};
+
+// Least-squares solves (Ceres) and those whose summary did not report convergence; the solvers
+// below add to it when given one.
+struct SolverCounts {
+  int runs = 0;
+  int failures = 0;
+  SolverCounts& operator+=(const SolverCounts& o) {
+    runs += o.runs;
+    failures += o.failures;
+    return *this;
+  }
 };
 
 // Angular correction (eq. 8): e_theta = argmin sum_i C_i wrap(phi_ref_i - phi_curr_i(e))^2, where
@@ -36,13 +52,15 @@ struct CorrectionLossOptions {
 // bounded form of the paper's slope difference (a slope is infinite for vertical chords).
 // Returns e_theta (0 without chords).
 double SolveHeadingCorrection(const std::vector<ChordPair>& chords, double theta_rad,
-                              const CorrectionLossOptions& loss = {});
+                              const CorrectionLossOptions& loss = {},
+                              SolverCounts* counts = nullptr);
 
 // Translational correction (eqs. 9-10) with the heading already corrected: (e_x, e_y) =
 // argmin sum_i C_i |X_ref_i - (t + e + R(theta) p_i)|^2. Returns (e_x, e_y) (zero without points).
 Eigen::Vector2d SolveTranslationCorrection(const std::vector<PointPair>& points,
                                            const Eigen::Vector2d& translation, double theta_rad,
-                                           const CorrectionLossOptions& loss = {});
+                                           const CorrectionLossOptions& loss = {},
+                                           SolverCounts* counts = nullptr);
 
 }  // namespace splam::estimation
 

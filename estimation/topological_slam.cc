@@ -95,8 +95,8 @@ std::string TopologicalSlamOptions::Validate() const {
   if (std::string e = extraction.Validate(); !e.empty()) return e;
   if (std::string e = association.Validate(); !e.empty()) return e;
   if (!(max_curve_range_m >= 0.0)) return "max_curve_range_m must be >= 0";
-  if (!(region_margin_m >= 0.0) || !(region_radius_m > 0.0) || !(region_refresh_m > 0.0))
-    return "the local region needs margin >= 0, radius > 0 and refresh distance > 0";
+  if (!(region_margin_m >= 0.0) || !region.Validate().empty())
+    return "the local region needs margin >= 0, radius > 0 and 0 < alpha < 1";
   if (correction_rounds < 1) return "correction_rounds must be >= 1";
   if (!(correction_gain > 0.0 && correction_gain <= 1.0))
     return "correction_gain must be in (0, 1]";
@@ -325,8 +325,8 @@ std::pair<double, double> TrimmedEnds(const CurveStretch& s, double trim) {
 }  // namespace
 
 Pose2 TopologicalSlam::Correct(const std::vector<SplineCurve>& observed,
-                               const std::vector<Association>& associations,
-                               const Pose2& pose) const {
+                               const std::vector<Association>& associations, const Pose2& pose,
+                               SolverCounts* solver) const {
   const double epsilon = options_.association.epsilon_m;
   auto map_of = [&](const Association& a) -> const CubicBSpline& {
     return curves_[static_cast<std::size_t>(a.map)].spline;
@@ -348,7 +348,8 @@ Pose2 TopologicalSlam::Correct(const std::vector<SplineCurve>& observed,
     const Eigen::Vector2d m1 = map_of(a).Closest(pose * p1).point;
     chords.push_back({m1 - m0, p1 - p0, a.reliability * chord * chord});
   }
-  const double theta = pose.theta() + SolveHeadingCorrection(chords, pose.theta(), options_.loss);
+  const double theta =
+      pose.theta() + SolveHeadingCorrection(chords, pose.theta(), options_.loss, solver);
   const Pose2 turned(pose.translation(), theta);
 
   // Translational correction: start, end and intermediate points of every stretch, each paired
@@ -375,7 +376,7 @@ Pose2 TopologicalSlam::Correct(const std::vector<SplineCurve>& observed,
       points.push_back({map_point, robot, a.reliability});
   }
   const Eigen::Vector2d e =
-      SolveTranslationCorrection(points, pose.translation(), theta, options_.loss);
+      SolveTranslationCorrection(points, pose.translation(), theta, options_.loss, solver);
   return Pose2(pose.translation() + e, theta);
 }
 
@@ -488,9 +489,10 @@ TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
   report.observed_curves = static_cast<int>(observed.size());
 
   const Pose2 predicted = pose_;
-  if (!region_ || (predicted.translation() - region_->center).norm() > options_.region_refresh_m)
+  if (!region_ || (predicted.translation() - region_->center).norm() >
+                      options_.region.alpha * options_.region.radius_m)
     SetRegion(kernel::LocalSafeRegion::FromScan(scan, predicted * robot_T_laser,
-                                                options_.region_radius_m));
+                                                options_.region.radius_m));
   const std::vector<int> local = LocalCurves();
   report.local_map_curves = static_cast<int>(local.size());
 
@@ -502,7 +504,7 @@ TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
     if (round == 0) first = found;
     if (found.empty()) break;  // keep the previous round's associations and pose
     associations = std::move(found);
-    pose = Correct(observed, associations, pose);
+    pose = Correct(observed, associations, pose, &report.solver);
   }
   report.associated_curves = static_cast<int>(first.size());
 
@@ -529,7 +531,7 @@ TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
       report.used_fallback = true;
       Pose2 best_pose = predicted;
       for (const Association& a : first) {
-        const Pose2 hypothesis = Correct(observed, {a}, predicted);
+        const Pose2 hypothesis = Correct(observed, {a}, predicted, &report.solver);
         if (!plausible(hypothesis)) continue;
         std::vector<Association> agree = verifying(first, hypothesis);
         if (agree.size() > verified.size()) {
@@ -539,7 +541,7 @@ TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
       }
       if (!verified.empty()) {
         report.localized = true;
-        pose = Correct(observed, verified, predicted);
+        pose = Correct(observed, verified, predicted, &report.solver);
         std::vector<Association> joint;
         if (plausible(pose)) joint = verifying(verified, pose);
         if (joint.empty()) {
@@ -576,6 +578,44 @@ TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
     node_pending_ = false;
   }
   return report;
+}
+
+void TopologicalSlamOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Nested("extraction", "curves from a scan", &extraction);
+  v.Nested("association", "curvature association", &association);
+  v.Field("max_curve_range_m", &max_curve_range_m,
+          "beams longer are not used for curves (0: all), m");
+  v.Field("region_margin_m", &region_margin_m, "local region widened by this margin, m");
+  // `region` is the explorer's r and alpha: set once, in the local_region section (see
+  // SlamContext).
+  v.Field("correction_rounds", &correction_rounds, "associate-correct rounds per scan");
+  v.Field("end_trim_m", &end_trim_m, "ends of a matched stretch taken this far inside, m");
+  v.Field("min_chord_length_m", &min_chord_length_m, "shorter chords give no heading, m");
+  v.Field("point_spacing_m", &point_spacing_m,
+          "translation pairs points this far apart along a stretch (0: end points only), m");
+  v.Field("feature_weight", &feature_weight, "reliability C_i of curves with paired features");
+  v.Field("line_weight", &line_weight, "reliability C_i of straight stretches");
+  v.Field("curve_weight", &curve_weight, "reliability C_i of smooth curves");
+  v.Field("line_flatness_m", &line_flatness_m, "a stretch is straight within, m");
+  v.Nested("loss", "robust loss of the corrections", &loss);
+  v.Field("correction_gain", &correction_gain, "fraction of a verified correction applied");
+  v.Field("max_heading_correction_rad", &max_heading_correction_rad,
+          "larger heading corrections fail verification, rad");
+  v.Field("max_translation_correction_m", &max_translation_correction_m,
+          "larger translation corrections fail verification, m");
+  v.Field("verify_threshold_m", &verify_threshold_m,
+          "VERIFY_LOCALIZATION: matched points within this of their map curve, m");
+  v.Field("min_verified_curves", &min_verified_curves, "a localisation verifies this many curves");
+  v.Field("verify_rms_m", &verify_rms_m, "... with an RMS distance under this (0: unchecked), m");
+  v.Field("map_update_distance_m", &map_update_distance_m,
+          "map extended after this much motion, m");
+  v.Field("map_update_angle_rad", &map_update_angle_rad, "... or this much turning, rad");
+  v.Field("min_new_curve_length_m", &min_new_curve_length_m, "new objects at least, m");
+  v.Field("min_new_curve_points", &min_new_curve_points, "new objects at least, points");
+  v.Field("min_extension_length_m", &min_extension_length_m, "splices continue at least, m");
+  v.Field("end_tolerance_m", &end_tolerance_m, "a matched stretch reaches the end within, m");
+  v.Field("max_control_points", &max_control_points, "a map curve stops growing here");
+  v.Field("index_cell_m", &index_cell_m, "cell side of the grid that indexes map curves, m");
 }
 
 }  // namespace splam::estimation

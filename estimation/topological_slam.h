@@ -12,6 +12,7 @@
 #include "estimation/spline_association.h"
 #include "estimation/topological_correction.h"
 #include "kernel/local_safe_region.h"
+#include "kernel/options.h"
 #include "kernel/pose2.h"
 #include "kernel/scan.h"
 #include "kernel/spline_extraction.h"
@@ -31,11 +32,12 @@ struct TopologicalSlamOptions {
   // inside the LSR of the last exploration node, widened by this margin (the curves lie on the
   // LSR's boundary), metres.
   double region_margin_m = 0.3;
-  // Without an explorer (a log), or when the robot has driven more than region_refresh_m from
-  // the last node's LSR (REG's FIND_PATH through the graph), the LSR of radius region_radius_m
+  // Without an explorer (a log), or when the robot has driven more than alpha r from
+  // the last node's LSR (REG's FIND_PATH through the graph), the LSR of radius r
   // of the current scan becomes the region: a virtual node. REG's r and alpha r, metres.
-  double region_radius_m = 3.0;
-  double region_refresh_m = 2.4;
+  // REG's r and alpha r; set from the explorer's options (or the local_region section of a
+  // configuration) through SlamContext, so both use the same values.
+  kernel::LocalRegionOptions region;
 
   // Associate, correct the heading, correct the translation; repeated this many times, each
   // round associating at the pose the previous one corrected.
@@ -96,6 +98,8 @@ struct TopologicalSlamOptions {
   // Side of the grid cells that index the map curves, metres.
   double index_cell_m = 1.0;
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 
@@ -110,6 +114,7 @@ struct TopologicalUpdateReport {
   Eigen::Vector2d translation_correction = Eigen::Vector2d::Zero();
   bool map_updated = false;
   int added_curves = 0, extended_curves = 0;
+  SolverCounts solver;  // the corrections' least-squares solves
 };
 
 // Topological B-spline SLAM (SPEC §10, paper 003 §3.2): no covariance. The pose is predicted
@@ -164,8 +169,8 @@ class TopologicalSlam {
                                      const std::vector<int>& local) const;
   // The heading-then-translation correction of `pose` from the associations.
   kernel::Pose2 Correct(const std::vector<kernel::SplineCurve>& observed,
-                        const std::vector<Association>& associations,
-                        const kernel::Pose2& pose) const;
+                        const std::vector<Association>& associations, const kernel::Pose2& pose,
+                        SolverCounts* solver) const;
   bool Verifies(const kernel::SplineCurve& observed, const Association& association,
                 const kernel::Pose2& pose) const;
   // True when some map curve other than `except` passes within d_min of a point.

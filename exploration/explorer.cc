@@ -44,4 +44,20 @@ std::unique_ptr<Explorer> MakeExplorer(const std::string& name, const ExplorerOp
   return nullptr;
 }
 
+void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
+  // lsr_radius_m and alpha are shared with the topological SLAM's local region: they are read
+  // and written once, in the local_region section.
+  v.Field("clearance_margin_m", &clearance_margin_m,
+          "legs keep radius + this from the LSR edge, m");
+  v.Field("min_frontier_m", &min_frontier_m, "shorter free arcs are not frontiers, m");
+  v.Field("arc_sampling_rad", &arc_sampling_rad, "spacing of classified arc points, rad");
+  v.Field("srt_max_attempts", &srt_max_attempts, "SRT: RANDOM_DIR attempts before backtracking");
+  v.Field("reg_piece_factor", &reg_piece_factor, "REG: FRONT_RAND piece length factor");
+  v.Field("max_nodes", &max_nodes, "cap on graph nodes");
+  v.Field("max_time_s", &max_time_s, "cap on simulated exploration time, s");
+  v.Field("max_failed_moves", &max_failed_moves, "cap on failed moves in a row");
+  v.Field("seed", &seed, "RANDOM_DIR / FRONT_RAND draws");
+  v.Nested("motion", "MOVE_TO with BEST_U", &motion);
+}
+
 }  // namespace splam::exploration

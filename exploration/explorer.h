@@ -12,6 +12,7 @@
 #include "exploration/robot_interface.h"
 #include "graph/exploration_graph.h"
 #include "kernel/angle.h"
+#include "kernel/options.h"
 #include "kernel/scan.h"
 
 // Sensor-based exploration (SPEC §9): SRT (Oriolo et al. 2004) and REG (paper 003 §3.1).
@@ -46,6 +47,8 @@ struct ExplorerOptions {
   // reports); may be empty.
   std::function<void(int nodes, double time_s)> on_node;
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 

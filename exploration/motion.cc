@@ -134,4 +134,21 @@ MoveResult MoveTo(const std::vector<Eigen::Vector2d>& waypoints, const Eigen::Ve
   return result;
 }
 
+void MotionOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("linear_speeds_mps", &linear_speeds_mps, "list_U: candidate v, m/s");
+  v.Field("angular_speeds_radps", &angular_speeds_radps, "list_U: candidate w, rad/s");
+  v.Field("horizon_s", &horizon_s, "look-ahead used to judge an input, s");
+  v.Field("turn_in_place_above_rad", &turn_in_place_above_rad,
+          "bearing error above which the robot only turns in place, rad");
+  v.Field("back_off_steps", &back_off_steps, "steps backed off after a refused step");
+  v.Field("heading_weight_m_per_rad", &heading_weight_m_per_rad,
+          "cost per rad of bearing error, m");
+  v.Field("cross_track_weight", &cross_track_weight, "cost per m off the leg");
+  v.Field("goal_tolerance_m", &goal_tolerance_m, "last waypoint reached within, m");
+  v.Field("waypoint_tolerance_m", &waypoint_tolerance_m,
+          "intermediate waypoints reached within, m");
+  v.Field("timeout_base_s", &timeout_base_s, "a move gives up after base + per_meter * length, s");
+  v.Field("timeout_per_meter_s", &timeout_per_meter_s, "... s per m of path");
+}
+
 }  // namespace splam::exploration

@@ -7,6 +7,7 @@
 
 #include "exploration/localization.h"
 #include "exploration/robot_interface.h"
+#include "kernel/options.h"
 #include "kernel/pose2.h"
 
 namespace splam::exploration {
@@ -41,6 +42,8 @@ struct MotionOptions {
   double timeout_base_s = 30.0;
   double timeout_per_meter_s = 10.0;
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
   std::vector<ControlInput> ListU() const;
 };

@@ -155,4 +155,13 @@ std::optional<BSplineFitOperator> CubicBSplineFitOperator(
   return op;
 }
 
+void BSplineFitOptions::VisitFields(FieldVisitor& v) {
+  v.Field("control_point_spacing_m", &control_point_spacing_m,
+          "one control point per this much chord length, m");
+  v.Field("min_control_points", &min_control_points, "at least this many control points (>= 4)");
+  v.Field("max_control_points", &max_control_points, "at most this many control points");
+  v.Field("parameter_smoothing_half_window", &parameter_smoothing_half_window,
+          "chord-length parameters along a moving average of 2 h + 1 points (0: raw points)");
+}
+
 }  // namespace splam::kernel

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "kernel/bspline.h"
+#include "kernel/options.h"
 
 namespace splam::kernel {
 
@@ -20,6 +21,8 @@ struct BSplineFitOptions {
   // value), so that range noise does not inflate the length; 0 uses the raw points.
   int parameter_smoothing_half_window = 3;
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 

@@ -74,4 +74,9 @@ CurvatureProfile ComputeCurvature(const std::vector<Eigen::Vector2d>& samples, d
   return profile;
 }
 
+void CurvatureOptions::VisitFields(FieldVisitor& v) {
+  v.Field("sigma_m", &sigma_m, "scale of the Gaussian smoothing, arc length in m");
+  v.Field("padding_fwhm", &padding_fwhm, "each end padded by this many FWHM of samples");
+}
+
 }  // namespace splam::kernel

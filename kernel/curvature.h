@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "kernel/options.h"
+
 namespace splam::kernel {
 
 struct CurvatureOptions {
@@ -16,6 +18,8 @@ struct CurvatureOptions {
   // which keeps straight ends straight.
   double padding_fwhm = 2.0;
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 

@@ -136,4 +136,22 @@ std::vector<CurveFeature> FindFeatures(const CurvatureProfile& profile,
   return features;
 }
 
+void FeatureOptions::VisitFields(FieldVisitor& v) {
+  v.Field("inflection_dead_band", &inflection_dead_band,
+          "a curvature lobe ends only beyond this |k| of the other sign, 1/m");
+  v.Field("inflection_min_curvature", &inflection_min_curvature,
+          "each lobe of an inflection reaches this |k|, 1/m");
+  v.Field("inflection_min_turn_rad", &inflection_min_turn_rad,
+          "... and turns the tangent by this much, rad");
+  v.Field("corner_min_curvature", &corner_min_curvature, "corner candidates exceed this |k|, 1/m");
+  v.Field("corner_ratio", &corner_ratio, "... and this ratio to the mean |k| of their support");
+  v.Field("corner_max_angle_rad", &corner_max_angle_rad,
+          "... and their arms meet at most at this angle, rad");
+  v.Field("corner_arm_length_m", &corner_arm_length_m, "arm length measured for the angle, m");
+  v.Field("corner_end_margin_m", &corner_end_margin_m,
+          "corners this near a curve end are ignored, m");
+  v.Field("corners_need_inflection_bounds", &corners_need_inflection_bounds,
+          "paper 000: only corners with an inflection point on each side");
+}
+
 }  // namespace splam::kernel

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "kernel/curvature.h"
+#include "kernel/options.h"
 
 namespace splam::kernel {
 
@@ -52,6 +53,8 @@ struct FeatureOptions {
   // a plain L-shaped wall has no inflection points, and its corner is the most useful feature.
   bool corners_need_inflection_bounds = false;
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 

@@ -234,4 +234,23 @@ LineExtraction ExtractLines(const Scan& scan, const LineExtractionOptions& optio
   return out;
 }
 
+void LineExtractionOptions::VisitFields(FieldVisitor& v) {
+  v.Field("sef_c0_m", &sef_c0_m, "successive edge following: split where points jump apart, m");
+  v.Field("range_sigma_m", &range_sigma_m, "point noise: sigma = this + fraction * range, m");
+  v.Field("range_sigma_fraction", &range_sigma_fraction, "point noise: fraction of the range");
+  v.Field("inlier_sigmas", &inlier_sigmas, "a point supports a line within this many sigma");
+  v.Field("ransac_iterations", &ransac_iterations, "minimal samples drawn per line");
+  v.Field("min_points", &min_points, "consensus needed to accept a line");
+  v.Field("min_length_m", &min_length_m, "shorter lines are dropped, m");
+  v.Field("max_residual_sigmas", &max_residual_sigmas,
+          "straightness: RMS residual at most this many times the noise RMS");
+  v.Field("max_point_gap_m", &max_point_gap_m,
+          "consensus points farther apart start a new line, m");
+  v.Field("corner_min_angle_rad", &corner_min_angle_rad,
+          "corners: lines crossing at least this, rad");
+  v.Field("corner_max_distance_m", &corner_max_distance_m,
+          "corners: crossing within this of both line ends, m");
+  v.Field("seed", &seed, "RANSAC's generator seed");
+}
+
 }  // namespace splam::kernel

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "kernel/options.h"
 #include "kernel/random.h"
 #include "kernel/scan.h"
 #include "kernel/segmentation.h"
@@ -83,6 +84,8 @@ struct LineExtractionOptions {
   double corner_max_distance_m = 0.3;
   std::uint64_t seed = 1;  // RANSAC's generator: the same seed gives the same lines
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 

@@ -136,4 +136,15 @@ bool LocalSafeRegion::Contains(const Eigen::Vector2d& p) const {
                               CgalKernel()) != CGAL::ON_UNBOUNDED_SIDE;
 }
 
+void LocalRegionOptions::VisitFields(FieldVisitor& v) {
+  v.Field("radius_m", &radius_m, "LSR radius r (explorers and the topological SLAM's region), m");
+  v.Field("alpha", &alpha, "a new node lies alpha r from the current one, 0 < alpha < 1");
+}
+
+std::string LocalRegionOptions::Validate() const {
+  if (!(radius_m > 0.0) || !std::isfinite(radius_m)) return "radius_m must be positive";
+  if (!(alpha > 0.0 && alpha < 1.0)) return "alpha must lie in (0, 1)";
+  return "";
+}
+
 }  // namespace splam::kernel

@@ -2,12 +2,26 @@
 #define SPLAM_KERNEL_LOCAL_SAFE_REGION_H_
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
+#include "kernel/options.h"
 #include "kernel/pose2.h"
 #include "kernel/scan.h"
 
 namespace splam::kernel {
+
+// The size of the local safe regions (SPEC §9) and of a step between exploration nodes. Two
+// components share it, so it is set in one place: the explorers (LSR radius r, a new node alpha r
+// away) and the topological SLAM, whose local region is the newest node's LSR, or a virtual one
+// of radius r once the robot is more than alpha r from it.
+struct LocalRegionOptions {
+  double radius_m = 3.0;  // r: LSRs are clipped here (below the URG-04LX's 4 m range), m
+  double alpha = 0.8;     // a new node lies alpha r from the current one, 0 < alpha < 1
+  void VisitFields(FieldVisitor& v);
+  // Empty when valid, else the first problem.
+  std::string Validate() const;
+};
 
 // A free arc of the LSR boundary: directions in which nothing was hit within the LSR radius
 // (free, unexplored), from start_angle_rad counter-clockwise to end_angle_rad, world frame.

@@ -68,4 +68,17 @@ std::vector<ScanSegment> SegmentScan(const Scan& scan, const SegmentationOptions
   return segments;
 }
 
+void SegmentationOptions::VisitFields(FieldVisitor& v) {
+  int m = static_cast<int>(method);
+  v.Choice("method", &m, {"dietmayer", "pedraza"},
+           "adaptive distance (keeps corners) or spacing and alignment tests");
+  method = static_cast<SegmentationMethod>(m);
+  v.Field("dietmayer_c0_m", &dietmayer_c0_m, "Dietmayer: constant part of the join distance, m");
+  v.Field("pedraza_eta", &pedraza_eta, "Pedraza: spacing ratio bound eta (1.5-2 in the paper)");
+  v.Field("pedraza_alpha_max_rad", &pedraza_alpha_max_rad, "Pedraza: alignment bound, rad");
+  v.Field("pedraza_max_gap_m", &pedraza_max_gap_m, "Pedraza: first gap of a segment at most, m");
+  v.Field("min_length_m", &min_length_m, "shorter segments are dropped, m");
+  v.Field("min_points", &min_points, "segments with fewer points are dropped");
+}
+
 }  // namespace splam::kernel

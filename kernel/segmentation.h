@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "kernel/options.h"
 #include "kernel/scan.h"
 
 namespace splam::kernel {
@@ -44,6 +45,8 @@ struct SegmentationOptions {
   double min_length_m = 0.25;
   int min_points = 5;
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 

@@ -50,4 +50,12 @@ std::vector<SplineCurve> ExtractCurves(const Scan& scan, const SplineExtractionO
   return curves;
 }
 
+void SplineExtractionOptions::VisitFields(FieldVisitor& v) {
+  v.Nested("segmentation", "scan -> segments", &segmentation);
+  v.Nested("fit", "segment -> cubic B-spline", &fit);
+  v.Field("epsilon_m", &epsilon_m, "curves are stored as points this far apart along the arc, m");
+  v.Nested("curvature", "smoothing and curvature", &curvature);
+  v.Nested("features", "inflection points and corners", &features);
+}
+
 }  // namespace splam::kernel

@@ -10,6 +10,7 @@
 #include "kernel/bspline_fit.h"
 #include "kernel/curvature.h"
 #include "kernel/curve_features.h"
+#include "kernel/options.h"
 #include "kernel/scan.h"
 #include "kernel/segmentation.h"
 
@@ -27,6 +28,8 @@ struct SplineExtractionOptions {
   CurvatureOptions curvature;
   FeatureOptions features;
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 

@@ -89,4 +89,17 @@ kernel::Scan SimulateLaser(const RayCaster& caster, const LaserOptions& options,
   return scan;
 }
 
+void LaserOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("model", &model, "name written to logs");
+  v.Field("num_beams", &num_beams, "beams per sweep");
+  v.Field("start_angle_rad", &start_angle_rad, "first beam, sensor frame, rad");
+  v.Field("angular_step_rad", &angular_step_rad, "between beams, rad");
+  v.Field("min_range_m", &min_range_m, "shorter readings are invalid, m");
+  v.Field("max_range_m", &max_range_m, "no return at or beyond, m");
+  v.Field("noise_fraction", &noise_fraction, "range sigma per m of range");
+  v.Field("noise_floor_m", &noise_floor_m, "range sigma independent of range, m");
+  v.Field("dropout_probability", &dropout_probability, "chance that a hit reads no return");
+  v.Field("robot_T_laser", &robot_T_laser, "mounting pose [x m, y m, theta rad]");
+}
+
 }  // namespace splam::sim

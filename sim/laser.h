@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "kernel/options.h"
 #include "kernel/pose2.h"
 #include "kernel/random.h"
 #include "kernel/scan.h"
@@ -32,6 +33,8 @@ struct LaserOptions {
   // SICK LMS-200: 180 deg at `resolution_deg` (0.5 -> 361 beams, 1 -> 181), 8 m, sigma 1 cm.
   static LaserOptions Lms200(double resolution_deg = 0.5);
   // Empty when valid, else the first problem.
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 

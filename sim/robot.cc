@@ -31,4 +31,17 @@ kernel::Pose2 CorruptIncrement(const kernel::Pose2& increment, const OdometryNoi
   return kernel::Pose2(dx, dy, dth);
 }
 
+void RobotOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("radius_m", &radius_m, "the robot is a disc of this radius, m");
+  v.Field("max_linear_speed_mps", &max_linear_speed_mps, "|v| limit, m/s");
+  v.Field("max_angular_speed_radps", &max_angular_speed_radps, "|w| limit, rad/s");
+}
+
+void OdometryNoiseOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("forward_per_m", &forward_per_m, "forward error sigma per m travelled");
+  v.Field("lateral_per_m", &lateral_per_m, "sideways error sigma per m travelled");
+  v.Field("rotation_per_rad", &rotation_per_rad, "heading error sigma per rad turned");
+  v.Field("rotation_per_m", &rotation_per_m, "heading error sigma per m travelled, rad/m");
+}
+
 }  // namespace splam::sim

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "kernel/options.h"
 #include "kernel/pose2.h"
 #include "kernel/random.h"
 
@@ -14,6 +15,8 @@ struct RobotOptions {
   double max_linear_speed_mps = 1.2;     // |v| limit applied to every command
   double max_angular_speed_radps = 5.2;  // |w| limit (300 deg/s)
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 
@@ -28,6 +31,8 @@ struct OdometryNoiseOptions {
   double rotation_per_rad = 0.03;  // rad of heading error per rad turned (3 %)
   double rotation_per_m = 0.01;    // rad of heading error per m travelled (0.57 deg/m)
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
   static OdometryNoiseOptions Noiseless() { return {0.0, 0.0, 0.0, 0.0}; }
   // Every sigma times `factor`.

@@ -121,4 +121,13 @@ RouteRun FollowRoute(Simulator* simulator, const std::vector<Eigen::Vector2d>& w
   return run;
 }
 
+void SimulatorOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("time_step_s", &time_step_s, "one control and sensing cycle, s");
+  v.Nested("robot", "differential-drive robot", &robot);
+  v.Nested("odometry", "odometry noise (the estimators' model is scaled alike)", &odometry);
+  v.Nested("laser", "laser range finder (default: URG-04LX)", &laser);
+  v.Field("enable_sonar", &enable_sonar, "simulate the sonar ring");
+  v.Nested("sonar", "sonar ring (Pioneer P3-DX)", &sonar);
+}
+
 }  // namespace splam::sim

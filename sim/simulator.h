@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "kernel/options.h"
 #include "kernel/pose2.h"
 #include "kernel/random.h"
 #include "kernel/scan.h"
@@ -23,6 +24,8 @@ struct SimulatorOptions {
   bool enable_sonar = false;
   SonarOptions sonar;
 
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 

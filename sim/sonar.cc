@@ -65,4 +65,14 @@ std::vector<double> SimulateSonar(const RayCaster& caster, const SonarOptions& o
   return ranges;
 }
 
+void SonarOptions::VisitFields(kernel::FieldVisitor& v) {
+  // The mounting poses stay the Pioneer ring (robot_T_sonar is set in code).
+  v.Field("cone_half_angle_rad", &cone_half_angle_rad, "each sonar sees +- this, rad");
+  v.Field("rays_per_cone", &rays_per_cone, "rays that model one cone");
+  v.Field("min_range_m", &min_range_m, "shortest reading, m");
+  v.Field("max_range_m", &max_range_m, "no echo beyond, m");
+  v.Field("noise_fraction", &noise_fraction, "range sigma per m of range");
+  v.Field("noise_floor_m", &noise_floor_m, "range sigma independent of range, m");
+}
+
 }  // namespace splam::sim

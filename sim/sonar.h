@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "kernel/options.h"
 #include "kernel/pose2.h"
 #include "kernel/random.h"
 #include "sim/ray_caster.h"
@@ -27,6 +28,8 @@ struct SonarOptions {
   // 8 at the back at -90, -130, -150, -170, 170, 150, 130, 90 deg; the 6 rear ones between
   // -130 and 130 cover the 120 deg behind the robot that the laser cannot see.
   static std::vector<kernel::Pose2> PioneerRing();
+  // Describes every field (key, unit, comment) to a visitor: the YAML form.
+  void VisitFields(kernel::FieldVisitor& v);
   std::string Validate() const;
 };
 

@@ -5,7 +5,9 @@
 
 #include "estimation/ekf_line_slam.h"
 #include "estimation/metrics.h"
+#include "estimation/slam_method.h"
 #include "io/render.h"
+#include "loop/log_replay.h"
 #include "sim/builtin_worlds.h"
 #include "sim/simulator.h"
 
@@ -23,33 +25,35 @@ int main(int argc, char** argv) {
   sim::Simulator simulator(caster, sim_options, *world.start, /*seed=*/7);
   const sim::RouteRun run = sim::FollowRoute(&simulator, world.route, sim::RouteOptions());
 
-  // 2. The filter. Its odometry noise model has the same form and defaults as the simulator's;
-  //    the line extractor is told the laser's range noise (1 cm for the LMS-200).
-  estimation::EkfLineSlamOptions options;
-  options.extraction.range_sigma_m = 0.01;
-  options.extraction.range_sigma_fraction = 0.0;
-  estimation::EkfLineSlam slam(run.frames[0].odometry_pose, Eigen::Matrix3d::Identity() * 1e-6,
-                               options);
-
-  // 3. Every scan: predict with the odometry increment, then update with the scan's lines and
-  //    corners (extraction, Mahalanobis association with a chi-square gate, EKF
-  //    correction, new landmarks).
-  splam::kernel::Trajectory truth, estimate, odometry;
-  for (std::size_t i = 0; i < run.frames.size(); ++i) {
-    const sim::SensorFrame& frame = run.frames[i];
-    if (i > 0) slam.Predict(run.frames[i - 1].odometry_pose.Between(frame.odometry_pose));
-    slam.Update(frame.scan);
-    truth.push_back({frame.time_s, frame.true_pose});
-    estimate.push_back({frame.time_s, slam.pose()});
-    odometry.push_back({frame.time_s, frame.odometry_pose});
+  // 2. The filter, by its registry name, with its options. Its odometry noise model has the
+  //    same form and defaults as the simulator's; the line extractor is told the laser's range
+  //    noise (1 cm for the LMS-200).
+  estimation::SlamOptionsOf<estimation::EkfLineSlamOptions> options;
+  options.options().extraction.range_sigma_m = 0.01;
+  options.options().extraction.range_sigma_fraction = 0.0;
+  auto made = estimation::SlamRegistry::Global().Make("ekf-lines", &options,
+                                                      {run.frames[0].odometry_pose, {}});
+  if (!made.ok()) {
+    std::fprintf(stderr, "%s\n", made.error.c_str());
+    return 1;
   }
+
+  // 3. Every scan: the driver predicts with the odometry increment, then updates with the scan's
+  //    lines and corners (extraction, Mahalanobis association with a chi-square gate, EKF
+  //    correction, new landmarks). `splam slam` replays logs through the same driver.
+  splam::loop::SlamDriver driver(std::move(*made.value));
+  const splam::loop::ReplayResult replay =
+      splam::loop::ReplayFrames(run.frames, sim_options.laser.robot_T_laser, &driver);
+  const estimation::SlamMethod& slam = driver.method();
+  const splam::kernel::Trajectory& truth = replay.truth;
+  const splam::kernel::Trajectory& estimate = replay.estimate;
+  const splam::kernel::Trajectory& odometry = replay.odometry;
 
   // 4. How good is it? Position and heading error against the simulator's ground truth.
   const estimation::TrajectoryError e = estimation::CompareToTruth(truth, estimate);
   const estimation::TrajectoryError o = estimation::CompareToTruth(truth, odometry);
-  std::printf("%zu scans; map: %zu lines, %zu corners; filter %s\n", run.frames.size(),
-              slam.num_lines(), slam.num_corners(),
-              slam.healthy() ? "healthy" : slam.health().c_str());
+  std::printf("%zu scans; map: %s; filter %s\n", run.frames.size(), slam.MapDescription().c_str(),
+              slam.healthy() ? "healthy" : slam.health().message().c_str());
   std::printf(
       "position RMSE: EKF %.3f m, odometry %.3f m; heading RMSE: EKF %.4f rad, odometry %.4f rad\n",
       e.rmse_position_m, o.rmse_position_m, e.rmse_heading_rad, o.rmse_heading_rad);
@@ -59,11 +63,12 @@ int main(int argc, char** argv) {
   figure_options.title = "EKF-SLAM with lines in the office";
   splam::io::Figure figure(world.Bounds(), figure_options);
   figure.DrawWorld(world, splam::io::Rgb{0.8, 0.8, 0.8});
-  for (const estimation::MapLine& l : slam.MapLines()) {
+  const estimation::SlamMap map = slam.Map();
+  for (const estimation::MapLine& l : map.lines) {
     figure.DrawPolyline({l.start, l.end}, splam::io::palette::kMap, 2.5, "map lines");
   }
   std::vector<Eigen::Vector2d> corners;
-  for (const estimation::MapCorner& c : slam.MapCorners()) corners.push_back(c.position);
+  for (const estimation::MapCorner& c : map.corners) corners.push_back(c.position);
   figure.DrawMarkers(corners, splam::io::Figure::Marker::kDiamond, splam::io::palette::kMap, 5.0,
                      "map corners");
   figure.DrawPath(splam::kernel::Poses(odometry), splam::io::palette::kOdometry, 1.5, "odometry");

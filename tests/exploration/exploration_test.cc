@@ -3,7 +3,6 @@
 
 #include <cmath>
 
-#include "apps/simulated_robot.h"
 #include "exploration/coverage.h"
 #include "exploration/explorer.h"
 #include "exploration/localization.h"
@@ -11,6 +10,7 @@
 #include "exploration/perception.h"
 #include "kernel/angle.h"
 #include "kernel/random.h"
+#include "loop/simulated_robot.h"
 #include "sim/builtin_worlds.h"
 #include "sim/ray_caster.h"
 
@@ -117,7 +117,7 @@ Trial Explore(const std::string& explorer, const std::string& world_name, std::u
   sim::SimulatorOptions sim_options;
   sim_options.enable_sonar = true;
   sim::Simulator simulator(caster, sim_options, *world.start, seed);
-  apps::SimulatedRobot robot(&simulator);
+  loop::SimulatedRobot robot(&simulator);
   GroundTruthLocalization truth;
   OdometryLocalization dead_reckoning;
   ExplorerOptions o = options;

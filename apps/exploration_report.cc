@@ -1,4 +1,4 @@
-#include "apps/exploration_run.h"
+#include "apps/exploration_report.h"
 
 #include <fmt/core.h>
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "apps/run_picture.h"
-#include "apps/simulated_robot.h"
+#include "apps/slam_report.h"
 #include "estimation/metrics.h"
 #include "exploration/coverage.h"
 #include "exploration/perception.h"
@@ -18,104 +18,9 @@
 #include "sim/simulator.h"
 
 namespace splam::apps {
-namespace {
 
-constexpr double kCoverageCell = 0.1;  // m
-
-// The localisation called `name`; the SLAM methods use the simulator's noise models (URG-04LX
-// ranges, the odometry model scaled like the simulation's).
-std::shared_ptr<exploration::Localization> MakeLocalization(const ExploreSetup& setup) {
-  const std::string& name = setup.localization;
-  if (name == "ground-truth") return std::make_shared<exploration::GroundTruthLocalization>();
-  if (name == "odometry") return std::make_shared<exploration::OdometryLocalization>();
-  if (name == "topological" || name == "ekf-lines" || name == "ekf-bspline") {
-    SlamSettings settings;
-    settings.method = name;
-    // An EKF needs some odometry noise even when the simulation has none.
-    settings.odometry_noise_scale = std::max(setup.odometry_noise_scale, 0.05);
-    return std::make_shared<SlamLocalization>(settings);
-  }
-  return nullptr;
-}
-
-}  // namespace
-
-Trajectories TrajectoriesOf(const exploration::ExplorationRun& run) {
-  Trajectories t;
-  for (const exploration::TraceSample& s : run.trace) {
-    t.truth.push_back({s.time_s, s.truth});
-    t.odometry.push_back({s.time_s, s.odometry});
-    t.estimate.push_back({s.time_s, s.estimate});
-  }
-  return t;
-}
-
-ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup) {
-  ExploreOutcome outcome;
-  const auto begin = std::chrono::steady_clock::now();
-  exploration::ExplorerOptions options = setup.options;
-  options.seed = setup.seed;
-  const std::unique_ptr<exploration::Explorer> explorer =
-      exploration::MakeExplorer(setup.explorer, options);
-  std::shared_ptr<exploration::Localization> localization = MakeLocalization(setup);
-  if (!explorer) {
-    outcome.error = "unknown explorer '" + setup.explorer + "' (srt, reg)";
-    return outcome;
-  }
-  if (!localization) {
-    outcome.error = "unknown localisation '" + setup.localization +
-                    "' (ground-truth, odometry, topological, ekf-lines, ekf-bspline)";
-    return outcome;
-  }
-  if (!world.start) {
-    outcome.error = "world '" + world.name + "' has no start pose";
-    return outcome;
-  }
-  sim::SimulatorOptions sim_options;
-  sim_options.enable_sonar = setup.sonar;
-  sim_options.odometry = sim_options.odometry.Scaled(setup.odometry_noise_scale);
-  if (const std::string problem = sim_options.Validate(); !problem.empty()) {
-    outcome.error = problem;
-    return outcome;
-  }
-  const sim::RayCaster caster(world);
-  sim::Simulator simulator(caster, sim_options, *world.start, setup.seed);
-  if (!simulator.IsFree(*world.start)) {
-    outcome.error = "the start pose of '" + world.name + "' collides with an obstacle";
-    return outcome;
-  }
-  SimulatedRobot robot(&simulator);
-  outcome.robot_radius_m = robot.description().radius_m;
-  outcome.run = explorer->Run(&robot, localization.get());
-  outcome.slam = std::dynamic_pointer_cast<SlamLocalization>(localization);
-  if (outcome.run.termination == exploration::Termination::kInvalidInput) {
-    outcome.error = outcome.run.message;
-    return outcome;
-  }
-
-  // Coverage: the LSRs at the true poses of the nodes over the reachable free space.
-  const double half_diagonal = kCoverageCell * std::sqrt(0.5);
-  kernel::Box2 bounds = world.Bounds();
-  bounds.min -= Eigen::Vector2d::Constant(0.5);
-  bounds.max += Eigen::Vector2d::Constant(0.5);
-  exploration::CoverageGrid grid(
-      bounds, kCoverageCell, world.start->translation(), [&](const Eigen::Vector2d& c) {
-        return !caster.IsInsideObstacle(c) && caster.Nearest(c, half_diagonal).obstacle < 0;
-      });
-  outcome.reachable_area_m2 = grid.reachable_cells() * kCoverageCell * kCoverageCell;
-  for (const exploration::NodeRecord& node : outcome.run.nodes) {
-    grid.Cover(exploration::SafeRegionAt(node.safe_region_scan, node.true_pose, robot.description(),
-                                         options.lsr_radius_m));
-    outcome.coverage_time_s.push_back(node.time_s);
-    outcome.coverage_fraction.push_back(grid.CoveredFraction());
-  }
-  if (!outcome.coverage_time_s.empty() && outcome.run.time_s > outcome.coverage_time_s.back()) {
-    outcome.coverage_time_s.push_back(outcome.run.time_s);  // the way home adds no area
-    outcome.coverage_fraction.push_back(outcome.coverage_fraction.back());
-  }
-  outcome.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-  return outcome;
-}
+using loop::Trajectories;
+using loop::TrajectoriesOf;
 
 nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& setup,
                                  const ExploreOutcome& outcome) {
@@ -146,34 +51,39 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
   report["trajectory_error"] = {
       {"estimate", ErrorJson(estimation::CompareToTruth(t.truth, t.estimate))},
       {"odometry", ErrorJson(estimation::CompareToTruth(t.truth, t.odometry))}};
-  if (outcome.slam && outcome.slam->method()) {
-    const SlamMethod& slam = *outcome.slam->method();
-    const std::vector<double>& ms = outcome.slam->update_ms();
-    const std::vector<estimation::MapSpline> splines = slam.MapSplines();
+  if (const estimation::SlamMethod* slam = outcome.slam_method()) {
+    const loop::SlamDriver& driver = *outcome.slam->driver();
+    const std::vector<double>& ms = driver.update_ms();
+    const std::vector<estimation::MapSpline> splines = slam->Map().splines;
     std::size_t control_points = 0;
     for (const estimation::MapSpline& s : splines)
       control_points += s.spline.control_points().size();
-    nlohmann::json map = {{"description", slam.MapDescription()}};
+    nlohmann::json map = {{"description", slam->MapDescription()}};
     if (!splines.empty()) {
       map["curves"] = splines.size();
       map["control_points"] = control_points;
-      map["mean_distance_to_obstacles_m"] = MeanDistanceToObstacles(sim::RayCaster(world), splines);
+      map["mean_distance_to_obstacles_m"] =
+          loop::MeanDistanceToObstacles(sim::RayCaster(world), splines);
     }
+    const nlohmann::json statistics =
+        nlohmann::json::parse(StatisticsJson(slam->Statistics()).dump());
     report["slam"] = {
         {"method", setup.localization},
-        {"healthy", slam.healthy()},
-        {"health", slam.health()},
+        {"healthy", slam->healthy()},
+        {"health", slam->health().message()},
         {"map", map},
-        {"associations",
-         nlohmann::json::parse(
-             slam.Statistics().value("associations", nlohmann::ordered_json{}).dump())},
+        {"associations", statistics["associations"]},
         {"localization_steps", ms.size()},
-        {"ms_per_step", {{"median", Percentile(ms, 0.5)}, {"p95", Percentile(ms, 0.95)}}},
-        {"ms_per_step_by_map_curves", TimeByMapSize(ms, outcome.slam->map_curves())}};
+        {"ms_per_step",
+         {{"median", loop::Percentile(ms, 0.5)}, {"p95", loop::Percentile(ms, 0.95)}}},
+        {"ms_per_step_by_map_curves",
+         nlohmann::json::parse(TimeBinsJson(loop::TimeByMapSize(ms, driver.map_curves())).dump())}};
+    if (statistics.contains("least_squares"))
+      report["slam"]["least_squares"] = statistics["least_squares"];
   }
   const exploration::ExplorerOptions& o = setup.options;
-  report["options"] = {{"lsr_radius_m", o.lsr_radius_m},
-                       {"alpha", o.alpha},
+  report["options"] = {{"lsr_radius_m", setup.region.radius_m},
+                       {"alpha", setup.region.alpha},
                        {"clearance_margin_m", o.clearance_margin_m},
                        {"min_frontier_m", o.min_frontier_m},
                        {"srt_max_attempts", o.srt_max_attempts},
@@ -216,10 +126,10 @@ std::string WriteExplorationRun(const sim::World& world, const ExploreSetup& set
       save("odometry.txt", io::WriteTrajectory(dir + "/odometry.txt", t.odometry, "odometry")),
       save("estimate.txt", io::WriteTrajectory(dir + "/estimate.txt", t.estimate,
                                                setup.localization + " estimate"))};
-  if (outcome.slam && outcome.slam->method()) {
+  if (const estimation::SlamMethod* slam = outcome.slam_method()) {
     errors.push_back(save("map.svg/png", SaveSlamMapPicture(world, outcome, title,
                                                             {dir + "/map.svg", dir + "/map.png"})));
-    const std::vector<std::string> map_errors = outcome.slam->method()->WriteMap(dir);
+    const std::vector<std::string> map_errors = WriteMap(slam->Map(), dir);
     errors.insert(errors.end(), map_errors.begin(), map_errors.end());
     if (std::all_of(map_errors.begin(), map_errors.end(), [](auto& e) { return e.empty(); }))
       written->insert(written->end(), {"map.txt", "map.dxf"});
@@ -289,16 +199,17 @@ std::string SaveExplorationPicture(const sim::World& world, const ExploreOutcome
 
 std::string SaveSlamMapPicture(const sim::World& world, const ExploreOutcome& outcome,
                                const std::string& title, const std::vector<std::string>& paths) {
-  if (!outcome.slam || !outcome.slam->method()) return "no SLAM map to draw";
+  const estimation::SlamMethod* slam = outcome.slam_method();
+  if (slam == nullptr) return "no SLAM map to draw";
   const Trajectories t = TrajectoriesOf(outcome.run);
   RunPicture picture;
-  picture.title = title + " | " + outcome.slam->method()->MapDescription();
+  picture.title = title + " | " + slam->MapDescription();
   picture.world = &world;
   picture.world_color = io::Rgb{0.75, 0.75, 0.75};
   picture.truth = t.truth;
   picture.odometry = t.odometry;
   picture.estimates = {{outcome.slam->name() + " estimate", t.estimate}};
-  outcome.slam->method()->DrawMap(&picture);
+  DrawMap(slam->Map(), &picture);
   picture.pixels_per_meter = 40.0;
   return SaveRunPicture(picture, paths);
 }

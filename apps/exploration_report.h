@@ -1,5 +1,5 @@
-#ifndef SPLAM_APPS_EXPLORATION_RUN_H_
-#define SPLAM_APPS_EXPLORATION_RUN_H_
+#ifndef SPLAM_APPS_EXPLORATION_REPORT_H_
+#define SPLAM_APPS_EXPLORATION_REPORT_H_
 
 #include <cstdint>
 #include <memory>
@@ -7,46 +7,15 @@
 #include <string>
 #include <vector>
 
-#include "apps/slam_localization.h"
 #include "exploration/explorer.h"
 #include "kernel/trajectory.h"
+#include "loop/exploration_run.h"
 #include "sim/world.h"
 
 namespace splam::apps {
 
-// One simulated exploration: which explorer, localisation and seed.
-struct ExploreSetup {
-  std::string explorer = "reg";  // "srt" or "reg"
-  // "ground-truth", "odometry", or a SLAM method: "topological", "ekf-lines", "ekf-bspline".
-  std::string localization = "topological";
-  std::uint64_t seed = 1;                // simulator noise and the explorer's draws
-  double odometry_noise_scale = 1.0;     // times the default odometry noise
-  bool sonar = true;                     // complete the LSR behind the robot with sonar
-  exploration::ExplorerOptions options;  // options.seed is overwritten by `seed`
-};
-
-struct ExploreOutcome {
-  std::string error;  // non-empty when the run could not start (nothing else is valid then)
-  exploration::ExplorationRun run;
-  double robot_radius_m = 0.0;
-  // Explored fraction of the reachable free space (exploration::CoverageGrid, 10 cm cells) after
-  // each node (and at the end of the run), from the LSRs placed at the nodes' true poses.
-  std::vector<double> coverage_time_s, coverage_fraction;
-  double reachable_area_m2 = 0.0;
-  double wall_s = 0.0;  // whole run, simulation included
-  // The SLAM method when the localisation is one (its map, timings); null otherwise.
-  std::shared_ptr<SlamLocalization> slam;
-  double coverage() const { return coverage_fraction.empty() ? 0.0 : coverage_fraction.back(); }
-};
-
-// The true, odometric and estimated trajectories of a run (from its trace).
-struct Trajectories {
-  kernel::Trajectory truth, odometry, estimate;
-};
-Trajectories TrajectoriesOf(const exploration::ExplorationRun& run);
-
-// Runs the exploration in `world` from its start pose and evaluates its coverage.
-ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup);
+using loop::ExploreOutcome;
+using loop::ExploreSetup;
 
 // report.json of a run.
 nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& setup,
@@ -85,4 +54,4 @@ std::string SaveCoveragePlot(const ExploreOutcome& outcome, const std::string& t
 
 }  // namespace splam::apps
 
-#endif  // SPLAM_APPS_EXPLORATION_RUN_H_
+#endif  // SPLAM_APPS_EXPLORATION_REPORT_H_

@@ -1,10 +1,10 @@
-#ifndef SPLAM_APPS_SIMULATED_ROBOT_H_
-#define SPLAM_APPS_SIMULATED_ROBOT_H_
+#ifndef SPLAM_LOOP_SIMULATED_ROBOT_H_
+#define SPLAM_LOOP_SIMULATED_ROBOT_H_
 
 #include "exploration/robot_interface.h"
 #include "sim/simulator.h"
 
-namespace splam::apps {
+namespace splam::loop {
 
 // The simulator as the robot an explorer drives.
 class SimulatedRobot : public exploration::RobotInterface {
@@ -47,6 +47,6 @@ class SimulatedRobot : public exploration::RobotInterface {
   exploration::RobotDescription description_;
 };
 
-}  // namespace splam::apps
+}  // namespace splam::loop
 
-#endif  // SPLAM_APPS_SIMULATED_ROBOT_H_
+#endif  // SPLAM_LOOP_SIMULATED_ROBOT_H_

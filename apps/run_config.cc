@@ -1,0 +1,61 @@
+#include "apps/run_config.h"
+
+namespace splam::apps {
+
+io::ConfigRoot SlamConfigRoot(SlamConfig* config) {
+  return [config](kernel::FieldVisitor& v) {
+    v.Field("method", &config->method, "SLAM method: " + SlamMethodNames());
+    v.Nested("local_region", "the explorers' LSR radius and step (topological SLAM's region)",
+             &config->region);
+    if (config->options) {
+      v.Group(config->method, "options of the SLAM method",
+              [&](kernel::FieldVisitor& f) { config->options->VisitFields(f); });
+    }
+  };
+}
+
+io::ConfigRoot ExploreConfigRoot(ExploreConfig* config) {
+  return [config](kernel::FieldVisitor& v) {
+    loop::ExploreSetup& s = config->setup;
+    v.Field("explorer", &s.explorer, "srt or reg");
+    v.Field("localization", &s.localization,
+            "where the explorer believes it is: " + loop::LocalizationNames());
+    v.Field("seed", &s.seed, "simulator noise and the explorer's draws");
+    v.Field("odometry_noise_scale", &s.odometry_noise_scale,
+            "times the default odometry noise, simulated and modelled (the sections below "
+            "override single fields)");
+    v.Nested("local_region", "LSR radius r and step alpha r, shared by explorer and SLAM",
+             &s.region);
+    v.Nested("exploration", "the explorer's options", &s.options);
+    v.Nested("simulator", "the simulated robot and its sensors", &config->simulator);
+    if (config->slam_options) {
+      v.Group(s.localization, "options of the SLAM method",
+              [&](kernel::FieldVisitor& f) { config->slam_options->VisitFields(f); });
+    }
+  };
+}
+
+void ResetExploreDefaults(ExploreConfig* config) {
+  config->simulator = loop::DefaultSimulator(config->setup);
+  config->slam_options = loop::DefaultSlamOptions(config->setup);
+}
+
+kernel::Status ApplyConfig(const io::ConfigFile* file, const io::ConfigRoot& root,
+                           const std::vector<std::string>& sets) {
+  if (file != nullptr) {
+    if (kernel::Status s = file->Read(root); !s.ok()) return s;
+  }
+  for (const std::string& assignment : sets) {
+    if (kernel::Status s = io::SetConfigValue(root, assignment); !s.ok()) return s;
+  }
+  return kernel::Status::Ok();
+}
+
+std::string SlamMethodNames() {
+  std::string names;
+  for (const std::string& n : estimation::SlamRegistry::Global().Names())
+    names += (names.empty() ? "" : ", ") + n;
+  return names;
+}
+
+}  // namespace splam::apps

@@ -1,0 +1,51 @@
+#ifndef SPLAM_APPS_RUN_CONFIG_H_
+#define SPLAM_APPS_RUN_CONFIG_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "estimation/slam_method.h"
+#include "io/config.h"
+#include "kernel/local_safe_region.h"
+#include "kernel/status.h"
+#include "loop/exploration_run.h"
+
+// The configuration documents of `splam slam` and `splam explore` (and `splam config print`):
+// which keys they hold, in one place, so that printing, reading, --set and the run's own
+// config.yaml agree.
+namespace splam::apps {
+
+// `splam slam`: method, local_region (the topological SLAM's region) and the method's options
+// under its name.
+struct SlamConfig {
+  std::string method = "ekf-lines";
+  kernel::LocalRegionOptions region;
+  std::unique_ptr<estimation::SlamOptions> options;  // the method's
+};
+io::ConfigRoot SlamConfigRoot(SlamConfig* config);
+
+// `splam explore`: explorer, localization, seed, odometry_noise_scale, local_region,
+// exploration (the explorer's options), simulator, and the SLAM method's options under its name
+// when the localisation is one.
+struct ExploreConfig {
+  loop::ExploreSetup setup;
+  sim::SimulatorOptions simulator;
+  std::unique_ptr<estimation::SlamOptions> slam_options;
+};
+io::ConfigRoot ExploreConfigRoot(ExploreConfig* config);
+// The simulator and SLAM defaults of config->setup (after explorer, localization, seed and
+// odometry_noise_scale are known).
+void ResetExploreDefaults(ExploreConfig* config);
+
+// Reads `path` (when not empty) into `root` and then applies each "key=value" of `sets`; the
+// first problem names the file and line, or the --set.
+kernel::Status ApplyConfig(const io::ConfigFile* file, const io::ConfigRoot& root,
+                           const std::vector<std::string>& sets);
+
+// "ekf-lines, ekf-bspline, topological": the registry's names.
+std::string SlamMethodNames();
+
+}  // namespace splam::apps
+
+#endif  // SPLAM_APPS_RUN_CONFIG_H_

@@ -1,0 +1,200 @@
+#ifndef SPLAM_ESTIMATION_SLAM_METHOD_H_
+#define SPLAM_ESTIMATION_SLAM_METHOD_H_
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "estimation/ekf_line_slam.h"
+#include "estimation/map_spline.h"
+#include "kernel/local_safe_region.h"
+#include "kernel/options.h"
+#include "kernel/pose2.h"
+#include "kernel/scan.h"
+#include "kernel/spline_extraction.h"
+#include "kernel/status.h"
+
+// The SLAM interface every method implements, and the registry that maps a method's name to its
+// factory, its options and a one-line description. The command line, the experiments and the
+// explorer's localisation all read the registry: adding a method is one header, one source file
+// and one RegisterSlamMethod call (see examples/estimation/).
+namespace splam::estimation {
+
+// The map of a method, in the world frame, as drawing and export need it: lines and corners, or
+// spline curves (with the options that find their features), or nothing (a method without one).
+struct SlamMap {
+  std::vector<MapLine> lines;
+  std::vector<MapCorner> corners;
+  std::vector<MapSpline> splines;
+  kernel::SplineExtractionOptions spline_features;  // how features of `splines` are found
+};
+
+// Method-independent counters of what a method did, in the order they are reported.
+struct SlamStatistics {
+  std::string association;  // the association's name ("" when the method has none to report)
+  std::vector<std::pair<std::string, long>> map;           // e.g. {"lines", 12}, {"corners", 3}
+  std::vector<std::pair<std::string, long>> associations;  // e.g. {"accepted", 4120}
+  // Nonlinear least-squares solves (Ceres) and those that did not converge.
+  long solver_runs = 0;
+  long solver_failures = 0;
+};
+
+class SlamMethod {
+ public:
+  virtual ~SlamMethod() = default;
+  // Motion between the previous and this reading, in the robot frame (x_k-1 (+) u = x_k).
+  virtual void Predict(const kernel::Pose2& odometry_increment) = 0;
+  // A laser sweep taken at the predicted pose by a laser mounted at robot_T_laser.
+  virtual void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) = 0;
+  virtual kernel::Pose2 pose() const = 0;
+  // The pose covariance; methods without one return nullopt.
+  virtual std::optional<Eigen::Matrix3d> pose_covariance() const { return std::nullopt; }
+  // Ok while the method runs; otherwise why it stopped (it then ignores input).
+  virtual kernel::Status health() const = 0;
+  bool healthy() const { return health().ok(); }
+  // Number of 2-vectors in the state besides the pose: landmarks, or control points.
+  virtual std::size_t MapSize() const = 0;
+  // Map curves (0 for maps that are not curves).
+  virtual std::size_t MapCurves() const { return 0; }
+  // "12 lines, 3 corners"
+  virtual std::string MapDescription() const = 0;
+  virtual SlamMap Map() const = 0;
+  virtual SlamStatistics Statistics() const = 0;
+  // A new exploration node with its local safe region (world frame, placed at the estimate).
+  // The topological SLAM associates against the curves in the newest node's LSR.
+  virtual void AtNode(const kernel::LocalSafeRegion& /*lsr*/) {}
+};
+
+// What the sensors are believed to be, for the methods' noise models. Defaults: a Hokuyo
+// URG-04LX and the simulator's odometry; `splam slam` picks them from the log's laser type.
+struct SensorNoise {
+  double odometry_noise_scale = 1.0;  // times the default odometry noise model
+  double range_sigma_m = 0.003;       // line fitting: sigma = this + fraction * range, m
+  double range_sigma_fraction = 0.01;
+  double beam_sigma_floor_m = 0.0;  // beam model (ekf-bspline): floor + fraction * range, m
+};
+
+// Everything a factory needs besides the method's options.
+struct SlamContext {
+  kernel::Pose2 start;                // the first pose (known, as the papers assume)
+  kernel::LocalRegionOptions region;  // the explorer's LSR radius and step (topological)
+};
+
+// A method's options, type-erased so that the registry and the configuration files can hold
+// any method's options struct.
+class SlamOptions {
+ public:
+  virtual ~SlamOptions() = default;
+  virtual void VisitFields(kernel::FieldVisitor& v) = 0;
+  virtual kernel::Status Validate() const = 0;
+  virtual std::unique_ptr<SlamOptions> Clone() const = 0;
+};
+
+// `Options` (a struct with VisitFields and Validate) as SlamOptions.
+template <class Options>
+class SlamOptionsOf : public SlamOptions {
+ public:
+  explicit SlamOptionsOf(Options options = {}) : options_(std::move(options)) {}
+  void VisitFields(kernel::FieldVisitor& v) override { options_.VisitFields(v); }
+  kernel::Status Validate() const override {
+    if constexpr (std::is_same_v<decltype(options_.Validate()), kernel::Status>) {
+      return options_.Validate();
+    } else {
+      const std::string problem = options_.Validate();
+      return problem.empty() ? kernel::Status::Ok() : kernel::Status::Error(problem);
+    }
+  }
+  std::unique_ptr<SlamOptions> Clone() const override {
+    return std::make_unique<SlamOptionsOf>(options_);
+  }
+  Options& options() { return options_; }
+  const Options& options() const { return options_; }
+
+ private:
+  Options options_;
+};
+
+struct SlamMethodInfo {
+  std::string name;         // "ekf-lines"
+  std::string description;  // one line for --help
+  // The method's default options, adapted to the sensors' noise.
+  std::function<std::unique_ptr<SlamOptions>(const SensorNoise&)> default_options;
+  // Sets the fields of `options` that describe the sensors' noise (after a configuration file,
+  // when the command line names the noise).
+  std::function<void(const SensorNoise&, SlamOptions*)> adapt_to_sensors;
+  // A method with valid `options` (as returned by default_options, possibly edited).
+  std::function<std::unique_ptr<SlamMethod>(const SlamOptions&, const SlamContext&)> make;
+};
+
+// name -> method. The built-in methods (ekf-lines, ekf-bspline, topological) are there from the
+// start; others join with RegisterSlamMethod.
+class SlamRegistry {
+ public:
+  static SlamRegistry& Global();
+  // Adds (or replaces) a method.
+  void Add(SlamMethodInfo info);
+  // nullptr for an unknown name.
+  const SlamMethodInfo* Find(const std::string& name) const;
+  // In registration order.
+  std::vector<std::string> Names() const;
+  // "ekf-lines: ...\ntopological: ..." for help texts.
+  std::string Describe() const;
+  // The method `name` with `options` (its defaults when null); an error names the unknown method
+  // with the known ones, or the invalid option.
+  kernel::Result<std::unique_ptr<SlamMethod>> Make(const std::string& name,
+                                                   const SlamOptions* options,
+                                                   const SlamContext& context) const;
+
+ private:
+  std::vector<SlamMethodInfo> methods_;
+};
+
+// The registry entry of a method whose options struct is `Options` (with VisitFields and
+// Validate): `make` builds it from valid options, `adapt` (may be empty) writes the sensors'
+// noise into the options.
+template <class Options>
+SlamMethodInfo MakeSlamMethodInfo(
+    std::string name, std::string description,
+    std::function<std::unique_ptr<SlamMethod>(const Options&, const SlamContext&)> make,
+    std::function<void(const SensorNoise&, Options*)> adapt = {}) {
+  using Typed = SlamOptionsOf<Options>;
+  SlamMethodInfo info;
+  info.name = std::move(name);
+  info.description = std::move(description);
+  info.adapt_to_sensors = [adapt](const SensorNoise& noise, SlamOptions* options) {
+    if (auto* typed = dynamic_cast<Typed*>(options); typed != nullptr && adapt)
+      adapt(noise, &typed->options());
+  };
+  info.default_options = [adapt](const SensorNoise& noise) -> std::unique_ptr<SlamOptions> {
+    auto options = std::make_unique<Typed>();
+    if (adapt) adapt(noise, &options->options());
+    return options;
+  };
+  info.make = [make](const SlamOptions& options,
+                     const SlamContext& context) -> std::unique_ptr<SlamMethod> {
+    const auto* typed = dynamic_cast<const Typed*>(&options);
+    return typed != nullptr ? make(typed->options(), context) : nullptr;
+  };
+  return info;
+}
+
+// Adds a method to the global registry: the one line that makes a new method known to the
+// command line, the experiments and the explorer's localisation.
+template <class Options>
+void RegisterSlamMethod(
+    std::string name, std::string description,
+    std::function<std::unique_ptr<SlamMethod>(const Options&, const SlamContext&)> make,
+    std::function<void(const SensorNoise&, Options*)> adapt = {}) {
+  SlamRegistry::Global().Add(MakeSlamMethodInfo<Options>(std::move(name), std::move(description),
+                                                         std::move(make), std::move(adapt)));
+}
+
+}  // namespace splam::estimation
+
+#endif  // SPLAM_ESTIMATION_SLAM_METHOD_H_

@@ -1,0 +1,46 @@
+#ifndef SPLAM_KERNEL_OPTIONS_H_
+#define SPLAM_KERNEL_OPTIONS_H_
+
+#include <cstdint>
+#include <functional>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "kernel/pose2.h"
+
+// Options structs describe their fields to a visitor, once, next to their definition: the key
+// (the field's name), a pointer to the value and a one-line comment with the unit. io/ turns the
+// visitor into YAML reading and writing, the command line into `--set key=value`; nothing in
+// kernel knows about files.
+namespace splam::kernel {
+
+class FieldVisitor {
+ public:
+  virtual ~FieldVisitor() = default;
+  virtual void Field(std::string_view key, double* value, std::string_view doc) = 0;
+  virtual void Field(std::string_view key, int* value, std::string_view doc) = 0;
+  virtual void Field(std::string_view key, std::uint64_t* value, std::string_view doc) = 0;
+  virtual void Field(std::string_view key, bool* value, std::string_view doc) = 0;
+  virtual void Field(std::string_view key, std::string* value, std::string_view doc) = 0;
+  virtual void Field(std::string_view key, std::vector<double>* value, std::string_view doc) = 0;
+  // One of `choices` (an enum's names), stored as its index.
+  virtual void Choice(std::string_view key, int* index,
+                      std::initializer_list<std::string_view> choices, std::string_view doc) = 0;
+  // A pose as [x (m), y (m), theta (rad)].
+  virtual void Field(std::string_view key, Pose2* value, std::string_view doc) = 0;
+  // A nested options struct: `fields` visits its fields, under `key`.
+  virtual void Group(std::string_view key, std::string_view doc,
+                     const std::function<void(FieldVisitor&)>& fields) = 0;
+
+  // Visits a nested options struct that has a VisitFields(FieldVisitor&) member.
+  template <class Options>
+  void Nested(std::string_view key, std::string_view doc, Options* options) {
+    Group(key, doc, [options](FieldVisitor& v) { options->VisitFields(v); });
+  }
+};
+
+}  // namespace splam::kernel
+
+#endif  // SPLAM_KERNEL_OPTIONS_H_

@@ -1,0 +1,139 @@
+#include "loop/exploration_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "exploration/coverage.h"
+#include "exploration/perception.h"
+#include "loop/simulated_robot.h"
+#include "sim/ray_caster.h"
+
+namespace splam::loop {
+namespace {
+
+constexpr double kCoverageCell = 0.1;  // m
+
+std::shared_ptr<exploration::Localization> MakeLocalization(const ExploreSetup& setup) {
+  const std::string& name = setup.localization;
+  if (name == "ground-truth") return std::make_shared<exploration::GroundTruthLocalization>();
+  if (name == "odometry") return std::make_shared<exploration::OdometryLocalization>();
+  if (estimation::SlamRegistry::Global().Find(name) == nullptr) return nullptr;
+  std::shared_ptr<const estimation::SlamOptions> options = setup.slam_options;
+  if (!options) options = DefaultSlamOptions(setup);
+  return std::make_shared<SlamLocalization>(name, options, setup.region);
+}
+
+// The explored fraction after every node: the LSRs at the nodes' true poses over the free
+// space reachable from the start.
+void EvaluateCoverage(const sim::World& world, const sim::RayCaster& caster,
+                      const exploration::RobotDescription& robot, double lsr_radius_m,
+                      ExploreOutcome* outcome) {
+  const double half_diagonal = kCoverageCell * std::sqrt(0.5);
+  kernel::Box2 bounds = world.Bounds();
+  bounds.min -= Eigen::Vector2d::Constant(0.5);
+  bounds.max += Eigen::Vector2d::Constant(0.5);
+  exploration::CoverageGrid grid(
+      bounds, kCoverageCell, world.start->translation(), [&](const Eigen::Vector2d& c) {
+        return !caster.IsInsideObstacle(c) && caster.Nearest(c, half_diagonal).obstacle < 0;
+      });
+  outcome->reachable_area_m2 = grid.reachable_cells() * kCoverageCell * kCoverageCell;
+  for (const exploration::NodeRecord& node : outcome->run.nodes) {
+    grid.Cover(
+        exploration::SafeRegionAt(node.safe_region_scan, node.true_pose, robot, lsr_radius_m));
+    outcome->coverage_time_s.push_back(node.time_s);
+    outcome->coverage_fraction.push_back(grid.CoveredFraction());
+  }
+  if (!outcome->coverage_time_s.empty() && outcome->run.time_s > outcome->coverage_time_s.back()) {
+    outcome->coverage_time_s.push_back(outcome->run.time_s);  // the way home adds no area
+    outcome->coverage_fraction.push_back(outcome->coverage_fraction.back());
+  }
+}
+
+}  // namespace
+
+sim::SimulatorOptions DefaultSimulator(const ExploreSetup& setup) {
+  sim::SimulatorOptions options;
+  options.enable_sonar = setup.sonar;
+  options.odometry = options.odometry.Scaled(setup.odometry_noise_scale);
+  return options;
+}
+
+std::unique_ptr<estimation::SlamOptions> DefaultSlamOptions(const ExploreSetup& setup) {
+  const estimation::SlamMethodInfo* info =
+      estimation::SlamRegistry::Global().Find(setup.localization);
+  if (info == nullptr) return nullptr;
+  estimation::SensorNoise noise;  // the simulated URG-04LX
+  noise.odometry_noise_scale = std::max(setup.odometry_noise_scale, 0.05);
+  return info->default_options(noise);
+}
+
+bool IsLocalization(const std::string& name) {
+  return name == "ground-truth" || name == "odometry" ||
+         estimation::SlamRegistry::Global().Find(name) != nullptr;
+}
+
+std::string LocalizationNames() {
+  std::string names = "ground-truth, odometry";
+  for (const std::string& n : estimation::SlamRegistry::Global().Names()) names += ", " + n;
+  return names;
+}
+
+Trajectories TrajectoriesOf(const exploration::ExplorationRun& run) {
+  Trajectories t;
+  for (const exploration::TraceSample& s : run.trace) {
+    t.truth.push_back({s.time_s, s.truth});
+    t.odometry.push_back({s.time_s, s.odometry});
+    t.estimate.push_back({s.time_s, s.estimate});
+  }
+  return t;
+}
+
+ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup) {
+  ExploreOutcome outcome;
+  const auto begin = std::chrono::steady_clock::now();
+  exploration::ExplorerOptions options = setup.options;
+  options.seed = setup.seed;
+  options.lsr_radius_m = setup.region.radius_m;
+  options.alpha = setup.region.alpha;
+  const std::unique_ptr<exploration::Explorer> explorer =
+      exploration::MakeExplorer(setup.explorer, options);
+  std::shared_ptr<exploration::Localization> localization = MakeLocalization(setup);
+  if (!explorer) {
+    outcome.error = "unknown explorer '" + setup.explorer + "' (srt, reg)";
+    return outcome;
+  }
+  if (!localization) {
+    outcome.error =
+        "unknown localisation '" + setup.localization + "' (" + LocalizationNames() + ")";
+    return outcome;
+  }
+  if (!world.start) {
+    outcome.error = "world '" + world.name + "' has no start pose";
+    return outcome;
+  }
+  const sim::SimulatorOptions sim_options = setup.simulator.value_or(DefaultSimulator(setup));
+  if (const std::string problem = sim_options.Validate(); !problem.empty()) {
+    outcome.error = problem;
+    return outcome;
+  }
+  const sim::RayCaster caster(world);
+  sim::Simulator simulator(caster, sim_options, *world.start, setup.seed);
+  if (!simulator.IsFree(*world.start)) {
+    outcome.error = "the start pose of '" + world.name + "' collides with an obstacle";
+    return outcome;
+  }
+  SimulatedRobot robot(&simulator);
+  outcome.robot_radius_m = robot.description().radius_m;
+  outcome.run = explorer->Run(&robot, localization.get());
+  outcome.slam = std::dynamic_pointer_cast<SlamLocalization>(localization);
+  if (outcome.run.termination == exploration::Termination::kInvalidInput) {
+    outcome.error = outcome.run.message;
+    return outcome;
+  }
+  EvaluateCoverage(world, caster, robot.description(), options.lsr_radius_m, &outcome);
+  outcome.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  return outcome;
+}
+
+}  // namespace splam::loop

@@ -1,0 +1,26 @@
+#include "loop/slam_driver.h"
+
+#include <chrono>
+
+namespace splam::loop {
+
+SlamDriver::SlamDriver(std::unique_ptr<estimation::SlamMethod> method)
+    : method_(std::move(method)) {}
+
+bool SlamDriver::Step(const kernel::Pose2& odometry_pose, const kernel::Scan* scan,
+                      const kernel::Pose2& robot_T_laser) {
+  const auto begin = std::chrono::steady_clock::now();
+  if (last_odometry_) method_->Predict(last_odometry_->Between(odometry_pose));
+  last_odometry_ = odometry_pose;
+  if (scan != nullptr && !scan->ranges_m.empty() && method_->healthy()) {
+    method_->Update(*scan, robot_T_laser);
+    update_ms_.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin)
+            .count());
+    map_size_.push_back(method_->MapSize());
+    map_curves_.push_back(method_->MapCurves());
+  }
+  return method_->healthy();
+}
+
+}  // namespace splam::loop

@@ -1,0 +1,44 @@
+#ifndef SPLAM_LOOP_SLAM_LOCALIZATION_H_
+#define SPLAM_LOOP_SLAM_LOCALIZATION_H_
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "estimation/slam_method.h"
+#include "exploration/localization.h"
+#include "loop/slam_driver.h"
+
+namespace splam::loop {
+
+// The SPLAM loop (SPEC §11): any registered SLAM method as the explorer's localisation. Every
+// odometry reading predicts, every scan corrects, and every new exploration node is handed to
+// the method.
+class SlamLocalization : public exploration::Localization {
+ public:
+  // `method` names a registered method; `options` are its options (null: its defaults for the
+  // simulated sensors); `region` is the explorer's LSR radius and step.
+  SlamLocalization(std::string method, std::shared_ptr<const estimation::SlamOptions> options,
+                   const kernel::LocalRegionOptions& region);
+
+  std::string name() const override { return method_; }
+  bool needs_scans() const override { return true; }
+  std::string Start(const exploration::RobotDescription& robot, const kernel::Pose2& start,
+                    const exploration::Perception& first) override;
+  kernel::Pose2 Update(const exploration::Perception& perception) override;
+  void AtNode(const kernel::LocalSafeRegion& lsr) override;
+
+  // The driver (after Start): the method, the wall time of every update and the map sizes.
+  const SlamDriver* driver() const { return driver_ ? &*driver_ : nullptr; }
+
+ private:
+  std::string method_;
+  std::shared_ptr<const estimation::SlamOptions> options_;
+  kernel::LocalRegionOptions region_;
+  kernel::Pose2 robot_T_laser_;
+  std::optional<SlamDriver> driver_;
+};
+
+}  // namespace splam::loop
+
+#endif  // SPLAM_LOOP_SLAM_LOCALIZATION_H_
