@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -10,6 +11,7 @@
 
 #include "io/result.h"
 #include "io/text.h"
+#include "io/trajectory.h"
 
 namespace splam::io {
 namespace {
@@ -85,12 +87,14 @@ int LineOf(const YAML::Node& node) { return node.Mark().line + 1; }
 // Reads the keys of one YAML map into the visited fields; the first problem is kept.
 class YamlReader : public kernel::FieldVisitor {
  public:
+  // `lines`: the messages name the line of the problem (false for a --set, which has none).
   YamlReader(const YAML::Node& map, std::string path, std::string prefix, bool allow_unknown,
-             kernel::Status* status)
+             bool lines, kernel::Status* status)
       : map_(map),
         path_(std::move(path)),
         prefix_(std::move(prefix)),
         allow_unknown_(allow_unknown),
+        lines_(lines),
         status_(status) {}
 
   void Field(std::string_view key, double* v, std::string_view) override {
@@ -180,7 +184,7 @@ class YamlReader : public kernel::FieldVisitor {
     const YAML::Node n = map_[std::string(key)];
     if (!n || !status_->ok()) return;
     if (!n.IsMap()) return Fail(n, key, "expected a map of keys");
-    YamlReader nested(n, path_, Qualified(key) + ".", allow_unknown_, status_);
+    YamlReader nested(n, path_, Qualified(key) + ".", allow_unknown_, lines_, status_);
     fields(nested);
     nested.CheckUnknown();
   }
@@ -198,8 +202,8 @@ class YamlReader : public kernel::FieldVisitor {
   std::string Qualified(std::string_view key) const { return prefix_ + std::string(key); }
   void Fail(const YAML::Node& at, std::string_view key, const std::string& message) {
     if (status_->ok())
-      *status_ =
-          kernel::Status::Error(FileError(path_, LineOf(at), Qualified(key) + ": " + message));
+      *status_ = kernel::Status::Error(
+          FileError(path_, lines_ ? LineOf(at) : 0, Qualified(key) + ": " + message));
   }
   template <class Convert>
   void Scalar(std::string_view key, Convert convert, const char* expected) {
@@ -234,15 +238,15 @@ class YamlReader : public kernel::FieldVisitor {
 
   YAML::Node map_;
   std::string path_, prefix_;
-  bool allow_unknown_;
+  bool allow_unknown_, lines_;
   kernel::Status* status_;
   std::set<std::string> seen_;
 };
 
 kernel::Status ReadInto(const YAML::Node& map, const std::string& path, const ConfigRoot& root,
-                        bool allow_unknown) {
+                        bool allow_unknown, bool lines = true) {
   kernel::Status status;
-  YamlReader reader(map, path, "", allow_unknown, &status);
+  YamlReader reader(map, path, "", allow_unknown, lines, &status);
   root(reader);
   reader.CheckUnknown();
   return status;
@@ -293,12 +297,10 @@ kernel::Result<ConfigFile> ConfigFile::Parse(const std::string& text, const std:
 }
 
 kernel::Result<ConfigFile> ConfigFile::Load(const std::string& path) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  if (!file.good() && !file.eof())
+  std::string text;
+  if (std::filesystem::is_directory(path) || !ReadTextFile(path, &text).empty())
     return kernel::Result<ConfigFile>::Fail(FileError(path, 0, "cannot read the file"));
-  return Parse(text.str(), path);
+  return Parse(text, path);
 }
 
 std::optional<std::string> ConfigFile::TopLevelString(const std::string& key) const {
@@ -336,7 +338,7 @@ kernel::Status SetConfigValue(const ConfigRoot& root, const std::string& assignm
     level[*it] = leaf;
     leaf = level;
   }
-  return ReadInto(leaf, "--set", root, false);
+  return ReadInto(leaf, "--set", root, /*allow_unknown=*/false, /*lines=*/false);
 }
 
 }  // namespace splam::io

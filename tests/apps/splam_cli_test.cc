@@ -412,8 +412,94 @@ TEST(SplamCli, SplamExperimentComparesTheThreeStrategies) {
   }
 }
 
+TEST(SplamCli, ConfigFileEditedChangesTheRunAndAMisspeltKeyIsRefused) {
+  const fs::path dir = Temp("config");
+  fs::create_directories(dir);
+  ASSERT_EQ(Splam("simulate --world office --seed 3 --out " + (dir / "sim").string()).status, 0);
+  const std::string log = (dir / "sim" / "log.clf").string();
+  const Output printed = Splam("config print --method topological");
+  ASSERT_EQ(printed.status, 0) << printed.text;
+  EXPECT_NE(printed.text.find("correction_gain: 0.3  # "), std::string::npos) << printed.text;
+  EXPECT_NE(printed.text.find("radius_m: 3  # "), std::string::npos);
+  // One value edited: the run uses it and writes it into its own config.yaml.
+  std::string edited = printed.text;
+  edited.replace(edited.find("correction_gain: 0.3"), 20, "correction_gain: 0.55");
+  ASSERT_EQ(io::WriteTextFile((dir / "t.yaml").string(), edited), "");
+  const Output run =
+      Splam("slam --method topological --max-scans 150 --config " + (dir / "t.yaml").string() +
+            " --out " + (dir / "a").string() + " " + log);
+  ASSERT_EQ(run.status, 0) << run.text;
+  const std::string used = Slurp(dir / "a" / "config.yaml");
+  EXPECT_NE(used.find("correction_gain: 0.55"), std::string::npos) << used;
+  // The run's config.yaml repeats it exactly.
+  const Output again =
+      Splam("slam --max-scans 150 --config " + (dir / "a" / "config.yaml").string() + " --out " +
+            (dir / "b").string() + " " + log);
+  ASSERT_EQ(again.status, 0) << again.text;
+  EXPECT_EQ(Slurp(dir / "b" / "trajectory.txt").substr(100),
+            Slurp(dir / "a" / "trajectory.txt").substr(100));
+  EXPECT_EQ(Slurp(dir / "b" / "config.yaml").substr(200), used.substr(200));
+  // --set overrides the file.
+  const Output set =
+      Splam("slam --max-scans 20 --config " + (dir / "t.yaml").string() +
+            " --set topological.correction_gain=0.7 --out " + (dir / "c").string() + " " + log);
+  ASSERT_EQ(set.status, 0) << set.text;
+  EXPECT_NE(Slurp(dir / "c" / "config.yaml").find("correction_gain: 0.7"), std::string::npos);
+  // A misspelt key: file, line and key, exit 2, nothing run.
+  std::string misspelt = printed.text;
+  const std::size_t at = misspelt.find("correction_gain");
+  misspelt.replace(at, 15, "corection_gain");
+  const int line = 1 + static_cast<int>(std::count(misspelt.begin(), misspelt.begin() + at, '\n'));
+  ASSERT_EQ(io::WriteTextFile((dir / "bad.yaml").string(), misspelt), "");
+  const Output bad = Splam("slam --config " + (dir / "bad.yaml").string() + " --out " +
+                           (dir / "d").string() + " " + log);
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.text.find((dir / "bad.yaml").string() + ":" + std::to_string(line) +
+                          ": topological.corection_gain: unknown key"),
+            std::string::npos)
+      << bad.text;
+  const Output wrong_type =
+      Splam("slam --method topological --set topological.min_verified_curves=two " + log);
+  EXPECT_EQ(wrong_type.status, 2);
+  EXPECT_NE(wrong_type.text.find("--set: topological.min_verified_curves: 'two' is not an integer"),
+            std::string::npos)
+      << wrong_type.text;
+  const Output invalid =
+      Splam("slam --method topological --set topological.correction_rounds=0 " + log);
+  EXPECT_EQ(invalid.status, 2);
+  EXPECT_NE(invalid.text.find("correction_rounds must be >= 1"), std::string::npos) << invalid.text;
+}
+
+TEST(SplamCli, ExploreReadsItsConfigAndWritesTheOneItUsed) {
+  const fs::path dir = Temp("explore_config");
+  fs::create_directories(dir);
+  const Output printed = Splam("config print --explorer srt --method ekf-lines");
+  ASSERT_EQ(printed.status, 0);
+  EXPECT_NE(printed.text.find("explorer: \"srt\""), std::string::npos) << printed.text;
+  EXPECT_NE(printed.text.find("ekf-lines:"), std::string::npos);
+  std::string edited = printed.text;
+  edited.replace(edited.find("max_nodes: 400"), 14, "max_nodes: 4");
+  ASSERT_EQ(io::WriteTextFile((dir / "e.yaml").string(), edited), "");
+  const Output run = Splam("explore --world corridor --lsr-radius 2.5 --config " +
+                           (dir / "e.yaml").string() + " --out " + (dir / "run").string());
+  EXPECT_EQ(run.status, 3) << run.text;  // the node cap stops it
+  const auto report = nlohmann::json::parse(Slurp(dir / "run" / "report.json"));
+  EXPECT_EQ(report["explorer"], "srt");
+  EXPECT_EQ(report["localization"], "ekf-lines");
+  EXPECT_EQ(report["nodes"], 4);
+  EXPECT_EQ(report["options"]["lsr_radius_m"], 2.5);  // the flag overrides the file
+  const std::string used = Slurp(dir / "run" / "config.yaml");
+  EXPECT_NE(used.find("radius_m: 2.5"), std::string::npos) << used;
+  EXPECT_NE(used.find("max_nodes: 4"), std::string::npos);
+  const Output bad = Splam("explore --set exploration.max_nodez=3");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.text.find("--set: exploration.max_nodez: unknown key"), std::string::npos)
+      << bad.text;
+}
+
 TEST(SplamCli, EveryCommandHasHelp) {
-  for (const char* command : {"", "simulate", "render", "slam", "eval", "experiment", "explore"}) {
+  for (const char* command :
+       {"", "simulate", "render", "slam", "eval", "experiment", "explore", "config print"}) {
     const Output r = Splam(std::string(command) + " --help");
     EXPECT_EQ(r.status, 0) << command;
     EXPECT_NE(r.text.find("Usage"), std::string::npos) << r.text;

@@ -1,0 +1,253 @@
+// The SPLAM loop library: the one predict/update driver, log and frame replay, explorations with
+// any registered method, and the scoring of runs.
+#include <gtest/gtest.h>
+
+#include "estimation/metrics.h"
+#include "estimation/topological_slam.h"
+#include "io/simulation_log.h"
+#include "loop/exploration_run.h"
+#include "loop/log_replay.h"
+#include "loop/scoring.h"
+#include "loop/slam_driver.h"
+#include "sim/builtin_worlds.h"
+
+namespace splam::loop {
+namespace {
+
+using kernel::Pose2;
+
+// Records what the driver calls.
+class Recorder : public estimation::SlamMethod {
+ public:
+  void Predict(const Pose2& u) override {
+    increments.push_back(u);
+    pose_ = pose_ * u;
+  }
+  void Update(const kernel::Scan& scan, const Pose2& robot_T_laser) override {
+    updates.push_back(scan.size());
+    mounting = robot_T_laser;
+    if (fail_after_updates > 0 && static_cast<int>(updates.size()) >= fail_after_updates)
+      health_ = kernel::Status::Error("diverged");
+  }
+  Pose2 pose() const override { return pose_; }
+  kernel::Status health() const override { return health_; }
+  std::size_t MapSize() const override { return updates.size(); }
+  std::size_t MapCurves() const override { return 2 * updates.size(); }
+  std::string MapDescription() const override { return ""; }
+  estimation::SlamMap Map() const override { return {}; }
+  estimation::SlamStatistics Statistics() const override { return {}; }
+
+  std::vector<Pose2> increments;
+  std::vector<std::size_t> updates;
+  Pose2 mounting;
+  int fail_after_updates = 0;
+
+ private:
+  Pose2 pose_;
+  kernel::Status health_;
+};
+
+kernel::Scan ScanOf(std::size_t beams) {
+  kernel::Scan scan;
+  scan.ranges_m.assign(beams, 1.0);
+  return scan;
+}
+
+TEST(SlamDriver, PredictsIncrementsAndUpdatesWithScans) {
+  auto owned = std::make_unique<Recorder>();
+  Recorder* r = owned.get();
+  SlamDriver driver(std::move(owned));
+  const kernel::Scan scan = ScanOf(5), empty;
+  const Pose2 mount(0.1, 0, 0);
+  EXPECT_TRUE(driver.Step(Pose2(1, 0, 0), &scan, mount));  // first reading: nothing to predict
+  EXPECT_TRUE(r->increments.empty());
+  EXPECT_TRUE(driver.Step(Pose2(2, 0, kernel::kPi / 2), &empty, mount));  // odometry only
+  EXPECT_TRUE(driver.Step(Pose2(2, 1, kernel::kPi / 2), nullptr, mount));
+  ASSERT_EQ(r->increments.size(), 2u);
+  EXPECT_NEAR(r->increments[0].x(), 1.0, 1e-12);
+  EXPECT_NEAR(r->increments[1].x(), 1.0, 1e-12);  // robot frame: straight ahead after the turn
+  EXPECT_NEAR(r->increments[1].y(), 0.0, 1e-12);
+  EXPECT_EQ(r->updates, std::vector<std::size_t>{5});
+  EXPECT_EQ(r->mounting.x(), 0.1);
+  EXPECT_EQ(driver.update_ms().size(), 1u);
+  EXPECT_EQ(driver.map_size(), std::vector<std::size_t>{1});
+  EXPECT_EQ(driver.map_curves(), std::vector<std::size_t>{2});
+  // An origin makes the first reading predict too (the SPLAM loop's zero increment).
+  auto second = std::make_unique<Recorder>();
+  Recorder* s = second.get();
+  SlamDriver origin(std::move(second));
+  origin.SetOdometryOrigin(Pose2(1, 0, 0));
+  origin.Step(Pose2(1, 0, 0), &scan, mount);
+  ASSERT_EQ(s->increments.size(), 1u);
+  EXPECT_EQ(s->increments[0].translation().norm(), 0.0);
+}
+
+TEST(SlamDriver, StopsUpdatingAnUnhealthyMethod) {
+  auto owned = std::make_unique<Recorder>();
+  owned->fail_after_updates = 2;
+  Recorder* r = owned.get();
+  SlamDriver driver(std::move(owned));
+  const kernel::Scan scan = ScanOf(3);
+  EXPECT_TRUE(driver.Step(Pose2(), &scan, Pose2()));
+  EXPECT_FALSE(driver.Step(Pose2(), &scan, Pose2()));
+  EXPECT_FALSE(driver.Step(Pose2(), &scan, Pose2()));
+  EXPECT_EQ(r->updates.size(), 2u);
+}
+
+// A short drive along the complex route with the URG-04LX.
+sim::RouteRun Drive(std::uint64_t seed, int scans) {
+  static const sim::World world = *sim::BuiltinWorld("complex");
+  static const sim::RayCaster caster(world);
+  sim::Simulator simulator(caster, sim::SimulatorOptions(), *world.start, seed);
+  sim::RouteOptions route;
+  route.max_steps = scans - 1;
+  return sim::FollowRoute(&simulator, world.route, route);
+}
+
+TEST(ReplayFrames, IsExactlyTheMethodsOwnLoop) {
+  const sim::RouteRun run = Drive(3, 300);
+  auto made = estimation::SlamRegistry::Global().Make("topological", nullptr,
+                                                      {run.frames[0].odometry_pose, {}});
+  ASSERT_TRUE(made.ok());
+  SlamDriver driver(std::move(*made.value));
+  const ReplayResult replay = ReplayFrames(run.frames, Pose2(), &driver);
+  // The same method driven by hand: predict with each increment, update with each scan.
+  estimation::TopologicalSlam slam(run.frames[0].odometry_pose);
+  ASSERT_EQ(replay.estimate.size(), run.frames.size());
+  for (std::size_t i = 0; i < run.frames.size(); ++i) {
+    if (i > 0) slam.Predict(run.frames[i - 1].odometry_pose.Between(run.frames[i].odometry_pose));
+    slam.Update(run.frames[i].scan);
+    ASSERT_EQ(replay.estimate[i].pose.x(), slam.pose().x()) << i;
+    ASSERT_EQ(replay.estimate[i].pose.theta(), slam.pose().theta()) << i;
+  }
+  EXPECT_EQ(replay.truth.size(), run.frames.size());
+  EXPECT_TRUE(replay.nees.empty());  // no covariance
+  EXPECT_FALSE(replay.failed_at);
+}
+
+TEST(ReplayLog, ReplaysARecordedLogLikeItsFrames) {
+  const sim::RouteRun run = Drive(4, 200);
+  const sim::SimulatorOptions options;
+  const io::CarmenLog log = io::MakeCarmenLog(run.frames, options);
+  const auto make = [&] {
+    return SlamDriver(std::move(*estimation::SlamRegistry::Global()
+                                     .Make("ekf-lines", nullptr, {run.frames[0].odometry_pose, {}})
+                                     .value));
+  };
+  SlamDriver a = make(), b = make();
+  ReplayOptions half;
+  half.max_scans = 100;
+  const ReplayResult from_log = ReplayLog(log, &a, half);
+  const ReplayResult from_frames = ReplayFrames(run.frames, Pose2(), &b, half);
+  ASSERT_EQ(from_log.estimate.size(), 100u);
+  EXPECT_EQ(from_log.scans_in_log, run.frames.size());
+  for (std::size_t i = 0; i < 100; ++i) {
+    // The log stores poses as text: equal to a few ulps of the written precision.
+    EXPECT_NEAR(from_log.estimate[i].pose.x(), from_frames.estimate[i].pose.x(), 1e-6) << i;
+  }
+  EXPECT_EQ(from_log.nees.size(), 100u);  // truth (TRUEPOS) and covariance at every scan
+  const auto e = estimation::CompareToTruth(from_log.truth, from_log.estimate);
+  EXPECT_LT(e.rmse_position_m, 0.05);
+}
+
+TEST(SensorNoiseOf, FollowsTheLaserTypeUnlessGiven) {
+  io::LaserMessage urg;
+  urg.format = io::LaserMessage::Format::kRobotLaser1;
+  urg.laser_type = io::kCarmenHokuyoUrg;
+  io::LaserMessage flaser;
+  flaser.format = io::LaserMessage::Format::kFlaser;
+  EXPECT_EQ(SensorNoiseOf(urg).range_sigma_m, 0.003);
+  EXPECT_EQ(SensorNoiseOf(urg).beam_sigma_floor_m, 0.0);
+  EXPECT_EQ(SensorNoiseOf(urg).odometry_noise_scale, 1.0);
+  EXPECT_EQ(SensorNoiseOf(flaser).range_sigma_m, 0.01);
+  EXPECT_EQ(SensorNoiseOf(flaser).range_sigma_fraction, 0.0);
+  EXPECT_EQ(SensorNoiseOf(flaser).odometry_noise_scale, kRealOdometryScale);
+  SensorNoiseOverrides given;
+  given.range_sigma_m = 0.02;
+  given.odometry_noise_scale = 2.0;
+  EXPECT_EQ(SensorNoiseOf(urg, given).beam_sigma_floor_m, 0.02);
+  EXPECT_EQ(SensorNoiseOf(flaser, given).odometry_noise_scale, 2.0);
+}
+
+TEST(Scoring, PercentileAndTimeBins) {
+  EXPECT_EQ(Percentile({}, 0.5), 0.0);
+  EXPECT_EQ(Percentile({5, 1, 3}, 0.5), 3.0);
+  EXPECT_EQ(Percentile({5, 1, 3}, 1.0), 5.0);
+  EXPECT_EQ(Percentile({5, 1, 3}, 0.0), 1.0);
+  // Map sizes 0..15 with time = size: 8 bins of width 2, medians the upper value of each.
+  std::vector<double> ms;
+  std::vector<std::size_t> size;
+  for (std::size_t k = 0; k < 16; ++k) ms.push_back(static_cast<double>(k)), size.push_back(k);
+  const std::vector<TimeBin> bins = TimeByMapSize(ms, size);
+  ASSERT_EQ(bins.size(), 8u);
+  EXPECT_EQ(bins[3].map_size_from, 6u);
+  EXPECT_EQ(bins[3].map_size_to, 7u);
+  EXPECT_EQ(bins[3].steps, 2u);
+  EXPECT_EQ(bins[3].median_ms, 7.0);
+  EXPECT_TRUE(TimeByMapSize({}, {}).empty());
+}
+
+TEST(Scoring, MapDistanceToObstaclesMeasuresAnOffset) {
+  sim::World world;
+  world.obstacles.push_back(sim::Polyline{{{0, 0}, {10, 0}}, false});
+  const sim::RayCaster caster(world);
+  for (const double offset : {0.0, 0.1, 0.35}) {
+    const estimation::MapSpline s{
+        0,
+        *kernel::CubicBSpline::ClampedUniform({{1, offset}, {3, offset}, {5, offset}, {7, offset}}),
+        1};
+    EXPECT_NEAR(MeanDistanceToObstacles(caster, {s}), offset, 1e-6);
+  }
+  const estimation::MapSpline far{
+      0, *kernel::CubicBSpline::ClampedUniform({{1, 5}, {3, 5}, {5, 5}, {7, 5}}), 1};
+  EXPECT_NEAR(MeanDistanceToObstacles(caster, {far}), 2.0, 1e-12);  // capped
+  EXPECT_EQ(MeanDistanceToObstacles(caster, {}), 0.0);
+}
+
+TEST(RunExploration, NamesWhatCannotStart) {
+  const sim::World world = *sim::BuiltinWorld("complex");
+  ExploreSetup setup;
+  setup.localization = "fastslam";
+  EXPECT_EQ(RunExploration(world, setup).error,
+            "unknown localisation 'fastslam' (" + LocalizationNames() + ")");
+  EXPECT_NE(LocalizationNames().find("ground-truth, odometry, ekf-lines"), std::string::npos);
+  setup.localization = "ground-truth";
+  setup.explorer = "dfs";
+  EXPECT_EQ(RunExploration(world, setup).error, "unknown explorer 'dfs' (srt, reg)");
+  setup.localization = "topological";
+  EXPECT_NE(DefaultSlamOptions(setup), nullptr);
+  setup.localization = "odometry";
+  EXPECT_EQ(DefaultSlamOptions(setup), nullptr);
+}
+
+TEST(SlamContext, TheRegionReachesTheTopologicalSlam) {
+  // The local region is set once (the explorer's r and alpha) and handed to the method: with a
+  // region far smaller than the laser's range the method finds fewer map curves to localise on.
+  const sim::RouteRun run = Drive(2, 400);
+  const auto localized = [&](double radius_m) {
+    auto made = estimation::SlamRegistry::Global().Make(
+        "topological", nullptr, {run.frames[0].odometry_pose, {radius_m, 0.8}});
+    SlamDriver driver(std::move(*made.value));
+    ReplayFrames(run.frames, Pose2(), &driver);
+    for (const auto& [name, count] : driver.method().Statistics().associations)
+      if (name == "associated_curves") return count;
+    return -1L;
+  };
+  EXPECT_LT(localized(0.5), localized(3.0) / 2);
+}
+
+TEST(RunExploration, TheLsrRadiusIsTheExplorersToo) {
+  const sim::World world = *sim::BuiltinWorld("corridor");
+  ExploreSetup setup;
+  setup.region.radius_m = 2.0;
+  setup.options.max_nodes = 6;
+  const ExploreOutcome outcome = RunExploration(world, setup);
+  ASSERT_TRUE(outcome.error.empty()) << outcome.error;
+  ASSERT_NE(outcome.slam_method(), nullptr);
+  ASSERT_GT(boost::num_vertices(outcome.run.graph), 1u);
+  for (graph::Vertex v = 0; v < boost::num_vertices(outcome.run.graph); ++v)
+    EXPECT_EQ(outcome.run.graph[v].lsr.radius(), 2.0);
+}
+
+}  // namespace
+}  // namespace splam::loop
