@@ -14,14 +14,17 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "estimation/ekf_bspline_slam.h"
 #include "estimation/ekf_core.h"
 #include "estimation/ekf_line_slam.h"
+#include "estimation/slam_method.h"
 #include "estimation/topological_slam.h"
 #include "kernel/angle.h"
 #include "kernel/random.h"
+#include "loop/log_replay.h"
 #include "sim/builtin_worlds.h"
 #include "sim/simulator.h"
 
@@ -109,26 +112,27 @@ ComplexRoute DriveComplexRoute() {
   return {*world.start, splam::sim::FollowRoute(&simulator, world.route, {}).frames};
 }
 
+// Each iteration is one step of the SLAM driver (predict + update), as `splam slam` runs it.
 void BM_EkfBSplineComplexScan(benchmark::State& state) {
   const auto [start, frames] = DriveComplexRoute();
-  splam::estimation::EkfBSplineSlamOptions options;
-  options.association = state.range(0) == 0 ? "pedraza" : "curvature";
+  splam::estimation::SlamOptionsOf<splam::estimation::EkfBSplineSlamOptions> options;
+  options.options().association = state.range(0) == 0 ? "pedraza" : "curvature";
   std::size_t i = 0, control_points = 0;
-  std::unique_ptr<splam::estimation::EkfBSplineSlam> slam;
+  std::optional<splam::loop::SlamDriver> driver;
   for (auto _ : state) {
     if (i % frames.size() == 0) {  // start the route again
       state.PauseTiming();
-      slam = std::make_unique<splam::estimation::EkfBSplineSlam>(
-          start, Eigen::Matrix3d::Identity() * 1e-6, options);
+      driver.emplace(std::move(*splam::estimation::SlamRegistry::Global()
+                                    .Make("ekf-bspline", &options, {start, {}})
+                                    .value));
       i = 0;
       state.ResumeTiming();
     }
-    if (i > 0) slam->Predict(frames[i - 1].odometry_pose.Between(frames[i].odometry_pose));
-    benchmark::DoNotOptimize(slam->Update(frames[i].scan).beams_used);
-    control_points = std::max(control_points, slam->num_control_points());
+    driver->Step(frames[i].odometry_pose, &frames[i].scan, Pose2());
+    control_points = std::max(control_points, driver->method().MapSize());
     ++i;
   }
-  state.SetLabel(options.association);
+  state.SetLabel(options.options().association);
   state.counters["max_control_points"] = static_cast<double>(control_points);
 }
 BENCHMARK(BM_EkfBSplineComplexScan)
@@ -143,14 +147,16 @@ void BM_TopologicalComplexScan(benchmark::State& state) {
   // First pass: the map of the world.
   std::vector<splam::kernel::SplineCurve> room;
   {
-    splam::estimation::TopologicalSlam slam(start);
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-      if (i > 0) slam.Predict(frames[i - 1].odometry_pose.Between(frames[i].odometry_pose));
-      slam.Update(frames[i].scan);
-    }
-    room = slam.curves();
+    splam::loop::SlamDriver driver(std::move(*splam::estimation::SlamRegistry::Global()
+                                                  .Make("topological", nullptr, {start, {}})
+                                                  .value));
+    splam::loop::ReplayFrames(frames, Pose2(), &driver);
+    for (const splam::estimation::MapSpline& s : driver.method().Map().splines)
+      room.push_back(splam::kernel::DescribeCurve(s.spline));
   }
   std::vector<splam::kernel::SplineCurve> prior = room;
+  // The timed loop drives the class itself: a prior map is added with AddMapCurve, which the
+  // SlamMethod interface does not offer.
   for (int copy = 1; prior.size() < n; ++copy) {  // rooms 40 m apart along x and y
     const Eigen::Vector2d offset(40.0 * (copy % 8), 40.0 * (copy / 8));
     for (std::size_t k = 0; k < room.size() && prior.size() < n; ++k) {

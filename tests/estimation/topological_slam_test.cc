@@ -11,6 +11,7 @@
 #include "estimation/metrics.h"
 #include "kernel/angle.h"
 #include "kernel/random.h"
+#include "loop/log_replay.h"
 #include "sim/builtin_worlds.h"
 #include "sim/ray_caster.h"
 #include "sim/simulator.h"
@@ -72,6 +73,8 @@ struct DriveResult {
   int localized = 0, extended = 0, added = 0;
 };
 
+// Drives `world`'s route (at most max_scans scans) with a URG-04LX and replays it through the
+// method by its registry name, with the SLAM driver every command uses.
 DriveResult Drive(const sim::World& world, int max_scans, std::uint64_t seed,
                   const TopologicalSlamOptions& options = {}) {
   const sim::RayCaster caster(world);
@@ -81,20 +84,16 @@ DriveResult Drive(const sim::World& world, int max_scans, std::uint64_t seed,
   sim::RouteOptions route;
   route.max_steps = max_scans - 1;
   const sim::RouteRun r = sim::FollowRoute(&simulator, world.route, route);
-  TopologicalSlam slam(*world.start, options);
-  DriveResult run;
-  for (std::size_t i = 0; i < r.frames.size(); ++i) {
-    const sim::SensorFrame& f = r.frames[i];
-    if (i > 0) slam.Predict(r.frames[i - 1].odometry_pose.Between(f.odometry_pose));
-    const TopologicalUpdateReport report = slam.Update(f.scan);
-    run.localized += report.localized;
-    run.extended += report.extended_curves;
-    run.added += report.added_curves;
-    run.truth.push_back({f.time_s, f.true_pose});
-    run.estimate.push_back({f.time_s, slam.pose()});
-    run.odometry.push_back({f.time_s, f.odometry_pose});
+  const SlamOptionsOf<TopologicalSlamOptions> wrapped(options);
+  loop::SlamDriver driver(std::move(
+      *SlamRegistry::Global().Make("topological", &wrapped, {*world.start, options.region}).value));
+  const loop::ReplayResult replay = loop::ReplayFrames(r.frames, kernel::Pose2(), &driver);
+  DriveResult run{replay.truth, replay.estimate, replay.odometry, driver.method().Map().splines};
+  for (const auto& [name, count] : driver.method().Statistics().associations) {
+    if (name == "localized_scans") run.localized = static_cast<int>(count);
+    if (name == "extensions") run.extended = static_cast<int>(count);
+    if (name == "new_curves") run.added = static_cast<int>(count);
   }
-  run.map = slam.MapSplines();
   return run;
 }
 
