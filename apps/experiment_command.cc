@@ -15,6 +15,7 @@
 #include "apps/commands.h"
 #include "apps/exploration_experiment.h"
 #include "apps/run_picture.h"
+#include "apps/slam_report.h"
 #include "apps/splam_experiment.h"
 #include "estimation/chi_square.h"
 #include "estimation/ekf_line_slam.h"
@@ -22,6 +23,7 @@
 #include "io/plot.h"
 #include "io/render.h"
 #include "kernel/angle.h"
+#include "loop/corridor_experiment.h"
 #include "sim/builtin_worlds.h"
 #include "sim/simulator.h"
 
@@ -44,167 +46,48 @@ struct ExperimentArgs {
   double line_floor_scale = 1.0;  // scales the line floors of 1 mm and 0.5 mrad
 };
 
-// Nine distances between features the straight run maps, like the nine distances of 001 Table 1:
-// the corridor's width and the two rooms' depths between parallel mapped walls, and six
-// distances between mapped corners (driving along +x, the robot sees the recess walls that face
-// it, so the far-side recess corners and the room corners are mapped).
-struct Distance {
-  std::string name;
-  bool between_lines;
-  Eigen::Vector2d a, b;                 // corners, or a point on each wall (lines)
-  double a_theta = 0.0, b_theta = 0.0;  // wall normals (lines)
-};
-const std::vector<Distance>& CorridorDistances() {
-  const double up = kernel::kPi / 2;
-  static const std::vector<Distance> d = {
-      {"d1: corridor width (walls)", true, {5, -1.2}, {5, 1.2}, -up, up},
-      {"d2: south room depth (walls)", true, {8, -1.2}, {8, -3.2}, -up, -up},
-      {"d3: north room depth (walls)", true, {9, 1.2}, {9, 3.2}, up, up},
-      {"d4: corners (18,-1.2)-(18,1.2)", false, {18, -1.2}, {18, 1.2}},
-      {"d5: corners (18,-1.6)-(18,1.5)", false, {18, -1.6}, {18, 1.5}},
-      {"d6: corners (12,-1.5)-(14,1.5)", false, {12, -1.5}, {14, 1.5}},
-      {"d7: corners (9,-3.2)-(12,-1.5)", false, {9, -3.2}, {12, -1.5}},
-      {"d8: corners (11,3.2)-(14,1.5)", false, {11, 3.2}, {14, 1.5}},
-      {"d9: corners (14,1.5)-(18,1.5)", false, {14, 1.5}, {18, 1.5}},
-  };
-  return d;
-}
-
-// The mapped line of a true wall through `point` with normal angle `theta`: the most observed
-// mapped line within 5 deg and 0.2 m of it.
-const estimation::MapLine* MappedWall(const Eigen::Vector2d& point, double theta,
-                                      const std::vector<estimation::MapLine>& lines) {
-  const estimation::MapLine* best = nullptr;
-  for (const auto& l : lines) {
-    const Eigen::Vector2d n(std::cos(l.line.theta), std::sin(l.line.theta));
-    if (std::abs(std::sin(l.line.theta - theta)) > std::sin(kernel::DegToRad(5))) continue;
-    if (std::abs(n.dot(point) - l.line.rho) > 0.2) continue;
-    if (best == nullptr || l.observations > best->observations) best = &l;
-  }
-  return best;
-}
-
-// The mapped position of a true corner: the nearest corner landmark within 0.25 m, else the
-// nearest crossing of two mapped lines at least 30 deg apart within 0.25 m.
-std::optional<Eigen::Vector2d> MappedCorner(const Eigen::Vector2d& truth,
-                                            const std::vector<estimation::MapCorner>& corners,
-                                            const std::vector<estimation::MapLine>& lines) {
-  std::optional<Eigen::Vector2d> best;
-  double best_d = 0.25;
-  for (const auto& c : corners) {
-    if ((c.position - truth).norm() < best_d)
-      best_d = (c.position - truth).norm(), best = c.position;
-  }
-  if (best) return best;
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    for (std::size_t j = i + 1; j < lines.size(); ++j) {
-      if (std::abs(std::sin(lines[i].line.theta - lines[j].line.theta)) < 0.5) continue;
-      Eigen::Matrix2d n;
-      n << std::cos(lines[i].line.theta), std::sin(lines[i].line.theta),
-          std::cos(lines[j].line.theta), std::sin(lines[j].line.theta);
-      const Eigen::Vector2d x = n.inverse() * Eigen::Vector2d(lines[i].line.rho, lines[j].line.rho);
-      if ((x - truth).norm() < best_d) best_d = (x - truth).norm(), best = x;
-    }
-  }
-  return best;
-}
-
 int RunCorridorLines(const ExperimentArgs& args) {
-  const sim::World world = *sim::BuiltinWorld("corridor");
-  const sim::RayCaster caster(world);
-  sim::SimulatorOptions sim_options;
-  sim_options.laser = sim::LaserOptions::Lms200(0.5);
-  // The filter knows the simulator's odometry and laser noise models; the walls of the simulated
-  // corridor are exactly straight, so the floors that stand for model error are small.
-  estimation::EkfLineSlamOptions options;
-  options.extraction.range_sigma_m = sim_options.laser.noise_floor_m;
-  options.extraction.range_sigma_fraction = 0.0;
-  options.line_rho_floor_m = 0.001 * args.line_floor_scale;
-  options.line_theta_floor_rad = 0.0005 * args.line_floor_scale;
-  options.corner_sigma_m = args.corner_floor_m;
-  options.use_corners = args.corners;
-  options.odometry.translation_floor_m = args.odometry_floor;
-  options.odometry.rotation_floor_rad = args.odometry_floor;
+  loop::CorridorOptions options;
+  options.runs = args.runs;
+  options.steps = args.steps;
+  options.speed_mps = args.speed_mps;
+  options.seed = args.seed;
+  options.corners = args.corners;
+  options.corner_floor_m = args.corner_floor_m;
+  options.odometry_floor = args.odometry_floor;
+  options.line_floor_scale = args.line_floor_scale;
   std::filesystem::create_directories(args.out);
-
-  const auto& distances = CorridorDistances();
-  std::vector<std::vector<double>> measured(distances.size());
-  std::vector<double> nees_sum(args.steps + 1, 0.0);
-  std::vector<double> final_error, odometry_error;
-  for (int run = 0; run < args.runs; ++run) {
-    sim::Simulator simulator(caster, sim_options, *world.start,
-                             args.seed + static_cast<std::uint64_t>(run));
-    estimation::EkfLineSlam slam(*world.start, Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal(),
-                                 options);
-    sim::SensorFrame frame = simulator.Sense();
-    slam.Update(frame.scan);
-    kernel::Trajectory truth, estimate, odometry;
-    kernel::Pose2 last_odometry = frame.odometry_pose;
-    for (int step = 0; step <= args.steps; ++step) {
-      if (step > 0) {
-        if (!simulator.Step(args.speed_mps, 0.0)) {
-          fmt::print(stderr, "splam experiment: the robot hit a wall at step {}\n", step);
-          return kExitIncomplete;
-        }
-        frame = simulator.Sense();
-        slam.Predict(last_odometry.Between(frame.odometry_pose));
-        last_odometry = frame.odometry_pose;
-        slam.Update(frame.scan);
-      }
-      if (!slam.healthy()) {
-        fmt::print(stderr, "splam experiment: run {} failed: {}\n", run, slam.health());
-        return kExitIncomplete;
-      }
-      nees_sum[step] += estimation::PoseNees(frame.true_pose, slam.pose(), slam.pose_covariance());
-      truth.push_back({frame.time_s, frame.true_pose});
-      estimate.push_back({frame.time_s, slam.pose()});
-      odometry.push_back({frame.time_s, frame.odometry_pose});
-    }
-    final_error.push_back((slam.pose().translation() - frame.true_pose.translation()).norm());
-    odometry_error.push_back(
-        (frame.odometry_pose.translation() - frame.true_pose.translation()).norm());
-    const auto lines = slam.MapLines();
-    const auto corners = slam.MapCorners();
-    for (std::size_t k = 0; k < distances.size(); ++k) {
-      const Distance& d = distances[k];
-      if (d.between_lines) {
-        const estimation::MapLine* a = MappedWall(d.a, d.a_theta, lines);
-        const estimation::MapLine* b = MappedWall(d.b, d.b_theta, lines);
-        if (a == nullptr || b == nullptr) continue;
-        // Distance of the middle of b's extent from line a.
-        const Eigen::Vector2d n(std::cos(a->line.theta), std::sin(a->line.theta));
-        measured[k].push_back(std::abs(n.dot(0.5 * (b->start + b->end)) - a->line.rho));
-      } else {
-        const auto a = MappedCorner(d.a, corners, lines);
-        const auto b = MappedCorner(d.b, corners, lines);
-        if (a && b) measured[k].push_back((*a - *b).norm());
-      }
-    }
-    if (run == 0) {  // pictures of the first run
-      RunPicture picture;
-      picture.title =
-          fmt::format("corridor, LMS-200, {} steps from 2.7 deg: {} lines, {} corners (seed {})",
-                      args.steps, lines.size(), corners.size(), args.seed);
-      picture.world = &world;
-      picture.world_color = io::Rgb{0.75, 0.75, 0.75};
-      picture.truth = truth;
-      picture.odometry = odometry;
-      picture.estimates = {{"estimate", estimate}};
-      for (const auto& l : lines) picture.map_segments.push_back({l.start, l.end});
-      for (const auto& c : corners) picture.map_corners.push_back(c.position);
-      for (const std::string& e :
-           {SaveRunPicture(picture, {args.out + "/map.svg", args.out + "/map.png"}),
-            SaveErrorPlot("corridor run, seed " + std::to_string(args.seed), truth,
-                          {{"odometry", io::palette::kOdometry, odometry},
-                           {"ekf-lines", io::palette::kEstimate, estimate}},
-                          {args.out + "/errors.svg", args.out + "/errors.png"})}) {
-        if (!e.empty()) {
-          fmt::print(stderr, "splam experiment: {}\n", e);
-          return kExitBadInput;
-        }
-      }
+  const loop::CorridorResult result = loop::RunCorridorExperiment(options);
+  if (!result.error.empty()) {
+    fmt::print(stderr, "splam experiment: {}\n", result.error);
+    return kExitIncomplete;
+  }
+  // Pictures of the first run.
+  const sim::World world = *sim::BuiltinWorld("corridor");
+  RunPicture picture;
+  picture.title =
+      fmt::format("corridor, LMS-200, {} steps from 2.7 deg: {} lines, {} corners (seed {})",
+                  args.steps, result.lines.size(), result.corners.size(), args.seed);
+  picture.world = &world;
+  picture.world_color = io::Rgb{0.75, 0.75, 0.75};
+  picture.truth = result.truth;
+  picture.odometry = result.odometry;
+  picture.estimates = {{"estimate", result.estimate}};
+  DrawMap({.lines = result.lines, .corners = result.corners, .splines = {}, .spline_features = {}},
+          &picture);
+  for (const std::string& e :
+       {SaveRunPicture(picture, {args.out + "/map.svg", args.out + "/map.png"}),
+        SaveErrorPlot("corridor run, seed " + std::to_string(args.seed), result.truth,
+                      {{"odometry", io::palette::kOdometry, result.odometry},
+                       {"ekf-lines", io::palette::kEstimate, result.estimate}},
+                      {args.out + "/errors.svg", args.out + "/errors.png"})}) {
+    if (!e.empty()) {
+      fmt::print(stderr, "splam experiment: {}\n", e);
+      return kExitBadInput;
     }
   }
+  const auto& distances = loop::CorridorDistances();
+  const std::vector<std::vector<double>>& measured = result.measured;
 
   // Table 1.
   nlohmann::ordered_json report;
@@ -216,11 +99,7 @@ int RunCorridorLines(const ExperimentArgs& args) {
       "|\n|---|---|---|---|---|\n";
   fmt::print("{}", table);
   for (std::size_t k = 0; k < distances.size(); ++k) {
-    const double truth = distances[k].between_lines
-                             ? std::abs(Eigen::Vector2d(std::cos(distances[k].a_theta),
-                                                        std::sin(distances[k].a_theta))
-                                            .dot(distances[k].b - distances[k].a))
-                             : (distances[k].a - distances[k].b).norm();
+    const double truth = distances[k].TrueValue();
     const std::vector<double>& v = measured[k];
     std::string row;
     if (v.empty()) {
@@ -247,17 +126,17 @@ int RunCorridorLines(const ExperimentArgs& args) {
   const double n = args.runs;
   const double lo = estimation::ChiSquareQuantile(0.025, 3 * n) / n,
                hi = estimation::ChiSquareQuantile(0.975, 3 * n) / n;
-  std::vector<double> steps, average;
+  const std::vector<double>& average = result.average_nees;
+  std::vector<double> steps;
   int inside = 0;
   for (int s = 0; s <= args.steps; ++s) {
     steps.push_back(s);
-    average.push_back(nees_sum[s] / n);
-    inside += average.back() >= lo && average.back() <= hi;
+    inside += average[s] >= lo && average[s] <= hi;
   }
   const double fraction = static_cast<double>(inside) / (args.steps + 1);
   double mean_final = 0, mean_odometry = 0;
-  for (std::size_t i = 0; i < final_error.size(); ++i)
-    mean_final += final_error[i], mean_odometry += odometry_error[i];
+  for (std::size_t i = 0; i < result.final_error_m.size(); ++i)
+    mean_final += result.final_error_m[i], mean_odometry += result.final_odometry_error_m[i];
   mean_final /= n;
   mean_odometry /= n;
   report["nees"] = {

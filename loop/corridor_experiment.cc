@@ -1,0 +1,158 @@
+#include "loop/corridor_experiment.h"
+
+#include <Eigen/LU>
+#include <cmath>
+
+#include "estimation/metrics.h"
+#include "estimation/slam_method.h"
+#include "kernel/angle.h"
+#include "loop/log_replay.h"
+#include "sim/builtin_worlds.h"
+#include "sim/simulator.h"
+
+namespace splam::loop {
+
+double CorridorDistance::TrueValue() const {
+  if (!between_lines) return (a - b).norm();
+  return std::abs(Eigen::Vector2d(std::cos(a_theta), std::sin(a_theta)).dot(b - a));
+}
+
+const std::vector<CorridorDistance>& CorridorDistances() {
+  const double up = kernel::kPi / 2;
+  static const std::vector<CorridorDistance> d = {
+      {"d1: corridor width (walls)", true, {5, -1.2}, {5, 1.2}, -up, up},
+      {"d2: south room depth (walls)", true, {8, -1.2}, {8, -3.2}, -up, -up},
+      {"d3: north room depth (walls)", true, {9, 1.2}, {9, 3.2}, up, up},
+      {"d4: corners (18,-1.2)-(18,1.2)", false, {18, -1.2}, {18, 1.2}},
+      {"d5: corners (18,-1.6)-(18,1.5)", false, {18, -1.6}, {18, 1.5}},
+      {"d6: corners (12,-1.5)-(14,1.5)", false, {12, -1.5}, {14, 1.5}},
+      {"d7: corners (9,-3.2)-(12,-1.5)", false, {9, -3.2}, {12, -1.5}},
+      {"d8: corners (11,3.2)-(14,1.5)", false, {11, 3.2}, {14, 1.5}},
+      {"d9: corners (14,1.5)-(18,1.5)", false, {14, 1.5}, {18, 1.5}},
+  };
+  return d;
+}
+
+const estimation::MapLine* MappedWall(const Eigen::Vector2d& point, double theta,
+                                      const std::vector<estimation::MapLine>& lines) {
+  const estimation::MapLine* best = nullptr;
+  for (const auto& l : lines) {
+    const Eigen::Vector2d n(std::cos(l.line.theta), std::sin(l.line.theta));
+    if (std::abs(std::sin(l.line.theta - theta)) > std::sin(kernel::DegToRad(5))) continue;
+    if (std::abs(n.dot(point) - l.line.rho) > 0.2) continue;
+    if (best == nullptr || l.observations > best->observations) best = &l;
+  }
+  return best;
+}
+
+std::optional<Eigen::Vector2d> MappedCorner(const Eigen::Vector2d& truth,
+                                            const std::vector<estimation::MapCorner>& corners,
+                                            const std::vector<estimation::MapLine>& lines) {
+  std::optional<Eigen::Vector2d> best;
+  double best_d = 0.25;
+  for (const auto& c : corners) {
+    if ((c.position - truth).norm() < best_d)
+      best_d = (c.position - truth).norm(), best = c.position;
+  }
+  if (best) return best;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    for (std::size_t j = i + 1; j < lines.size(); ++j) {
+      if (std::abs(std::sin(lines[i].line.theta - lines[j].line.theta)) < 0.5) continue;
+      Eigen::Matrix2d n;
+      n << std::cos(lines[i].line.theta), std::sin(lines[i].line.theta),
+          std::cos(lines[j].line.theta), std::sin(lines[j].line.theta);
+      const Eigen::Vector2d x = n.inverse() * Eigen::Vector2d(lines[i].line.rho, lines[j].line.rho);
+      if ((x - truth).norm() < best_d) best_d = (x - truth).norm(), best = x;
+    }
+  }
+  return best;
+}
+
+std::optional<double> MeasuredDistance(const CorridorDistance& d,
+                                       const std::vector<estimation::MapLine>& lines,
+                                       const std::vector<estimation::MapCorner>& corners) {
+  if (d.between_lines) {
+    const estimation::MapLine* a = MappedWall(d.a, d.a_theta, lines);
+    const estimation::MapLine* b = MappedWall(d.b, d.b_theta, lines);
+    if (a == nullptr || b == nullptr) return std::nullopt;
+    // Distance of the middle of b's extent from line a.
+    const Eigen::Vector2d n(std::cos(a->line.theta), std::sin(a->line.theta));
+    return std::abs(n.dot(0.5 * (b->start + b->end)) - a->line.rho);
+  }
+  const auto a = MappedCorner(d.a, corners, lines);
+  const auto b = MappedCorner(d.b, corners, lines);
+  if (!a || !b) return std::nullopt;
+  return (*a - *b).norm();
+}
+
+CorridorResult RunCorridorExperiment(const CorridorOptions& args) {
+  const sim::World world = *sim::BuiltinWorld("corridor");
+  const sim::RayCaster caster(world);
+  sim::SimulatorOptions sim_options;
+  sim_options.laser = sim::LaserOptions::Lms200(0.5);
+  // The filter knows the simulator's odometry and laser noise models; the walls of the simulated
+  // corridor are exactly straight, so the floors that stand for model error are small.
+  estimation::SlamOptionsOf<estimation::EkfLineSlamOptions> wrapped;
+  estimation::EkfLineSlamOptions& options = wrapped.options();
+  options.extraction.range_sigma_m = sim_options.laser.noise_floor_m;
+  options.extraction.range_sigma_fraction = 0.0;
+  options.line_rho_floor_m = 0.001 * args.line_floor_scale;
+  options.line_theta_floor_rad = 0.0005 * args.line_floor_scale;
+  options.corner_sigma_m = args.corner_floor_m;
+  options.use_corners = args.corners;
+  options.odometry.translation_floor_m = args.odometry_floor;
+  options.odometry.rotation_floor_rad = args.odometry_floor;
+
+  const auto& distances = CorridorDistances();
+  CorridorResult result;
+  result.measured.resize(distances.size());
+  result.average_nees.assign(static_cast<std::size_t>(args.steps) + 1, 0.0);
+  for (int run = 0; run < args.runs; ++run) {
+    // The straight run, then the filter over its frames.
+    sim::Simulator simulator(caster, sim_options, *world.start,
+                             args.seed + static_cast<std::uint64_t>(run));
+    std::vector<sim::SensorFrame> frames = {simulator.Sense()};
+    for (int step = 1; step <= args.steps; ++step) {
+      if (!simulator.Step(args.speed_mps, 0.0)) {
+        result.error = "the robot hit a wall at step " + std::to_string(step);
+        return result;
+      }
+      frames.push_back(simulator.Sense());
+    }
+    auto made = estimation::SlamRegistry::Global().Make("ekf-lines", &wrapped, {*world.start, {}});
+    if (!made.ok()) {
+      result.error = made.error;
+      return result;
+    }
+    SlamDriver driver(std::move(*made.value));
+    const ReplayResult replay = ReplayFrames(frames, sim_options.laser.robot_T_laser, &driver);
+    if (replay.failed_at) {
+      result.error =
+          "run " + std::to_string(run) + " failed: " + driver.method().health().message();
+      return result;
+    }
+    for (std::size_t step = 0; step < replay.nees.size(); ++step)
+      result.average_nees[step] += replay.nees[step];  // the sum, averaged below
+    const kernel::Pose2& truth = frames.back().true_pose;
+    result.final_error_m.push_back(
+        (replay.estimate.back().pose.translation() - truth.translation()).norm());
+    result.final_odometry_error_m.push_back(
+        (frames.back().odometry_pose.translation() - truth.translation()).norm());
+    const estimation::SlamMap map = driver.method().Map();
+    for (std::size_t k = 0; k < distances.size(); ++k) {
+      if (const auto d = MeasuredDistance(distances[k], map.lines, map.corners))
+        result.measured[k].push_back(*d);
+    }
+    if (run == 0) {
+      result.truth = replay.truth;
+      result.estimate = replay.estimate;
+      result.odometry = replay.odometry;
+      result.lines = map.lines;
+      result.corners = map.corners;
+    }
+  }
+  for (double& nees : result.average_nees) nees /= args.runs;
+  return result;
+}
+
+}  // namespace splam::loop
