@@ -6,6 +6,7 @@
 #include "estimation/topological_slam.h"
 #include "io/simulation_log.h"
 #include "kernel/angle.h"
+#include "loop/association_scoring.h"
 #include "loop/corridor_experiment.h"
 #include "loop/exploration_run.h"
 #include "loop/log_replay.h"
@@ -319,6 +320,37 @@ TEST(CorridorExperiment, ShortRunsMapTheCorridorConsistently) {
   EXPECT_FALSE(r.measured[0].empty());  // the corridor's width is always mapped
   for (double w : r.measured[0]) EXPECT_NEAR(w, 2.4, 0.05);
   EXPECT_LT(r.final_error_m[0], r.final_odometry_error_m[0] + 0.05);
+}
+
+}  // namespace
+}  // namespace splam::loop
+
+namespace splam::loop {
+namespace {
+
+TEST(AssociationScoring, VotesAndMajority) {
+  const std::vector<int> obstacles = {3, 3, -1, 5, 5, 5, 3};
+  EXPECT_EQ(Votes({0, 1, 2, 6}, obstacles), (std::map<int, int>{{-1, 1}, {3, 3}}));
+  EXPECT_EQ(MajorityObstacle({0, 3, 4, 5}, obstacles), 5);
+  EXPECT_EQ(MajorityObstacle({0, 3}, obstacles), 3);  // a tie: the lowest index
+  EXPECT_EQ(MajorityObstacle({}, obstacles), -1);
+}
+
+TEST(AssociationScoring, TheCurvatureAssociationIsRarelyWrongOnTheComplexRoute) {
+  const sim::World world = *sim::BuiltinWorld("complex");
+  const sim::RayCaster caster(world);
+  sim::Simulator simulator(caster, sim::SimulatorOptions(), *world.start, 2);
+  sim::RouteOptions route;
+  route.max_steps = 400;
+  const sim::RouteRun run = sim::FollowRoute(&simulator, world.route, route);
+  const AssociationRun r =
+      RunBSplineFilter(run.frames, caster, estimation::EkfBSplineSlamOptions());
+  ASSERT_TRUE(r.healthy);
+  EXPECT_EQ(r.estimate.size(), run.frames.size());
+  EXPECT_GT(r.associations, 300);
+  EXPECT_LT(r.wrong_associations, r.associations / 20);
+  EXPECT_LT(r.map_error_m, 0.05);
+  EXPECT_GT(r.mean_nees, 0.0);
 }
 
 }  // namespace
