@@ -11,12 +11,12 @@
 #include <set>
 
 #include "apps/commands.h"
-#include "apps/run_picture.h"
 #include "apps/slam_report.h"
 #include "estimation/ekf_bspline_slam.h"
 #include "estimation/metrics.h"
 #include "io/plot.h"
 #include "io/render.h"
+#include "io/run_picture.h"
 #include "kernel/angle.h"
 #include "loop/association_scoring.h"
 #include "sim/builtin_worlds.h"

@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
-#include "apps/run_picture.h"
 #include "estimation/metrics.h"
 #include "io/relations.h"
+#include "io/run_picture.h"
 #include "io/trajectory.h"
 #include "kernel/angle.h"
 
@@ -92,8 +92,8 @@ int RunEval(EvalArgs args) {
     if (!args.out.empty()) {
       std::filesystem::create_directories(args.out);
       if (std::string e =
-              SaveErrorPlot("error against ground truth", *truth.value, plotted,
-                            {args.out + "/eval_errors.svg", args.out + "/eval_errors.png"});
+              io::SaveErrorPlot("error against ground truth", *truth.value, plotted,
+                                {args.out + "/eval_errors.svg", args.out + "/eval_errors.png"});
           !e.empty()) {
         fmt::print(stderr, "splam eval: {}\n", e);
         return kExitBadInput;

@@ -6,13 +6,13 @@
 #include <cmath>
 #include <fstream>
 
-#include "apps/run_picture.h"
 #include "apps/slam_report.h"
 #include "estimation/metrics.h"
 #include "exploration/coverage.h"
 #include "exploration/perception.h"
 #include "io/plot.h"
 #include "io/render.h"
+#include "io/run_picture.h"
 #include "io/trajectory.h"
 #include "sim/ray_caster.h"
 #include "sim/simulator.h"

@@ -2,8 +2,8 @@
 #include <fmt/core.h>
 
 #include "apps/commands.h"
-#include "apps/run_picture.h"
 #include "io/carmen.h"
+#include "io/run_picture.h"
 #include "io/simulation_log.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
@@ -29,7 +29,7 @@ int RunRender(const RenderArgs& args) {
     fmt::print(stderr, "splam render: give at least one of --world, --log, --trajectory\n");
     return kExitBadInput;
   }
-  RunPicture picture;
+  io::RunPicture picture;
   picture.title = args.title;
   picture.pixels_per_meter = args.pixels_per_meter;
   std::optional<sim::World> world;
@@ -57,7 +57,7 @@ int RunRender(const RenderArgs& args) {
     const io::CarmenLog& log = *read.log.value;
     picture.truth = io::TrueTrajectory(log);
     picture.odometry = io::OdometryTrajectory(log);
-    picture.scan_points = ScanPointsInWorld(log, args.scan_every);
+    picture.scan_points = io::ScanPointsInWorld(log, args.scan_every);
     if (picture.title.empty()) picture.title = args.log;
     fmt::print("{}: {} scans, {} odometry poses, {} true poses\n", args.log, log.Lasers().size(),
                picture.odometry.size(), picture.truth.size());
@@ -71,7 +71,7 @@ int RunRender(const RenderArgs& args) {
     picture.estimates.emplace_back(std::filesystem::path(path).stem().string(),
                                    std::move(*read.value));
   }
-  if (std::string error = SaveRunPicture(picture, args.out); !error.empty()) {
+  if (std::string error = io::SaveRunPicture(picture, args.out); !error.empty()) {
     fmt::print(stderr, "splam render: {}\n", error);
     return kExitBadInput;
   }

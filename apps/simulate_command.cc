@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
-#include "apps/run_picture.h"
+#include "io/run_picture.h"
 #include "io/simulation_log.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
@@ -102,13 +102,13 @@ int RunSimulate(const SimulateArgs& args) {
   const io::CarmenLog log = io::MakeCarmenLog(run.frames, options, comments);
   const io::Trajectory truth = io::TrueTrajectory(log);
   const io::Trajectory odometry = io::OdometryTrajectory(log);
-  RunPicture picture;
+  io::RunPicture picture;
   picture.title = fmt::format("{} | {} | seed {} | {} scans, {:.1f} m", world.value->name,
                               options.laser.model, args.seed, run.frames.size(), run.distance_m);
   picture.world = &*world.value;
   picture.truth = truth;
   picture.odometry = odometry;
-  picture.scan_points = ScanPointsInWorld(log, args.scan_every);
+  picture.scan_points = io::ScanPointsInWorld(log, args.scan_every);
   picture.robot_radius_m = options.robot.radius_m;
 
   const kernel::Pose2 drift = run.frames.back().true_pose.Between(run.frames.back().odometry_pose);
@@ -132,7 +132,7 @@ int RunSimulate(const SimulateArgs& args) {
       io::WriteTrajectory(out + "/truth.txt", truth, "ground truth of " + world.value->name),
       io::WriteTrajectory(out + "/odometry.txt", odometry, "odometry of " + world.value->name),
       io::WriteWorldFile(out + "/world.yaml", *world.value),
-      SaveRunPicture(picture, {out + "/run.svg", out + "/run.png"}),
+      io::SaveRunPicture(picture, {out + "/run.svg", out + "/run.png"}),
   };
   std::ofstream(out + "/summary.json") << summary.dump(2) << "\n";
   for (const std::string& e : errors) {

@@ -5,20 +5,22 @@
 #include <string>
 #include <vector>
 
-#include "apps/run_picture.h"
 #include "estimation/metrics.h"
 #include "estimation/slam_method.h"
+#include "io/map_export.h"
+#include "io/run_picture.h"
 #include "loop/scoring.h"
 
-// A SLAM method's results as files: its map drawn and exported, its statistics and errors as
-// JSON. The methods themselves know nothing of files.
+// A SLAM method's statistics and errors as JSON (drawing and export: io/run_picture.h,
+// io/map_export.h). The methods themselves know nothing of files.
 namespace splam::apps {
 
-// Lines and corners, or spline curves with control points (small dots), inflection points
-// (circles) and corners (diamonds) as paper 000 Figs. 13 and 16 draw them.
-void DrawMap(const estimation::SlamMap& map, RunPicture* picture);
-// map.txt and map.dxf into dir; the errors, if any (empty strings for success).
-std::vector<std::string> WriteMap(const estimation::SlamMap& map, const std::string& dir);
+using io::DrawMap;
+using io::RunPicture;
+using io::SaveErrorPlot;
+using io::SaveRunPicture;
+using io::WriteMap;
+
 // {"map": {...}, "associations": {"method": ..., ...}, "least_squares": {...}}
 nlohmann::ordered_json StatisticsJson(const estimation::SlamStatistics& statistics);
 // A trajectory error as summary.json and report.json write it.

@@ -166,4 +166,13 @@ Result<DxfContent> ReadDxf(const std::string& path) {
   return Result<DxfContent>::Ok(std::move(collector.content));
 }
 
+std::vector<std::string> WriteMap(const estimation::SlamMap& map, const std::string& dir) {
+  if (!map.splines.empty() || (map.lines.empty() && map.corners.empty())) {
+    return {WriteSplineMapText(dir + "/map.txt", map.splines),
+            WriteSplineMapDxf(dir + "/map.dxf", map.splines)};
+  }
+  return {WriteLineMapText(dir + "/map.txt", map.lines, map.corners),
+          WriteLineMapDxf(dir + "/map.dxf", map.lines, map.corners)};
+}
+
 }  // namespace splam::io

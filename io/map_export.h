@@ -6,6 +6,7 @@
 
 #include "estimation/ekf_bspline_slam.h"
 #include "estimation/ekf_line_slam.h"
+#include "estimation/slam_method.h"
 #include "io/result.h"
 
 namespace splam::io {
@@ -43,6 +44,10 @@ struct DxfContent {
   std::vector<Eigen::Vector2d> points;
 };
 Result<DxfContent> ReadDxf(const std::string& path);
+
+// map.txt and map.dxf of a SLAM map (splines, or lines and corners) into dir; the errors, if
+// any (empty strings for success).
+std::vector<std::string> WriteMap(const estimation::SlamMap& map, const std::string& dir);
 
 }  // namespace splam::io
 

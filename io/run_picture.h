@@ -1,5 +1,5 @@
-#ifndef SPLAM_APPS_RUN_PICTURE_H_
-#define SPLAM_APPS_RUN_PICTURE_H_
+#ifndef SPLAM_IO_RUN_PICTURE_H_
+#define SPLAM_IO_RUN_PICTURE_H_
 
 #include <Eigen/Core>
 #include <string>
@@ -7,12 +7,13 @@
 #include <utility>
 #include <vector>
 
+#include "estimation/slam_method.h"
 #include "io/carmen.h"
 #include "io/render.h"
 #include "io/trajectory.h"
 #include "sim/world.h"
 
-namespace splam::apps {
+namespace splam::io {
 
 // Everything one picture of a run can show; empty parts are left out.
 struct RunPicture {
@@ -36,6 +37,11 @@ struct RunPicture {
 // when the log has ground truth (TRUEPOS), else with the scan's own odometric laser pose.
 std::vector<Eigen::Vector2d> ScanPointsInWorld(const io::CarmenLog& log, int every);
 
+// Adds a SLAM map to the picture: lines and corners, or spline curves with control points
+// (small dots), inflection points (circles) and corners (diamonds) as paper 000 Figs. 13 and 16
+// draw them.
+void DrawMap(const estimation::SlamMap& map, RunPicture* picture);
+
 // Draws the picture into each path (.svg or .png); empty on success, else the first error.
 std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::string>& paths);
 
@@ -46,6 +52,6 @@ std::string SaveErrorPlot(
     const std::vector<std::tuple<std::string, io::Rgb, kernel::Trajectory>>& runs,
     const std::vector<std::string>& paths);
 
-}  // namespace splam::apps
+}  // namespace splam::io
 
-#endif  // SPLAM_APPS_RUN_PICTURE_H_
+#endif  // SPLAM_IO_RUN_PICTURE_H_

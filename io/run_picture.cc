@@ -1,4 +1,6 @@
-#include "apps/run_picture.h"
+#include "io/run_picture.h"
+
+#include "kernel/spline_extraction.h"
 
 #include <map>
 
@@ -8,7 +10,7 @@
 #include "io/simulation_log.h"
 #include "kernel/angle.h"
 
-namespace splam::apps {
+namespace splam::io {
 
 std::vector<Eigen::Vector2d> ScanPointsInWorld(const io::CarmenLog& log, int every) {
   std::map<double, kernel::Pose2> truth;
@@ -94,4 +96,19 @@ std::string SaveErrorPlot(
   return io::SavePlot(panels, options, paths);
 }
 
-}  // namespace splam::apps
+void DrawMap(const estimation::SlamMap& map, RunPicture* picture) {
+  for (const estimation::MapLine& l : map.lines) picture->map_segments.push_back({l.start, l.end});
+  for (const estimation::MapCorner& c : map.corners) picture->map_corners.push_back(c.position);
+  for (const estimation::MapSpline& s : map.splines) {
+    const kernel::SplineCurve curve = kernel::DescribeCurve(s.spline, map.spline_features);
+    picture->map_curves.push_back(curve.samples);
+    for (const Eigen::Vector2d& p : s.spline.control_points())
+      picture->map_control_points.push_back(p);
+    for (const kernel::CurveFeature& f : curve.features) {
+      (f.type == kernel::FeatureType::kCorner ? picture->map_corners : picture->map_inflections)
+          .push_back(f.position);
+    }
+  }
+}
+
+}  // namespace splam::io
