@@ -83,14 +83,12 @@ kernel::Status Configure(const ExploreArgs& args, ExploreConfig* config) {
   setup.sonar = config->simulator.enable_sonar;
   setup.simulator = config->simulator;
   setup.slam_options = config->slam_options ? config->slam_options->Clone() : nullptr;
-  if (std::string p = setup.region.Validate(); !p.empty())
-    return kernel::Status::Error("local_region: " + p);
+  if (kernel::Status p = setup.region.Validate(); !p.ok()) return p.Prefixed("local_region");
   exploration::ExplorerOptions checked = setup.options;
   checked.lsr_radius_m = setup.region.radius_m;
   checked.alpha = setup.region.alpha;
-  if (std::string p = checked.Validate(); !p.empty()) return kernel::Status::Error(p);
-  if (std::string p = config->simulator.Validate(); !p.empty())
-    return kernel::Status::Error("simulator: " + p);
+  if (kernel::Status p = checked.Validate(); !p.ok()) return p;
+  if (kernel::Status p = config->simulator.Validate(); !p.ok()) return p.Prefixed("simulator");
   if (setup.slam_options) return setup.slam_options->Validate().Prefixed(setup.localization);
   return kernel::Status::Ok();
 }
@@ -103,8 +101,8 @@ int RunExplore(const ExploreArgs& args) {
     fmt::print(stderr, "splam explore: {}\n", world.error);
     return kExitBadInput;
   }
-  if (std::string problem = world.value->Validate(); !problem.empty()) {
-    fmt::print(stderr, "splam explore: {}: {}\n", args.world, problem);
+  if (const kernel::Status problem = world.value->Validate(); !problem.ok()) {
+    fmt::print(stderr, "splam explore: {}: {}\n", args.world, problem.message());
     return kExitBadInput;
   }
   ExploreConfig config;

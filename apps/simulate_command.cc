@@ -36,8 +36,8 @@ int RunSimulate(const SimulateArgs& args) {
     fmt::print(stderr, "splam simulate: {}\n", world.error);
     return kExitBadInput;
   }
-  if (std::string problem = world.value->Validate(); !problem.empty()) {
-    fmt::print(stderr, "splam simulate: {}: {}\n", args.world, problem);
+  if (const kernel::Status problem = world.value->Validate(); !problem.ok()) {
+    fmt::print(stderr, "splam simulate: {}: {}\n", args.world, problem.message());
     return kExitBadInput;
   }
 
@@ -70,11 +70,10 @@ int RunSimulate(const SimulateArgs& args) {
   options.odometry = options.odometry.Scaled(args.odometry_noise_scale);
   sim::RouteOptions route_options;
   route_options.max_steps = args.max_steps;
-  for (const std::string& problem : {options.Validate(), route_options.Validate()}) {
-    if (!problem.empty()) {
-      fmt::print(stderr, "splam simulate: {}\n", problem);
-      return kExitBadInput;
-    }
+  if (const kernel::Status s = kernel::FirstError(options.Validate(), route_options.Validate());
+      !s.ok()) {
+    fmt::print(stderr, "splam simulate: {}\n", s.message());
+    return kExitBadInput;
   }
 
   const sim::RayCaster caster(*world.value);

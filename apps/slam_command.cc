@@ -86,8 +86,8 @@ bool Configure(const SlamArgs& args, const io::LaserMessage& first, SlamConfig* 
     fmt::print(stderr, "splam slam: {}\n", status.message());
     return false;
   }
-  if (const std::string problem = config->region.Validate(); !problem.empty()) {
-    fmt::print(stderr, "splam slam: local_region: {}\n", problem);
+  if (const kernel::Status problem = config->region.Validate(); !problem.ok()) {
+    fmt::print(stderr, "splam slam: local_region: {}\n", problem.message());
     return false;
   }
   return true;

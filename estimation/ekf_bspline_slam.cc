@@ -41,29 +41,33 @@ struct EkfBSplineSlam::Match {
   double Length() const { return match.observed.end_m - match.observed.start_m; }
 };
 
-std::string EkfBSplineSlamOptions::Validate() const {
-  for (const std::string& problem : {odometry.Validate(), extraction.Validate(),
-                                     association_options.Validate(), map_fit.Validate()}) {
-    if (!problem.empty()) return problem;
-  }
+kernel::Status EkfBSplineSlamOptions::Validate() const {
+  if (kernel::Status s = kernel::FirstError(odometry.Validate(), extraction.Validate(),
+                                            association_options.Validate(), map_fit.Validate());
+      !s.ok())
+    return s;
   if (association != "pedraza" && association != "curvature")
-    return "association must be \"pedraza\" or \"curvature\", not \"" + association + "\"";
+    return kernel::Status::Error("association must be \"pedraza\" or \"curvature\", not \"" +
+                                 association + "\"");
   if (!(range_sigma_floor_m >= 0) || !(range_sigma_fraction >= 0) || !(model_sigma_m >= 0) ||
       !(range_sigma_floor_m + range_sigma_fraction + model_sigma_m > 0))
-    return "range noise must be non-negative and not all zero";
-  if (!(beam_spacing_m >= 0) || max_beams_per_match < 1) return "bad beam selection";
+    return kernel::Status::Error("range noise must be non-negative and not all zero");
+  if (!(beam_spacing_m >= 0) || max_beams_per_match < 1)
+    return kernel::Status::Error("bad beam selection");
   if (!(max_correspondence_distance_m > 0) ||
       !(beam_gate_probability > 0 && beam_gate_probability < 1))
-    return "bad beam gates";
-  if (!(min_incidence_sine >= 0 && min_incidence_sine < 1)) return "bad min_incidence_sine";
+    return kernel::Status::Error("bad beam gates");
+  if (!(min_incidence_sine >= 0 && min_incidence_sine < 1))
+    return kernel::Status::Error("bad min_incidence_sine");
   if (!(min_new_curve_length_m >= 0) || min_new_curve_points < 4 || min_observations_to_add < 1 ||
       candidate_max_age_scans < 1)
-    return "bad new-curve limits";
-  if (!(max_curve_range_m >= 0)) return "max_curve_range_m must be >= 0";
+    return kernel::Status::Error("bad new-curve limits");
+  if (!(max_curve_range_m >= 0)) return kernel::Status::Error("max_curve_range_m must be >= 0");
   if (!(min_extension_length_m > 0) || !(end_tolerance_m >= 0) || !(extension_sample_spacing_m > 0))
-    return "bad extension parameters";
-  if (!(control_point_sigma_floor_m >= 0)) return "control_point_sigma_floor_m must be >= 0";
-  return "";
+    return kernel::Status::Error("bad extension parameters");
+  if (!(control_point_sigma_floor_m >= 0))
+    return kernel::Status::Error("control_point_sigma_floor_m must be >= 0");
+  return kernel::Status::Ok();
 }
 
 EkfBSplineSlam::EkfBSplineSlam(const kernel::Pose2& initial_pose,
@@ -73,8 +77,8 @@ EkfBSplineSlam::EkfBSplineSlam(const kernel::Pose2& initial_pose,
       association_(MakeSplineAssociation(options.association, options.association_options)),
       beam_gate_(ChiSquareQuantile(options.beam_gate_probability, 1)),
       ekf_(initial_pose, initial_covariance) {
-  if (std::string problem = options.Validate(); !problem.empty())
-    ekf_.Fail("invalid options: " + problem);
+  if (kernel::Status problem = options.Validate(); !problem.ok())
+    ekf_.Fail("invalid options: " + problem.message());
 }
 
 void EkfBSplineSlam::Predict(const kernel::Pose2& u) {

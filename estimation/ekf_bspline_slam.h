@@ -17,6 +17,7 @@
 #include "kernel/pose2.h"
 #include "kernel/scan.h"
 #include "kernel/spline_extraction.h"
+#include "kernel/status.h"
 
 namespace splam::estimation {
 
@@ -77,7 +78,7 @@ struct EkfBSplineSlamOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  kernel::Status Validate() const;
 };
 
 // One observed curve paired with one map spline in an update.

@@ -27,21 +27,21 @@ struct EkfLineSlam::Observation {
   std::size_t points = 0;  // supporting points (lines)
 };
 
-std::string EkfLineSlamOptions::Validate() const {
-  for (const std::string& problem : {odometry.Validate(), extraction.Validate()}) {
-    if (!problem.empty()) return problem;
-  }
+kernel::Status EkfLineSlamOptions::Validate() const {
+  if (kernel::Status s = kernel::FirstError(odometry.Validate(), extraction.Validate()); !s.ok())
+    return s;
   if (!(line_rho_floor_m > 0) || !(line_theta_floor_rad > 0) || !(corner_sigma_m > 0)) {
-    return "measurement noise floors must be positive";
+    return kernel::Status::Error("measurement noise floors must be positive");
   }
   if (!(gate_probability > 0 && gate_probability < 1) ||
       !(new_landmark_probability >= gate_probability && new_landmark_probability < 1)) {
-    return "need 0 < gate_probability <= new_landmark_probability < 1";
+    return kernel::Status::Error("need 0 < gate_probability <= new_landmark_probability < 1");
   }
-  if (!(min_new_line_length_m >= 0) || min_new_line_points < 2) return "bad new-line thresholds";
+  if (!(min_new_line_length_m >= 0) || min_new_line_points < 2)
+    return kernel::Status::Error("bad new-line thresholds");
   if (!(corner_max_distance_m > 0) || !(max_extension_gap_m >= 0))
-    return "bad association distances";
-  return "";
+    return kernel::Status::Error("bad association distances");
+  return kernel::Status::Ok();
 }
 
 EkfLineSlam::EkfLineSlam(const kernel::Pose2& initial_pose,

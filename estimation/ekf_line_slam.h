@@ -11,6 +11,7 @@
 #include "kernel/options.h"
 #include "kernel/pose2.h"
 #include "kernel/scan.h"
+#include "kernel/status.h"
 
 namespace splam::estimation {
 
@@ -56,7 +57,7 @@ struct EkfLineSlamOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  kernel::Status Validate() const;
 };
 
 // One landmark of the map as it is drawn and exported.

@@ -29,14 +29,14 @@ Eigen::Matrix3d OdometryNoiseModel::Covariance(const kernel::Pose2& u) const {
   return Eigen::Vector3d(sx * sx, sy * sy, sth * sth).asDiagonal();
 }
 
-std::string OdometryNoiseModel::Validate() const {
+kernel::Status OdometryNoiseModel::Validate() const {
   if (!(forward_per_m >= 0) || !(lateral_per_m >= 0) || !(rotation_per_rad >= 0) ||
       !(rotation_per_m >= 0)) {
-    return "odometry noise coefficients must be >= 0";
+    return kernel::Status::Error("odometry noise coefficients must be >= 0");
   }
   if (!(translation_floor_m > 0) || !(rotation_floor_rad > 0))
-    return "odometry noise floors must be positive";
-  return "";
+    return kernel::Status::Error("odometry noise floors must be positive");
+  return kernel::Status::Ok();
 }
 
 Line TransformLine(const kernel::Pose2& a_T_b, const Line& line_b) {

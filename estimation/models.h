@@ -6,6 +6,7 @@
 
 #include "kernel/options.h"
 #include "kernel/pose2.h"
+#include "kernel/status.h"
 
 // The motion and observation models of EKF-SLAM with lines and corners (SPEC §2, §4), as pure
 // functions with their Jacobians; tests check every Jacobian against numeric differentiation.
@@ -37,7 +38,7 @@ struct OdometryNoiseModel {
   Eigen::Matrix3d Covariance(const kernel::Pose2& u) const;
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  kernel::Status Validate() const;
   // The model with its four proportional sigmas times `factor` (the floors unchanged).
   OdometryNoiseModel Scaled(double factor) const {
     OdometryNoiseModel m = *this;

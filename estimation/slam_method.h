@@ -7,7 +7,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -102,14 +101,7 @@ class SlamOptionsOf : public SlamOptions {
  public:
   explicit SlamOptionsOf(Options options = {}) : options_(std::move(options)) {}
   void VisitFields(kernel::FieldVisitor& v) override { options_.VisitFields(v); }
-  kernel::Status Validate() const override {
-    if constexpr (std::is_same_v<decltype(options_.Validate()), kernel::Status>) {
-      return options_.Validate();
-    } else {
-      const std::string problem = options_.Validate();
-      return problem.empty() ? kernel::Status::Ok() : kernel::Status::Error(problem);
-    }
-  }
+  kernel::Status Validate() const override { return options_.Validate(); }
   std::unique_ptr<SlamOptions> Clone() const override {
     return std::make_unique<SlamOptionsOf>(options_);
   }

@@ -51,12 +51,13 @@ std::optional<CurveMatch> EndPointMatch(const SplineCurve& observed, const Splin
 
 }  // namespace
 
-std::string SplineAssociationOptions::Validate() const {
-  if (!(d_min_m > 0.0) || mu_min < 1) return "association needs d_min_m > 0 and mu_min >= 1";
+kernel::Status SplineAssociationOptions::Validate() const {
+  if (!(d_min_m > 0.0) || mu_min < 1)
+    return kernel::Status::Error("association needs d_min_m > 0 and mu_min >= 1");
   if (!(curvature_tolerance >= 0.0) || !(max_feature_distance_m > 0.0))
-    return "bad feature pairing tolerances";
-  if (!(epsilon_m > 0.0)) return "epsilon_m must be positive";
-  return "";
+    return kernel::Status::Error("bad feature pairing tolerances");
+  if (!(epsilon_m > 0.0)) return kernel::Status::Error("epsilon_m must be positive");
+  return kernel::Status::Ok();
 }
 
 int RelatedControlPoints(const SplineCurve& observed, const SplineCurve& map, double d_min_m) {

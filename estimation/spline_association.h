@@ -10,6 +10,7 @@
 
 #include "kernel/options.h"
 #include "kernel/spline_extraction.h"
+#include "kernel/status.h"
 
 // Data association between an observed curve and a map curve (SPEC §7), both in the same frame
 // (the observation moved by the predicted robot pose).
@@ -45,7 +46,7 @@ struct SplineAssociationOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  kernel::Status Validate() const;
 };
 
 // One interface, two methods: Pedraza et al. 2009 and paper 000.

@@ -91,33 +91,35 @@ Continuation ContinuationOf(const CubicBSpline& map, const CubicBSpline& observe
 
 }  // namespace
 
-std::string TopologicalSlamOptions::Validate() const {
-  if (std::string e = extraction.Validate(); !e.empty()) return e;
-  if (std::string e = association.Validate(); !e.empty()) return e;
-  if (!(max_curve_range_m >= 0.0)) return "max_curve_range_m must be >= 0";
-  if (!(region_margin_m >= 0.0) || !region.Validate().empty())
-    return "the local region needs margin >= 0, radius > 0 and 0 < alpha < 1";
-  if (correction_rounds < 1) return "correction_rounds must be >= 1";
+kernel::Status TopologicalSlamOptions::Validate() const {
+  if (kernel::Status e = extraction.Validate(); !e.ok()) return e;
+  if (kernel::Status e = association.Validate(); !e.ok()) return e;
+  if (!(max_curve_range_m >= 0.0)) return kernel::Status::Error("max_curve_range_m must be >= 0");
+  if (!(region_margin_m >= 0.0) || !region.Validate().ok())
+    return kernel::Status::Error(
+        "the local region needs margin >= 0, radius > 0 and 0 < alpha < 1");
+  if (correction_rounds < 1) return kernel::Status::Error("correction_rounds must be >= 1");
   if (!(correction_gain > 0.0 && correction_gain <= 1.0))
-    return "correction_gain must be in (0, 1]";
+    return kernel::Status::Error("correction_gain must be in (0, 1]");
   if (!(end_trim_m >= 0.0) || !(min_chord_length_m > 0.0) || !(point_spacing_m >= 0.0))
-    return "end_trim_m and point_spacing_m must be >= 0 and min_chord_length_m positive";
+    return kernel::Status::Error(
+        "end_trim_m and point_spacing_m must be >= 0 and min_chord_length_m positive");
   if (!(feature_weight > 0.0) || !(line_weight > 0.0) || !(curve_weight > 0.0) ||
       !(line_flatness_m >= 0.0))
-    return "reliability weights must be positive";
+    return kernel::Status::Error("reliability weights must be positive");
   if (!(loss.heading_scale_rad > 0.0) || !(loss.translation_scale_m > 0.0))
-    return "loss scales must be positive";
+    return kernel::Status::Error("loss scales must be positive");
   if (!(verify_threshold_m > 0.0) || !(max_heading_correction_rad > 0.0) ||
       !(max_translation_correction_m > 0.0))
-    return "verify_threshold_m and the correction bounds must be positive";
+    return kernel::Status::Error("verify_threshold_m and the correction bounds must be positive");
   if (!(map_update_distance_m >= 0.0) || !(map_update_angle_rad >= 0.0))
-    return "map update thresholds must be >= 0";
+    return kernel::Status::Error("map update thresholds must be >= 0");
   if (!(min_new_curve_length_m >= 0.0) || min_new_curve_points < 4)
-    return "new curves need a length >= 0 and at least 4 points";
+    return kernel::Status::Error("new curves need a length >= 0 and at least 4 points");
   if (!(min_extension_length_m > 0.0) || !(end_tolerance_m >= 0.0) || max_control_points < 4)
-    return "bad extension thresholds";
-  if (!(index_cell_m > 0.0)) return "index_cell_m must be positive";
-  return "";
+    return kernel::Status::Error("bad extension thresholds");
+  if (!(index_cell_m > 0.0)) return kernel::Status::Error("index_cell_m must be positive");
+  return kernel::Status::Ok();
 }
 
 struct TopologicalSlam::Association {
@@ -144,7 +146,7 @@ bool TopologicalSlam::RegionShape::Near(const Eigen::Vector2d& p, double margin_
 
 TopologicalSlam::TopologicalSlam(const Pose2& initial_pose, const TopologicalSlamOptions& options)
     : options_(options),
-      health_(options.Validate()),
+      health_(options.Validate().message()),
       association_(options.association),
       pose_(initial_pose) {}
 

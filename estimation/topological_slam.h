@@ -16,6 +16,7 @@
 #include "kernel/pose2.h"
 #include "kernel/scan.h"
 #include "kernel/spline_extraction.h"
+#include "kernel/status.h"
 
 namespace splam::estimation {
 
@@ -100,7 +101,7 @@ struct TopologicalSlamOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  kernel::Status Validate() const;
 };
 
 struct TopologicalUpdateReport {

@@ -7,19 +7,21 @@
 
 namespace splam::exploration {
 
-std::string ExplorerOptions::Validate() const {
-  if (!(lsr_radius_m > 0.0) || !std::isfinite(lsr_radius_m)) return "lsr_radius_m must be positive";
-  if (!(alpha > 0.0 && alpha < 1.0)) return "alpha must lie in (0, 1)";
-  if (!(clearance_margin_m >= 0.0)) return "clearance_margin_m must be >= 0";
-  if (!(min_frontier_m >= 0.0)) return "min_frontier_m must be >= 0";
-  if (!(arc_sampling_rad > 0.0)) return "arc_sampling_rad must be positive";
-  if (srt_max_attempts < 1) return "srt_max_attempts must be at least 1";
-  if (!(reg_piece_factor > 0.0)) return "reg_piece_factor must be positive";
-  if (max_nodes < 1) return "max_nodes must be at least 1";
-  if (!(max_time_s > 0.0)) return "max_time_s must be positive";
-  if (max_failed_moves < 1) return "max_failed_moves must be at least 1";
-  if (const std::string problem = motion.Validate(); !problem.empty()) return "motion: " + problem;
-  return "";
+kernel::Status ExplorerOptions::Validate() const {
+  if (!(lsr_radius_m > 0.0) || !std::isfinite(lsr_radius_m))
+    return kernel::Status::Error("lsr_radius_m must be positive");
+  if (!(alpha > 0.0 && alpha < 1.0)) return kernel::Status::Error("alpha must lie in (0, 1)");
+  if (!(clearance_margin_m >= 0.0)) return kernel::Status::Error("clearance_margin_m must be >= 0");
+  if (!(min_frontier_m >= 0.0)) return kernel::Status::Error("min_frontier_m must be >= 0");
+  if (!(arc_sampling_rad > 0.0)) return kernel::Status::Error("arc_sampling_rad must be positive");
+  if (srt_max_attempts < 1) return kernel::Status::Error("srt_max_attempts must be at least 1");
+  if (!(reg_piece_factor > 0.0)) return kernel::Status::Error("reg_piece_factor must be positive");
+  if (max_nodes < 1) return kernel::Status::Error("max_nodes must be at least 1");
+  if (!(max_time_s > 0.0)) return kernel::Status::Error("max_time_s must be positive");
+  if (max_failed_moves < 1) return kernel::Status::Error("max_failed_moves must be at least 1");
+  if (const kernel::Status problem = motion.Validate(); !problem.ok())
+    return problem.Prefixed("motion");
+  return kernel::Status::Ok();
 }
 
 std::string TerminationName(Termination termination) {

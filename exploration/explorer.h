@@ -14,6 +14,7 @@
 #include "kernel/angle.h"
 #include "kernel/options.h"
 #include "kernel/scan.h"
+#include "kernel/status.h"
 
 // Sensor-based exploration (SPEC §9): SRT (Oriolo et al. 2004) and REG (paper 003 §3.1).
 namespace splam::exploration {
@@ -49,7 +50,7 @@ struct ExplorerOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  kernel::Status Validate() const;
 };
 
 enum class Termination {

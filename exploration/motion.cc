@@ -20,30 +20,32 @@ double DistanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
 
 }  // namespace
 
-std::string MotionOptions::Validate() const {
+kernel::Status MotionOptions::Validate() const {
   if (linear_speeds_mps.empty() || angular_speeds_radps.empty())
-    return "list_U needs at least one linear and one angular speed";
+    return kernel::Status::Error("list_U needs at least one linear and one angular speed");
   const bool any_forward = std::any_of(linear_speeds_mps.begin(), linear_speeds_mps.end(),
                                        [](double v) { return v > 0.0; });
   const bool any_turn = std::any_of(angular_speeds_radps.begin(), angular_speeds_radps.end(),
                                     [](double w) { return w != 0.0; });
   if (!any_forward || !any_turn)
-    return "list_U needs a positive linear and a nonzero angular speed";
+    return kernel::Status::Error("list_U needs a positive linear and a nonzero angular speed");
   for (double v : linear_speeds_mps) {
-    if (!std::isfinite(v)) return "linear speeds must be finite";
+    if (!std::isfinite(v)) return kernel::Status::Error("linear speeds must be finite");
   }
   for (double w : angular_speeds_radps) {
-    if (!std::isfinite(w)) return "angular speeds must be finite";
+    if (!std::isfinite(w)) return kernel::Status::Error("angular speeds must be finite");
   }
-  if (!(horizon_s > 0.0)) return "horizon_s must be positive";
-  if (!(turn_in_place_above_rad > 0.0)) return "turn_in_place_above_rad must be positive";
-  if (back_off_steps < 0) return "back_off_steps must be >= 0";
+  if (!(horizon_s > 0.0)) return kernel::Status::Error("horizon_s must be positive");
+  if (!(turn_in_place_above_rad > 0.0))
+    return kernel::Status::Error("turn_in_place_above_rad must be positive");
+  if (back_off_steps < 0) return kernel::Status::Error("back_off_steps must be >= 0");
   if (!(heading_weight_m_per_rad >= 0.0) || !(cross_track_weight >= 0.0))
-    return "cost weights must be >= 0";
+    return kernel::Status::Error("cost weights must be >= 0");
   if (!(goal_tolerance_m > 0.0) || !(waypoint_tolerance_m > 0.0))
-    return "tolerances must be positive";
-  if (!(timeout_base_s > 0.0) || !(timeout_per_meter_s >= 0.0)) return "timeouts must be positive";
-  return "";
+    return kernel::Status::Error("tolerances must be positive");
+  if (!(timeout_base_s > 0.0) || !(timeout_per_meter_s >= 0.0))
+    return kernel::Status::Error("timeouts must be positive");
+  return kernel::Status::Ok();
 }
 
 std::vector<ControlInput> MotionOptions::ListU() const {

@@ -9,6 +9,7 @@
 #include "exploration/robot_interface.h"
 #include "kernel/options.h"
 #include "kernel/pose2.h"
+#include "kernel/status.h"
 
 namespace splam::exploration {
 
@@ -44,7 +45,7 @@ struct MotionOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  kernel::Status Validate() const;
   std::vector<ControlInput> ListU() const;
 };
 

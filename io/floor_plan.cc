@@ -7,20 +7,23 @@
 
 namespace splam::io {
 
-std::string FloorPlanOptions::Validate() const {
+kernel::Status FloorPlanOptions::Validate() const {
   if (!(resolution_m_per_px > 0.0) || !std::isfinite(resolution_m_per_px)) {
-    return "floor-plan resolution must be a positive number of metres per pixel";
+    return kernel::Status::Error(
+        "floor-plan resolution must be a positive number of metres per pixel");
   }
-  if (dark_threshold < 1 || dark_threshold > 255) return "dark threshold must be in 1..255";
-  if (!origin_m.allFinite()) return "floor-plan origin must be finite";
-  if (!(simplify_tolerance_px >= 0.0)) return "simplify tolerance must be >= 0";
-  return "";
+  if (dark_threshold < 1 || dark_threshold > 255)
+    return kernel::Status::Error("dark threshold must be in 1..255");
+  if (!origin_m.allFinite()) return kernel::Status::Error("floor-plan origin must be finite");
+  if (!(simplify_tolerance_px >= 0.0))
+    return kernel::Status::Error("simplify tolerance must be >= 0");
+  return kernel::Status::Ok();
 }
 
 Result<sim::World> ReadFloorPlan(const std::string& path, const FloorPlanOptions& options) {
   using R = Result<sim::World>;
-  if (std::string problem = options.Validate(); !problem.empty())
-    return R::Fail(FileError(path, 0, problem));
+  if (kernel::Status problem = options.Validate(); !problem.ok())
+    return R::Fail(FileError(path, 0, problem.message()));
   if (!std::filesystem::is_regular_file(path))
     return R::Fail(FileError(path, 0, "no such image file"));
   cv::Mat grey;

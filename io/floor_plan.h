@@ -5,6 +5,7 @@
 #include <string>
 
 #include "io/result.h"
+#include "kernel/status.h"
 #include "sim/world.h"
 
 namespace splam::io {
@@ -17,7 +18,7 @@ struct FloorPlanOptions {
   // Douglas-Peucker tolerance when turning outlines into polygons, pixels.
   double simplify_tolerance_px = 0.7;
 
-  std::string Validate() const;
+  kernel::Status Validate() const;
 };
 
 // A world from a floor-plan image (any format OpenCV reads, PNG in practice): the outline of every

@@ -39,9 +39,10 @@ void Text(cairo_t* cr, double x, double y, const std::string& text, double size,
 
 }  // namespace
 
-std::string PlotOptions::Validate() const {
-  if (!(width_px >= 200.0) || !(panel_height_px >= 80.0)) return "plot too small";
-  return "";
+kernel::Status PlotOptions::Validate() const {
+  if (!(width_px >= 200.0) || !(panel_height_px >= 80.0))
+    return kernel::Status::Error("plot too small");
+  return kernel::Status::Ok();
 }
 
 std::string SavePlot(const std::vector<PlotPanel>& panels, const PlotOptions& options,

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "io/render.h"
+#include "kernel/status.h"
 
 namespace splam::io {
 
@@ -29,7 +30,7 @@ struct PlotOptions {
   double width_px = 900.0;
   double panel_height_px = 200.0;
 
-  std::string Validate() const;
+  kernel::Status Validate() const;
 };
 
 // Draws line charts (axes with ticks, a zero line, a legend per panel) to each path (.svg or

@@ -41,12 +41,12 @@ double NiceLength(double target) {
 
 }  // namespace
 
-std::string FigureOptions::Validate() const {
+kernel::Status FigureOptions::Validate() const {
   if (!(pixels_per_meter > 0.0) || !std::isfinite(pixels_per_meter))
-    return "pixels_per_meter must be positive";
-  if (!(margin_m >= 0.0)) return "margin_m must be >= 0";
-  if (max_pixels < 100) return "max_pixels must be at least 100";
-  return "";
+    return kernel::Status::Error("pixels_per_meter must be positive");
+  if (!(margin_m >= 0.0)) return kernel::Status::Error("margin_m must be >= 0");
+  if (max_pixels < 100) return kernel::Status::Error("max_pixels must be at least 100");
+  return kernel::Status::Ok();
 }
 
 struct Figure::Impl {
@@ -127,7 +127,7 @@ double Figure::Impl::Height() const {
 
 Figure::Figure(const kernel::Box2& area, const FigureOptions& options)
     : impl_(std::make_unique<Impl>()) {
-  assert(!area.IsEmpty() && options.Validate().empty());
+  assert(!area.IsEmpty() && options.Validate().ok());
   impl_->area = area;
   impl_->options = options;
   const Eigen::Vector2d size = area.Size() + Eigen::Vector2d::Constant(2.0 * options.margin_m);

@@ -8,6 +8,7 @@
 
 #include "kernel/pose2.h"
 #include "kernel/shapes.h"
+#include "kernel/status.h"
 #include "sim/world.h"
 
 namespace splam::io {
@@ -32,7 +33,7 @@ struct FigureOptions {
   std::string title;               // drawn above the map when not empty
   int max_pixels = 4000;           // the scale shrinks so that neither side exceeds this
 
-  std::string Validate() const;
+  kernel::Status Validate() const;
 };
 
 // A map-like picture in world coordinates (metres, y up) with a title, a legend and a scale

@@ -90,8 +90,8 @@ void ParseObstacle(const YAML::Node& entry, const std::string& base, sim::World*
   // Validate the new obstacles now, while the line is known.
   sim::World probe;
   probe.obstacles.assign(world->obstacles.end() - 1, world->obstacles.end());
-  if (std::string problem = probe.Validate(); !problem.empty()) {
-    Fail(entry, problem.substr(problem.find(':') + 2));
+  if (kernel::Status problem = probe.Validate(); !problem.ok()) {
+    Fail(entry, problem.message().substr(problem.message().find(':') + 2));
   }
 }
 

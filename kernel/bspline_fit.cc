@@ -6,13 +6,15 @@
 
 namespace splam::kernel {
 
-std::string BSplineFitOptions::Validate() const {
-  if (!(control_point_spacing_m > 0.0)) return "control_point_spacing_m must be positive";
-  if (min_control_points < 4) return "min_control_points must be at least 4";
+Status BSplineFitOptions::Validate() const {
+  if (!(control_point_spacing_m > 0.0))
+    return Status::Error("control_point_spacing_m must be positive");
+  if (min_control_points < 4) return Status::Error("min_control_points must be at least 4");
   if (max_control_points < min_control_points)
-    return "max_control_points must be >= min_control_points";
-  if (parameter_smoothing_half_window < 0) return "parameter_smoothing_half_window must be >= 0";
-  return "";
+    return Status::Error("max_control_points must be >= min_control_points");
+  if (parameter_smoothing_half_window < 0)
+    return Status::Error("parameter_smoothing_half_window must be >= 0");
+  return Status::Ok();
 }
 
 namespace {

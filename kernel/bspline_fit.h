@@ -8,6 +8,7 @@
 
 #include "kernel/bspline.h"
 #include "kernel/options.h"
+#include "kernel/status.h"
 
 namespace splam::kernel {
 
@@ -23,7 +24,7 @@ struct BSplineFitOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  Status Validate() const;
 };
 
 // Least-squares cubic B-spline through ordered points D_0..D_m (paper 000 eq. 4, Piegl & Tiller

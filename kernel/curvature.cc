@@ -4,10 +4,10 @@
 
 namespace splam::kernel {
 
-std::string CurvatureOptions::Validate() const {
-  if (!(sigma_m > 0.0)) return "curvature sigma_m must be positive";
-  if (!(padding_fwhm >= 0.0)) return "curvature padding_fwhm must be >= 0";
-  return "";
+Status CurvatureOptions::Validate() const {
+  if (!(sigma_m > 0.0)) return Status::Error("curvature sigma_m must be positive");
+  if (!(padding_fwhm >= 0.0)) return Status::Error("curvature padding_fwhm must be >= 0");
+  return Status::Ok();
 }
 
 CurvatureProfile ComputeCurvature(const std::vector<Eigen::Vector2d>& samples, double epsilon_m,

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "kernel/options.h"
+#include "kernel/status.h"
 
 namespace splam::kernel {
 
@@ -20,7 +21,7 @@ struct CurvatureOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  Status Validate() const;
 };
 
 // A curve sampled every epsilon of arc length, smoothed, with its signed curvature.

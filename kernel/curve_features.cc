@@ -38,20 +38,20 @@ std::vector<Lobe> FindLobes(const CurvatureProfile& profile, double dead_band) {
 
 }  // namespace
 
-std::string FeatureOptions::Validate() const {
+Status FeatureOptions::Validate() const {
   if (!(inflection_min_curvature >= 0.0) || !(inflection_min_turn_rad >= 0.0) ||
       !(inflection_dead_band >= 0.0)) {
-    return "inflection thresholds must be >= 0";
+    return Status::Error("inflection thresholds must be >= 0");
   }
-  if (!(corner_min_curvature > 0.0)) return "corner_min_curvature must be positive";
-  if (!(corner_ratio >= 1.0)) return "corner_ratio must be >= 1";
+  if (!(corner_min_curvature > 0.0)) return Status::Error("corner_min_curvature must be positive");
+  if (!(corner_ratio >= 1.0)) return Status::Error("corner_ratio must be >= 1");
   if (!(corner_max_angle_rad > 0.0 && corner_max_angle_rad <= kPi)) {
-    return "corner_max_angle_rad must be in (0, pi]";
+    return Status::Error("corner_max_angle_rad must be in (0, pi]");
   }
   if (!(corner_arm_length_m > 0.0) || !(corner_end_margin_m >= 0.0)) {
-    return "corner_arm_length_m must be positive and corner_end_margin_m >= 0";
+    return Status::Error("corner_arm_length_m must be positive and corner_end_margin_m >= 0");
   }
-  return "";
+  return Status::Ok();
 }
 
 std::vector<CurveFeature> FindFeatures(const CurvatureProfile& profile,

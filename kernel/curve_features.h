@@ -7,6 +7,7 @@
 
 #include "kernel/curvature.h"
 #include "kernel/options.h"
+#include "kernel/status.h"
 
 namespace splam::kernel {
 
@@ -55,7 +56,7 @@ struct FeatureOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  Status Validate() const;
 };
 
 // Inflection points and corners of a profile, in order of arc length.

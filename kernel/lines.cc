@@ -65,23 +65,23 @@ Eigen::Matrix2d LineCovariance(const std::vector<Eigen::Vector2d>& points, const
   return cov;
 }
 
-std::string LineExtractionOptions::Validate() const {
-  if (!(sef_c0_m >= 0.0)) return "sef_c0_m must be >= 0";
+Status LineExtractionOptions::Validate() const {
+  if (!(sef_c0_m >= 0.0)) return Status::Error("sef_c0_m must be >= 0");
   if (!(range_sigma_m >= 0.0) || !(range_sigma_fraction >= 0.0) ||
       !(range_sigma_m + range_sigma_fraction > 0.0)) {
-    return "the point noise model needs a positive sigma";
+    return Status::Error("the point noise model needs a positive sigma");
   }
-  if (!(inlier_sigmas > 0.0)) return "inlier_sigmas must be positive";
-  if (!(max_residual_sigmas > 0.0)) return "max_residual_sigmas must be positive";
-  if (ransac_iterations < 1) return "ransac_iterations must be at least 1";
-  if (min_points < 2) return "min_points must be at least 2";
+  if (!(inlier_sigmas > 0.0)) return Status::Error("inlier_sigmas must be positive");
+  if (!(max_residual_sigmas > 0.0)) return Status::Error("max_residual_sigmas must be positive");
+  if (ransac_iterations < 1) return Status::Error("ransac_iterations must be at least 1");
+  if (min_points < 2) return Status::Error("min_points must be at least 2");
   if (!(min_length_m >= 0.0) || !(max_point_gap_m > 0.0))
-    return "line lengths and gaps must be positive";
+    return Status::Error("line lengths and gaps must be positive");
   if (!(corner_min_angle_rad > 0.0 && corner_min_angle_rad <= kPi / 2)) {
-    return "corner_min_angle_rad must be in (0, pi/2]";
+    return Status::Error("corner_min_angle_rad must be in (0, pi/2]");
   }
-  if (!(corner_max_distance_m >= 0.0)) return "corner_max_distance_m must be >= 0";
-  return "";
+  if (!(corner_max_distance_m >= 0.0)) return Status::Error("corner_max_distance_m must be >= 0");
+  return Status::Ok();
 }
 
 std::vector<LineFeature> RansacLines(const std::vector<Eigen::Vector2d>& points,

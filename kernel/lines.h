@@ -11,6 +11,7 @@
 #include "kernel/random.h"
 #include "kernel/scan.h"
 #include "kernel/segmentation.h"
+#include "kernel/status.h"
 
 namespace splam::kernel {
 
@@ -86,7 +87,7 @@ struct LineExtractionOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  Status Validate() const;
 };
 
 struct LineExtraction {

@@ -141,10 +141,11 @@ void LocalRegionOptions::VisitFields(FieldVisitor& v) {
   v.Field("alpha", &alpha, "a new node lies alpha r from the current one, 0 < alpha < 1");
 }
 
-std::string LocalRegionOptions::Validate() const {
-  if (!(radius_m > 0.0) || !std::isfinite(radius_m)) return "radius_m must be positive";
-  if (!(alpha > 0.0 && alpha < 1.0)) return "alpha must lie in (0, 1)";
-  return "";
+Status LocalRegionOptions::Validate() const {
+  if (!(radius_m > 0.0) || !std::isfinite(radius_m))
+    return Status::Error("radius_m must be positive");
+  if (!(alpha > 0.0 && alpha < 1.0)) return Status::Error("alpha must lie in (0, 1)");
+  return Status::Ok();
 }
 
 }  // namespace splam::kernel

@@ -8,6 +8,7 @@
 #include "kernel/options.h"
 #include "kernel/pose2.h"
 #include "kernel/scan.h"
+#include "kernel/status.h"
 
 namespace splam::kernel {
 
@@ -20,7 +21,7 @@ struct LocalRegionOptions {
   double alpha = 0.8;     // a new node lies alpha r from the current one, 0 < alpha < 1
   void VisitFields(FieldVisitor& v);
   // Empty when valid, else the first problem.
-  std::string Validate() const;
+  Status Validate() const;
 };
 
 // A free arc of the LSR boundary: directions in which nothing was hit within the LSR radius

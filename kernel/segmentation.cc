@@ -13,16 +13,16 @@ double ScanSegment::Length() const {
   return length;
 }
 
-std::string SegmentationOptions::Validate() const {
-  if (!(dietmayer_c0_m >= 0.0)) return "dietmayer_c0_m must be >= 0";
-  if (!(pedraza_eta >= 1.0)) return "pedraza_eta must be >= 1";
+Status SegmentationOptions::Validate() const {
+  if (!(dietmayer_c0_m >= 0.0)) return Status::Error("dietmayer_c0_m must be >= 0");
+  if (!(pedraza_eta >= 1.0)) return Status::Error("pedraza_eta must be >= 1");
   if (!(pedraza_alpha_max_rad >= 0.0 && pedraza_alpha_max_rad <= kPi)) {
-    return "pedraza_alpha_max_rad must be in [0, pi]";
+    return Status::Error("pedraza_alpha_max_rad must be in [0, pi]");
   }
-  if (!(pedraza_max_gap_m > 0.0)) return "pedraza_max_gap_m must be positive";
-  if (!(min_length_m >= 0.0)) return "min_length_m must be >= 0";
-  if (min_points < 2) return "min_points must be at least 2";
-  return "";
+  if (!(pedraza_max_gap_m > 0.0)) return Status::Error("pedraza_max_gap_m must be positive");
+  if (!(min_length_m >= 0.0)) return Status::Error("min_length_m must be >= 0");
+  if (min_points < 2) return Status::Error("min_points must be at least 2");
+  return Status::Ok();
 }
 
 std::vector<ScanSegment> SegmentScan(const Scan& scan, const SegmentationOptions& options) {

@@ -7,6 +7,7 @@
 
 #include "kernel/options.h"
 #include "kernel/scan.h"
+#include "kernel/status.h"
 
 namespace splam::kernel {
 
@@ -47,7 +48,7 @@ struct SegmentationOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  Status Validate() const;
 };
 
 // Splits the hits of a scan into segments, in beam order. A reading that is not a hit

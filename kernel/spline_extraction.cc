@@ -2,13 +2,13 @@
 
 namespace splam::kernel {
 
-std::string SplineExtractionOptions::Validate() const {
-  for (const std::string& problem :
-       {segmentation.Validate(), fit.Validate(), curvature.Validate(), features.Validate()}) {
-    if (!problem.empty()) return problem;
-  }
-  if (!(epsilon_m > 0.0)) return "epsilon_m must be positive";
-  return "";
+Status SplineExtractionOptions::Validate() const {
+  if (Status s = FirstError(segmentation.Validate(), fit.Validate(), curvature.Validate(),
+                            features.Validate());
+      !s.ok())
+    return s;
+  if (!(epsilon_m > 0.0)) return Status::Error("epsilon_m must be positive");
+  return Status::Ok();
 }
 
 std::optional<SplineCurve> ExtractCurve(const std::vector<Eigen::Vector2d>& points,

@@ -13,6 +13,7 @@
 #include "kernel/options.h"
 #include "kernel/scan.h"
 #include "kernel/segmentation.h"
+#include "kernel/status.h"
 
 namespace splam::kernel {
 
@@ -30,7 +31,7 @@ struct SplineExtractionOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  Status Validate() const;
 };
 
 // One observed obstacle outline.

@@ -113,8 +113,8 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
     return outcome;
   }
   const sim::SimulatorOptions sim_options = setup.simulator.value_or(DefaultSimulator(setup));
-  if (const std::string problem = sim_options.Validate(); !problem.empty()) {
-    outcome.error = problem;
+  if (const kernel::Status problem = sim_options.Validate(); !problem.ok()) {
+    outcome.error = problem.message();
     return outcome;
   }
   const sim::RayCaster caster(world);

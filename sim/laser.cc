@@ -33,19 +33,20 @@ LaserOptions LaserOptions::Lms200(double resolution_deg) {
   return o;
 }
 
-std::string LaserOptions::Validate() const {
-  if (num_beams < 1) return "laser num_beams must be at least 1";
+kernel::Status LaserOptions::Validate() const {
+  if (num_beams < 1) return kernel::Status::Error("laser num_beams must be at least 1");
   if (!std::isfinite(start_angle_rad) || !std::isfinite(angular_step_rad)) {
-    return "laser angles must be finite";
+    return kernel::Status::Error("laser angles must be finite");
   }
   if (!(min_range_m >= 0.0) || !(max_range_m > min_range_m) || !std::isfinite(max_range_m)) {
-    return "laser ranges need 0 <= min_range_m < max_range_m < infinity";
+    return kernel::Status::Error("laser ranges need 0 <= min_range_m < max_range_m < infinity");
   }
-  if (!(noise_fraction >= 0.0) || !(noise_floor_m >= 0.0)) return "laser noise must be >= 0";
+  if (!(noise_fraction >= 0.0) || !(noise_floor_m >= 0.0))
+    return kernel::Status::Error("laser noise must be >= 0");
   if (!(dropout_probability >= 0.0 && dropout_probability <= 1.0)) {
-    return "laser dropout_probability must be in [0, 1]";
+    return kernel::Status::Error("laser dropout_probability must be in [0, 1]");
   }
-  return "";
+  return kernel::Status::Ok();
 }
 
 kernel::Scan SimulateLaser(const RayCaster& caster, const LaserOptions& options,

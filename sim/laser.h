@@ -8,6 +8,7 @@
 #include "kernel/pose2.h"
 #include "kernel/random.h"
 #include "kernel/scan.h"
+#include "kernel/status.h"
 #include "sim/ray_caster.h"
 
 namespace splam::sim {
@@ -35,7 +36,7 @@ struct LaserOptions {
   // Empty when valid, else the first problem.
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  kernel::Status Validate() const;
 };
 
 // Simulates one sweep from the robot at world_T_robot. When `beam_obstacles` is given it

@@ -45,15 +45,17 @@ void SplitUntilSmall(const kernel::CubicBezier& b, double max_extent,
 
 }  // namespace
 
-std::string RayCasterOptions::Validate() const {
-  if (!(cell_size_m > 0.0) || !std::isfinite(cell_size_m)) return "cell_size_m must be positive";
-  if (!(max_bezier_extent_cells > 0.0)) return "max_bezier_extent_cells must be positive";
-  return "";
+kernel::Status RayCasterOptions::Validate() const {
+  if (!(cell_size_m > 0.0) || !std::isfinite(cell_size_m))
+    return kernel::Status::Error("cell_size_m must be positive");
+  if (!(max_bezier_extent_cells > 0.0))
+    return kernel::Status::Error("max_bezier_extent_cells must be positive");
+  return kernel::Status::Ok();
 }
 
 RayCaster::RayCaster(const World& world, const RayCasterOptions& options) : options_(options) {
-  assert(options.Validate().empty());
-  assert(world.Validate().empty());
+  assert(options.Validate().ok());
+  assert(world.Validate().ok());
   const double cs = options_.cell_size_m;
   for (std::size_t i = 0; i < world.obstacles.size(); ++i) {
     Primitives p;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "kernel/shapes.h"
+#include "kernel/status.h"
 #include "sim/world.h"
 
 namespace splam::sim {
@@ -18,7 +19,7 @@ struct RayCasterOptions {
   // that a curve is registered only in cells near it.
   double max_bezier_extent_cells = 1.0;
 
-  std::string Validate() const;
+  kernel::Status Validate() const;
 };
 
 struct RayHit {

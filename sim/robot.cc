@@ -4,20 +4,20 @@
 
 namespace splam::sim {
 
-std::string RobotOptions::Validate() const {
-  if (!(radius_m > 0.0)) return "robot radius_m must be positive";
+kernel::Status RobotOptions::Validate() const {
+  if (!(radius_m > 0.0)) return kernel::Status::Error("robot radius_m must be positive");
   if (!(max_linear_speed_mps > 0.0) || !(max_angular_speed_radps > 0.0)) {
-    return "robot speed limits must be positive";
+    return kernel::Status::Error("robot speed limits must be positive");
   }
-  return "";
+  return kernel::Status::Ok();
 }
 
-std::string OdometryNoiseOptions::Validate() const {
+kernel::Status OdometryNoiseOptions::Validate() const {
   if (!(forward_per_m >= 0.0) || !(lateral_per_m >= 0.0) || !(rotation_per_rad >= 0.0) ||
       !(rotation_per_m >= 0.0)) {
-    return "odometry noise coefficients must be >= 0";
+    return kernel::Status::Error("odometry noise coefficients must be >= 0");
   }
-  return "";
+  return kernel::Status::Ok();
 }
 
 kernel::Pose2 CorruptIncrement(const kernel::Pose2& increment, const OdometryNoiseOptions& options,

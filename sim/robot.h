@@ -6,6 +6,7 @@
 #include "kernel/options.h"
 #include "kernel/pose2.h"
 #include "kernel/random.h"
+#include "kernel/status.h"
 
 namespace splam::sim {
 
@@ -17,7 +18,7 @@ struct RobotOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  kernel::Status Validate() const;
 };
 
 // Odometry error model (SPEC §2): Gaussian noise on the increment (dx, dy, dtheta) between two
@@ -33,7 +34,7 @@ struct OdometryNoiseOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  kernel::Status Validate() const;
   static OdometryNoiseOptions Noiseless() { return {0.0, 0.0, 0.0, 0.0}; }
   // Every sigma times `factor`.
   OdometryNoiseOptions Scaled(double factor) const {

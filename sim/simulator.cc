@@ -9,19 +9,19 @@
 
 namespace splam::sim {
 
-std::string SimulatorOptions::Validate() const {
-  if (!(time_step_s > 0.0)) return "time_step_s must be positive";
-  for (const std::string& problem : {robot.Validate(), odometry.Validate(), laser.Validate(),
-                                     enable_sonar ? sonar.Validate() : std::string()}) {
-    if (!problem.empty()) return problem;
-  }
-  return "";
+kernel::Status SimulatorOptions::Validate() const {
+  if (!(time_step_s > 0.0)) return kernel::Status::Error("time_step_s must be positive");
+  if (kernel::Status s = kernel::FirstError(robot.Validate(), odometry.Validate(), laser.Validate(),
+                                            enable_sonar ? sonar.Validate() : kernel::Status::Ok());
+      !s.ok())
+    return s;
+  return kernel::Status::Ok();
 }
 
 Simulator::Simulator(const RayCaster& caster, const SimulatorOptions& options,
                      const kernel::Pose2& start, std::uint64_t seed)
     : caster_(caster), options_(options), random_(seed), true_pose_(start), odometry_pose_(start) {
-  assert(options.Validate().empty());
+  assert(options.Validate().ok());
 }
 
 bool Simulator::IsFree(const kernel::Pose2& pose) const {
@@ -59,21 +59,22 @@ SensorFrame Simulator::Sense() {
   return frame;
 }
 
-std::string RouteOptions::Validate() const {
+kernel::Status RouteOptions::Validate() const {
   if (!(max_linear_speed_mps > 0.0) || !(max_angular_speed_radps > 0.0)) {
-    return "route speeds must be positive";
+    return kernel::Status::Error("route speeds must be positive");
   }
   if (!(heading_gain > 0.0) || !(turn_in_place_above_rad > 0.0)) {
-    return "route heading_gain and turn_in_place_above_rad must be positive";
+    return kernel::Status::Error("route heading_gain and turn_in_place_above_rad must be positive");
   }
-  if (!(waypoint_tolerance_m > 0.0)) return "route waypoint_tolerance_m must be positive";
-  if (max_steps < 1) return "route max_steps must be at least 1";
-  return "";
+  if (!(waypoint_tolerance_m > 0.0))
+    return kernel::Status::Error("route waypoint_tolerance_m must be positive");
+  if (max_steps < 1) return kernel::Status::Error("route max_steps must be at least 1");
+  return kernel::Status::Ok();
 }
 
 RouteRun FollowRoute(Simulator* simulator, const std::vector<Eigen::Vector2d>& waypoints,
                      const RouteOptions& options) {
-  assert(options.Validate().empty());
+  assert(options.Validate().ok());
   RouteRun run;
   run.frames.push_back(simulator->Sense());
   const double dt = simulator->options().time_step_s;

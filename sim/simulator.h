@@ -9,6 +9,7 @@
 #include "kernel/pose2.h"
 #include "kernel/random.h"
 #include "kernel/scan.h"
+#include "kernel/status.h"
 #include "sim/laser.h"
 #include "sim/ray_caster.h"
 #include "sim/robot.h"
@@ -26,7 +27,7 @@ struct SimulatorOptions {
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  kernel::Status Validate() const;
 };
 
 // What the robot perceives at one instant, with the simulator's ground truth.
@@ -83,7 +84,7 @@ struct RouteOptions {
   double waypoint_tolerance_m = 0.1;     // a waypoint closer than this is reached
   int max_steps = 20000;                 // cap on time steps (2000 s at 10 Hz)
 
-  std::string Validate() const;
+  kernel::Status Validate() const;
 };
 
 struct RouteRun {

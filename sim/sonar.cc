@@ -24,16 +24,17 @@ std::vector<kernel::Pose2> SonarOptions::PioneerRing() {
   return ring;
 }
 
-std::string SonarOptions::Validate() const {
-  if (robot_T_sonar.empty()) return "sonar ring has no sensors";
+kernel::Status SonarOptions::Validate() const {
+  if (robot_T_sonar.empty()) return kernel::Status::Error("sonar ring has no sensors");
   if (!(cone_half_angle_rad >= 0.0 && cone_half_angle_rad < kernel::kPi / 2)) {
-    return "sonar cone_half_angle_rad must be in [0, pi/2)";
+    return kernel::Status::Error("sonar cone_half_angle_rad must be in [0, pi/2)");
   }
-  if (rays_per_cone < 1) return "sonar rays_per_cone must be at least 1";
+  if (rays_per_cone < 1) return kernel::Status::Error("sonar rays_per_cone must be at least 1");
   if (!(min_range_m >= 0.0) || !(max_range_m > min_range_m))
-    return "sonar needs 0 <= min < max range";
-  if (!(noise_fraction >= 0.0) || !(noise_floor_m >= 0.0)) return "sonar noise must be >= 0";
-  return "";
+    return kernel::Status::Error("sonar needs 0 <= min < max range");
+  if (!(noise_fraction >= 0.0) || !(noise_floor_m >= 0.0))
+    return kernel::Status::Error("sonar noise must be >= 0");
+  return kernel::Status::Ok();
 }
 
 std::vector<double> SimulateSonar(const RayCaster& caster, const SonarOptions& options,

@@ -7,6 +7,7 @@
 #include "kernel/options.h"
 #include "kernel/pose2.h"
 #include "kernel/random.h"
+#include "kernel/status.h"
 #include "sim/ray_caster.h"
 
 namespace splam::sim {
@@ -30,7 +31,7 @@ struct SonarOptions {
   static std::vector<kernel::Pose2> PioneerRing();
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
-  std::string Validate() const;
+  kernel::Status Validate() const;
 };
 
 // One reading per sonar, in the order of robot_T_sonar.

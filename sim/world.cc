@@ -36,7 +36,7 @@ std::string ShapeKindName(const Shape& shape) {
       shape);
 }
 
-std::string World::Validate() const {
+kernel::Status World::Validate() const {
   for (std::size_t i = 0; i < obstacles.size(); ++i) {
     const std::string where =
         "obstacle " + std::to_string(i) + " (" + ShapeKindName(obstacles[i]) + "): ";
@@ -76,11 +76,12 @@ std::string World::Validate() const {
                      return AllFinite(s.control_points) ? "" : "control point is not finite";
                    }},
         obstacles[i]);
-    if (!problem.empty()) return where + problem;
+    if (!problem.empty()) return kernel::Status::Error(where + problem);
   }
-  if (start && !start->ToVector().allFinite()) return "start pose is not finite";
-  if (!AllFinite(route)) return "route waypoint is not finite";
-  return "";
+  if (start && !start->ToVector().allFinite())
+    return kernel::Status::Error("start pose is not finite");
+  if (!AllFinite(route)) return kernel::Status::Error("route waypoint is not finite");
+  return kernel::Status::Ok();
 }
 
 void World::AppendPrimitives(std::size_t index, Primitives* out) const {

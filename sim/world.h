@@ -10,6 +10,7 @@
 #include "kernel/cubic_bezier.h"
 #include "kernel/pose2.h"
 #include "kernel/shapes.h"
+#include "kernel/status.h"
 
 namespace splam::sim {
 
@@ -49,7 +50,7 @@ struct World {
   // Empty when valid, else what is wrong and with which obstacle: polylines need >= 2 vertices
   // (polygons 3) without zero-length edges, circles and ellipses positive radii, open splines
   // >= 4 and closed splines >= 3 control points; all coordinates finite.
-  std::string Validate() const;
+  kernel::Status Validate() const;
   // Exact primitives of obstacle `index`: segments, circles, ellipses, Bezier pieces.
   void AppendPrimitives(std::size_t index, Primitives* out) const;
   kernel::Box2 Bounds() const;

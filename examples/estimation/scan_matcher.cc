@@ -74,12 +74,12 @@ void ScanMatcherOptions::VisitFields(splam::kernel::FieldVisitor& v) {
   v.Field("max_correction_rad", &max_correction_rad, "larger corrections are refused, rad");
 }
 
-std::string ScanMatcherOptions::Validate() const {
+splam::kernel::Status ScanMatcherOptions::Validate() const {
   if (iterations < 1 || beam_step < 1 || min_pairs < 3)
-    return "iterations, beam_step >= 1, min_pairs >= 3";
+    return splam::kernel::Status::Error("iterations, beam_step >= 1, min_pairs >= 3");
   if (!(max_pair_distance_m > 0) || !(max_correction_m > 0) || !(max_correction_rad > 0))
-    return "distances must be positive";
-  return "";
+    return splam::kernel::Status::Error("distances must be positive");
+  return splam::kernel::Status::Ok();
 }
 
 ScanMatcher::ScanMatcher(const ScanMatcherOptions& options,

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "estimation/slam_method.h"
+#include "kernel/status.h"
 
 namespace my_lab {
 
@@ -28,7 +29,7 @@ struct ScanMatcherOptions {
 
   // The YAML form: `splam config print --method scan-matcher` lists these keys.
   void VisitFields(splam::kernel::FieldVisitor& v);
-  std::string Validate() const;  // empty when valid
+  splam::kernel::Status Validate() const;  // ok, or the first problem
 };
 
 class ScanMatcher : public splam::estimation::SlamMethod {

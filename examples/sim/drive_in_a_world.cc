@@ -20,8 +20,8 @@ int main(int argc, char** argv) {
   world.obstacles.push_back(splam::kernel::Circle2{{3.0, 2.0}, 0.3});
   world.obstacles.push_back(splam::kernel::Ellipse2{{6.0, 4.5}, 0.8, 0.4, 0.3});
   world.obstacles.push_back(sim::Spline{{{1.0, 4.0}, {2.0, 5.2}, {3.5, 3.6}, {4.5, 4.8}}, false});
-  if (const std::string problem = world.Validate(); !problem.empty()) {
-    std::fprintf(stderr, "invalid world: %s\n", problem.c_str());
+  if (const splam::kernel::Status problem = world.Validate(); !problem.ok()) {
+    std::fprintf(stderr, "invalid world: %s\n", problem.message().c_str());
     return 1;
   }
 

@@ -28,9 +28,9 @@ Session::Session(const std::string& explorer, const ExplorerOptions& options, Ro
 }
 
 bool Session::Start() {
-  if (const std::string problem = options_.Validate(); !problem.empty()) {
+  if (const kernel::Status problem = options_.Validate(); !problem.ok()) {
     run_.termination = Termination::kInvalidInput;
-    run_.message = "invalid explorer options: " + problem;
+    run_.message = "invalid explorer options: " + problem.message();
     return false;
   }
   const double needed = robot_->description().radius_m + options_.clearance_margin_m;

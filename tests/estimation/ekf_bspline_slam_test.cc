@@ -121,16 +121,16 @@ TEST(EkfBSplineSlam, NewSplinesNeedRepeatedSightings) {
 }
 
 TEST(EkfBSplineSlamOptions, Validate) {
-  EXPECT_EQ(EkfBSplineSlamOptions().Validate(), "");
+  EXPECT_TRUE(EkfBSplineSlamOptions().Validate().ok());
   EkfBSplineSlamOptions o;
   o.association = "nearest";
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
   o = EkfBSplineSlamOptions();
   o.max_beams_per_match = 0;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
   o = EkfBSplineSlamOptions();
   o.range_sigma_fraction = o.model_sigma_m = 0.0;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
   // A filter with invalid options says so and ignores input instead of crashing.
   o = EkfBSplineSlamOptions();
   o.association = "nearest";

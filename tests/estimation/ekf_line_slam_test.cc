@@ -200,10 +200,10 @@ TEST(EkfLineSlam, ReobservedLinesExtendTheirExtent) {
 }
 
 TEST(EkfLineSlamOptions, Validate) {
-  EXPECT_EQ(EkfLineSlamOptions().Validate(), "");
+  EXPECT_TRUE(EkfLineSlamOptions().Validate().ok());
   EkfLineSlamOptions o;
   o.new_landmark_probability = 0.5;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
 }
 
 }  // namespace

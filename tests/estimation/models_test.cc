@@ -68,7 +68,7 @@ TEST(OdometryNoiseModel, ProportionalToMotionWithFloors) {
   EXPECT_NEAR(std::sqrt(moving(0, 0)), 0.03 + 1e-4, 1e-12);
   EXPECT_NEAR(std::sqrt(moving(1, 1)), 0.01 + 1e-4, 1e-12);
   EXPECT_NEAR(std::sqrt(moving(2, 2)), 0.03 * 0.5 + 0.01 + 1e-4, 1e-12);
-  EXPECT_EQ(m.Validate(), "");
+  EXPECT_TRUE(m.Validate().ok());
 }
 
 TEST(Lines, TransformLineMovesItsPoints) {

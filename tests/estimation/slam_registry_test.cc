@@ -60,7 +60,9 @@ TEST(SlamRegistry, SensorNoiseReachesTheOptions) {
 struct EchoOptions {
   double gain = 1.0;
   void VisitFields(kernel::FieldVisitor& v) { v.Field("gain", &gain, "a gain"); }
-  std::string Validate() const { return gain > 0 ? "" : "gain must be positive"; }
+  kernel::Status Validate() const {
+    return gain > 0 ? kernel::Status::Ok() : kernel::Status::Error("gain must be positive");
+  }
 };
 class Echo : public SlamMethod {
  public:

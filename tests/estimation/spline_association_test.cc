@@ -121,7 +121,7 @@ TEST(SplineAssociation, UnrelatedCurvesAndTheMuMinThreshold) {
     EXPECT_EQ(m->related_control_points, related);
   }
   EXPECT_EQ(MakeSplineAssociation("magic"), nullptr);
-  EXPECT_EQ(SplineAssociationOptions().Validate(), "");
+  EXPECT_TRUE(SplineAssociationOptions().Validate().ok());
 }
 
 }  // namespace

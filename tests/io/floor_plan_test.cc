@@ -26,7 +26,7 @@ TEST(FloorPlan, DarkRectangleBecomesAPolygonAtTheRightPlace) {
   const Result<sim::World> w = ReadFloorPlan(path, options);
   ASSERT_TRUE(w.ok()) << w.error;
   ASSERT_EQ(w.value->obstacles.size(), 1u);
-  EXPECT_EQ(w.value->Validate(), "");
+  EXPECT_TRUE(w.value->Validate().ok());
   const kernel::Box2 b = w.value->Bounds();
   // Pixel centres: columns 20..69 -> x = 1 + (20.5 .. 69.5) * 0.05; rows 30..39 from the top of
   // an 80-row image -> y = 2 + (80 - 39 - 0.5 .. 80 - 30 - 0.5) * 0.05.

@@ -73,10 +73,10 @@ TEST(Figure, UnknownFormatAndUnwritablePathAreErrors) {
 }
 
 TEST(FigureOptions, Validate) {
-  EXPECT_EQ(FigureOptions().Validate(), "");
+  EXPECT_TRUE(FigureOptions().Validate().ok());
   FigureOptions o;
   o.pixels_per_meter = 0;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
 }
 
 }  // namespace

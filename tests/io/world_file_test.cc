@@ -32,7 +32,7 @@ obstacles:
   EXPECT_EQ(w.value->route.size(), 2u);
   EXPECT_EQ(std::get<kernel::Ellipse2>(w.value->obstacles[3]).radius_y, 0.5);
   EXPECT_TRUE(std::get<sim::Spline>(w.value->obstacles[5]).closed);
-  EXPECT_EQ(w.value->Validate(), "");
+  EXPECT_TRUE(w.value->Validate().ok());
 }
 
 TEST(WorldFile, PropertyBuiltinWorldsRoundTrip) {

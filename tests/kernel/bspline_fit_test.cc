@@ -101,10 +101,10 @@ TEST(CubicBSplineFitOperator, PropertyReproducesTheFitAndIsAffine) {
 }
 
 TEST(BSplineFitOptions, Validate) {
-  EXPECT_EQ(BSplineFitOptions().Validate(), "");
+  EXPECT_TRUE(BSplineFitOptions().Validate().ok());
   BSplineFitOptions o;
   o.min_control_points = 3;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
 }
 
 }  // namespace

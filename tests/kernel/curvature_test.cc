@@ -65,10 +65,10 @@ TEST(ComputeCurvature, FewSamplesAndBadSpacingGiveZeros) {
 }
 
 TEST(CurvatureOptions, Validate) {
-  EXPECT_EQ(CurvatureOptions().Validate(), "");
+  EXPECT_TRUE(CurvatureOptions().Validate().ok());
   CurvatureOptions o;
   o.sigma_m = 0;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
 }
 
 }  // namespace

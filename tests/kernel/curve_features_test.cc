@@ -163,10 +163,10 @@ TEST(FindFeatures, DegenerateProfilesGiveNoFeatures) {
 }
 
 TEST(FeatureOptions, Validate) {
-  EXPECT_EQ(FeatureOptions().Validate(), "");
+  EXPECT_TRUE(FeatureOptions().Validate().ok());
   FeatureOptions o;
   o.corner_ratio = 0.5;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
 }
 
 }  // namespace

@@ -152,10 +152,10 @@ TEST(ExtractLines, EmptyAndDegenerateScans) {
 }
 
 TEST(LineExtractionOptions, Validate) {
-  EXPECT_EQ(LineExtractionOptions().Validate(), "");
+  EXPECT_TRUE(LineExtractionOptions().Validate().ok());
   LineExtractionOptions o;
   o.min_points = 1;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
 }
 
 }  // namespace

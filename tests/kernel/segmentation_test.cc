@@ -90,10 +90,10 @@ TEST(SegmentScan, EmptyAndBlindScansGiveNoSegments) {
 }
 
 TEST(SegmentationOptions, Validate) {
-  EXPECT_EQ(SegmentationOptions().Validate(), "");
+  EXPECT_TRUE(SegmentationOptions().Validate().ok());
   SegmentationOptions o;
   o.pedraza_eta = 0.5;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
 }
 
 }  // namespace

@@ -34,10 +34,10 @@ TEST(ExtractCurve, DegenerateInputIsAnError) {
 }
 
 TEST(SplineExtractionOptions, Validate) {
-  EXPECT_EQ(SplineExtractionOptions().Validate(), "");
+  EXPECT_TRUE(SplineExtractionOptions().Validate().ok());
   SplineExtractionOptions o;
   o.epsilon_m = 0;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
 }
 
 }  // namespace

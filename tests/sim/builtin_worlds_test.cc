@@ -15,7 +15,7 @@ TEST_P(BuiltinWorldTest, IsValidAndItsRouteIsDrivable) {
   const auto world = BuiltinWorld(GetParam());
   ASSERT_TRUE(world.has_value());
   EXPECT_EQ(world->name, GetParam());
-  EXPECT_EQ(world->Validate(), "");
+  EXPECT_TRUE(world->Validate().ok());
   ASSERT_TRUE(world->start.has_value());
   ASSERT_FALSE(world->route.empty());
   const RayCaster caster(*world);

@@ -26,7 +26,7 @@ TEST(LaserOptions, PublishedModels) {
   EXPECT_EQ(urg.max_range_m, 4.0);
   EXPECT_EQ(urg.min_range_m, 0.02);
   EXPECT_EQ(urg.noise_fraction, 0.01);
-  EXPECT_EQ(urg.Validate(), "");
+  EXPECT_TRUE(urg.Validate().ok());
   const LaserOptions lms = LaserOptions::Lms200(0.5);
   EXPECT_EQ(lms.num_beams, 361);
   EXPECT_EQ(lms.max_range_m, 8.0);
@@ -38,13 +38,13 @@ TEST(LaserOptions, PublishedModels) {
 TEST(LaserOptions, ValidateCatchesNonsense) {
   LaserOptions o = LaserOptions::Urg04lx();
   o.num_beams = 0;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
   o = LaserOptions::Urg04lx();
   o.max_range_m = 0.01;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
   o = LaserOptions::Urg04lx();
   o.dropout_probability = 2;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
 }
 
 TEST(SimulateLaser, NoiselessRangesAreExact) {

@@ -68,7 +68,7 @@ TEST(RayCaster, PropertyIndexedEqualsBruteForceOverRandomWorlds) {
   int hits = 0, rays = 0;
   for (int trial = 0; trial < 60; ++trial) {
     const World world = RandomWorld(&random);
-    ASSERT_EQ(world.Validate(), "");
+    ASSERT_TRUE(world.Validate().ok());
     RayCasterOptions options;
     options.cell_size_m = random.Uniform(0.2, 1.5);
     const RayCaster caster(world, options);
@@ -165,10 +165,10 @@ TEST(RayCaster, CollisionsWithBoundariesAndInsides) {
 }
 
 TEST(RayCasterOptions, Validate) {
-  EXPECT_EQ(RayCasterOptions().Validate(), "");
+  EXPECT_TRUE(RayCasterOptions().Validate().ok());
   RayCasterOptions o;
   o.cell_size_m = 0;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
 }
 
 }  // namespace

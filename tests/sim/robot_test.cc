@@ -57,14 +57,14 @@ TEST(CorruptIncrement, NoiselessIsExactAndNoiseScalesWithMotion) {
 }
 
 TEST(RobotOptions, ValidateAndDefaults) {
-  EXPECT_EQ(RobotOptions().Validate(), "");
+  EXPECT_TRUE(RobotOptions().Validate().ok());
   EXPECT_NEAR(RobotOptions().radius_m, 0.267, 1e-12);
   RobotOptions r;
   r.radius_m = -1;
-  EXPECT_NE(r.Validate(), "");
+  EXPECT_FALSE(r.Validate().ok());
   OdometryNoiseOptions o;
   o.lateral_per_m = -0.1;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
 }
 
 }  // namespace

@@ -97,11 +97,11 @@ TEST(Simulator, SonarFramesWhenEnabled) {
 }
 
 TEST(SimulatorOptions, Validate) {
-  EXPECT_EQ(SimulatorOptions().Validate(), "");
+  EXPECT_TRUE(SimulatorOptions().Validate().ok());
   SimulatorOptions o;
   o.time_step_s = 0;
-  EXPECT_NE(o.Validate(), "");
-  EXPECT_NE(RouteOptions{.max_steps = 0}.Validate(), "");
+  EXPECT_FALSE(o.Validate().ok());
+  EXPECT_FALSE(RouteOptions{.max_steps = 0}.Validate().ok());
 }
 
 }  // namespace

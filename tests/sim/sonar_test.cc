@@ -18,10 +18,10 @@ TEST(SonarOptions, PioneerRingHas16SensorsAndCoversTheBack) {
     if (std::abs(p.theta()) >= kernel::DegToRad(130) - 1e-9) ++rear;
   }
   EXPECT_EQ(rear, 6);  // -130, -150, -170, 170, 150, 130
-  EXPECT_EQ(SonarOptions().Validate(), "");
+  EXPECT_TRUE(SonarOptions().Validate().ok());
   SonarOptions bad;
   bad.rays_per_cone = 0;
-  EXPECT_NE(bad.Validate(), "");
+  EXPECT_FALSE(bad.Validate().ok());
 }
 
 TEST(SimulateSonar, ReadsTheNearestEchoInTheCone) {

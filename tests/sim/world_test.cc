@@ -17,28 +17,29 @@ TEST(World, ValidWorldHasNoProblems) {
                  kernel::Ellipse2{{4, 4}, 1, 0.5, 0.3},
                  Spline{{{0, 5}, {1, 6}, {2, 5}, {3, 6}}, false},
                  Spline{{{5, 5}, {6, 5}, {6, 6}}, true}};
-  EXPECT_EQ(w.Validate(), "");
+  EXPECT_TRUE(w.Validate().ok());
 }
 
 TEST(World, ValidateNamesTheObstacleAndTheProblem) {
-  EXPECT_EQ(One(Polyline{{{0, 0}}, false}).Validate(),
+  EXPECT_EQ(One(Polyline{{{0, 0}}, false}).Validate().message(),
             "obstacle 0 (polyline): needs at least 2 vertices, has 1");
-  EXPECT_EQ(One(Polyline{{{0, 0}, {1, 0}}, true}).Validate(),
+  EXPECT_EQ(One(Polyline{{{0, 0}, {1, 0}}, true}).Validate().message(),
             "obstacle 0 (polygon): needs at least 3 vertices, has 2");
-  EXPECT_EQ(One(Polyline{{{0, 0}, {0, 0}, {1, 0}}, false}).Validate(),
+  EXPECT_EQ(One(Polyline{{{0, 0}, {0, 0}, {1, 0}}, false}).Validate().message(),
             "obstacle 0 (polyline): edge 0 has zero length");
-  EXPECT_EQ(One(kernel::Circle2{{0, 0}, 0.0}).Validate(),
+  EXPECT_EQ(One(kernel::Circle2{{0, 0}, 0.0}).Validate().message(),
             "obstacle 0 (circle): radius must be positive");
-  EXPECT_EQ(One(kernel::Circle2{{NAN, 0}, 1.0}).Validate(), "obstacle 0 (circle): not finite");
-  EXPECT_EQ(One(kernel::Ellipse2{{0, 0}, 1.0, -1.0, 0.0}).Validate(),
+  EXPECT_EQ(One(kernel::Circle2{{NAN, 0}, 1.0}).Validate().message(),
+            "obstacle 0 (circle): not finite");
+  EXPECT_EQ(One(kernel::Ellipse2{{0, 0}, 1.0, -1.0, 0.0}).Validate().message(),
             "obstacle 0 (ellipse): radii must be positive");
-  EXPECT_EQ(One(Spline{{{0, 0}, {1, 1}, {2, 0}}, false}).Validate(),
+  EXPECT_EQ(One(Spline{{{0, 0}, {1, 1}, {2, 0}}, false}).Validate().message(),
             "obstacle 0 (spline): needs at least 4 control points, has 3");
-  EXPECT_EQ(One(Spline{{{0, 0}, {1, 1}}, true}).Validate(),
+  EXPECT_EQ(One(Spline{{{0, 0}, {1, 1}}, true}).Validate().message(),
             "obstacle 0 (closed_spline): needs at least 3 control points, has 2");
   World w = One(kernel::Circle2{{0, 0}, 1.0});
   w.route = {{INFINITY, 0}};
-  EXPECT_EQ(w.Validate(), "route waypoint is not finite");
+  EXPECT_EQ(w.Validate().message(), "route waypoint is not finite");
 }
 
 TEST(World, PrimitivesOfEachShape) {
