@@ -6,24 +6,9 @@
 #include <string>
 
 #include "exploration/internal/session.h"
+#include "exploration/internal/steps.h"
 
 namespace splam::exploration {
-namespace {
-
-// RANDOM_DIR: a direction uniform over the union of the arcs (drawing uniform directions until
-// one falls in a free arc gives the same distribution).
-double RandomDirection(const std::vector<kernel::FrontierArc>& arcs, kernel::Random* random) {
-  double total = 0.0;
-  for (const kernel::FrontierArc& arc : arcs) total += arc.AngularWidth();
-  double u = random->Uniform(0.0, total);
-  for (const kernel::FrontierArc& arc : arcs) {
-    if (u <= arc.AngularWidth()) return arc.start_angle_rad + u;
-    u -= arc.AngularWidth();
-  }
-  return arcs.back().end_angle_rad;
-}
-
-}  // namespace
 
 ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localization) {
   internal::Session session("srt", options_, robot, localization);
@@ -40,17 +25,11 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
       const Eigen::Vector2d here = node.configuration.translation();
       for (int attempt = 0; attempt < options_.srt_max_attempts && !node.frontiers.empty();
            ++attempt) {
-        const double theta = RandomDirection(node.frontiers, &session.random());
+        const double theta = internal::RandomDirection(node.frontiers, &session.random());
         const Eigen::Vector2d candidate =
             node.lsr.center() + step * Eigen::Vector2d(std::cos(theta), std::sin(theta));
         // VALID_CONF: outside the LSR of every other node, and reachable inside this one.
-        bool valid = true;
-        for (graph::Vertex v = 0; v < boost::num_vertices(g) && valid; ++v) {
-          if (v == current) continue;
-          const kernel::LocalSafeRegion& other = g[v].lsr;
-          valid =
-              (candidate - other.center()).norm() > other.radius() || !other.Contains(candidate);
-        }
+        const bool valid = internal::OutsideOtherLsrs(g, current, candidate);
         if (valid) path = session.PathInside(node.lsr, here, candidate);
         if (path) break;
       }

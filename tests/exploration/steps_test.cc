@@ -1,0 +1,209 @@
+// The named steps of SRT and REG on small hand-made LSRs.
+#include "exploration/internal/steps.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "exploration/localization.h"
+#include "graph/frontiers.h"
+#include "kernel/angle.h"
+
+namespace splam::exploration::internal {
+namespace {
+
+using kernel::kPi;
+using kernel::Pose2;
+
+// A robot that never moves: only its description matters to the steps.
+class StillRobot : public RobotInterface {
+ public:
+  const RobotDescription& description() const override { return description_; }
+  bool Step(double, double) override { return false; }
+  Perception ReadOdometry() override { return {}; }
+  Perception Sense() override { return {}; }
+
+ private:
+  RobotDescription description_;  // radius 0.267 m
+};
+
+// A full-circle scan (1 deg beams) that sees nothing within `free_m`, except where `wall`
+// returns a range.
+kernel::Scan Circle(const std::function<double(double)>& range_at) {
+  kernel::Scan scan;
+  scan.start_angle_rad = -kPi;
+  scan.angular_step_rad = kernel::DegToRad(1.0);
+  scan.min_range_m = 0.02;
+  scan.max_range_m = 10.0;
+  for (int i = 0; i < 360; ++i) scan.ranges_m.push_back(range_at(scan.BeamAngle(i)));
+  return scan;
+}
+kernel::Scan Open() {
+  return Circle([](double) { return kernel::Scan::kNoReturn; });
+}
+
+struct Fixture {
+  StillRobot robot;
+  GroundTruthLocalization localization;
+  ExplorerOptions options;  // r = 3 m, alpha = 0.8
+  Session session{"reg", options, &robot, &localization};
+  graph::ExplorationGraph& g = session.graph();
+  // A node at `at` whose LSR comes from `scan` and whose frontiers are its free arcs.
+  graph::Vertex Node(const Eigen::Vector2d& at, const kernel::Scan& scan) {
+    const graph::Vertex v = graph::AddNode(&g, Pose2(at, 0.0));
+    g[v].lsr = kernel::LocalSafeRegion::FromScan(scan, Pose2(at, 0.0), options.lsr_radius_m);
+    g[v].frontiers = session.LongEnough(g[v].lsr.frontiers());
+    return v;
+  }
+};
+
+double Width(const std::vector<kernel::FrontierArc>& arcs) {
+  double w = 0.0;
+  for (const auto& a : arcs) w += a.AngularWidth();
+  return w;
+}
+bool Covers(const std::vector<kernel::FrontierArc>& arcs, double angle) {
+  for (const auto& a : arcs) {
+    for (const double turn : {-2 * kPi, 0.0, 2 * kPi})
+      if (angle + turn >= a.start_angle_rad && angle + turn <= a.end_angle_rad) return true;
+  }
+  return false;
+}
+
+TEST(CurrIntersection, RemovesTheOverlapOfTwoOpenNodesAndJoinsThem) {
+  Fixture f;
+  const graph::Vertex a = f.Node({0, 0}, Open()), b = f.Node({2.4, 0}, Open());
+  ASSERT_NEAR(Width(f.g[a].frontiers), 2 * kPi, 0.05);
+  CurrIntersection(f.session, &f.g, b);
+  // The part of a's circle inside b's disc: |angle| < acos(d / 2r) = acos(0.4), and b's mirror.
+  const double half = std::acos(2.4 / 6.0);
+  for (const graph::Vertex v : {a, b}) {
+    EXPECT_NEAR(Width(f.g[v].frontiers), 2 * kPi - 2 * half, 0.08) << v;
+  }
+  EXPECT_FALSE(Covers(f.g[a].frontiers, 0.0));  // towards b
+  EXPECT_TRUE(Covers(f.g[a].frontiers, kPi));   // away from b
+  EXPECT_FALSE(Covers(f.g[b].frontiers, kPi));
+  EXPECT_TRUE(graph::HasEdge(f.g, a, b));
+}
+
+TEST(CurrIntersection, LeavesDistantNodesAlone) {
+  Fixture f;
+  const graph::Vertex a = f.Node({0, 0}, Open()), b = f.Node({6.5, 0}, Open());
+  CurrIntersection(f.session, &f.g, b);
+  EXPECT_NEAR(Width(f.g[a].frontiers), 2 * kPi, 0.05);
+  EXPECT_FALSE(graph::HasEdge(f.g, a, b));
+}
+
+TEST(SafePath, NeedsAClearWayThroughTheOverlap) {
+  Fixture f;
+  // A wall at x = 1.2 between the nodes, seen by both: the LSRs still touch around its ends
+  // only far from the segment, so no waypoint near a-b is clear.
+  const auto wall_from = [](double x0) {
+    return Circle([x0](double angle) {
+      const double c = std::cos(angle);
+      return std::abs(c) > 1e-9 && (x0 / c) > 0 ? x0 / c : kernel::Scan::kNoReturn;
+    });
+  };
+  const graph::Vertex a = f.Node({0, 0}, wall_from(1.2)), b = f.Node({2.4, 0}, wall_from(-1.2));
+  EXPECT_FALSE(SafePath(f.session, f.g, a, b));
+  const graph::Vertex c = f.Node({0, 5}, Open()), d = f.Node({2.0, 5}, Open());
+  const auto path = SafePath(f.session, f.g, c, d);
+  ASSERT_TRUE(path);
+  ASSERT_EQ(path->size(), 3u);
+  EXPECT_NEAR(((*path)[1] - Eigen::Vector2d(1.0, 5)).norm(), 0.0, 1e-9);  // the midpoint first
+}
+
+TEST(FrontRand, TakesALeadingPieceAndKeepsTheRest) {
+  Fixture f;
+  kernel::Random random(7);
+  for (int trial = 0; trial < 100; ++trial) {
+    std::vector<kernel::FrontierArc> frontiers = {{0.0, 2.0}, {3.0, 3.5}};
+    const double before = Width(frontiers);
+    const kernel::FrontierArc piece = FrontRand(f.session, &frontiers, &random, 1.0);
+    EXPECT_LE(piece.AngularWidth(), 1.0 + 1e-12);
+    // The piece starts an arc, and what is left of it is kept (0.5 rad arcs at r = 3 m are
+    // long enough to stay frontiers).
+    EXPECT_TRUE(piece.start_angle_rad == 0.0 || piece.start_angle_rad == 3.0);
+    EXPECT_NEAR(Width(frontiers) + piece.AngularWidth(), before, 1e-12);
+  }
+}
+
+TEST(Displacement, StepsAlphaRTowardsThePieceOrAroundAnObstacle) {
+  Fixture f;
+  const graph::Vertex a = f.Node({0, 0}, Open());
+  const auto straight = Displacement(f.session, f.g[a], {kPi / 2 - 0.3, kPi / 2 + 0.3});
+  ASSERT_TRUE(straight);
+  EXPECT_NEAR((straight->back() - Eigen::Vector2d(0, 2.4)).norm(), 0.0, 1e-9);
+  // A pillar 1 m north: the step goes beside it, still inside the piece.
+  const graph::Vertex b =
+      f.Node({10, 0}, Circle([](double angle) {
+               return std::abs(angle - kPi / 2) < 0.2 ? 1.0 : kernel::Scan::kNoReturn;
+             }));
+  const auto around = Displacement(f.session, f.g[b], {kPi / 2 - 0.6, kPi / 2 + 0.6});
+  ASSERT_TRUE(around);
+  const Eigen::Vector2d q = around->back() - Eigen::Vector2d(10, 0);
+  const double bearing = std::atan2(q.y(), q.x());
+  EXPECT_GT(std::abs(bearing - kPi / 2), 0.2);
+  EXPECT_LE(std::abs(bearing - kPi / 2), 0.6 + 1e-9);
+  // Walled in on every side within 0.5 m: nowhere to go.
+  const graph::Vertex c = f.Node({20, 0}, Circle([](double) { return 0.5; }));
+  EXPECT_FALSE(Displacement(f.session, f.g[c], {0.0, 1.0}));
+}
+
+TEST(Verifies, ThePartOfAPieceANewNodeSeesIsCovered) {
+  Fixture f;
+  const graph::Vertex a = f.Node({0, 0}, Open()), b = f.Node({0, 2.4}, Open());
+  const kernel::FrontierArc piece{kPi / 2 - 0.5, kPi / 2 + 0.5};
+  // The new node 2.4 m along the piece's midpoint covers all of it (its disc reaches
+  // acos(0.4) = 1.16 rad either side).
+  EXPECT_TRUE(f.session.UncoveredParts(f.g[a].lsr, piece, f.g[b].lsr).empty());
+  const kernel::FrontierArc wide{kPi / 2 - 1.5, kPi / 2 + 1.5};
+  const auto rest = f.session.UncoveredParts(f.g[a].lsr, wide, f.g[b].lsr);
+  ASSERT_EQ(rest.size(), 2u);  // both ends go back to the node
+  EXPECT_NEAR(Width(rest), 3.0 - 2 * std::acos(0.4), 0.05);
+}
+
+TEST(RandomDirection, IsUniformOverTheUnionOfArcs) {
+  kernel::Random random(11);
+  const std::vector<kernel::FrontierArc> arcs = {{0.0, 0.5}, {2.0, 3.5}};
+  int in_first = 0;
+  constexpr int kDraws = 20000;
+  for (int i = 0; i < kDraws; ++i) {
+    const double theta = RandomDirection(arcs, &random);
+    ASSERT_TRUE(Covers(arcs, theta)) << theta;
+    in_first += theta <= 0.5;
+  }
+  EXPECT_NEAR(static_cast<double>(in_first) / kDraws, 0.25, 0.01);  // 0.5 of 2 rad
+}
+
+TEST(ValidConf, RefusesCandidatesInsideOtherNodesLsrs) {
+  Fixture f;
+  const graph::Vertex a = f.Node({0, 0}, Open());
+  const graph::Vertex b = f.Node({2.4, 0}, Open());
+  EXPECT_FALSE(OutsideOtherLsrs(f.g, b, {1.0, 0.0}));  // inside a's LSR
+  EXPECT_TRUE(OutsideOtherLsrs(f.g, b, {4.0, 0.0}));   // beyond a's radius
+  EXPECT_TRUE(OutsideOtherLsrs(f.g, a, {-1.0, 0.0}));  // a's own LSR does not count
+  EXPECT_FALSE(OutsideOtherLsrs(f.g, a, {1.0, 0.0}));  // b's does
+}
+
+TEST(ExplorationGraph, NodesEdgesAndWaypoints) {
+  graph::ExplorationGraph g;
+  const graph::Vertex a = graph::AddNode(&g, Pose2(0, 0, 0));
+  const graph::Vertex b = graph::AddNode(&g, Pose2(2, 0, 0));
+  const graph::Vertex c = graph::AddNode(&g, Pose2(2, 2, 0));
+  graph::AddEdge(&g, a, b, {{0, 0}, {1, 1}, {2, 0}});
+  graph::AddEdge(&g, c, b);
+  EXPECT_TRUE(graph::HasEdge(g, b, a));
+  EXPECT_FALSE(graph::HasEdge(g, a, c));
+  const std::vector<Eigen::Vector2d> forward = graph::Waypoints(g, {a, b, c});
+  ASSERT_EQ(forward.size(), 3u);  // (1, 1), (2, 0), (2, 2)
+  EXPECT_EQ(forward[0], Eigen::Vector2d(1, 1));
+  EXPECT_EQ(forward[2], Eigen::Vector2d(2, 2));
+  const std::vector<Eigen::Vector2d> back = graph::Waypoints(g, {b, a});
+  ASSERT_EQ(back.size(), 2u);  // the stored path reversed
+  EXPECT_EQ(back[0], Eigen::Vector2d(1, 1));
+  EXPECT_EQ(back[1], Eigen::Vector2d(0, 0));
+}
+
+}  // namespace
+}  // namespace splam::exploration::internal
