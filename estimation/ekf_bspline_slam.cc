@@ -41,6 +41,23 @@ struct EkfBSplineSlam::Match {
   double Length() const { return match.observed.end_m - match.observed.start_m; }
 };
 
+// What the steps of one update share.
+struct EkfBSplineSlam::ScanContext {
+  ScanContext(const kernel::Scan& s, const kernel::Pose2& mounting)
+      : scan(s), robot_T_laser(mounting) {}
+  const kernel::Scan& scan;
+  kernel::Pose2 robot_T_laser;
+  std::vector<SplineCurve> curves;                     // laser frame
+  std::vector<SplineCurve> observed;                   // world frame, at the prediction
+  std::vector<std::optional<SplineCurve>> map_curves;  // described where needed
+  std::vector<Match> matches;                          // every fine association
+  std::vector<bool> near_map;                          // per observed curve
+  std::vector<const Match*> accepted;                  // longest first, no duplicates
+  std::vector<bool> matched;                           // per observed curve, beams used
+  // Length of [start, end] of observed curve `curve` already covered by accepted matches.
+  double Covered(std::size_t curve, double start, double end) const;
+};
+
 kernel::Status EkfBSplineSlamOptions::Validate() const {
   if (kernel::Status s = kernel::FirstError(odometry.Validate(), extraction.Validate(),
                                             association_options.Validate(), map_fit.Validate());
@@ -112,70 +129,87 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
   BSplineUpdateReport report;
   if (!healthy()) return report;
   ++scans_;
-  const std::vector<SplineCurve> curves = kernel::ExtractCurves(
+  ScanContext ctx(scan, robot_T_laser);
+  ctx.curves = kernel::ExtractCurves(
       options_.max_curve_range_m > 0 ? scan.Clipped(options_.max_curve_range_m) : scan,
       options_.extraction);
-  report.observed_curves = static_cast<int>(curves.size());
+  report.observed_curves = static_cast<int>(ctx.curves.size());
+  Associate(&ctx);
+  AcceptLongestMatches(&ctx);
+  CorrectWithBeams(&ctx, &report);
+  if (!healthy()) return report;
+  ExtendMatchedSplines(ctx, &report);
+  AddNewSplines(ctx, &report);
+  return report;
+}
 
+double EkfBSplineSlam::ScanContext::Covered(std::size_t curve, double start, double end) const {
+  double overlap = 0.0;
+  for (const Match* a : accepted) {
+    if (a->curve != curve) continue;
+    overlap += std::max(
+        0.0, std::min(end, a->match.observed.end_m) - std::max(start, a->match.observed.start_m));
+  }
+  return overlap;
+}
+
+void EkfBSplineSlam::Associate(ScanContext* context) const {
+  ScanContext& ctx = *context;
   // Association at the predicted pose: every observed curve against every map spline whose
   // control points come within d_min (the coarse test), then the fine association.
-  const kernel::Pose2 world_T_laser = pose() * robot_T_laser;
-  std::vector<SplineCurve> observed;
-  for (const SplineCurve& c : curves) observed.push_back(kernel::Transformed(c, world_T_laser));
+  const kernel::Pose2 world_T_laser = pose() * ctx.robot_T_laser;
+  for (const SplineCurve& c : ctx.curves)
+    ctx.observed.push_back(kernel::Transformed(c, world_T_laser));
   const double d_min = options_.association_options.d_min_m;
   // Boxes of the map splines' control points, straight from the state.
+  ctx.map_curves.assign(splines_.size(), std::nullopt);
+  ctx.near_map.assign(ctx.observed.size(), false);
   std::vector<kernel::Box2> map_boxes(splines_.size());
-  std::vector<std::optional<SplineCurve>> map_curves(splines_.size());
   for (std::size_t l = 0; l < splines_.size(); ++l) {
     for (Eigen::Index i = 0; i < splines_[l].size(); i += 2)
       map_boxes[l].Extend(ekf_.state().segment<2>(splines_[l].index + i));
   }
-  std::vector<Match> matches;
-  std::vector<bool> near_map(observed.size(), false);
-  for (std::size_t i = 0; i < observed.size(); ++i) {
+  for (std::size_t i = 0; i < ctx.observed.size(); ++i) {
     kernel::Box2 box;
-    for (const Eigen::Vector2d& p : observed[i].spline.control_points()) box.Extend(p);
+    for (const Eigen::Vector2d& p : ctx.observed[i].spline.control_points()) box.Extend(p);
     for (std::size_t l = 0; l < splines_.size(); ++l) {
       if (box.Gap(map_boxes[l]) > d_min) continue;
-      if (!map_curves[l])
-        map_curves[l] = kernel::DescribeCurve(SplineOf(splines_[l]), options_.extraction);
-      if (RelatedControlPoints(observed[i], *map_curves[l], d_min) == 0) continue;
-      near_map[i] = true;
-      std::optional<CurveMatch> m = association_->Match(observed[i], *map_curves[l]);
-      if (m) matches.push_back({i, l, std::move(*m)});
+      if (!ctx.map_curves[l])
+        ctx.map_curves[l] = kernel::DescribeCurve(SplineOf(splines_[l]), options_.extraction);
+      if (RelatedControlPoints(ctx.observed[i], *ctx.map_curves[l], d_min) == 0) continue;
+      ctx.near_map[i] = true;
+      std::optional<CurveMatch> m = association_->Match(ctx.observed[i], *ctx.map_curves[l]);
+      if (m) ctx.matches.push_back({i, l, std::move(*m)});
     }
   }
+}
 
-  // Longest stretches first; a stretch mostly covered by an accepted one of the same observed
-  // curve (a duplicate map spline of the same obstacle) is dropped.
-  std::sort(matches.begin(), matches.end(),
+void EkfBSplineSlam::AcceptLongestMatches(ScanContext* context) const {
+  ScanContext& ctx = *context;
+  // Longest stretches first; a stretch mostly covered by an accepted one of the same
+  // observed curve (a duplicate map spline of the same obstacle) is dropped.
+  std::sort(ctx.matches.begin(), ctx.matches.end(),
             [](const Match& a, const Match& b) { return a.Length() > b.Length(); });
-  std::vector<const Match*> accepted;
-  auto covered = [&](std::size_t curve, double start, double end) {
-    double overlap = 0.0;
-    for (const Match* a : accepted) {
-      if (a->curve != curve) continue;
-      overlap += std::max(
-          0.0, std::min(end, a->match.observed.end_m) - std::max(start, a->match.observed.start_m));
-    }
-    return overlap;
-  };
-  for (const Match& m : matches) {
-    if (covered(m.curve, m.match.observed.start_m, m.match.observed.end_m) > 0.5 * m.Length())
+  for (const Match& m : ctx.matches) {
+    if (ctx.Covered(m.curve, m.match.observed.start_m, m.match.observed.end_m) > 0.5 * m.Length())
       continue;
-    accepted.push_back(&m);
+    ctx.accepted.push_back(&m);
   }
+}
 
+void EkfBSplineSlam::CorrectWithBeams(ScanContext* context, BSplineUpdateReport* out) {
+  ScanContext& ctx = *context;
+  BSplineUpdateReport& report = *out;
   // One correction with the selected beams of every accepted match: a single pass over P.
   BeamBatch batch;
-  for (const Match* m : accepted) {
+  for (const Match* m : ctx.accepted) {
     SplineAssociationRecord record;
     record.observed_curve = m->curve;
     record.map_spline = splines_[m->landmark].id;
     record.used_features = m->match.used_features;
     // The state has not changed since the association: the described map curve is current.
-    SelectBeams(scan, robot_T_laser, observed[m->curve], curves[m->curve].beams, *m,
-                map_curves[m->landmark]->spline, &record, &batch);
+    SelectBeams(ctx.scan, ctx.robot_T_laser, ctx.observed[m->curve], ctx.curves[m->curve].beams, *m,
+                ctx.map_curves[m->landmark]->spline, &record, &batch);
     report.associations.push_back(std::move(record));
   }
   const Eigen::Index rows = static_cast<Eigen::Index>(batch.nu.size());
@@ -190,32 +224,35 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
       }
     }
   }
-  std::vector<bool> matched(observed.size(), false);
-  for (std::size_t a = 0; a < accepted.size(); ++a) {
+  ctx.matched.assign(ctx.observed.size(), false);
+  for (std::size_t a = 0; a < ctx.accepted.size(); ++a) {
     const SplineAssociationRecord& record = report.associations[a];
     report.beams_rejected += record.rejected_beams;
     if (record.beams.empty()) continue;
-    matched[accepted[a]->curve] = true;
+    ctx.matched[ctx.accepted[a]->curve] = true;
     report.beams_used += static_cast<int>(record.beams.size());
-    ++splines_[accepted[a]->landmark].observations;
+    ++splines_[ctx.accepted[a]->landmark].observations;
   }
-  report.matched_curves = static_cast<int>(std::count(matched.begin(), matched.end(), true));
-  if (!healthy()) return report;
+  report.matched_curves =
+      static_cast<int>(std::count(ctx.matched.begin(), ctx.matched.end(), true));
+}
 
+void EkfBSplineSlam::ExtendMatchedSplines(const ScanContext& ctx, BSplineUpdateReport* out) {
+  BSplineUpdateReport& report = *out;
   // Extensions: an observed curve that runs on past the end of the map spline it matched.
   const double tol = options_.end_tolerance_m;
   std::vector<bool> extended(splines_.size(), false);
-  for (const Match* m : accepted) {
-    if (extended[m->landmark] || !matched[m->curve]) continue;
-    const SplineCurve& o = observed[m->curve];
-    const double lo = o.spline.Length(), lm = map_curves[m->landmark]->spline.Length();
+  for (const Match* m : ctx.accepted) {
+    if (extended[m->landmark] || !ctx.matched[m->curve]) continue;
+    const SplineCurve& o = ctx.observed[m->curve];
+    const double lo = o.spline.Length(), lm = ctx.map_curves[m->landmark]->spline.Length();
     const bool reversed = m->match.map.end_m < m->match.map.start_m;
     const double os = m->match.observed.start_m, oe = m->match.observed.end_m;
     const std::vector<double> arc = ApproximateArcLengths(o);
-    const std::vector<std::size_t>& beams = curves[m->curve].beams;
-    // Each part of the observed curve beyond the stretch: [from, to] in observed arc length,
-    // whether the map stretch reaches the map curve's end on that side, and which end (the map
-    // curve's end, else its start).
+    const std::vector<std::size_t>& beams = ctx.curves[m->curve].beams;
+    // Each part of the observed curve beyond the stretch: [from, to] in observed arc
+    // length, whether the map stretch reaches the map curve's end on that side, and which end (the
+    // map curve's end, else its start).
     struct Side {
       double from, to;
       bool map_end_reached, at_map_end;
@@ -228,7 +265,7 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
     for (int side = 0; side < 2 && !extended[m->landmark]; ++side) {
       const Side& sd = sides[side];
       if (!sd.map_end_reached || sd.to - sd.from < options_.min_extension_length_m) continue;
-      if (covered(m->curve, sd.from, sd.to) > options_.end_tolerance_m) continue;
+      if (ctx.Covered(m->curve, sd.from, sd.to) > options_.end_tolerance_m) continue;
       // Beams beyond the stretch, ordered away from the map curve.
       std::vector<std::size_t> beyond;
       for (std::size_t k = 0; k < beams.size(); ++k) {
@@ -237,27 +274,31 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
       if (side == 0) std::reverse(beyond.begin(), beyond.end());
       if (beyond.size() < 4) continue;
       Landmark& landmark = splines_[m->landmark];
-      if (ExtendSpline(&landmark, scan, robot_T_laser, beyond, sd.at_map_end)) {
+      if (ExtendSpline(&landmark, ctx.scan, ctx.robot_T_laser, beyond, sd.at_map_end)) {
         extended[m->landmark] = true;
         report.extended.push_back({landmark.id, beyond});
       }
     }
   }
+}
 
+void EkfBSplineSlam::AddNewSplines(const ScanContext& ctx, BSplineUpdateReport* out) {
+  BSplineUpdateReport& report = *out;
+  const double d_min = options_.association_options.d_min_m;
   // New splines from curves that no map spline comes near.
-  for (std::size_t i = 0; i < observed.size(); ++i) {
-    if (near_map[i]) {
-      report.ignored_curves += !matched[i];
+  for (std::size_t i = 0; i < ctx.observed.size(); ++i) {
+    if (ctx.near_map[i]) {
+      report.ignored_curves += !ctx.matched[i];
       continue;
     }
-    if (observed[i].spline.Length() < options_.min_new_curve_length_m ||
-        static_cast<int>(curves[i].beams.size()) < options_.min_new_curve_points) {
+    if (ctx.observed[i].spline.Length() < options_.min_new_curve_length_m ||
+        static_cast<int>(ctx.curves[i].beams.size()) < options_.min_new_curve_points) {
       ++report.ignored_curves;
       continue;
     }
     // Match a candidate (a control point within d_min); promote it when seen often enough.
     const std::vector<Eigen::Vector2d> world_controls =
-        curves[i].spline.Transformed(pose() * robot_T_laser).control_points();
+        ctx.curves[i].spline.Transformed(pose() * ctx.robot_T_laser).control_points();
     auto near = [&](const Candidate& c) {
       return c.last_scan != scans_ &&
              std::any_of(world_controls.begin(), world_controls.end(), [&](const auto& a) {
@@ -278,14 +319,13 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
       continue;
     }
     match->observations = -1;  // promoted: removed below
-    if (AddSpline(scan, robot_T_laser, curves[i].beams))
-      report.created.push_back({splines_.back().id, curves[i].beams});
+    if (AddSpline(ctx.scan, ctx.robot_T_laser, ctx.curves[i].beams))
+      report.created.push_back({splines_.back().id, ctx.curves[i].beams});
   }
   std::erase_if(candidates_, [&](const Candidate& c) {
     return c.observations < 0 ||
            scans_ - c.last_scan > static_cast<std::size_t>(options_.candidate_max_age_scans);
   });
-  return report;
 }
 
 void EkfBSplineSlam::SelectBeams(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,

@@ -146,6 +146,20 @@ class EkfBSplineSlam {
     Eigen::Index size() const { return static_cast<Eigen::Index>(knots.size() - 4) * 2; }
   };
   struct Match;
+  struct ScanContext;
+
+  // The steps of Update. Association at the predicted pose: every observed curve against the
+  // map splines whose control points come within d_min (coarse test), then the fine one.
+  void Associate(ScanContext* c) const;
+  // Longest stretches first; one mostly covered by an accepted stretch of the same observed
+  // curve (a duplicate map spline of the same obstacle) is dropped.
+  void AcceptLongestMatches(ScanContext* c) const;
+  // One EKF correction with the selected beams of every accepted match.
+  void CorrectWithBeams(ScanContext* c, BSplineUpdateReport* report);
+  // Map splines whose matched stretch reaches their end grow by the observed continuation.
+  void ExtendMatchedSplines(const ScanContext& c, BSplineUpdateReport* report);
+  // Curves no map spline comes near become candidates, and map splines once seen often enough.
+  void AddNewSplines(const ScanContext& c, BSplineUpdateReport* report);
 
   // The spline of a landmark from the state; SplineOf needs a healthy filter.
   std::optional<kernel::CubicBSpline> TrySplineOf(const Landmark& landmark) const;
