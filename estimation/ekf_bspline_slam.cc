@@ -93,7 +93,8 @@ EkfBSplineSlam::EkfBSplineSlam(const kernel::Pose2& initial_pose,
     : options_(options),
       association_(MakeSplineAssociation(options.association, options.association_options)),
       beam_gate_(ChiSquareQuantile(options.beam_gate_probability, 1)),
-      ekf_(initial_pose, initial_covariance) {
+      ekf_(initial_pose, initial_covariance),
+      candidates_(options.min_observations_to_add, options.candidate_max_age_scans) {
   if (kernel::Status problem = options.Validate(); !problem.ok())
     ekf_.Fail("invalid options: " + problem.message());
 }
@@ -299,33 +300,21 @@ void EkfBSplineSlam::AddNewSplines(const ScanContext& ctx, BSplineUpdateReport* 
     // Match a candidate (a control point within d_min); promote it when seen often enough.
     const std::vector<Eigen::Vector2d> world_controls =
         ctx.curves[i].spline.Transformed(pose() * ctx.robot_T_laser).control_points();
-    auto near = [&](const Candidate& c) {
-      return c.last_scan != scans_ &&
-             std::any_of(world_controls.begin(), world_controls.end(), [&](const auto& a) {
-               return std::any_of(c.control_points.begin(), c.control_points.end(),
-                                  [&](const auto& b) { return (a - b).norm() <= d_min; });
-             });
+    const auto near = [d_min](const std::vector<Eigen::Vector2d>& candidate,
+                              const std::vector<Eigen::Vector2d>& seen) {
+      return std::any_of(seen.begin(), seen.end(), [&](const auto& a) {
+        return std::any_of(candidate.begin(), candidate.end(),
+                           [&](const auto& b) { return (a - b).norm() <= d_min; });
+      });
     };
-    const auto found = std::find_if(candidates_.begin(), candidates_.end(), near);
-    Candidate* match = found != candidates_.end() ? &*found : nullptr;
-    if (match == nullptr) {
-      candidates_.push_back({{}, 0, scans_});
-      match = &candidates_.back();
-    }
-    match->control_points = world_controls;
-    match->last_scan = scans_;
-    if (++match->observations < options_.min_observations_to_add) {
+    if (!candidates_.Observe(world_controls, scans_, near)) {
       ++report.candidates;
       continue;
     }
-    match->observations = -1;  // promoted: removed below
     if (AddSpline(ctx.scan, ctx.robot_T_laser, ctx.curves[i].beams))
       report.created.push_back({splines_.back().id, ctx.curves[i].beams});
   }
-  std::erase_if(candidates_, [&](const Candidate& c) {
-    return c.observations < 0 ||
-           scans_ - c.last_scan > static_cast<std::size_t>(options_.candidate_max_age_scans);
-  });
+  candidates_.Prune(scans_);
 }
 
 void EkfBSplineSlam::SelectBeams(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,

@@ -9,6 +9,7 @@
 
 #include "estimation/bspline_models.h"
 #include "estimation/ekf_core.h"
+#include "estimation/landmark_candidates.h"
 #include "estimation/map_spline.h"
 #include "estimation/models.h"
 #include "estimation/spline_association.h"
@@ -199,14 +200,8 @@ class EkfBSplineSlam {
   EkfCore ekf_;
   std::vector<Landmark> splines_;
   int next_id_ = 0;
-  // Candidate new splines: the latest sighting's control points (world frame), how often and
-  // when last seen.
-  struct Candidate {
-    std::vector<Eigen::Vector2d> control_points;
-    int observations;
-    std::size_t last_scan;
-  };
-  std::vector<Candidate> candidates_;
+  // Candidate map splines: the control points of the last sighting, world frame.
+  LandmarkCandidates<std::vector<Eigen::Vector2d>> candidates_;
   std::size_t scans_ = 0;
 };
 

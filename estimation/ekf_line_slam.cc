@@ -50,7 +50,8 @@ EkfLineSlam::EkfLineSlam(const kernel::Pose2& initial_pose,
     : options_(options),
       gate_(ChiSquareQuantile(options.gate_probability, 2)),
       new_gate_(ChiSquareQuantile(options.new_landmark_probability, 2)),
-      ekf_(initial_pose, initial_covariance) {}
+      ekf_(initial_pose, initial_covariance),
+      candidates_(options.min_observations_to_add, options.candidate_max_age_scans) {}
 
 void EkfLineSlam::Predict(const kernel::Pose2& u) {
   ekf_.Predict(u, options_.odometry.Covariance(u));
@@ -224,30 +225,19 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
       g = InitializePoint(pose(), obs.z, &g_r, &g_z);
     }
     // Match a candidate of the same kind; promote it when it has been seen often enough.
-    Candidate* match = nullptr;
-    for (Candidate& c : candidates_) {
-      if (c.is_line != obs.is_line || c.last_scan == scans_) continue;
-      const bool close =
-          obs.is_line
-              ? std::abs(c.value(0) - g(0)) <= options_.candidate_rho_tolerance_m &&
-                    std::abs(WrapAngle(c.value(1) - g(1))) <= options_.candidate_theta_tolerance_rad
-              : (c.value - g).norm() <= options_.corner_max_distance_m;
-      if (close) {
-        match = &c;
-        break;
-      }
-    }
-    if (match == nullptr) {
-      candidates_.push_back({obs.is_line, g, 0, scans_});
-      match = &candidates_.back();
-    }
-    match->value = g;
-    match->last_scan = scans_;
-    if (++match->observations < options_.min_observations_to_add) {
+    const bool promoted =
+        candidates_.Observe({obs.is_line, g}, scans_, [&](const Candidate& c, const Candidate& n) {
+          if (c.is_line != n.is_line) return false;
+          return n.is_line
+                     ? std::abs(c.value(0) - n.value(0)) <= options_.candidate_rho_tolerance_m &&
+                           std::abs(WrapAngle(c.value(1) - n.value(1))) <=
+                               options_.candidate_theta_tolerance_rad
+                     : (c.value - n.value).norm() <= options_.corner_max_distance_m;
+        });
+    if (!promoted) {
       ++report.candidates;
       continue;
     }
-    match->observations = -1;  // promoted: removed below
     if (obs.is_line) {
       const Eigen::Index i = ekf_.Append(g, g_r, g_z * obs.r * g_z.transpose());
       LineLandmark lm{i, std::numeric_limits<double>::infinity(),
@@ -259,10 +249,7 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
     }
     ++report.new_landmarks;
   }
-  std::erase_if(candidates_, [&](const Candidate& c) {
-    return c.observations < 0 ||
-           scans_ - c.last_scan > static_cast<std::size_t>(options_.candidate_max_age_scans);
-  });
+  candidates_.Prune(scans_);
   return report;
 }
 

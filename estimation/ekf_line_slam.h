@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "estimation/ekf_core.h"
+#include "estimation/landmark_candidates.h"
 #include "estimation/models.h"
 #include "kernel/lines.h"
 #include "kernel/options.h"
@@ -136,14 +137,12 @@ class EkfLineSlam {
   EkfCore ekf_;
   std::vector<LineLandmark> lines_;
   std::vector<CornerLandmark> corners_;
-  // Candidate landmarks: world-frame value (rho, theta) or (x, y), how often and when last seen.
+  // Candidate landmarks: a line (rho, theta) or a corner (x, y), world frame.
   struct Candidate {
     bool is_line;
     Eigen::Vector2d value;
-    int observations;
-    std::size_t last_scan;
   };
-  std::vector<Candidate> candidates_;
+  LandmarkCandidates<Candidate> candidates_;
   std::size_t scans_ = 0;
 };
 
