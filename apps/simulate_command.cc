@@ -1,10 +1,12 @@
 // splam simulate: drive the simulated robot along a route and record what it sensed.
 #include <fmt/core.h>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "io/config.h"
 #include "io/run_picture.h"
 #include "io/simulation_log.h"
 #include "io/world_file.h"
@@ -26,7 +28,18 @@ struct SimulateArgs {
   double resolution_m_per_px = 0.05;
   int max_steps = 20000;
   int scan_every = 5;
+  std::string config_file;
+  std::vector<std::string> sets;
+  std::vector<std::string> given;  // the flags given: they override the file
 };
+
+// The document of `splam simulate --config`: the simulator and the route follower.
+io::ConfigRoot SimulateConfigRoot(sim::SimulatorOptions* simulator, sim::RouteOptions* route) {
+  return [simulator, route](kernel::FieldVisitor& v) {
+    v.Nested("simulator", "the simulated robot and its sensors", simulator);
+    v.Nested("route", "how the robot follows the route", route);
+  };
+}
 
 int RunSimulate(const SimulateArgs& args) {
   io::FloorPlanOptions floor_plan;
@@ -59,17 +72,41 @@ int RunSimulate(const SimulateArgs& args) {
     route = *read.value;
   }
 
+  // Defaults, then the file, then the flags given and --set.
   sim::SimulatorOptions options;
-  if (args.laser == "urg04lx")
-    options.laser = sim::LaserOptions::Urg04lx();
-  else if (args.laser == "lms200")
-    options.laser = sim::LaserOptions::Lms200(0.5);
-  else
-    options.laser = sim::LaserOptions::Lms200(1.0);
-  options.enable_sonar = args.sonar;
-  options.odometry = options.odometry.Scaled(args.odometry_noise_scale);
   sim::RouteOptions route_options;
-  route_options.max_steps = args.max_steps;
+  const auto given = [&](const char* flag) {
+    return std::find(args.given.begin(), args.given.end(), flag) != args.given.end();
+  };
+  if (!args.config_file.empty()) {
+    const io::Result<io::ConfigFile> file = io::ConfigFile::Load(args.config_file);
+    kernel::Status read = file.status();
+    if (read.ok()) read = file.value->Read(SimulateConfigRoot(&options, &route_options));
+    if (!read.ok()) {
+      fmt::print(stderr, "splam simulate: {}\n", read.message());
+      return kExitBadInput;
+    }
+  }
+  if (given("laser") || args.config_file.empty()) {
+    if (args.laser == "urg04lx")
+      options.laser = sim::LaserOptions::Urg04lx();
+    else if (args.laser == "lms200")
+      options.laser = sim::LaserOptions::Lms200(0.5);
+    else
+      options.laser = sim::LaserOptions::Lms200(1.0);
+  }
+  if (given("sonar")) options.enable_sonar = args.sonar;
+  if (given("odometry-noise"))
+    options.odometry = sim::OdometryNoiseOptions().Scaled(args.odometry_noise_scale);
+  if (given("max-steps")) route_options.max_steps = args.max_steps;
+  for (const std::string& assignment : args.sets) {
+    if (const kernel::Status s =
+            io::SetConfigValue(SimulateConfigRoot(&options, &route_options), assignment);
+        !s.ok()) {
+      fmt::print(stderr, "splam simulate: {}\n", s.message());
+      return kExitBadInput;
+    }
+  }
   if (const kernel::Status s = kernel::FirstError(options.Validate(), route_options.Validate());
       !s.ok()) {
     fmt::print(stderr, "splam simulate: {}\n", s.message());
@@ -92,6 +129,14 @@ int RunSimulate(const SimulateArgs& args) {
   std::filesystem::create_directories(out, ec);
   if (ec) {
     fmt::print(stderr, "splam simulate: cannot create {}: {}\n", out, ec.message());
+    return kExitBadInput;
+  }
+  if (const kernel::Status s = io::WriteConfig(
+          out + "/config.yaml", SimulateConfigRoot(&options, &route_options),
+          "splam simulate --world " + args.world + " --seed " + std::to_string(args.seed) +
+              "\nrepeat with --config " + out + "/config.yaml");
+      !s.ok()) {
+    fmt::print(stderr, "splam simulate: {}\n", s.message());
     return kExitBadInput;
   }
   const std::vector<std::string> comments = {
@@ -174,25 +219,37 @@ void AddSimulateCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--seed", args->seed, "Seed of all noise; the same seed gives the same files")
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output directory (default runs/simulate-<world>)");
-  cmd->add_option("--laser", args->laser, "Laser model")
-      ->check(CLI::IsMember({"urg04lx", "lms200", "lms200-1deg"}))
+  std::vector<std::pair<std::string, CLI::Option*>> flags;
+  cmd->add_option("--config", args->config_file,
+                  "YAML options (the config.yaml of a run: simulator, route); flags override it");
+  cmd->add_option("--set", args->sets,
+                  "Override one option, KEY=VALUE, e.g. simulator.laser.noise_fraction=0.02");
+  flags.emplace_back("laser", cmd->add_option("--laser", args->laser, "Laser model"));
+  flags.back()
+      .second->check(CLI::IsMember({"urg04lx", "lms200", "lms200-1deg"}))
       ->capture_default_str();
-  cmd->add_flag("--sonar", args->sonar, "Also simulate and log the 16-sonar ring");
-  cmd->add_option("--odometry-noise", args->odometry_noise_scale,
-                  "Scale of the default odometry noise (0 = perfect odometry)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  flags.emplace_back(
+      "sonar", cmd->add_flag("--sonar", args->sonar, "Also simulate and log the 16-sonar ring"));
+  flags.emplace_back("odometry-noise",
+                     cmd->add_option("--odometry-noise", args->odometry_noise_scale,
+                                     "Scale of the default odometry noise (0 = perfect odometry)"));
+  flags.back().second->check(CLI::NonNegativeNumber)->capture_default_str();
   cmd->add_option("--resolution", args->resolution_m_per_px,
                   "Metres per pixel of a floor-plan image world")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option("--max-steps", args->max_steps, "Cap on 0.1 s time steps")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  flags.emplace_back("max-steps",
+                     cmd->add_option("--max-steps", args->max_steps, "Cap on 0.1 s time steps"));
+  flags.back().second->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--scan-every", args->scan_every, "Draw the points of every N-th scan")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->callback([args, exit_code] { *exit_code = RunSimulate(*args); });
+  cmd->callback([args, exit_code, flags] {
+    args->given.clear();
+    for (const auto& [name, option] : flags)
+      if (option->count() > 0) args->given.push_back(name);
+    *exit_code = RunSimulate(*args);
+  });
 }
 
 }  // namespace splam::apps

@@ -131,4 +131,14 @@ void SimulatorOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Nested("sonar", "sonar ring (Pioneer P3-DX)", &sonar);
 }
 
+void RouteOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("max_linear_speed_mps", &max_linear_speed_mps, "forward speed along the route, m/s");
+  v.Field("max_angular_speed_radps", &max_angular_speed_radps, "turn rate limit, rad/s");
+  v.Field("heading_gain", &heading_gain, "w = gain * heading error, 1/s");
+  v.Field("turn_in_place_above_rad", &turn_in_place_above_rad,
+          "heading error above which the robot turns in place, rad");
+  v.Field("waypoint_tolerance_m", &waypoint_tolerance_m, "a waypoint is reached within, m");
+  v.Field("max_steps", &max_steps, "cap on 0.1 s time steps");
+}
+
 }  // namespace splam::sim

@@ -84,6 +84,7 @@ struct RouteOptions {
   double waypoint_tolerance_m = 0.1;     // a waypoint closer than this is reached
   int max_steps = 20000;                 // cap on time steps (2000 s at 10 Hz)
 
+  void VisitFields(kernel::FieldVisitor& v);
   kernel::Status Validate() const;
 };
 

@@ -417,6 +417,12 @@ TEST(SplamCli, ConfigFileEditedChangesTheRunAndAMisspeltKeyIsRefused) {
   fs::create_directories(dir);
   ASSERT_EQ(Splam("simulate --world office --seed 3 --out " + (dir / "sim").string()).status, 0);
   const std::string log = (dir / "sim" / "log.clf").string();
+  // The simulation's own config.yaml repeats it to the byte.
+  ASSERT_EQ(Splam("simulate --world office --seed 3 --config " +
+                  (dir / "sim" / "config.yaml").string() + " --out " + (dir / "sim2").string())
+                .status,
+            0);
+  EXPECT_EQ(Slurp(dir / "sim2" / "log.clf"), Slurp(dir / "sim" / "log.clf"));
   const Output printed = Splam("config print --method topological");
   ASSERT_EQ(printed.status, 0) << printed.text;
   EXPECT_NE(printed.text.find("correction_gain: 0.3  # "), std::string::npos) << printed.text;
