@@ -186,6 +186,34 @@ TEST(ValidConf, RefusesCandidatesInsideOtherNodesLsrs) {
   EXPECT_FALSE(OutsideOtherLsrs(f.g, a, {1.0, 0.0}));  // b's does
 }
 
+TEST(Session, LegsKeepTheRobotsRadiusFromTheLsrBoundary) {
+  Fixture f;
+  // A wall 1 m north of the node: legs along it must stay radius + margin (0.317 m) away.
+  const graph::Vertex a = f.Node({0, 0}, Circle([](double angle) {
+                                   const double s = std::sin(angle);
+                                   return s > 1e-9 ? 1.0 / s : kernel::Scan::kNoReturn;
+                                 }));
+  const kernel::LocalSafeRegion& lsr = f.g[a].lsr;
+  EXPECT_TRUE(f.session.LegIsClear(lsr, {0, 0}, {2.0, 0.5}));   // 0.5 m from the wall
+  EXPECT_FALSE(f.session.LegIsClear(lsr, {0, 0}, {2.0, 0.8}));  // 0.2 m from the wall
+  EXPECT_FALSE(f.session.LegIsClear(lsr, {0, 0}, {0.0, 2.0}));  // through it
+  // A goal behind a corner of the free space is reached through one waypoint, a goal beyond the
+  // wall not at all.
+  const auto direct = f.session.PathInside(lsr, {0, 0}, {2.0, 0.3});
+  ASSERT_TRUE(direct);
+  EXPECT_EQ(direct->size(), 1u);
+  EXPECT_FALSE(f.session.PathInside(lsr, {0, 0}, {0.0, 1.5}));
+}
+
+TEST(Session, FrontiersShorterThanTheMinimumAreDropped) {
+  Fixture f;  // min_frontier_m = 0.5 at r = 3 m: arcs narrower than 1/6 rad are slits
+  const std::vector<kernel::FrontierArc> arcs = {{0.0, 0.1}, {1.0, 1.2}, {2.0, 3.0}};
+  const auto kept = f.session.LongEnough(arcs);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].start_angle_rad, 1.0);
+  EXPECT_EQ(kept[1].start_angle_rad, 2.0);
+}
+
 TEST(ExplorationGraph, NodesEdgesAndWaypoints) {
   graph::ExplorationGraph g;
   const graph::Vertex a = graph::AddNode(&g, Pose2(0, 0, 0));
