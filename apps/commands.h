@@ -3,6 +3,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "loop/exit_status.h"
+
 namespace splam::apps {
 
 // Each Add*Command registers a subcommand whose callback stores its exit status in *exit_code.
@@ -14,10 +16,10 @@ void AddExperimentCommand(CLI::App* app, int* exit_code);
 void AddExploreCommand(CLI::App* app, int* exit_code);
 void AddConfigCommand(CLI::App* app, int* exit_code);
 
-// Exit statuses of every command.
-inline constexpr int kExitOk = 0;
-inline constexpr int kExitBadInput = 2;    // unreadable or malformed input, invalid options
-inline constexpr int kExitIncomplete = 3;  // the job ran but stopped early (results written)
+// Exit statuses of every command: 0 done, 2 bad input, 3 stopped early (results written).
+using loop::kExitBadInput;
+using loop::kExitIncomplete;
+using loop::kExitOk;
 
 }  // namespace splam::apps
 

@@ -8,18 +8,18 @@
 #include <optional>
 
 #include "apps/commands.h"
-#include "apps/exploration_report.h"
 #include "apps/run_config.h"
 #include "io/config.h"
 #include "io/text.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
+#include "loop/exploration_report.h"
 
 namespace splam::apps {
 namespace {
 
 struct ExploreArgs {
-  ExploreSetup setup;  // what the command line gave
+  loop::ExploreSetup setup;  // what the command line gave
   std::string config_file;
   std::vector<std::string> sets;
   std::vector<std::string> given;  // the top-level flags given (explorer, localization, ...)
@@ -110,7 +110,7 @@ int RunExplore(const ExploreArgs& args) {
     fmt::print(stderr, "splam explore: {}\n", s.message());
     return kExitBadInput;
   }
-  ExploreSetup& setup = config.setup;
+  loop::ExploreSetup& setup = config.setup;
   fmt::print("splam explore: {} with {} localisation in '{}', seed {}\n", setup.explorer,
              setup.localization, world.value->name, setup.seed);
   std::fflush(stdout);
@@ -121,7 +121,7 @@ int RunExplore(const ExploreArgs& args) {
                std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
     std::fflush(stdout);
   };
-  const ExploreOutcome outcome = RunExploration(*world.value, setup);
+  const loop::ExploreOutcome outcome = RunExploration(*world.value, setup);
   if (!outcome.error.empty()) {
     fmt::print(stderr, "splam explore: {}\n", outcome.error);
     return kExitBadInput;
@@ -144,9 +144,10 @@ int RunExplore(const ExploreArgs& args) {
   }
   const exploration::ExplorationRun& run = outcome.run;
   const int nodes = static_cast<int>(boost::num_vertices(run.graph));
-  const nlohmann::json report = ExplorationReport(*world.value, setup, outcome);
+  const nlohmann::json report = loop::ExplorationReport(*world.value, setup, outcome);
   std::vector<std::string> written;
-  if (std::string error = WriteExplorationRun(*world.value, setup, outcome, report, out, &written);
+  if (std::string error =
+          loop::WriteExplorationRun(*world.value, setup, outcome, report, out, &written);
       !error.empty()) {
     fmt::print(stderr, "splam explore: {}\n", error);
     return kExitBadInput;
@@ -182,7 +183,7 @@ int RunExplore(const ExploreArgs& args) {
 
 void AddExploreCommand(CLI::App* app, int* exit_code) {
   auto args = std::make_shared<ExploreArgs>();
-  ExploreSetup& setup = args->setup;
+  loop::ExploreSetup& setup = args->setup;
   exploration::ExplorerOptions& o = setup.options;
   CLI::App* cmd = app->add_subcommand(
       "explore",

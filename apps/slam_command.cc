@@ -9,7 +9,6 @@
 
 #include "apps/commands.h"
 #include "apps/run_config.h"
-#include "apps/slam_report.h"
 #include "estimation/chi_square.h"
 #include "estimation/metrics.h"
 #include "io/carmen.h"
@@ -21,6 +20,7 @@
 #include "io/world_file.h"
 #include "kernel/angle.h"
 #include "loop/log_replay.h"
+#include "loop/slam_report.h"
 
 namespace splam::apps {
 namespace {
@@ -98,13 +98,13 @@ void WriteSlamFiles(const std::string& log, const std::string& out, const std::s
                     const sim::World* world, const estimation::SlamMethod& slam,
                     const loop::ReplayResult& run, std::vector<std::string>* errors) {
   const estimation::SlamMap map = slam.Map();
-  for (std::string& e : WriteMap(map, out)) errors->push_back(std::move(e));
+  for (std::string& e : io::WriteMap(map, out)) errors->push_back(std::move(e));
   errors->push_back(
       io::WriteTrajectory(out + "/trajectory.txt", run.estimate, label + " estimate of " + log));
   errors->push_back(io::WriteTrajectory(out + "/odometry.txt", run.odometry, "odometry of " + log));
   if (!run.truth.empty())
     errors->push_back(io::WriteTrajectory(out + "/truth.txt", run.truth, "ground truth of " + log));
-  RunPicture picture;
+  io::RunPicture picture;
   picture.title = fmt::format("{} on {}: {}", label, std::filesystem::path(log).filename().string(),
                               slam.MapDescription());
   picture.world = world;
@@ -112,63 +112,15 @@ void WriteSlamFiles(const std::string& log, const std::string& out, const std::s
   picture.truth = run.truth;
   picture.odometry = run.odometry;
   picture.estimates = {{"estimate", run.estimate}};
-  DrawMap(map, &picture);
+  io::DrawMap(map, &picture);
   picture.pixels_per_meter = 40.0;
-  errors->push_back(SaveRunPicture(picture, {out + "/map.svg", out + "/map.png"}));
+  errors->push_back(io::SaveRunPicture(picture, {out + "/map.svg", out + "/map.png"}));
   if (!run.truth.empty()) {
-    errors->push_back(SaveErrorPlot(label + ": error against ground truth", run.truth,
-                                    {{"odometry", io::palette::kOdometry, run.odometry},
-                                     {label, io::palette::kEstimate, run.estimate}},
-                                    {out + "/errors.svg", out + "/errors.png"}));
+    errors->push_back(io::SaveErrorPlot(label + ": error against ground truth", run.truth,
+                                        {{"odometry", io::palette::kOdometry, run.odometry},
+                                         {label, io::palette::kEstimate, run.estimate}},
+                                        {out + "/errors.svg", out + "/errors.png"}));
   }
-}
-
-// Timing, statistics, health, errors and NEES of a replay, as summary.json keeps them.
-nlohmann::ordered_json RunSummary(const estimation::SlamMethod& slam,
-                                  const estimation::SlamStatistics& statistics,
-                                  const loop::ReplayResult& run, const loop::SlamDriver& driver) {
-  const std::vector<double>& step_ms = driver.update_ms();
-  nlohmann::ordered_json summary;
-  summary["scans"] = run.estimate.size();
-  summary["data_duration_s"] = run.data_s();
-  summary["wall_time_s"] = run.wall_s;
-  summary["real_time_factor"] = run.wall_s > 0 ? run.data_s() / run.wall_s : 0.0;
-  summary["time_per_scan_ms"] = {
-      {"mean", step_ms.empty() ? 0.0 : run.wall_s * 1000.0 / static_cast<double>(step_ms.size())},
-      {"median", loop::Percentile(step_ms, 0.5)},
-      {"p95", loop::Percentile(step_ms, 0.95)},
-      {"max", loop::Percentile(step_ms, 1.0)}};
-  summary["time_per_scan_vs_map_size"] =
-      TimeBinsJson(loop::TimeByMapSize(step_ms, driver.map_size()));
-  summary.update(StatisticsJson(statistics));
-  summary["health"] = {{"healthy", slam.healthy()},
-                       {"message", slam.health().message()},
-                       {"scans_processed", run.estimate.size()},
-                       {"scans_in_log", run.scans_in_log}};
-  if (const auto p = slam.pose_covariance()) {
-    summary["health"]["final_pose_sigma"] = {std::sqrt((*p)(0, 0)), std::sqrt((*p)(1, 1)),
-                                             std::sqrt((*p)(2, 2))};
-  }
-  if (!run.truth.empty()) {
-    summary["error"] = {
-        {"estimate", ErrorJson(estimation::CompareToTruth(run.truth, run.estimate))},
-        {"odometry", ErrorJson(estimation::CompareToTruth(run.truth, run.odometry))}};
-    const double lo = estimation::ChiSquareQuantile(0.025, 3),
-                 hi = estimation::ChiSquareQuantile(0.975, 3);
-    double sum = 0.0;
-    std::size_t inside = 0;
-    for (double v : run.nees) {
-      sum += v;
-      inside += v >= lo && v <= hi;
-    }
-    if (!run.nees.empty()) {
-      const double n = static_cast<double>(run.nees.size());
-      summary["nees"] = {{"mean", sum / n},
-                         {"fraction_in_95_band", static_cast<double>(inside) / n},
-                         {"steps", run.nees.size()}};
-    }
-  }
-  return summary;
 }
 
 void PrintSlamSummary(const std::string& label, const estimation::SlamMethod& slam,
@@ -270,7 +222,7 @@ int RunSlam(const SlamArgs& args) {
   summary["range_noise_model"] = {{"range_sigma_m", noise.range_sigma_m},
                                   {"range_sigma_fraction", noise.range_sigma_fraction}};
   summary["log"] = args.log;
-  summary.update(RunSummary(slam, statistics, run, driver));
+  summary.update(loop::ReplaySummaryJson(slam, statistics, run, driver));
   std::ofstream(out + "/summary.json") << summary.dump(2) << "\n";
   for (const std::string& e : errors) {
     if (!e.empty()) {

@@ -3,9 +3,20 @@
 #include <Eigen/LU>
 #include <cmath>
 
+#include <fmt/core.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "estimation/chi_square.h"
 #include "estimation/metrics.h"
 #include "estimation/slam_method.h"
+#include "io/plot.h"
+#include "io/render.h"
+#include "io/run_picture.h"
 #include "kernel/angle.h"
+#include "loop/exit_status.h"
 #include "loop/log_replay.h"
 #include "sim/builtin_worlds.h"
 #include "sim/simulator.h"
@@ -154,5 +165,126 @@ CorridorResult RunCorridorExperiment(const CorridorOptions& args) {
   for (double& nees : result.average_nees) nees /= args.runs;
   return result;
 }
+
+int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string& out) {
+  std::filesystem::create_directories(out);
+  const CorridorResult result = RunCorridorExperiment(options);
+  if (!result.error.empty()) {
+    fmt::print(stderr, "splam experiment: {}\n", result.error);
+    return kExitIncomplete;
+  }
+  // Pictures of the first run.
+  const sim::World world = *sim::BuiltinWorld("corridor");
+  io::RunPicture picture;
+  picture.title =
+      fmt::format("corridor, LMS-200, {} steps from 2.7 deg: {} lines, {} corners (seed {})",
+                  options.steps, result.lines.size(), result.corners.size(), options.seed);
+  picture.world = &world;
+  picture.world_color = io::Rgb{0.75, 0.75, 0.75};
+  picture.truth = result.truth;
+  picture.odometry = result.odometry;
+  picture.estimates = {{"estimate", result.estimate}};
+  io::DrawMap(
+      {.lines = result.lines, .corners = result.corners, .splines = {}, .spline_features = {}},
+      &picture);
+  for (const std::string& e :
+       {io::SaveRunPicture(picture, {out + "/map.svg", out + "/map.png"}),
+        io::SaveErrorPlot("corridor run, seed " + std::to_string(options.seed), result.truth,
+                          {{"odometry", io::palette::kOdometry, result.odometry},
+                           {"ekf-lines", io::palette::kEstimate, result.estimate}},
+                          {out + "/errors.svg", out + "/errors.png"})}) {
+    if (!e.empty()) {
+      fmt::print(stderr, "splam experiment: {}\n", e);
+      return kExitBadInput;
+    }
+  }
+  const auto& distances = CorridorDistances();
+  const std::vector<std::vector<double>>& measured = result.measured;
+
+  // Table 1.
+  nlohmann::ordered_json report;
+  report["experiment"] = "corridor-lines (paper 001 section 6)";
+  report["runs"] = options.runs;
+  report["steps"] = options.steps;
+  std::string table =
+      "| distance | true (m) | SLAM (m), mean +- std over runs | error (%) | mapped in runs "
+      "|\n|---|---|---|---|---|\n";
+  fmt::print("{}", table);
+  for (std::size_t k = 0; k < distances.size(); ++k) {
+    const double truth = distances[k].TrueValue();
+    const std::vector<double>& v = measured[k];
+    std::string row;
+    if (v.empty()) {
+      row = fmt::format("| {} | {:.3f} | not mapped | - | 0/{} |\n", distances[k].name, truth,
+                        options.runs);
+      report["distances"].push_back(
+          {{"name", distances[k].name}, {"true_m", truth}, {"mapped_runs", 0}});
+    } else {
+      const auto [mean, std] = estimation::MeanStd(v);
+      const double error = 100.0 * std::abs(mean - truth) / truth;
+      row = fmt::format("| {} | {:.3f} | {:.3f} +- {:.3f} | {:.2f} | {}/{} |\n", distances[k].name,
+                        truth, mean, std, error, v.size(), options.runs);
+      report["distances"].push_back({{"name", distances[k].name},
+                                     {"true_m", truth},
+                                     {"slam_mean_m", mean},
+                                     {"slam_std_m", std},
+                                     {"error_percent", error},
+                                     {"mapped_runs", v.size()}});
+    }
+    table += row;
+    fmt::print("{}", row);
+  }
+  // Consistency.
+  const double n = options.runs;
+  const double lo = estimation::ChiSquareQuantile(0.025, 3 * n) / n,
+               hi = estimation::ChiSquareQuantile(0.975, 3 * n) / n;
+  const std::vector<double>& average = result.average_nees;
+  std::vector<double> steps;
+  int inside = 0;
+  for (int s = 0; s <= options.steps; ++s) {
+    steps.push_back(s);
+    inside += average[s] >= lo && average[s] <= hi;
+  }
+  const double fraction = static_cast<double>(inside) / (options.steps + 1);
+  double mean_final = 0, mean_odometry = 0;
+  for (std::size_t i = 0; i < result.final_error_m.size(); ++i)
+    mean_final += result.final_error_m[i], mean_odometry += result.final_odometry_error_m[i];
+  mean_final /= n;
+  mean_odometry /= n;
+  report["nees"] = {
+      {"band", {lo, hi}}, {"fraction_of_steps_inside", fraction}, {"passed", fraction >= 0.9}};
+  report["final_position_error_m"] = {{"ekf_lines_mean", mean_final},
+                                      {"odometry_mean", mean_odometry}};
+  io::PlotOptions plot_options;
+  plot_options.title =
+      fmt::format("average NEES over {} runs; 95 % band [{:.2f}, {:.2f}]: {:.0f} % of steps inside",
+                  options.runs, lo, hi, 100 * fraction);
+  plot_options.x_label = "step";
+  const io::PlotPanel panel{
+      "NEES (3 dof)",
+      {{"average NEES", io::palette::kEstimate, steps, average},
+       {"95 % band", io::palette::kOdometry, {0.0, static_cast<double>(options.steps)}, {lo, lo}},
+       {"", io::palette::kOdometry, {0.0, static_cast<double>(options.steps)}, {hi, hi}}}};
+  if (std::string e = io::SavePlot({panel}, plot_options, {out + "/nees.svg", out + "/nees.png"});
+      !e.empty()) {
+    fmt::print(stderr, "splam experiment: {}\n", e);
+    return kExitBadInput;
+  }
+  std::ofstream(out + "/table1.md") << table;
+  std::ofstream(out + "/report.json") << report.dump(2) << "\n";
+  fmt::print("average NEES inside the 95 % band [{:.2f}, {:.2f}] for {:.1f} % of {} steps ({})\n",
+             lo, hi, 100 * fraction, options.steps + 1,
+             fraction >= 0.9 ? "consistent" : "NOT consistent");
+  fmt::print("final position error: ekf-lines {:.3f} m, odometry {:.3f} m (mean of {} runs)\n",
+             mean_final, mean_odometry, options.runs);
+  fmt::print(
+      "wrote {}/{{table1.md, report.json, nees.svg, nees.png, map.svg, map.png, errors.svg, "
+      "errors.png}}\n",
+      out);
+  return kExitOk;
+}
+
+// An experiment's arguments with the shared ones (runs, seed, out) taken from the command line
+// when given, else the experiment's defaults.
 
 }  // namespace splam::loop

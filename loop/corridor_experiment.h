@@ -70,6 +70,12 @@ struct CorridorResult {
 // registry with the simulator's noise models.
 CorridorResult RunCorridorExperiment(const CorridorOptions& options);
 
+// `splam experiment corridor-lines`: runs the experiment and writes into `out` table1.md (the
+// nine distances as 001 Table 1), report.json, nees.svg/png (the average NEES against its 95 %
+// band), map.svg/png and errors.svg/png of the first run. kExitOk, kExitIncomplete when a run
+// failed, kExitBadInput when a file cannot be written.
+int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string& out);
+
 }  // namespace splam::loop
 
 #endif  // SPLAM_LOOP_CORRIDOR_EXPERIMENT_H_

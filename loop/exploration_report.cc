@@ -1,4 +1,4 @@
-#include "apps/exploration_report.h"
+#include "loop/exploration_report.h"
 
 #include <fmt/core.h>
 #include <algorithm>
@@ -6,7 +6,6 @@
 #include <cmath>
 #include <fstream>
 
-#include "apps/slam_report.h"
 #include "estimation/metrics.h"
 #include "exploration/coverage.h"
 #include "exploration/perception.h"
@@ -14,13 +13,11 @@
 #include "io/render.h"
 #include "io/run_picture.h"
 #include "io/trajectory.h"
+#include "loop/slam_report.h"
 #include "sim/ray_caster.h"
 #include "sim/simulator.h"
 
-namespace splam::apps {
-
-using loop::Trajectories;
-using loop::TrajectoriesOf;
+namespace splam::loop {
 
 nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& setup,
                                  const ExploreOutcome& outcome) {
@@ -52,7 +49,7 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
       {"estimate", ErrorJson(estimation::CompareToTruth(t.truth, t.estimate))},
       {"odometry", ErrorJson(estimation::CompareToTruth(t.truth, t.odometry))}};
   if (const estimation::SlamMethod* slam = outcome.slam_method()) {
-    const loop::SlamDriver& driver = *outcome.slam->driver();
+    const SlamDriver& driver = *outcome.slam->driver();
     const std::vector<double>& ms = driver.update_ms();
     const std::vector<estimation::MapSpline> splines = slam->Map().splines;
     std::size_t control_points = 0;
@@ -62,8 +59,7 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
     if (!splines.empty()) {
       map["curves"] = splines.size();
       map["control_points"] = control_points;
-      map["mean_distance_to_obstacles_m"] =
-          loop::MeanDistanceToObstacles(sim::RayCaster(world), splines);
+      map["mean_distance_to_obstacles_m"] = MeanDistanceToObstacles(sim::RayCaster(world), splines);
     }
     const nlohmann::json statistics =
         nlohmann::json::parse(StatisticsJson(slam->Statistics()).dump());
@@ -74,10 +70,9 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
         {"map", map},
         {"associations", statistics["associations"]},
         {"localization_steps", ms.size()},
-        {"ms_per_step",
-         {{"median", loop::Percentile(ms, 0.5)}, {"p95", loop::Percentile(ms, 0.95)}}},
+        {"ms_per_step", {{"median", Percentile(ms, 0.5)}, {"p95", Percentile(ms, 0.95)}}},
         {"ms_per_step_by_map_curves",
-         nlohmann::json::parse(TimeBinsJson(loop::TimeByMapSize(ms, driver.map_curves())).dump())}};
+         nlohmann::json::parse(TimeBinsJson(TimeByMapSize(ms, driver.map_curves())).dump())}};
     if (statistics.contains("least_squares"))
       report["slam"]["least_squares"] = statistics["least_squares"];
   }
@@ -129,7 +124,7 @@ std::string WriteExplorationRun(const sim::World& world, const ExploreSetup& set
   if (const estimation::SlamMethod* slam = outcome.slam_method()) {
     errors.push_back(save("map.svg/png", SaveSlamMapPicture(world, outcome, title,
                                                             {dir + "/map.svg", dir + "/map.png"})));
-    const std::vector<std::string> map_errors = WriteMap(slam->Map(), dir);
+    const std::vector<std::string> map_errors = io::WriteMap(slam->Map(), dir);
     errors.insert(errors.end(), map_errors.begin(), map_errors.end());
     if (std::all_of(map_errors.begin(), map_errors.end(), [](auto& e) { return e.empty(); }))
       written->insert(written->end(), {"map.txt", "map.dxf"});
@@ -202,25 +197,25 @@ std::string SaveSlamMapPicture(const sim::World& world, const ExploreOutcome& ou
   const estimation::SlamMethod* slam = outcome.slam_method();
   if (slam == nullptr) return "no SLAM map to draw";
   const Trajectories t = TrajectoriesOf(outcome.run);
-  RunPicture picture;
+  io::RunPicture picture;
   picture.title = title + " | " + slam->MapDescription();
   picture.world = &world;
   picture.world_color = io::Rgb{0.75, 0.75, 0.75};
   picture.truth = t.truth;
   picture.odometry = t.odometry;
   picture.estimates = {{outcome.slam->name() + " estimate", t.estimate}};
-  DrawMap(slam->Map(), &picture);
+  io::DrawMap(slam->Map(), &picture);
   picture.pixels_per_meter = 40.0;
-  return SaveRunPicture(picture, paths);
+  return io::SaveRunPicture(picture, paths);
 }
 
 std::string SaveTrajectoryErrorPlot(const ExploreOutcome& outcome, const std::string& title,
                                     const std::vector<std::string>& paths) {
   const Trajectories t = TrajectoriesOf(outcome.run);
-  return SaveErrorPlot(title, t.truth,
-                       {{"odometry", io::palette::kOdometry, t.odometry},
-                        {outcome.run.localization, io::palette::kEstimate, t.estimate}},
-                       paths);
+  return io::SaveErrorPlot(title, t.truth,
+                           {{"odometry", io::palette::kOdometry, t.odometry},
+                            {outcome.run.localization, io::palette::kEstimate, t.estimate}},
+                           paths);
 }
 
 std::string SaveCoveragePlot(const ExploreOutcome& outcome, const std::string& title,
@@ -237,4 +232,4 @@ std::string SaveCoveragePlot(const ExploreOutcome& outcome, const std::string& t
                       paths);
 }
 
-}  // namespace splam::apps
+}  // namespace splam::loop

@@ -1,5 +1,5 @@
-#ifndef SPLAM_APPS_EXPLORATION_REPORT_H_
-#define SPLAM_APPS_EXPLORATION_REPORT_H_
+#ifndef SPLAM_LOOP_EXPLORATION_REPORT_H_
+#define SPLAM_LOOP_EXPLORATION_REPORT_H_
 
 #include <cstdint>
 #include <memory>
@@ -12,10 +12,7 @@
 #include "loop/exploration_run.h"
 #include "sim/world.h"
 
-namespace splam::apps {
-
-using loop::ExploreOutcome;
-using loop::ExploreSetup;
+namespace splam::loop {
 
 // report.json of a run.
 nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& setup,
@@ -52,6 +49,6 @@ std::string SaveTrajectoryErrorPlot(const ExploreOutcome& outcome, const std::st
 std::string SaveCoveragePlot(const ExploreOutcome& outcome, const std::string& title,
                              const std::vector<std::string>& paths);
 
-}  // namespace splam::apps
+}  // namespace splam::loop
 
-#endif  // SPLAM_APPS_EXPLORATION_REPORT_H_
+#endif  // SPLAM_LOOP_EXPLORATION_REPORT_H_

@@ -1,10 +1,10 @@
-#ifndef SPLAM_APPS_SPLAM_EXPERIMENT_H_
-#define SPLAM_APPS_SPLAM_EXPERIMENT_H_
+#ifndef SPLAM_LOOP_SPLAM_EXPERIMENT_H_
+#define SPLAM_LOOP_SPLAM_EXPERIMENT_H_
 
 #include <cstdint>
 #include <string>
 
-namespace splam::apps {
+namespace splam::loop {
 
 // Paper 003 §4.2 (Figs. 19-22): exploration coupled with SLAM in the `complex` world, three
 // strategies as the paper compares them: SRT + EKF-SLAM with lines and corners (Fig. 19), SRT +
@@ -26,6 +26,6 @@ struct SplamExperimentArgs {
 // otherwise (all results are still written), kExitBadInput when files cannot be written.
 int RunSplamExperiment(const SplamExperimentArgs& args);
 
-}  // namespace splam::apps
+}  // namespace splam::loop
 
-#endif  // SPLAM_APPS_SPLAM_EXPERIMENT_H_
+#endif  // SPLAM_LOOP_SPLAM_EXPERIMENT_H_

@@ -1,10 +1,10 @@
-#ifndef SPLAM_APPS_BSPLINE_EXPERIMENT_H_
-#define SPLAM_APPS_BSPLINE_EXPERIMENT_H_
+#ifndef SPLAM_LOOP_BSPLINE_EXPERIMENT_H_
+#define SPLAM_LOOP_BSPLINE_EXPERIMENT_H_
 
 #include <cstdint>
 #include <string>
 
-namespace splam::apps {
+namespace splam::loop {
 
 // complex-bspline (paper 000 Figs. 15-17): EKF-SLAM with B-splines in the `complex` world along
 // its built-in route with a URG-04LX, once with Pedraza's association and once with paper 000's
@@ -26,6 +26,6 @@ struct BSplineExperimentArgs {
 };
 int RunComplexBSpline(const BSplineExperimentArgs& args);
 
-}  // namespace splam::apps
+}  // namespace splam::loop
 
-#endif  // SPLAM_APPS_BSPLINE_EXPERIMENT_H_
+#endif  // SPLAM_LOOP_BSPLINE_EXPERIMENT_H_

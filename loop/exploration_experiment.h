@@ -1,10 +1,10 @@
-#ifndef SPLAM_APPS_EXPLORATION_EXPERIMENT_H_
-#define SPLAM_APPS_EXPLORATION_EXPERIMENT_H_
+#ifndef SPLAM_LOOP_EXPLORATION_EXPERIMENT_H_
+#define SPLAM_LOOP_EXPLORATION_EXPERIMENT_H_
 
 #include <cstdint>
 #include <string>
 
-namespace splam::apps {
+namespace splam::loop {
 
 // Paper 003 Fig. 18: SRT against REG, `runs` seeded trials (seeds seed .. seed + runs - 1) in
 // each of the office and complex worlds with ground-truth localisation: nodes, distance, time
@@ -19,6 +19,6 @@ struct ExplorationExperimentArgs {
 
 int RunExplorationExperiment(const ExplorationExperimentArgs& args);
 
-}  // namespace splam::apps
+}  // namespace splam::loop
 
-#endif  // SPLAM_APPS_EXPLORATION_EXPERIMENT_H_
+#endif  // SPLAM_LOOP_EXPLORATION_EXPERIMENT_H_

@@ -1,4 +1,4 @@
-#include "apps/splam_experiment.h"
+#include "loop/splam_experiment.h"
 
 #include <fmt/core.h>
 #include <filesystem>
@@ -7,14 +7,14 @@
 #include <utility>
 #include <vector>
 
-#include "apps/commands.h"
-#include "apps/exploration_report.h"
 #include "estimation/metrics.h"
 #include "io/plot.h"
 #include "kernel/angle.h"
+#include "loop/exit_status.h"
+#include "loop/exploration_report.h"
 #include "sim/builtin_worlds.h"
 
-namespace splam::apps {
+namespace splam::loop {
 namespace {
 
 struct Strategy {
@@ -219,4 +219,4 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
   return all_good ? kExitOk : kExitIncomplete;
 }
 
-}  // namespace splam::apps
+}  // namespace splam::loop

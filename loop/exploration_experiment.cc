@@ -1,4 +1,4 @@
-#include "apps/exploration_experiment.h"
+#include "loop/exploration_experiment.h"
 
 #include <fmt/core.h>
 #include <filesystem>
@@ -6,13 +6,13 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "apps/commands.h"
-#include "apps/exploration_report.h"
 #include "estimation/metrics.h"
 #include "io/plot.h"
+#include "loop/exit_status.h"
+#include "loop/exploration_report.h"
 #include "sim/builtin_worlds.h"
 
-namespace splam::apps {
+namespace splam::loop {
 namespace {
 
 struct Metric {
@@ -140,4 +140,4 @@ int RunExplorationExperiment(const ExplorationExperimentArgs& args) {
   return all_explored ? kExitOk : kExitIncomplete;
 }
 
-}  // namespace splam::apps
+}  // namespace splam::loop

@@ -1,5 +1,5 @@
-#ifndef SPLAM_APPS_SLAM_REPORT_H_
-#define SPLAM_APPS_SLAM_REPORT_H_
+#ifndef SPLAM_LOOP_SLAM_REPORT_H_
+#define SPLAM_LOOP_SLAM_REPORT_H_
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -9,25 +9,26 @@
 #include "estimation/slam_method.h"
 #include "io/map_export.h"
 #include "io/run_picture.h"
+#include "loop/log_replay.h"
 #include "loop/scoring.h"
 
 // A SLAM method's statistics and errors as JSON (drawing and export: io/run_picture.h,
 // io/map_export.h). The methods themselves know nothing of files.
-namespace splam::apps {
-
-using io::DrawMap;
-using io::RunPicture;
-using io::SaveErrorPlot;
-using io::SaveRunPicture;
-using io::WriteMap;
+namespace splam::loop {
 
 // {"map": {...}, "associations": {"method": ..., ...}, "least_squares": {...}}
 nlohmann::ordered_json StatisticsJson(const estimation::SlamStatistics& statistics);
 // A trajectory error as summary.json and report.json write it.
 nlohmann::ordered_json ErrorJson(const estimation::TrajectoryError& e);
 // Median time per step by map size.
-nlohmann::ordered_json TimeBinsJson(const std::vector<loop::TimeBin>& bins);
+nlohmann::ordered_json TimeBinsJson(const std::vector<TimeBin>& bins);
 
-}  // namespace splam::apps
+// Timing, statistics, health, errors against the truth and NEES of a log replay, as the
+// summary.json of `splam slam` keeps them.
+nlohmann::ordered_json ReplaySummaryJson(const estimation::SlamMethod& slam,
+                                         const estimation::SlamStatistics& statistics,
+                                         const ReplayResult& run, const SlamDriver& driver);
 
-#endif  // SPLAM_APPS_SLAM_REPORT_H_
+}  // namespace splam::loop
+
+#endif  // SPLAM_LOOP_SLAM_REPORT_H_

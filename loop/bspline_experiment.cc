@@ -1,4 +1,4 @@
-#include "apps/bspline_experiment.h"
+#include "loop/bspline_experiment.h"
 
 #include <fmt/core.h>
 
@@ -10,8 +10,6 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "apps/commands.h"
-#include "apps/slam_report.h"
 #include "estimation/ekf_bspline_slam.h"
 #include "estimation/metrics.h"
 #include "io/plot.h"
@@ -19,10 +17,12 @@
 #include "io/run_picture.h"
 #include "kernel/angle.h"
 #include "loop/association_scoring.h"
+#include "loop/exit_status.h"
+#include "loop/slam_report.h"
 #include "sim/builtin_worlds.h"
 #include "sim/simulator.h"
 
-namespace splam::apps {
+namespace splam::loop {
 namespace {
 
 struct Summary {
@@ -72,7 +72,7 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
       options.association = method;
       options.max_correspondence_distance_m = args.max_correspondence_distance_m;
       options.odometry = options.odometry.Scaled(scale);
-      const loop::AssociationRun r = loop::RunBSplineFilter(route.frames, caster, options);
+      const AssociationRun r = RunBSplineFilter(route.frames, caster, options);
       if (!r.healthy) {
         fmt::print(stderr, "splam experiment: seed {}, {}: the filter failed\n", seed, method);
         return kExitIncomplete;
@@ -100,7 +100,7 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
                            method == "pedraza" ? io::Rgb{0.95, 0.55, 0.0} : io::palette::kEstimate,
                            r.estimate);
       if (run == 0) {
-        RunPicture picture;
+        io::RunPicture picture;
         picture.title = fmt::format("complex, URG-04LX, {} association (seed {}): {} splines",
                                     method, seed, r.map.size());
         picture.world = &world;
@@ -108,11 +108,11 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
         picture.truth = truth;
         picture.odometry = odometry;
         picture.estimates = {{method, r.estimate}};
-        DrawMap(
+        io::DrawMap(
             {.lines = {}, .corners = {}, .splines = r.map, .spline_features = options.extraction},
             &picture);
         const std::string base = args.out + "/map_" + method;
-        if (std::string err = SaveRunPicture(picture, {base + ".svg", base + ".png"});
+        if (std::string err = io::SaveRunPicture(picture, {base + ".svg", base + ".png"});
             !err.empty()) {
           fmt::print(stderr, "splam experiment: {}\n", err);
           return kExitBadInput;
@@ -120,7 +120,7 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
       }
     }
     if (run == 0) {
-      if (std::string err = SaveErrorPlot(
+      if (std::string err = io::SaveErrorPlot(
               fmt::format("complex, URG-04LX: errors against ground truth (seed {})", seed), truth,
               plotted, {args.out + "/errors.svg", args.out + "/errors.png"});
           !err.empty()) {
@@ -189,4 +189,4 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
   return kExitOk;
 }
 
-}  // namespace splam::apps
+}  // namespace splam::loop

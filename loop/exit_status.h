@@ -1,0 +1,13 @@
+#ifndef SPLAM_LOOP_EXIT_STATUS_H_
+#define SPLAM_LOOP_EXIT_STATUS_H_
+
+namespace splam::loop {
+
+// Exit statuses of every command and experiment.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitBadInput = 2;    // unreadable or malformed input, invalid options
+inline constexpr int kExitIncomplete = 3;  // the job ran but stopped early (results written)
+
+}  // namespace splam::loop
+
+#endif  // SPLAM_LOOP_EXIT_STATUS_H_

@@ -1,0 +1,88 @@
+#include "loop/slam_report.h"
+
+#include <cmath>
+
+#include "estimation/chi_square.h"
+
+namespace splam::loop {
+
+nlohmann::ordered_json StatisticsJson(const estimation::SlamStatistics& statistics) {
+  nlohmann::ordered_json map = nlohmann::ordered_json::object();
+  for (const auto& [key, value] : statistics.map) map[key] = value;
+  nlohmann::ordered_json associations = nlohmann::ordered_json::object();
+  if (!statistics.association.empty()) associations["method"] = statistics.association;
+  for (const auto& [key, value] : statistics.associations) associations[key] = value;
+  nlohmann::ordered_json json = {{"map", map}, {"associations", associations}};
+  if (statistics.solver_runs > 0) {
+    json["least_squares"] = {{"solves", statistics.solver_runs},
+                             {"not_converged", statistics.solver_failures}};
+  }
+  return json;
+}
+
+nlohmann::ordered_json ErrorJson(const estimation::TrajectoryError& e) {
+  return {{"matched_poses", e.matched},
+          {"rmse_position_m", e.rmse_position_m},
+          {"max_position_m", e.max_position_m},
+          {"rmse_heading_rad", e.rmse_heading_rad},
+          {"max_heading_rad", e.max_heading_rad}};
+}
+
+nlohmann::ordered_json TimeBinsJson(const std::vector<TimeBin>& bins) {
+  nlohmann::ordered_json json = nlohmann::ordered_json::array();
+  for (const TimeBin& b : bins) {
+    json.push_back({{"map_size_from", b.map_size_from},
+                    {"map_size_to", b.map_size_to},
+                    {"scans", b.steps},
+                    {"median_ms", b.median_ms}});
+  }
+  return json;
+}
+
+nlohmann::ordered_json ReplaySummaryJson(const estimation::SlamMethod& slam,
+                                         const estimation::SlamStatistics& statistics,
+                                         const ReplayResult& run, const SlamDriver& driver) {
+  const std::vector<double>& step_ms = driver.update_ms();
+  nlohmann::ordered_json summary;
+  summary["scans"] = run.estimate.size();
+  summary["data_duration_s"] = run.data_s();
+  summary["wall_time_s"] = run.wall_s;
+  summary["real_time_factor"] = run.wall_s > 0 ? run.data_s() / run.wall_s : 0.0;
+  summary["time_per_scan_ms"] = {
+      {"mean", step_ms.empty() ? 0.0 : run.wall_s * 1000.0 / static_cast<double>(step_ms.size())},
+      {"median", Percentile(step_ms, 0.5)},
+      {"p95", Percentile(step_ms, 0.95)},
+      {"max", Percentile(step_ms, 1.0)}};
+  summary["time_per_scan_vs_map_size"] = TimeBinsJson(TimeByMapSize(step_ms, driver.map_size()));
+  summary.update(StatisticsJson(statistics));
+  summary["health"] = {{"healthy", slam.healthy()},
+                       {"message", slam.health().message()},
+                       {"scans_processed", run.estimate.size()},
+                       {"scans_in_log", run.scans_in_log}};
+  if (const auto p = slam.pose_covariance()) {
+    summary["health"]["final_pose_sigma"] = {std::sqrt((*p)(0, 0)), std::sqrt((*p)(1, 1)),
+                                             std::sqrt((*p)(2, 2))};
+  }
+  if (!run.truth.empty()) {
+    summary["error"] = {
+        {"estimate", ErrorJson(estimation::CompareToTruth(run.truth, run.estimate))},
+        {"odometry", ErrorJson(estimation::CompareToTruth(run.truth, run.odometry))}};
+    const double lo = estimation::ChiSquareQuantile(0.025, 3),
+                 hi = estimation::ChiSquareQuantile(0.975, 3);
+    double sum = 0.0;
+    std::size_t inside = 0;
+    for (double v : run.nees) {
+      sum += v;
+      inside += v >= lo && v <= hi;
+    }
+    if (!run.nees.empty()) {
+      const double n = static_cast<double>(run.nees.size());
+      summary["nees"] = {{"mean", sum / n},
+                         {"fraction_in_95_band", static_cast<double>(inside) / n},
+                         {"steps", run.nees.size()}};
+    }
+  }
+  return summary;
+}
+
+}  // namespace splam::loop
