@@ -41,6 +41,39 @@ io::ConfigRoot SimulateConfigRoot(sim::SimulatorOptions* simulator, sim::RouteOp
   };
 }
 
+// The simulator and route options: defaults, then the file, then the flags given and --set.
+kernel::Status Configure(const SimulateArgs& args, sim::SimulatorOptions* options,
+                         sim::RouteOptions* route_options) {
+  const auto given = [&](const char* flag) {
+    return std::find(args.given.begin(), args.given.end(), flag) != args.given.end();
+  };
+  if (!args.config_file.empty()) {
+    const io::Result<io::ConfigFile> file = io::ConfigFile::Load(args.config_file);
+    kernel::Status read = file.status();
+    if (read.ok()) read = file.value->Read(SimulateConfigRoot(options, route_options));
+    if (!read.ok()) return read;
+  }
+  if (given("laser") || args.config_file.empty()) {
+    if (args.laser == "urg04lx")
+      options->laser = sim::LaserOptions::Urg04lx();
+    else if (args.laser == "lms200")
+      options->laser = sim::LaserOptions::Lms200(0.5);
+    else
+      options->laser = sim::LaserOptions::Lms200(1.0);
+  }
+  if (given("sonar")) options->enable_sonar = args.sonar;
+  if (given("odometry-noise"))
+    options->odometry = sim::OdometryNoiseOptions().Scaled(args.odometry_noise_scale);
+  if (given("max-steps")) route_options->max_steps = args.max_steps;
+  for (const std::string& assignment : args.sets) {
+    if (const kernel::Status s =
+            io::SetConfigValue(SimulateConfigRoot(options, route_options), assignment);
+        !s.ok())
+      return s;
+  }
+  return kernel::Status::Ok();
+}
+
 int RunSimulate(const SimulateArgs& args) {
   io::FloorPlanOptions floor_plan;
   floor_plan.resolution_m_per_px = args.resolution_m_per_px;
@@ -72,40 +105,11 @@ int RunSimulate(const SimulateArgs& args) {
     route = *read.value;
   }
 
-  // Defaults, then the file, then the flags given and --set.
   sim::SimulatorOptions options;
   sim::RouteOptions route_options;
-  const auto given = [&](const char* flag) {
-    return std::find(args.given.begin(), args.given.end(), flag) != args.given.end();
-  };
-  if (!args.config_file.empty()) {
-    const io::Result<io::ConfigFile> file = io::ConfigFile::Load(args.config_file);
-    kernel::Status read = file.status();
-    if (read.ok()) read = file.value->Read(SimulateConfigRoot(&options, &route_options));
-    if (!read.ok()) {
-      fmt::print(stderr, "splam simulate: {}\n", read.message());
-      return kExitBadInput;
-    }
-  }
-  if (given("laser") || args.config_file.empty()) {
-    if (args.laser == "urg04lx")
-      options.laser = sim::LaserOptions::Urg04lx();
-    else if (args.laser == "lms200")
-      options.laser = sim::LaserOptions::Lms200(0.5);
-    else
-      options.laser = sim::LaserOptions::Lms200(1.0);
-  }
-  if (given("sonar")) options.enable_sonar = args.sonar;
-  if (given("odometry-noise"))
-    options.odometry = sim::OdometryNoiseOptions().Scaled(args.odometry_noise_scale);
-  if (given("max-steps")) route_options.max_steps = args.max_steps;
-  for (const std::string& assignment : args.sets) {
-    if (const kernel::Status s =
-            io::SetConfigValue(SimulateConfigRoot(&options, &route_options), assignment);
-        !s.ok()) {
-      fmt::print(stderr, "splam simulate: {}\n", s.message());
-      return kExitBadInput;
-    }
+  if (const kernel::Status s = Configure(args, &options, &route_options); !s.ok()) {
+    fmt::print(stderr, "splam simulate: {}\n", s.message());
+    return kExitBadInput;
   }
   if (const kernel::Status s = kernel::FirstError(options.Validate(), route_options.Validate());
       !s.ok()) {

@@ -143,6 +143,19 @@ void PrintSlamSummary(const std::string& label, const estimation::SlamMethod& sl
   }
 }
 
+// The world to draw under the map: --world, or world.yaml beside a simulated log; none for a
+// real log.
+io::Result<std::optional<sim::World>> WorldToDraw(const SlamArgs& args) {
+  using R = io::Result<std::optional<sim::World>>;
+  std::string source = args.world;
+  const std::filesystem::path beside = std::filesystem::path(args.log).parent_path() / "world.yaml";
+  if (source.empty() && std::filesystem::exists(beside)) source = beside.string();
+  if (source.empty()) return R::Ok(std::nullopt);
+  io::Result<sim::World> w = io::LoadWorld(source);
+  if (!w.ok()) return R::Fail(w.error);
+  return R::Ok(std::move(w.value));
+}
+
 int RunSlam(const SlamArgs& args) {
   io::CarmenReadOptions read_options;
   read_options.flaser_angular_step_rad = kernel::DegToRad(args.flaser_step_deg);
@@ -158,18 +171,10 @@ int RunSlam(const SlamArgs& args) {
     fmt::print(stderr, "splam slam: {}: the log has no laser scans\n", args.log);
     return kExitBadInput;
   }
-  // The world, for pictures: --world, or world.yaml beside a simulated log.
-  std::optional<sim::World> world;
-  std::string world_source = args.world;
-  const std::filesystem::path beside = std::filesystem::path(args.log).parent_path() / "world.yaml";
-  if (world_source.empty() && std::filesystem::exists(beside)) world_source = beside.string();
-  if (!world_source.empty()) {
-    io::Result<sim::World> w = io::LoadWorld(world_source);
-    if (!w.ok()) {
-      fmt::print(stderr, "splam slam: {}\n", w.error);
-      return kExitBadInput;
-    }
-    world = std::move(w.value);
+  const io::Result<std::optional<sim::World>> world = WorldToDraw(args);
+  if (!world.ok()) {
+    fmt::print(stderr, "splam slam: {}\n", world.error);
+    return kExitBadInput;
   }
   SlamConfig config;
   estimation::SensorNoise noise;
@@ -213,7 +218,7 @@ int RunSlam(const SlamArgs& args) {
   const std::string label = statistics.association.empty()
                                 ? config.method
                                 : config.method + " (" + statistics.association + ")";
-  WriteSlamFiles(args.log, out, label, world ? &*world : nullptr, slam, run, &errors);
+  WriteSlamFiles(args.log, out, label, *world.value ? &**world.value : nullptr, slam, run, &errors);
 
   nlohmann::ordered_json summary;
   summary["method"] = config.method;

@@ -25,111 +25,56 @@
 namespace splam::loop {
 namespace {
 
+// Every seed's numbers of one method (or of odometry, which fills the first three).
 struct Summary {
   std::vector<double> rmse, max, heading_rmse, map_error, wrong_fraction, wrong_beam_fraction, ms,
       feature_fraction, nees;
+  void Add(const estimation::TrajectoryError& e) {
+    rmse.push_back(e.rmse_position_m);
+    max.push_back(e.max_position_m);
+    heading_rmse.push_back(e.rmse_heading_rad);
+  }
+  void Add(const estimation::TrajectoryError& e, const AssociationRun& r) {
+    Add(e);
+    map_error.push_back(r.map_error_m);
+    wrong_fraction.push_back(
+        r.associations > 0 ? static_cast<double>(r.wrong_associations) / r.associations : 0.0);
+    wrong_beam_fraction.push_back(
+        r.beams > 0 ? static_cast<double>(r.wrong_beams) / static_cast<double>(r.beams) : 0.0);
+    ms.push_back(r.ms_per_scan);
+    feature_fraction.push_back(
+        r.associations > 0 ? static_cast<double>(r.with_features) / r.associations : 0.0);
+    nees.push_back(r.mean_nees);
+  }
 };
 double Mean(const std::vector<double>& v) { return estimation::MeanStd(v).first; }
 double Std(const std::vector<double>& v) { return estimation::MeanStd(v).second; }
 
-}  // namespace
+// The first seed's map of one association over the world, with the three trajectories.
+std::string SaveMethodMap(const sim::World& world, const std::string& method, std::uint64_t seed,
+                          const kernel::Trajectory& truth, const kernel::Trajectory& odometry,
+                          const AssociationRun& r,
+                          const kernel::SplineExtractionOptions& extraction,
+                          const std::string& base) {
+  io::RunPicture picture;
+  picture.title = fmt::format("complex, URG-04LX, {} association (seed {}): {} splines", method,
+                              seed, r.map.size());
+  picture.world = &world;
+  picture.world_color = io::Rgb{0.75, 0.75, 0.75};
+  picture.truth = truth;
+  picture.odometry = odometry;
+  picture.estimates = {{method, r.estimate}};
+  io::DrawMap({.lines = {}, .corners = {}, .splines = r.map, .spline_features = extraction},
+              &picture);
+  return io::SaveRunPicture(picture, {base + ".svg", base + ".png"});
+}
 
-int RunComplexBSpline(const BSplineExperimentArgs& args) {
-  const sim::World world = *sim::BuiltinWorld("complex");
-  const sim::RayCaster caster(world);
-  sim::SimulatorOptions sim_options;
-  sim_options.laser = sim::LaserOptions::Urg04lx();
-  // The same scale on the simulator's odometry noise and on the filter's model of it.
+// table.md and report.json: mean +- std per method over the seeds, and the seeds in which the
+// curvature association had the lower position RMSE.
+void WriteBSplineReport(const BSplineExperimentArgs& args, const std::vector<std::string>& methods,
+                        std::map<std::string, Summary>& summaries,
+                        const Summary& odometry_summary) {
   const double scale = args.odometry_noise_scale;
-  sim_options.odometry = sim_options.odometry.Scaled(scale);
-  std::filesystem::create_directories(args.out);
-  const std::vector<std::string> methods = {"pedraza", "curvature"};
-  std::map<std::string, Summary> summaries;
-  Summary odometry_summary;
-  for (int run = 0; run < args.runs; ++run) {
-    const std::uint64_t seed = args.seed + static_cast<std::uint64_t>(run);
-    sim::Simulator simulator(caster, sim_options, *world.start, seed);
-    sim::RouteOptions route_options;
-    if (args.max_scans > 0) route_options.max_steps = args.max_scans - 1;
-    sim::RouteRun route = sim::FollowRoute(&simulator, world.route, route_options);
-    if (!route.completed && args.max_scans == 0) {
-      fmt::print(stderr, "splam experiment: seed {}: the route failed: {}\n", seed, route.message);
-      return kExitIncomplete;
-    }
-    kernel::Trajectory truth, odometry;
-    for (const sim::SensorFrame& f : route.frames) {
-      truth.push_back({f.time_s, f.true_pose});
-      odometry.push_back({f.time_s, f.odometry_pose});
-    }
-    const estimation::TrajectoryError o = estimation::CompareToTruth(truth, odometry);
-    odometry_summary.rmse.push_back(o.rmse_position_m);
-    odometry_summary.max.push_back(o.max_position_m);
-    odometry_summary.heading_rmse.push_back(o.rmse_heading_rad);
-    std::vector<std::tuple<std::string, io::Rgb, kernel::Trajectory>> plotted = {
-        {"odometry", io::palette::kOdometry, odometry}};
-    for (const std::string& method : methods) {
-      estimation::EkfBSplineSlamOptions options;
-      options.association = method;
-      options.max_correspondence_distance_m = args.max_correspondence_distance_m;
-      options.odometry = options.odometry.Scaled(scale);
-      const AssociationRun r = RunBSplineFilter(route.frames, caster, options);
-      if (!r.healthy) {
-        fmt::print(stderr, "splam experiment: seed {}, {}: the filter failed\n", seed, method);
-        return kExitIncomplete;
-      }
-      const estimation::TrajectoryError e = estimation::CompareToTruth(truth, r.estimate);
-      Summary& s = summaries[method];
-      s.rmse.push_back(e.rmse_position_m);
-      s.max.push_back(e.max_position_m);
-      s.heading_rmse.push_back(e.rmse_heading_rad);
-      s.map_error.push_back(r.map_error_m);
-      s.wrong_fraction.push_back(
-          r.associations > 0 ? static_cast<double>(r.wrong_associations) / r.associations : 0.0);
-      s.wrong_beam_fraction.push_back(
-          r.beams > 0 ? static_cast<double>(r.wrong_beams) / static_cast<double>(r.beams) : 0.0);
-      s.ms.push_back(r.ms_per_scan);
-      s.feature_fraction.push_back(
-          r.associations > 0 ? static_cast<double>(r.with_features) / r.associations : 0.0);
-      s.nees.push_back(r.mean_nees);
-      fmt::print(
-          "seed {} {:9}: position RMSE {:.3f} m (odometry {:.3f}), max {:.3f} m, map error {:.3f} "
-          "m, wrong associations {}/{}, {:.2f} ms/scan\n",
-          seed, method, e.rmse_position_m, o.rmse_position_m, e.max_position_m, r.map_error_m,
-          r.wrong_associations, r.associations, r.ms_per_scan);
-      plotted.emplace_back(method,
-                           method == "pedraza" ? io::Rgb{0.95, 0.55, 0.0} : io::palette::kEstimate,
-                           r.estimate);
-      if (run == 0) {
-        io::RunPicture picture;
-        picture.title = fmt::format("complex, URG-04LX, {} association (seed {}): {} splines",
-                                    method, seed, r.map.size());
-        picture.world = &world;
-        picture.world_color = io::Rgb{0.75, 0.75, 0.75};
-        picture.truth = truth;
-        picture.odometry = odometry;
-        picture.estimates = {{method, r.estimate}};
-        io::DrawMap(
-            {.lines = {}, .corners = {}, .splines = r.map, .spline_features = options.extraction},
-            &picture);
-        const std::string base = args.out + "/map_" + method;
-        if (std::string err = io::SaveRunPicture(picture, {base + ".svg", base + ".png"});
-            !err.empty()) {
-          fmt::print(stderr, "splam experiment: {}\n", err);
-          return kExitBadInput;
-        }
-      }
-    }
-    if (run == 0) {
-      if (std::string err = io::SaveErrorPlot(
-              fmt::format("complex, URG-04LX: errors against ground truth (seed {})", seed), truth,
-              plotted, {args.out + "/errors.svg", args.out + "/errors.png"});
-          !err.empty()) {
-        fmt::print(stderr, "splam experiment: {}\n", err);
-        return kExitBadInput;
-      }
-    }
-  }
-
   nlohmann::ordered_json report;
   report["experiment"] = "complex-bspline (paper 000 Figs. 15-17)";
   report["runs"] = args.runs;
@@ -186,6 +131,82 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
       "wrote {}/{{table.md, report.json, errors.svg, errors.png, map_pedraza.svg/png, "
       "map_curvature.svg/png}}\n",
       args.out);
+}
+
+}  // namespace
+
+int RunComplexBSpline(const BSplineExperimentArgs& args) {
+  const sim::World world = *sim::BuiltinWorld("complex");
+  const sim::RayCaster caster(world);
+  sim::SimulatorOptions sim_options;
+  sim_options.laser = sim::LaserOptions::Urg04lx();
+  // The same scale on the simulator's odometry noise and on the filter's model of it.
+  const double scale = args.odometry_noise_scale;
+  sim_options.odometry = sim_options.odometry.Scaled(scale);
+  std::filesystem::create_directories(args.out);
+  const std::vector<std::string> methods = {"pedraza", "curvature"};
+  std::map<std::string, Summary> summaries;
+  Summary odometry_summary;
+  for (int run = 0; run < args.runs; ++run) {
+    const std::uint64_t seed = args.seed + static_cast<std::uint64_t>(run);
+    sim::Simulator simulator(caster, sim_options, *world.start, seed);
+    sim::RouteOptions route_options;
+    if (args.max_scans > 0) route_options.max_steps = args.max_scans - 1;
+    sim::RouteRun route = sim::FollowRoute(&simulator, world.route, route_options);
+    if (!route.completed && args.max_scans == 0) {
+      fmt::print(stderr, "splam experiment: seed {}: the route failed: {}\n", seed, route.message);
+      return kExitIncomplete;
+    }
+    kernel::Trajectory truth, odometry;
+    for (const sim::SensorFrame& f : route.frames) {
+      truth.push_back({f.time_s, f.true_pose});
+      odometry.push_back({f.time_s, f.odometry_pose});
+    }
+    const estimation::TrajectoryError o = estimation::CompareToTruth(truth, odometry);
+    odometry_summary.Add(o);
+    std::vector<std::tuple<std::string, io::Rgb, kernel::Trajectory>> plotted = {
+        {"odometry", io::palette::kOdometry, odometry}};
+    for (const std::string& method : methods) {
+      estimation::EkfBSplineSlamOptions options;
+      options.association = method;
+      options.max_correspondence_distance_m = args.max_correspondence_distance_m;
+      options.odometry = options.odometry.Scaled(scale);
+      const AssociationRun r = RunBSplineFilter(route.frames, caster, options);
+      if (!r.healthy) {
+        fmt::print(stderr, "splam experiment: seed {}, {}: the filter failed\n", seed, method);
+        return kExitIncomplete;
+      }
+      const estimation::TrajectoryError e = estimation::CompareToTruth(truth, r.estimate);
+      summaries[method].Add(e, r);
+      fmt::print(
+          "seed {} {:9}: position RMSE {:.3f} m (odometry {:.3f}), max {:.3f} m, map error {:.3f} "
+          "m, wrong associations {}/{}, {:.2f} ms/scan\n",
+          seed, method, e.rmse_position_m, o.rmse_position_m, e.max_position_m, r.map_error_m,
+          r.wrong_associations, r.associations, r.ms_per_scan);
+      plotted.emplace_back(method,
+                           method == "pedraza" ? io::Rgb{0.95, 0.55, 0.0} : io::palette::kEstimate,
+                           r.estimate);
+      if (run == 0) {
+        if (std::string err = SaveMethodMap(world, method, seed, truth, odometry, r,
+                                            options.extraction, args.out + "/map_" + method);
+            !err.empty()) {
+          fmt::print(stderr, "splam experiment: {}\n", err);
+          return kExitBadInput;
+        }
+      }
+    }
+    if (run == 0) {
+      if (std::string err = io::SaveErrorPlot(
+              fmt::format("complex, URG-04LX: errors against ground truth (seed {})", seed), truth,
+              plotted, {args.out + "/errors.svg", args.out + "/errors.png"});
+          !err.empty()) {
+        fmt::print(stderr, "splam experiment: {}\n", err);
+        return kExitBadInput;
+      }
+    }
+  }
+
+  WriteBSplineReport(args, methods, summaries, odometry_summary);
   return kExitOk;
 }
 

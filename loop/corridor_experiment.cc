@@ -166,14 +166,11 @@ CorridorResult RunCorridorExperiment(const CorridorOptions& args) {
   return result;
 }
 
-int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string& out) {
-  std::filesystem::create_directories(out);
-  const CorridorResult result = RunCorridorExperiment(options);
-  if (!result.error.empty()) {
-    fmt::print(stderr, "splam experiment: {}\n", result.error);
-    return kExitIncomplete;
-  }
-  // Pictures of the first run.
+namespace {
+
+// The first run's map over the world and its errors over time; empty on success.
+std::string SaveCorridorPictures(const CorridorOptions& options, const CorridorResult& result,
+                                 const std::string& out) {
   const sim::World world = *sim::BuiltinWorld("corridor");
   io::RunPicture picture;
   picture.title =
@@ -193,19 +190,20 @@ int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string
                           {{"odometry", io::palette::kOdometry, result.odometry},
                            {"ekf-lines", io::palette::kEstimate, result.estimate}},
                           {out + "/errors.svg", out + "/errors.png"})}) {
-    if (!e.empty()) {
-      fmt::print(stderr, "splam experiment: {}\n", e);
-      return kExitBadInput;
-    }
+    if (!e.empty()) return e;
   }
+  return "";
+}
+
+// 001 Table 1: the nine distances, true and mapped (mean +- std over the runs mapping them);
+// printed, returned as Markdown and added to the report.
+std::string Table1(const CorridorOptions& options, const CorridorResult& result,
+                   nlohmann::ordered_json* report) {
   const auto& distances = CorridorDistances();
   const std::vector<std::vector<double>>& measured = result.measured;
-
-  // Table 1.
-  nlohmann::ordered_json report;
-  report["experiment"] = "corridor-lines (paper 001 section 6)";
-  report["runs"] = options.runs;
-  report["steps"] = options.steps;
+  (*report)["experiment"] = "corridor-lines (paper 001 section 6)";
+  (*report)["runs"] = options.runs;
+  (*report)["steps"] = options.steps;
   std::string table =
       "| distance | true (m) | SLAM (m), mean +- std over runs | error (%) | mapped in runs "
       "|\n|---|---|---|---|---|\n";
@@ -217,23 +215,41 @@ int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string
     if (v.empty()) {
       row = fmt::format("| {} | {:.3f} | not mapped | - | 0/{} |\n", distances[k].name, truth,
                         options.runs);
-      report["distances"].push_back(
+      (*report)["distances"].push_back(
           {{"name", distances[k].name}, {"true_m", truth}, {"mapped_runs", 0}});
     } else {
       const auto [mean, std] = estimation::MeanStd(v);
       const double error = 100.0 * std::abs(mean - truth) / truth;
       row = fmt::format("| {} | {:.3f} | {:.3f} +- {:.3f} | {:.2f} | {}/{} |\n", distances[k].name,
                         truth, mean, std, error, v.size(), options.runs);
-      report["distances"].push_back({{"name", distances[k].name},
-                                     {"true_m", truth},
-                                     {"slam_mean_m", mean},
-                                     {"slam_std_m", std},
-                                     {"error_percent", error},
-                                     {"mapped_runs", v.size()}});
+      (*report)["distances"].push_back({{"name", distances[k].name},
+                                        {"true_m", truth},
+                                        {"slam_mean_m", mean},
+                                        {"slam_std_m", std},
+                                        {"error_percent", error},
+                                        {"mapped_runs", v.size()}});
     }
     table += row;
     fmt::print("{}", row);
   }
+  return table;
+}
+
+}  // namespace
+
+int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string& out) {
+  std::filesystem::create_directories(out);
+  const CorridorResult result = RunCorridorExperiment(options);
+  if (!result.error.empty()) {
+    fmt::print(stderr, "splam experiment: {}\n", result.error);
+    return kExitIncomplete;
+  }
+  if (std::string e = SaveCorridorPictures(options, result, out); !e.empty()) {
+    fmt::print(stderr, "splam experiment: {}\n", e);
+    return kExitBadInput;
+  }
+  nlohmann::ordered_json report;
+  const std::string table = Table1(options, result, &report);
   // Consistency.
   const double n = options.runs;
   const double lo = estimation::ChiSquareQuantile(0.025, 3 * n) / n,
@@ -283,8 +299,5 @@ int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string
       out);
   return kExitOk;
 }
-
-// An experiment's arguments with the shared ones (runs, seed, out) taken from the command line
-// when given, else the experiment's defaults.
 
 }  // namespace splam::loop
