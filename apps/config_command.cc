@@ -44,14 +44,11 @@ void AddConfigCommand(CLI::App* app, int* exit_code) {
       "print",
       "Print every option with its default, unit and comment as YAML for --config: with --method "
       "alone the `splam slam` document, with --explorer (or nothing) the `splam explore` one.");
-  std::vector<std::string> localizations = {"ground-truth", "odometry"};
-  for (const std::string& n : estimation::SlamRegistry::Global().Names())
-    localizations.push_back(n);
   print
       ->add_option("--method", args->method,
                    "SLAM method (or, with --explorer, the localisation):\n" +
                        estimation::SlamRegistry::Global().Describe())
-      ->check(CLI::IsMember(localizations));
+      ->check(CLI::IsMember(loop::LocalizationChoices()));
   print->add_option("--explorer", args->explorer, "Exploration strategy")
       ->check(CLI::IsMember({"srt", "reg"}));
   print->callback([args, exit_code] { *exit_code = PrintConfig(*args); });

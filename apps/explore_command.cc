@@ -206,16 +206,13 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
                                "Seed of the simulator's noise and the explorer's random draws"))
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output directory (default runs/explore-<explorer>-<world>)");
-  std::vector<std::string> localizations = {"ground-truth", "odometry"};
-  for (const std::string& n : estimation::SlamRegistry::Global().Names())
-    localizations.push_back(n);
   flag(
       "localization",
       cmd->add_option("--localization", setup.localization,
                       "Where the explorer believes it is: a SLAM method (the SPLAM loop), odometry "
                       "alone, or the simulator's ground truth. SLAM methods:\n" +
                           estimation::SlamRegistry::Global().Describe()))
-      ->check(CLI::IsMember(localizations))
+      ->check(CLI::IsMember(loop::LocalizationChoices()))
       ->capture_default_str();
   cmd->add_option("--config", args->config_file,
                   "YAML options (splam config print --explorer E); command-line flags override it");

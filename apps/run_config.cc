@@ -4,7 +4,8 @@ namespace splam::apps {
 
 io::ConfigRoot SlamConfigRoot(SlamConfig* config) {
   return [config](kernel::FieldVisitor& v) {
-    v.Field("method", &config->method, "SLAM method: " + SlamMethodNames());
+    v.Field("method", &config->method,
+            "SLAM method: " + estimation::SlamRegistry::Global().NameList());
     v.Nested("local_region", "the explorers' LSR radius and step (topological SLAM's region)",
              &config->region);
     if (config->options) {
@@ -49,13 +50,6 @@ kernel::Status ApplyConfig(const io::ConfigFile* file, const io::ConfigRoot& roo
     if (kernel::Status s = io::SetConfigValue(root, assignment); !s.ok()) return s;
   }
   return kernel::Status::Ok();
-}
-
-std::string SlamMethodNames() {
-  std::string names;
-  for (const std::string& n : estimation::SlamRegistry::Global().Names())
-    names += (names.empty() ? "" : ", ") + n;
-  return names;
 }
 
 }  // namespace splam::apps

@@ -43,9 +43,6 @@ void ResetExploreDefaults(ExploreConfig* config);
 kernel::Status ApplyConfig(const io::ConfigFile* file, const io::ConfigRoot& root,
                            const std::vector<std::string>& sets);
 
-// "ekf-lines, ekf-bspline, topological": the registry's names.
-std::string SlamMethodNames();
-
 }  // namespace splam::apps
 
 #endif  // SPLAM_APPS_RUN_CONFIG_H_

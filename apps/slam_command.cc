@@ -61,7 +61,7 @@ bool Configure(const SlamArgs& args, const io::LaserMessage& first, SlamConfig* 
   const estimation::SlamMethodInfo* info = estimation::SlamRegistry::Global().Find(config->method);
   if (info == nullptr) {
     fmt::print(stderr, "splam slam: unknown SLAM method '{}' ({})\n", config->method,
-               SlamMethodNames());
+               estimation::SlamRegistry::Global().NameList());
     return false;
   }
   *noise = loop::SensorNoiseOf(first);

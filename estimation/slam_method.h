@@ -135,6 +135,8 @@ class SlamRegistry {
   const SlamMethodInfo* Find(const std::string& name) const;
   // In registration order.
   std::vector<std::string> Names() const;
+  // The names joined by ", " (for messages and help).
+  std::string NameList() const;
   // "ekf-lines: ...\ntopological: ..." for help texts.
   std::string Describe() const;
   // The method `name` with `options` (its defaults when null); an error names the unknown method

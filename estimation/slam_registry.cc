@@ -37,6 +37,12 @@ std::vector<std::string> SlamRegistry::Names() const {
   return names;
 }
 
+std::string SlamRegistry::NameList() const {
+  std::string list;
+  for (const SlamMethodInfo& m : methods_) list += (list.empty() ? "" : ", ") + m.name;
+  return list;
+}
+
 std::string SlamRegistry::Describe() const {
   std::string text;
   for (const SlamMethodInfo& m : methods_)
@@ -50,9 +56,7 @@ kernel::Result<std::unique_ptr<SlamMethod>> SlamRegistry::Make(const std::string
   using R = kernel::Result<std::unique_ptr<SlamMethod>>;
   const SlamMethodInfo* info = Find(name);
   if (info == nullptr) {
-    std::string known;
-    for (const std::string& n : Names()) known += (known.empty() ? "" : ", ") + n;
-    return R::Fail("unknown SLAM method '" + name + "' (" + known + ")");
+    return R::Fail("unknown SLAM method '" + name + "' (" + NameList() + ")");
   }
   std::unique_ptr<SlamOptions> defaults;
   if (options == nullptr) {

@@ -68,15 +68,19 @@ std::unique_ptr<estimation::SlamOptions> DefaultSlamOptions(const ExploreSetup& 
   return info->default_options(noise);
 }
 
+std::vector<std::string> LocalizationChoices() {
+  std::vector<std::string> choices = {"ground-truth", "odometry"};
+  for (const std::string& n : estimation::SlamRegistry::Global().Names()) choices.push_back(n);
+  return choices;
+}
+
 bool IsLocalization(const std::string& name) {
-  return name == "ground-truth" || name == "odometry" ||
-         estimation::SlamRegistry::Global().Find(name) != nullptr;
+  const std::vector<std::string> choices = LocalizationChoices();
+  return std::find(choices.begin(), choices.end(), name) != choices.end();
 }
 
 std::string LocalizationNames() {
-  std::string names = "ground-truth, odometry";
-  for (const std::string& n : estimation::SlamRegistry::Global().Names()) names += ", " + n;
-  return names;
+  return "ground-truth, odometry, " + estimation::SlamRegistry::Global().NameList();
 }
 
 Trajectories TrajectoriesOf(const exploration::ExplorationRun& run) {

@@ -41,7 +41,9 @@ sim::SimulatorOptions DefaultSimulator(const ExploreSetup& setup);
 // scaled like the simulation's, at least 0.05: an EKF needs some odometry noise); null when the
 // localisation is not a registered SLAM method.
 std::unique_ptr<estimation::SlamOptions> DefaultSlamOptions(const ExploreSetup& setup);
-// True for "ground-truth", "odometry" and every registered SLAM method.
+// "ground-truth", "odometry" and every registered SLAM method.
+std::vector<std::string> LocalizationChoices();
+// True for one of LocalizationChoices().
 bool IsLocalization(const std::string& name);
 // "ground-truth, odometry, ekf-lines, ..." for messages and help.
 std::string LocalizationNames();
