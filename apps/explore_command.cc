@@ -72,14 +72,24 @@ kernel::Status Configure(const ExploreArgs& args, ExploreConfig* config) {
     sets.push_back("exploration.max_time_s=" + io::FormatDouble(flags.options.max_time_s));
   if (given("no-sonar")) sets.push_back("simulator.enable_sonar=false");
   sets.insert(sets.end(), args.sets.begin(), args.sets.end());
+  // The whole file, then the top-level values as decided above (the flags win), then --set.
   const loop::ExploreSetup before = setup;
-  if (kernel::Status s = ApplyConfig(file ? &*file : nullptr, ExploreConfigRoot(config), sets);
-      !s.ok())
-    return s;
-  if (setup.explorer != before.explorer || setup.localization != before.localization ||
-      setup.odometry_noise_scale != before.odometry_noise_scale)
+  const auto top_changed = [&] {
+    return setup.explorer != before.explorer || setup.localization != before.localization ||
+           setup.seed != before.seed || setup.odometry_noise_scale != before.odometry_noise_scale;
+  };
+  if (file) {
+    if (kernel::Status s = file->Read(ExploreConfigRoot(config)); !s.ok()) return s;
+    setup.explorer = before.explorer;
+    setup.localization = before.localization;
+    setup.seed = before.seed;
+    setup.odometry_noise_scale = before.odometry_noise_scale;
+  }
+  if (kernel::Status s = ApplySets(ExploreConfigRoot(config), sets); !s.ok()) return s;
+  if (top_changed())
     return kernel::Status::Error(
-        "--set cannot change explorer, localization or odometry_noise_scale: use their flags");
+        "--set cannot change explorer, localization, seed or odometry_noise_scale: use their "
+        "flags");
   setup.sonar = config->simulator.enable_sonar;
   setup.simulator = config->simulator;
   setup.slam_options = config->slam_options ? config->slam_options->Clone() : nullptr;

@@ -3,20 +3,22 @@
 namespace splam::apps {
 
 io::ConfigRoot SlamConfigRoot(SlamConfig* config) {
-  return [config](kernel::FieldVisitor& v) {
+  // The method's section is named after the method chosen when the root is made (a file naming
+  // another method then has an unknown section).
+  return [config, name = config->method](kernel::FieldVisitor& v) {
     v.Field("method", &config->method,
             "SLAM method: " + estimation::SlamRegistry::Global().NameList());
     v.Nested("local_region", "the explorers' LSR radius and step (topological SLAM's region)",
              &config->region);
     if (config->options) {
-      v.Group(config->method, "options of the SLAM method",
+      v.Group(name, "options of the SLAM method",
               [&](kernel::FieldVisitor& f) { config->options->VisitFields(f); });
     }
   };
 }
 
 io::ConfigRoot ExploreConfigRoot(ExploreConfig* config) {
-  return [config](kernel::FieldVisitor& v) {
+  return [config, name = config->setup.localization](kernel::FieldVisitor& v) {
     loop::ExploreSetup& s = config->setup;
     v.Field("explorer", &s.explorer, "srt or reg");
     v.Field("localization", &s.localization,
@@ -30,7 +32,7 @@ io::ConfigRoot ExploreConfigRoot(ExploreConfig* config) {
     v.Nested("exploration", "the explorer's options", &s.options);
     v.Nested("simulator", "the simulated robot and its sensors", &config->simulator);
     if (config->slam_options) {
-      v.Group(s.localization, "options of the SLAM method",
+      v.Group(name, "options of the SLAM method",
               [&](kernel::FieldVisitor& f) { config->slam_options->VisitFields(f); });
     }
   };
@@ -41,11 +43,7 @@ void ResetExploreDefaults(ExploreConfig* config) {
   config->slam_options = loop::DefaultSlamOptions(config->setup);
 }
 
-kernel::Status ApplyConfig(const io::ConfigFile* file, const io::ConfigRoot& root,
-                           const std::vector<std::string>& sets) {
-  if (file != nullptr) {
-    if (kernel::Status s = file->Read(root); !s.ok()) return s;
-  }
+kernel::Status ApplySets(const io::ConfigRoot& root, const std::vector<std::string>& sets) {
   for (const std::string& assignment : sets) {
     if (kernel::Status s = io::SetConfigValue(root, assignment); !s.ok()) return s;
   }

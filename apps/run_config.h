@@ -38,10 +38,8 @@ io::ConfigRoot ExploreConfigRoot(ExploreConfig* config);
 // odometry_noise_scale are known).
 void ResetExploreDefaults(ExploreConfig* config);
 
-// Reads `path` (when not empty) into `root` and then applies each "key=value" of `sets`; the
-// first problem names the file and line, or the --set.
-kernel::Status ApplyConfig(const io::ConfigFile* file, const io::ConfigRoot& root,
-                           const std::vector<std::string>& sets);
+// Applies each "key=value" of `sets` (--set) in order; the first problem names the key.
+kernel::Status ApplySets(const io::ConfigRoot& root, const std::vector<std::string>& sets);
 
 }  // namespace splam::apps
 

@@ -72,8 +72,11 @@ bool Configure(const SlamArgs& args, const io::LaserMessage& first, SlamConfig* 
   if (args.max_curve_range_m >= 0)
     sets.push_back(config->method +
                    ".max_curve_range_m=" + io::FormatDouble(args.max_curve_range_m));
+  // The whole file, then the method as decided above (--method wins), then --set.
   const std::string method = config->method;
-  kernel::Status status = ApplyConfig(file ? &*file : nullptr, SlamConfigRoot(config), sets);
+  kernel::Status status = file ? file->Read(SlamConfigRoot(config)) : kernel::Status::Ok();
+  config->method = method;
+  if (status.ok()) status = ApplySets(SlamConfigRoot(config), sets);
   if (status.ok() && config->method != method) {
     status = kernel::Status::Error("--set method: choose the method with --method");
   }

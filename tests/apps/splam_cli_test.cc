@@ -464,6 +464,11 @@ TEST(SplamCli, ConfigFileEditedChangesTheRunAndAMisspeltKeyIsRefused) {
                           ": topological.corection_gain: unknown key"),
             std::string::npos)
       << bad.text;
+  // A file of another method: its section is named, not silently dropped.
+  const Output other = Splam("slam --method ekf-lines --config " + (dir / "t.yaml").string() +
+                             " --out " + (dir / "e").string() + " " + log);
+  EXPECT_EQ(other.status, 2);
+  EXPECT_NE(other.text.find("t.yaml:6: topological: unknown key"), std::string::npos) << other.text;
   const Output wrong_type =
       Splam("slam --method topological --set topological.min_verified_curves=two " + log);
   EXPECT_EQ(wrong_type.status, 2);
@@ -497,6 +502,14 @@ TEST(SplamCli, ExploreReadsItsConfigAndWritesTheOneItUsed) {
   const std::string used = Slurp(dir / "run" / "config.yaml");
   EXPECT_NE(used.find("radius_m: 2.5"), std::string::npos) << used;
   EXPECT_NE(used.find("max_nodes: 4"), std::string::npos);
+  // Flags win over the file's top-level values too (explorer, seed).
+  const Output flags = Splam("explore --world corridor --explorer reg --seed 5 --config " +
+                             (dir / "e.yaml").string() + " --out " + (dir / "flags").string());
+  EXPECT_EQ(flags.status, 3) << flags.text;
+  const auto flagged = nlohmann::json::parse(Slurp(dir / "flags" / "report.json"));
+  EXPECT_EQ(flagged["explorer"], "reg");
+  EXPECT_EQ(flagged["seed"], 5);
+  EXPECT_EQ(flagged["nodes"], 4);  // the file's cap still holds
   const Output bad = Splam("explore --set exploration.max_nodez=3");
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.text.find("--set: exploration.max_nodez: unknown key"), std::string::npos)
