@@ -3,6 +3,7 @@
 
 #include "estimation/ekf_bspline_slam.h"
 #include "estimation/ekf_line_slam.h"
+#include "estimation/graph_slam.h"
 #include "estimation/slam_method.h"
 #include "estimation/topological_slam.h"
 
@@ -184,6 +185,62 @@ class TopologicalSlamMethod : public SlamMethod {
   SolverCounts solver_;
 };
 
+// Graph SLAM on curve maps: no covariance of its own; the map is the curves of its keyframes.
+class GraphSlamMethod : public SlamMethod {
+ public:
+  GraphSlamMethod(const GraphSlamOptions& options, const SlamContext& context)
+      : slam_(context.start, options) {}
+  void Predict(const kernel::Pose2& u) override { slam_.Predict(u); }
+  void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) override {
+    slam_.Update(scan, robot_T_laser);
+  }
+  kernel::Pose2 pose() const override { return slam_.pose(); }
+  std::vector<kernel::Pose2> Trajectory() const override { return slam_.Trajectory(); }
+  kernel::Status health() const override { return slam_.health(); }
+  std::size_t MapSize() const override { return slam_.num_map_control_points(); }
+  std::size_t MapCurves() const override { return slam_.num_map_curves(); }
+  // An exploration node becomes a keyframe.
+  void AtNode(const kernel::LocalSafeRegion& /*lsr*/) override { slam_.ForceKeyframe(); }
+  std::string MapDescription() const override {
+    return fmt::format("{} keyframes, {} loop closures, {} curves", slam_.keyframes().size(),
+                       slam_.loops().accepted, slam_.num_map_curves());
+  }
+  SlamMap Map() const override {
+    SlamMap map;
+    map.splines = slam_.MapSplines();
+    map.spline_features = slam_.options().extraction;
+    for (const auto& kf : slam_.keyframes()) map.keyframes.push_back(kf.pose);
+    for (const auto& e : slam_.graph().edges())
+      if (e.loop) map.loop_edges.emplace_back(e.from, e.to);
+    return map;
+  }
+  SlamStatistics Statistics() const override {
+    SlamStatistics s;
+    s.association = "scan-to-submap registration, correlative loop closure";
+    s.map = {{"keyframes", static_cast<long>(slam_.keyframes().size())},
+             {"curves", static_cast<long>(slam_.num_map_curves())},
+             {"control_points", static_cast<long>(slam_.num_map_control_points())}};
+    const LoopClosureCounts& l = slam_.loops();
+    s.associations = {{"registrations", slam_.registrations()},
+                      {"registration_recovery_searches", slam_.recovery_searches()},
+                      {"registration_recovered", slam_.recovered()},
+                      {"registration_fallbacks", slam_.registration_fallbacks()},
+                      {"loop_searches", l.searches},
+                      {"loop_accepted", l.accepted},
+                      {"loop_rejected_score", l.rejected_score},
+                      {"loop_rejected_ambiguous", l.rejected_ambiguous},
+                      {"loop_rejected_registration", l.rejected_registration},
+                      {"loop_rejected_disagreement", l.rejected_disagreement}};
+    s.optimizations = slam_.optimizations();
+    s.solver_runs = static_cast<long>(s.optimizations.size());
+    for (const auto& o : s.optimizations) s.solver_failures += !o.converged;
+    return s;
+  }
+
+ private:
+  GraphSlam slam_;
+};
+
 }  // namespace
 
 void AddBuiltinSlamMethods(SlamRegistry* registry) {
@@ -213,6 +270,12 @@ void AddBuiltinSlamMethods(SlamRegistry* registry) {
       "topological B-spline SLAM: local-region association, Ceres corrections (paper 003)",
       [](const TopologicalSlamOptions& o, const SlamContext& c) {
         return std::make_unique<TopologicalSlamMethod>(o, c);
+      }));
+  registry->Add(MakeSlamMethodInfo<GraphSlamOptions>(
+      "graph",
+      "graph SLAM on curve maps: scan-to-submap registration, loop closure, Ceres pose graph",
+      [](const GraphSlamOptions& o, const SlamContext& c) {
+        return std::make_unique<GraphSlamMethod>(o, c);
       }));
 }
 

@@ -12,6 +12,7 @@
 
 #include "estimation/ekf_line_slam.h"
 #include "estimation/map_spline.h"
+#include "estimation/pose_graph.h"
 #include "kernel/local_safe_region.h"
 #include "kernel/options.h"
 #include "kernel/pose2.h"
@@ -32,6 +33,9 @@ struct SlamMap {
   std::vector<MapCorner> corners;
   std::vector<MapSpline> splines;
   kernel::SplineExtractionOptions spline_features;  // how features of `splines` are found
+  // A keyframe graph (graph SLAM): its nodes in order and its loop-closure edges (node indices).
+  std::vector<kernel::Pose2> keyframes;
+  std::vector<std::pair<int, int>> loop_edges;
 };
 
 // Method-independent counters of what a method did, in the order they are reported.
@@ -42,6 +46,8 @@ struct SlamStatistics {
   // Nonlinear least-squares solves (Ceres) and those that did not converge.
   long solver_runs = 0;
   long solver_failures = 0;
+  // Every pose-graph optimisation (graph SLAM), in order.
+  std::vector<PoseGraphSummary> optimizations;
 };
 
 class SlamMethod {
@@ -52,6 +58,10 @@ class SlamMethod {
   // A laser sweep taken at the predicted pose by a laser mounted at robot_T_laser.
   virtual void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) = 0;
   virtual kernel::Pose2 pose() const = 0;
+  // The pose of every Update so far as the method now estimates it, for methods that revise the
+  // past (a pose graph moves earlier poses when a loop closes); empty for filters, whose
+  // trajectory is the sequence of pose() after each update.
+  virtual std::vector<kernel::Pose2> Trajectory() const { return {}; }
   // The pose covariance; methods without one return nullopt.
   virtual std::optional<Eigen::Matrix3d> pose_covariance() const { return std::nullopt; }
   // Ok while the method runs; otherwise why it stopped (it then ignores input).

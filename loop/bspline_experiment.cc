@@ -64,8 +64,10 @@ std::string SaveMethodMap(const sim::World& world, const std::string& method, st
   picture.truth = truth;
   picture.odometry = odometry;
   picture.estimates = {{method, r.estimate}};
-  io::DrawMap({.lines = {}, .corners = {}, .splines = r.map, .spline_features = extraction},
-              &picture);
+  estimation::SlamMap map;
+  map.splines = r.map;
+  map.spline_features = extraction;
+  io::DrawMap(map, &picture);
   return io::SaveRunPicture(picture, {base + ".svg", base + ".png"});
 }
 

@@ -181,9 +181,10 @@ std::string SaveCorridorPictures(const CorridorOptions& options, const CorridorR
   picture.truth = result.truth;
   picture.odometry = result.odometry;
   picture.estimates = {{"estimate", result.estimate}};
-  io::DrawMap(
-      {.lines = result.lines, .corners = result.corners, .splines = {}, .spline_features = {}},
-      &picture);
+  estimation::SlamMap map;
+  map.lines = result.lines;
+  map.corners = result.corners;
+  io::DrawMap(map, &picture);
   for (const std::string& e :
        {io::SaveRunPicture(picture, {out + "/map.svg", out + "/map.png"}),
         io::SaveErrorPlot("corridor run, seed " + std::to_string(options.seed), result.truth,

@@ -49,6 +49,12 @@ void Replay(std::size_t count, const Reading& reading, SlamDriver* driver,
       result->nees.push_back(estimation::PoseNees(*truth, slam.pose(), *covariance));
     if (options.progress && (i + 1) % 1000 == 0) options.progress(i + 1, n);
   }
+  // A method that revises the past (a pose graph) gives its final estimate of every pose; the
+  // poses it gave while running are kept as `online`.
+  if (const auto revised = slam.Trajectory(); revised.size() == result->estimate.size()) {
+    result->online = result->estimate;
+    for (std::size_t i = 0; i < revised.size(); ++i) result->estimate[i].pose = revised[i];
+  }
   result->wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
 }
 

@@ -41,7 +41,10 @@ struct ReplayOptions {
 
 struct ReplayResult {
   kernel::Trajectory estimate, odometry;  // one pose per processed scan
-  kernel::Trajectory truth;               // the log's TRUEPOS, if any
+  // For methods that revise the past (SlamMethod::Trajectory): the poses as estimated while
+  // running, before the last optimisations moved them (`estimate` holds the final ones).
+  kernel::Trajectory online;
+  kernel::Trajectory truth;  // the log's TRUEPOS, if any
   std::vector<double> nees;  // pose NEES where the method has a covariance and truth exists
   std::size_t scans_in_log = 0;
   double wall_s = 0.0;

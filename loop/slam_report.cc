@@ -17,6 +17,19 @@ nlohmann::ordered_json StatisticsJson(const estimation::SlamStatistics& statisti
     json["least_squares"] = {{"solves", statistics.solver_runs},
                              {"not_converged", statistics.solver_failures}};
   }
+  if (!statistics.optimizations.empty()) {
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    for (const auto& o : statistics.optimizations)
+      list.push_back({{"nodes", o.nodes},
+                      {"edges", o.edges},
+                      {"loop_edges", o.loop_edges},
+                      {"iterations", o.iterations},
+                      {"initial_cost", o.initial_cost},
+                      {"final_cost", o.final_cost},
+                      {"converged", o.converged},
+                      {"ms", o.time_ms}});
+    json["optimizations"] = list;
+  }
   return json;
 }
 

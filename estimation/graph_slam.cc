@@ -1,0 +1,390 @@
+#include "estimation/graph_slam.h"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <unordered_set>
+
+namespace splam::estimation {
+namespace {
+
+// One point per cell of a `spacing` grid (the first seen): the query of a correlative search
+// costs per point, and the points of overlapping keyframes repeat each other.
+std::vector<Eigen::Vector2d> Thinned(const std::vector<Eigen::Vector2d>& points, double spacing) {
+  std::unordered_set<long long> seen;
+  std::vector<Eigen::Vector2d> out;
+  for (const auto& p : points) {
+    const long long key = (static_cast<long long>(std::floor(p.x() / spacing)) << 32) ^
+                          (static_cast<long long>(std::floor(p.y() / spacing)) & 0xffffffffLL);
+    if (seen.insert(key).second) out.push_back(p);
+  }
+  return out;
+}
+
+Eigen::Matrix3d Diagonal(double sigma_m, double sigma_rad) {
+  return Eigen::Vector3d(sigma_m * sigma_m, sigma_m * sigma_m, sigma_rad * sigma_rad).asDiagonal();
+}
+
+}  // namespace
+
+GraphSlam::GraphSlam(const kernel::Pose2& start, const GraphSlamOptions& options)
+    : options_(options), pose_(start) {}
+
+void GraphSlam::Predict(const kernel::Pose2& odometry_increment) {
+  pose_ = pose_ * odometry_increment;
+  travelled_m_ += odometry_increment.translation().norm();
+}
+
+std::vector<Eigen::Vector2d> GraphSlam::RobotPoints(const kernel::Scan& scan,
+                                                    const kernel::Pose2& robot_T_laser) const {
+  const double range = options_.max_range_m > 0 ? options_.max_range_m : scan.max_range_m;
+  return robot_T_laser * scan.Clipped(range).HitPoints();
+}
+
+void GraphSlam::Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) {
+  if (!health_.ok()) return;
+  std::vector<Eigen::Vector2d> points = RobotPoints(scan, robot_T_laser);
+  if (!keyframes_.empty()) {
+    if (submap_dirty_) RebuildSubmap();
+    const RegistrationResult r = RegisterScan(points);
+    ++registrations_;
+    if (r.accepted)
+      pose_ = r.pose;
+    else
+      ++fallbacks_;
+  }
+  if (!std::isfinite(pose_.x() + pose_.y() + pose_.theta())) {
+    health_ = kernel::Status::Error("the pose estimate is not finite");
+    return;
+  }
+  bool new_keyframe = keyframes_.empty() || force_keyframe_;
+  if (!new_keyframe) {
+    const kernel::Pose2 motion = keyframes_.back().pose.Between(pose_);
+    new_keyframe = motion.translation().norm() >= options_.keyframe_distance_m ||
+                   std::abs(motion.theta()) >= options_.keyframe_angle_rad;
+  }
+  if (new_keyframe) AddKeyframe(scan, robot_T_laser, std::move(points));
+  const int k = static_cast<int>(keyframes_.size()) - 1;
+  scans_.push_back({k, keyframes_.back().pose.Between(pose_)});
+}
+
+RegistrationResult GraphSlam::RegisterScan(const std::vector<Eigen::Vector2d>& points) {
+  RegistrationResult r = RegisterPoints(points, submap_, pose_, options_.registration);
+  if (r.accepted || options_.recovery_window_m <= 0) return r;
+  // The odometry can be off by more than the registration's basin (wheel slip, a bump): a
+  // correlative search around the prediction finds the basin, the registration refines it.
+  ++recoveries_;
+  const CorrelativeMatch match =
+      SearchCorrelative(Thinned(points, options_.grid_resolution_m), *submap_scores_, pose_,
+                        options_.recovery_window_m, options_.recovery_window_rad,
+                        options_.registration.min_inlier_fraction, 1.0,
+                        {.angular_step_rad = options_.recovery_step_rad});
+  if (!match.found) return r;
+  RegistrationOptions wide = options_.registration;
+  wide.max_correction_m = options_.recovery_window_m + wide.max_correction_m;
+  wide.max_correction_rad = options_.recovery_window_rad + wide.max_correction_rad;
+  RegistrationResult recovered = RegisterPoints(points, submap_, match.pose, wide);
+  if (!recovered.accepted || recovered.inlier_fraction < r.inlier_fraction) return r;
+  recovered.covariance +=
+      Diagonal(options_.registration.prior_sigma_m, options_.registration.prior_sigma_rad);
+  ++recovered_;
+  return recovered;
+}
+
+void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+                            std::vector<Eigen::Vector2d> points) {
+  force_keyframe_ = false;
+  Keyframe kf;
+  kf.pose = pose_;
+  kf.travelled_m = travelled_m_;
+  const double range = options_.max_range_m > 0 ? options_.max_range_m : scan.max_range_m;
+  for (const auto& curve : kernel::ExtractCurves(scan.Clipped(range), options_.extraction)) {
+    kf.curves.push_back(kernel::Transformed(curve, robot_T_laser));
+    const auto& samples = kf.curves.back().samples;
+    kf.raster.insert(kf.raster.end(), samples.begin(), samples.end());
+  }
+  if (options_.raster_points || kf.raster.empty())
+    kf.raster.insert(kf.raster.end(), points.begin(), points.end());
+  kf.points = std::move(points);
+  kf.in_map = std::none_of(keyframes_.begin(), keyframes_.end(), [&](const Keyframe& o) {
+    return o.in_map &&
+           (o.pose.translation() - kf.pose.translation()).norm() < options_.map_spacing_m &&
+           std::abs(o.pose.Between(kf.pose).theta()) < options_.map_spacing_rad;
+  });
+
+  const int k = graph_.AddNode(kf.pose);
+  if (k > 0) {
+    const Keyframe& prev = keyframes_.back();
+    PoseGraphEdge edge;
+    edge.from = k - 1;
+    edge.to = k;
+    edge.measurement = prev.pose.Between(kf.pose);
+    const double d = kf.travelled_m - prev.travelled_m;
+    const double sigma_m = options_.edge_sigma_m + options_.edge_sigma_per_m * d;
+    const double sigma_rad =
+        options_.edge_sigma_rad + options_.edge_sigma_per_rad * std::abs(edge.measurement.theta());
+    edge.information = Diagonal(sigma_m, sigma_rad).inverse();
+    graph_.AddEdge(edge);
+  }
+  keyframes_.push_back(std::move(kf));
+  submap_dirty_ = true;
+  if (options_.loop_closure) SearchLoopClosures(k);
+}
+
+std::vector<Eigen::Vector2d> GraphSlam::WorldRaster(int first, int last) const {
+  std::vector<Eigen::Vector2d> raster;
+  for (int i = std::max(first, 0); i <= last; ++i) {
+    const Keyframe& kf = keyframes_[static_cast<std::size_t>(i)];
+    for (const auto& p : kf.raster) raster.push_back(kf.pose * p);
+  }
+  return raster;
+}
+
+void GraphSlam::RebuildSubmap() {
+  const int last = static_cast<int>(keyframes_.size()) - 1;
+  submap_ =
+      DistanceGrid::Build(WorldRaster(last - options_.submap_keyframes + 1, last),
+                          options_.grid_resolution_m, options_.truncation_m, options_.truncation_m);
+  submap_scores_ = std::make_unique<LikelihoodPyramid>(submap_, options_.loop_sigma_m, 3);
+  submap_dirty_ = false;
+}
+
+int GraphSlam::SearchLoopClosures(int k) {
+  const int newest_candidate = k - options_.loop_min_gap_keyframes;
+  if (newest_candidate < 0) return 0;
+  const Keyframe& kf = keyframes_[static_cast<std::size_t>(k)];
+  const double since = travelled_m_ - closure_at_m_;
+  const double radius = std::min(options_.loop_radius_m + options_.loop_radius_per_m * since,
+                                 options_.loop_max_radius_m);
+  std::vector<std::pair<double, int>> near;
+  for (int i = 0; i <= newest_candidate; ++i) {
+    const double d =
+        (keyframes_[static_cast<std::size_t>(i)].pose.translation() - kf.pose.translation()).norm();
+    if (d <= radius) near.emplace_back(d, i);
+  }
+  std::sort(near.begin(), near.end());
+  std::vector<int> chosen;
+  for (const auto& [d, i] : near) {
+    if (static_cast<int>(chosen.size()) >= options_.loop_candidates) break;
+    if (std::all_of(chosen.begin(), chosen.end(),
+                    [&](int c) { return std::abs(c - i) >= options_.loop_min_gap_keyframes; }))
+      chosen.push_back(i);
+  }
+  int accepted = 0;
+  for (int c : chosen) {
+    const std::optional<PoseGraphEdge> edge = MatchLoop(k, c, radius, since);
+    if (!edge) continue;
+    // Agreement with the other edges: optimised with the closure, its residual stays small;
+    // otherwise it is removed and the poses restored.
+    std::vector<kernel::Pose2> before;
+    for (int i = 0; i < graph_.num_nodes(); ++i) before.push_back(graph_.node(i));
+    const kernel::Pose2 pose_before = pose_;
+    graph_.AddEdge(*edge);
+    Optimize();
+    if (graph_.EdgeChi2(graph_.edges().back()) > options_.loop_max_chi2) {
+      graph_.RemoveLastEdge();
+      for (int i = 0; i < graph_.num_nodes(); ++i) {
+        graph_.SetNode(i, before[static_cast<std::size_t>(i)]);
+        keyframes_[static_cast<std::size_t>(i)].pose = before[static_cast<std::size_t>(i)];
+      }
+      pose_ = pose_before;
+      ++loops_.rejected_disagreement;
+      continue;
+    }
+    ++loops_.accepted;
+    closure_at_m_ = travelled_m_;
+    ++accepted;
+  }
+  return accepted;
+}
+
+std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double radius,
+                                                  double travelled) {
+  ++loops_.searches;
+  const Keyframe& kf = keyframes_[static_cast<std::size_t>(k)];
+  const kernel::Pose2 kf_inverse = kf.pose.Inverse();
+  std::vector<Eigen::Vector2d> query;
+  for (int i = std::max(0, k - options_.loop_query_keyframes); i <= k; ++i) {
+    const Keyframe& q = keyframes_[static_cast<std::size_t>(i)];
+    const kernel::Pose2 k_T_i = kf_inverse * q.pose;
+    for (const auto& p : q.points) query.push_back(k_T_i * p);
+  }
+  query = Thinned(query, options_.grid_resolution_m);
+  const int newest = k - options_.loop_min_gap_keyframes;
+  const DistanceGrid target =
+      DistanceGrid::Build(WorldRaster(candidate - options_.loop_target_keyframes,
+                                      std::min(candidate + options_.loop_target_keyframes, newest)),
+                          options_.grid_resolution_m, options_.truncation_m, options_.truncation_m);
+  const LikelihoodPyramid pyramid(target, options_.loop_sigma_m, options_.loop_levels);
+  const double window_rad =
+      std::min(options_.loop_window_rad + options_.loop_window_rad_per_m * travelled,
+               options_.loop_max_window_rad);
+  const CorrelativeMatch match =
+      SearchCorrelative(query, pyramid, kf.pose, std::min(radius, options_.loop_max_window_m),
+                        window_rad, options_.loop_min_score, options_.loop_ambiguity_ratio);
+  if (!match.found) {
+    ++loops_.rejected_score;
+    return std::nullopt;
+  }
+  if (match.second_score > 0) {
+    ++loops_.rejected_ambiguous;
+    return std::nullopt;
+  }
+  const RegistrationResult fine =
+      RegisterPoints(query, target, match.pose, options_.loop_registration);
+  if (!fine.accepted || fine.rms_m > options_.loop_max_rms_m) {
+    ++loops_.rejected_registration;
+    return std::nullopt;
+  }
+  PoseGraphEdge edge;
+  edge.from = candidate;
+  edge.to = k;
+  edge.loop = true;
+  edge.measurement = keyframes_[static_cast<std::size_t>(candidate)].pose.Between(fine.pose);
+  // The registration's covariance is in the world frame of `fine.pose`; the edge's error is in
+  // the measured frame, whose rotation from the world is fine.pose's heading.
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  rotation.topLeftCorner<2, 2>() = fine.pose.Rotation().transpose();
+  const Eigen::Matrix3d covariance =
+      rotation * fine.covariance * rotation.transpose() +
+      Diagonal(options_.loop_sigma_floor_m, options_.loop_sigma_floor_rad);
+  edge.information = covariance.inverse();
+  return edge;
+}
+
+void GraphSlam::Optimize() {
+  const int last = graph_.num_nodes() - 1;
+  const kernel::Pose2 offset = keyframes_.back().pose.Between(pose_);
+  optimizations_.push_back(graph_.Optimize(options_.pose_graph));
+  for (int i = 0; i <= last; ++i) keyframes_[static_cast<std::size_t>(i)].pose = graph_.node(i);
+  pose_ = keyframes_.back().pose * offset;
+  submap_dirty_ = true;
+}
+
+std::vector<kernel::Pose2> GraphSlam::Trajectory() const {
+  std::vector<kernel::Pose2> poses;
+  poses.reserve(scans_.size());
+  for (const ScanAnchor& s : scans_)
+    poses.push_back(keyframes_[static_cast<std::size_t>(s.keyframe)].pose * s.offset);
+  return poses;
+}
+
+std::vector<MapSpline> GraphSlam::MapSplines() const {
+  std::vector<MapSpline> splines;
+  for (const Keyframe& kf : keyframes_) {
+    if (!kf.in_map) continue;
+    for (const auto& c : kf.curves)
+      splines.push_back({static_cast<int>(splines.size()), c.spline.Transformed(kf.pose), 1});
+  }
+  return splines;
+}
+
+std::size_t GraphSlam::num_map_curves() const {
+  std::size_t n = 0;
+  for (const Keyframe& kf : keyframes_) n += kf.in_map ? kf.curves.size() : 0;
+  return n;
+}
+
+std::size_t GraphSlam::num_map_control_points() const {
+  std::size_t n = 0;
+  for (const Keyframe& kf : keyframes_)
+    if (kf.in_map)
+      for (const auto& c : kf.curves) n += c.spline.control_points().size();
+  return n;
+}
+
+RegistrationOptions GraphSlamOptions::LoopRegistrationDefaults() {
+  RegistrationOptions o;
+  // The correlative search is within a cell and an angular step: a weak prior around it.
+  o.prior_sigma_m = 0.1;
+  o.prior_sigma_rad = 0.05;
+  o.min_inlier_fraction = 0.6;
+  o.max_correction_m = 0.2;
+  o.max_correction_rad = 0.1;
+  return o;
+}
+
+void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Nested("extraction", "curves of every keyframe", &extraction);
+  v.Field("max_range_m", &max_range_m, "beams longer are not used (0: the laser's maximum), m");
+  v.Field("keyframe_distance_m", &keyframe_distance_m, "a keyframe every this much travel, m");
+  v.Field("keyframe_angle_rad", &keyframe_angle_rad, "or this much turn, rad");
+  v.Field("submap_keyframes", &submap_keyframes, "keyframes in the registration submap");
+  v.Field("grid_resolution_m", &grid_resolution_m, "distance field cell size, m");
+  v.Field("truncation_m", &truncation_m, "distance field truncation, m");
+  v.Field("raster_points", &raster_points, "rasterise the points besides the curves");
+  v.Nested("registration", "scan-to-submap registration", &registration);
+  v.Field("recovery_window_m", &recovery_window_m,
+          "a failed registration is searched again within this of the odometry (0: never), m");
+  v.Field("recovery_window_rad", &recovery_window_rad, "and within this heading, rad");
+  v.Field("recovery_step_rad", &recovery_step_rad, "heading step of that search, rad");
+  v.Field("edge_sigma_m", &edge_sigma_m, "keyframe edge sigma: base, m");
+  v.Field("edge_sigma_per_m", &edge_sigma_per_m, "keyframe edge sigma: per metre travelled");
+  v.Field("edge_sigma_rad", &edge_sigma_rad, "keyframe edge heading sigma: base, rad");
+  v.Field("edge_sigma_per_rad", &edge_sigma_per_rad, "keyframe edge heading sigma: per radian");
+  v.Field("loop_closure", &loop_closure, "search for loop closures");
+  v.Field("loop_min_gap_keyframes", &loop_min_gap_keyframes,
+          "candidates are at least this many keyframes older");
+  v.Field("loop_radius_m", &loop_radius_m, "candidate radius right after a closure, m");
+  v.Field("loop_radius_per_m", &loop_radius_per_m,
+          "candidate radius growth per metre travelled since the last closure");
+  v.Field("loop_max_radius_m", &loop_max_radius_m, "candidate radius at most, m");
+  v.Field("loop_candidates", &loop_candidates, "candidates searched per keyframe");
+  v.Field("loop_max_window_m", &loop_max_window_m, "search window half-width at most, m");
+  v.Field("loop_window_rad", &loop_window_rad, "search heading half-width after a closure, rad");
+  v.Field("loop_window_rad_per_m", &loop_window_rad_per_m,
+          "heading half-width growth per metre travelled, rad/m");
+  v.Field("loop_max_window_rad", &loop_max_window_rad, "heading half-width at most, rad");
+  v.Field("loop_query_keyframes", &loop_query_keyframes,
+          "query: the new keyframe and this many before it");
+  v.Field("loop_target_keyframes", &loop_target_keyframes,
+          "target: the candidate and this many keyframes either side");
+  v.Field("loop_sigma_m", &loop_sigma_m, "correlative likelihood sigma, m");
+  v.Field("loop_levels", &loop_levels, "correlative search resolution levels");
+  v.Field("loop_min_score", &loop_min_score, "closure test: correlative score at least");
+  v.Field("loop_ambiguity_ratio", &loop_ambiguity_ratio,
+          "closure refused when a distinct pose scores this fraction of the best");
+  v.Field("loop_max_rms_m", &loop_max_rms_m, "closure test: registration inlier RMS at most, m");
+  v.Field("loop_max_chi2", &loop_max_chi2,
+          "closure test: whitened squared residual after optimisation at most");
+  v.Nested("loop_registration", "fine registration of a closure", &loop_registration);
+  v.Field("loop_sigma_floor_m", &loop_sigma_floor_m, "closure edge sigma floor, m");
+  v.Field("loop_sigma_floor_rad", &loop_sigma_floor_rad, "closure edge sigma floor, rad");
+  v.Nested("pose_graph", "pose-graph optimisation", &pose_graph);
+  v.Field("map_spacing_m", &map_spacing_m, "map curves from keyframes this far apart, m");
+  v.Field("map_spacing_rad", &map_spacing_rad, "or turned this much from each other, rad");
+}
+
+kernel::Status GraphSlamOptions::Validate() const {
+  if (kernel::Status e = kernel::FirstError(extraction.Validate(), registration.Validate(),
+                                            loop_registration.Validate(), pose_graph.Validate());
+      !e.ok())
+    return e;
+  if (!(max_range_m >= 0) || !(keyframe_distance_m > 0) || !(keyframe_angle_rad > 0))
+    return kernel::Status::Error("max_range_m >= 0, keyframe distance and angle > 0");
+  if (submap_keyframes < 1 || !(grid_resolution_m > 0) || !(truncation_m > grid_resolution_m))
+    return kernel::Status::Error(
+        "submap_keyframes >= 1, grid_resolution_m > 0, truncation_m > grid_resolution_m");
+  if (!(recovery_window_m >= 0) || !(recovery_window_rad >= 0) || !(recovery_step_rad > 0))
+    return kernel::Status::Error("recovery windows >= 0 and recovery_step_rad > 0");
+  if (!(edge_sigma_m > 0) || !(edge_sigma_rad > 0) || !(edge_sigma_per_m >= 0) ||
+      !(edge_sigma_per_rad >= 0))
+    return kernel::Status::Error("edge sigmas must be positive");
+  if (loop_min_gap_keyframes < 1 || loop_candidates < 1 || loop_query_keyframes < 0 ||
+      loop_target_keyframes < 0 || loop_levels < 1 || loop_levels > 8)
+    return kernel::Status::Error(
+        "loop_min_gap_keyframes, loop_candidates >= 1; loop_levels in [1, 8]");
+  if (!(loop_radius_m > 0) || !(loop_radius_per_m >= 0) || !(loop_max_radius_m >= loop_radius_m) ||
+      !(loop_max_window_m > 0) || !(loop_window_rad >= 0) || !(loop_window_rad_per_m >= 0) ||
+      !(loop_max_window_rad >= loop_window_rad) || !(loop_sigma_m > 0))
+    return kernel::Status::Error("loop radii, windows and sigma must be positive and ordered");
+  if (!(loop_min_score > 0 && loop_min_score <= 1) ||
+      !(loop_ambiguity_ratio > 0 && loop_ambiguity_ratio <= 1) || !(loop_max_rms_m > 0) ||
+      !(loop_max_chi2 > 0) || !(loop_sigma_floor_m > 0) || !(loop_sigma_floor_rad > 0))
+    return kernel::Status::Error("loop tests: score and ratio in (0, 1], bounds positive");
+  if (!(map_spacing_m >= 0) || !(map_spacing_rad >= 0))
+    return kernel::Status::Error("map spacing must be >= 0");
+  return kernel::Status::Ok();
+}
+
+}  // namespace splam::estimation

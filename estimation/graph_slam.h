@@ -1,0 +1,193 @@
+#ifndef SPLAM_ESTIMATION_GRAPH_SLAM_H_
+#define SPLAM_ESTIMATION_GRAPH_SLAM_H_
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "estimation/correlative_matcher.h"
+#include "estimation/distance_grid.h"
+#include "estimation/map_spline.h"
+#include "estimation/pose_graph.h"
+#include "estimation/scan_registration.h"
+#include "kernel/options.h"
+#include "kernel/pose2.h"
+#include "kernel/scan.h"
+#include "kernel/spline_extraction.h"
+#include "kernel/status.h"
+
+namespace splam::estimation {
+
+// Graph SLAM on curve maps (issue 16): keyframes keep their scan's B-spline curves and points;
+// every scan is registered against a submap rasterised from the curves of recent keyframes;
+// each new keyframe searches earlier ones for a loop closure; a Ceres pose graph over the
+// keyframes is optimised when closures are accepted and re-anchors the map.
+struct GraphSlamOptions {
+  // How keyframe curves are extracted (segmentation, fit, curvature, features).
+  kernel::SplineExtractionOptions extraction;
+  // Beams longer than this are not used (0: the laser's maximum range), metres.
+  double max_range_m = 30.0;
+
+  // A keyframe every keyframe_distance_m of travel or keyframe_angle_rad of turn. 0.3 m and
+  // 0.25 rad: the next scan still overlaps the keyframe's by most of its beams, so the submap is
+  // fresh, and a 1,000 m log makes a few thousand nodes, which Ceres optimises in tens of ms.
+  double keyframe_distance_m = 0.3;
+  double keyframe_angle_rad = 0.25;
+
+  // Submap: the last submap_keyframes keyframes, rasterised at grid_resolution_m into a distance
+  // field truncated at truncation_m; from their curves' samples and (raster_points) their points.
+  int submap_keyframes = 30;
+  double grid_resolution_m = 0.05;
+  double truncation_m = 0.5;
+  bool raster_points = true;
+  RegistrationOptions registration;
+  // A registration that fails its quality test is searched again (correlative search on the
+  // submap) within these windows around the odometry prediction, heading in steps of
+  // recovery_step_rad, and refined; it is kept when it passes the test.
+  double recovery_window_m = 0.5;
+  double recovery_window_rad = 1.2;
+  double recovery_step_rad = 0.01;
+
+  // Front-end edge between consecutive keyframes: sigma = base + per_m * distance travelled
+  // (+ per_rad * turn for the heading).
+  double edge_sigma_m = 0.02;
+  double edge_sigma_per_m = 0.05;
+  double edge_sigma_rad = 0.005;
+  double edge_sigma_per_rad = 0.05;
+
+  // Loop closure.
+  bool loop_closure = true;
+  // Candidates: keyframes at least loop_min_gap_keyframes older than the new one, within
+  // loop_radius_m + loop_radius_per_m * (distance travelled since the last accepted closure),
+  // at most loop_max_radius_m; the nearest loop_candidates of them (kept loop_min_gap_keyframes
+  // apart) are searched.
+  int loop_min_gap_keyframes = 60;
+  double loop_radius_m = 1.0;
+  double loop_radius_per_m = 0.05;
+  double loop_max_radius_m = 8.0;
+  int loop_candidates = 2;
+  // The search window: translations within min(radius, loop_max_window_m), headings within
+  // loop_window_rad + loop_window_rad_per_m * distance since the last closure.
+  double loop_max_window_m = 3.0;
+  double loop_window_rad = 0.2;
+  double loop_window_rad_per_m = 0.005;
+  double loop_max_window_rad = 0.8;
+  // Query: the points of the new keyframe and loop_query_keyframes before it; target: the
+  // candidate's submap (loop_target_keyframes either side of it).
+  int loop_query_keyframes = 10;
+  int loop_target_keyframes = 15;
+  // Correlative search on a likelihood exp(-d^2 / 2 sigma^2) with loop_levels resolution levels.
+  double loop_sigma_m = 0.05;
+  int loop_levels = 5;
+  // Tests: correlative score at least loop_min_score; refused as ambiguous when a distinct pose
+  // scores at least loop_ambiguity_ratio of the best; the fine registration passes
+  // loop_registration's quality test with an inlier RMS at most loop_max_rms_m; after the
+  // optimisation the closure's whitened squared residual is at most loop_max_chi2 (agreement
+  // with the other edges; chi^2(3) 99.9 %).
+  double loop_min_score = 0.55;
+  double loop_ambiguity_ratio = 0.9;
+  double loop_max_rms_m = 0.05;
+  double loop_max_chi2 = 16.27;
+  RegistrationOptions loop_registration = LoopRegistrationDefaults();
+  // Loop edge covariance: the registration's plus this floor (sigma, m and rad).
+  double loop_sigma_floor_m = 0.02;
+  double loop_sigma_floor_rad = 0.005;
+  PoseGraphOptions pose_graph;
+
+  // The map: curves of keyframes at least map_spacing_m or map_spacing_rad from every earlier
+  // map keyframe.
+  double map_spacing_m = 1.0;
+  double map_spacing_rad = 0.5;
+
+  static RegistrationOptions LoopRegistrationDefaults();
+  void VisitFields(kernel::FieldVisitor& v);
+  kernel::Status Validate() const;
+};
+
+// Loop-closure counters.
+struct LoopClosureCounts {
+  long searches = 0;  // candidates searched (proposals)
+  long accepted = 0;
+  long rejected_score = 0, rejected_ambiguous = 0, rejected_registration = 0,
+       rejected_disagreement = 0;
+};
+
+class GraphSlam {
+ public:
+  struct Keyframe {
+    kernel::Pose2 pose;                       // world_T_robot, optimised
+    std::vector<Eigen::Vector2d> points;      // robot frame
+    std::vector<Eigen::Vector2d> raster;      // curve samples (+ points), robot frame
+    std::vector<kernel::SplineCurve> curves;  // robot frame
+    double travelled_m = 0.0;                 // path length at this keyframe
+    bool in_map = false;
+  };
+
+  GraphSlam(const kernel::Pose2& start, const GraphSlamOptions& options);
+
+  void Predict(const kernel::Pose2& odometry_increment);
+  void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser);
+  // The next scan makes a keyframe (an exploration node).
+  void ForceKeyframe() { force_keyframe_ = true; }
+
+  const kernel::Pose2& pose() const { return pose_; }
+  const GraphSlamOptions& options() const { return options_; }
+  const std::vector<Keyframe>& keyframes() const { return keyframes_; }
+  const PoseGraph& graph() const { return graph_; }
+  // Every scan's pose as now estimated (its keyframe's optimised pose times the offset).
+  std::vector<kernel::Pose2> Trajectory() const;
+  std::vector<MapSpline> MapSplines() const;
+  std::size_t num_map_curves() const;
+  std::size_t num_map_control_points() const;
+
+  long registrations() const { return registrations_; }
+  long registration_fallbacks() const { return fallbacks_; }
+  // Registrations searched again after failing, and those recovered that way.
+  long recovery_searches() const { return recoveries_; }
+  long recovered() const { return recovered_; }
+  const LoopClosureCounts& loops() const { return loops_; }
+  const std::vector<PoseGraphSummary>& optimizations() const { return optimizations_; }
+  kernel::Status health() const { return health_; }
+
+ private:
+  std::vector<Eigen::Vector2d> RobotPoints(const kernel::Scan& scan,
+                                           const kernel::Pose2& robot_T_laser) const;
+  void AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+                   std::vector<Eigen::Vector2d> points);
+  // The raster of keyframes [first, last] in the world frame.
+  std::vector<Eigen::Vector2d> WorldRaster(int first, int last) const;
+  void RebuildSubmap();
+  // Registers a scan at the predicted pose against the submap (see recovery_window_m).
+  RegistrationResult RegisterScan(const std::vector<Eigen::Vector2d>& points);
+  // Searches the new keyframe k against earlier ones, optimising the graph with every closure
+  // found; returns the closures accepted.
+  int SearchLoopClosures(int k);
+  std::optional<PoseGraphEdge> MatchLoop(int k, int candidate, double radius, double travelled);
+  // Optimises, then moves the current pose with its keyframe.
+  void Optimize();
+
+  GraphSlamOptions options_;
+  kernel::Pose2 pose_;
+  std::vector<Keyframe> keyframes_;
+  PoseGraph graph_;
+  DistanceGrid submap_;
+  std::unique_ptr<LikelihoodPyramid> submap_scores_;  // of submap_
+  bool submap_dirty_ = true;
+  bool force_keyframe_ = false;
+  double travelled_m_ = 0.0;
+  double closure_at_m_ = 0.0;  // travelled when the last closure was accepted
+  struct ScanAnchor {
+    int keyframe;
+    kernel::Pose2 offset;  // keyframe^-1 * scan pose
+  };
+  std::vector<ScanAnchor> scans_;
+  long registrations_ = 0, fallbacks_ = 0, recoveries_ = 0, recovered_ = 0;
+  LoopClosureCounts loops_;
+  std::vector<PoseGraphSummary> optimizations_;
+  kernel::Status health_;
+};
+
+}  // namespace splam::estimation
+
+#endif  // SPLAM_ESTIMATION_GRAPH_SLAM_H_

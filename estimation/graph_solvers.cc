@@ -1,0 +1,275 @@
+// The two least-squares problems of the graph SLAM, in one translation unit (Ceres templates
+// are heavy): scan-to-submap registration and the pose graph.
+#include <ceres/ceres.h>
+#include <ceres/cubic_interpolation.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "estimation/pose_graph.h"
+#include "estimation/scan_registration.h"
+#include "kernel/angle.h"
+
+namespace splam::estimation {
+namespace {
+
+// a wrapped to (-pi, pi], for doubles and Jets.
+template <typename T>
+T WrapAngle(const T& a) {
+  const T two_pi = T(2.0 * M_PI);
+  return a - two_pi * ceres::floor((a + T(M_PI)) / two_pi);
+}
+
+using Interpolator = ceres::BiCubicInterpolator<ceres::Grid2D<double, 1>>;
+
+// D(T p) / sigma for one point p of the scan.
+struct PointToMapResidual {
+  PointToMapResidual(const Interpolator& field, const DistanceGrid& grid, Eigen::Vector2d p,
+                     double sigma)
+      : field_(field), grid_(grid), p_(std::move(p)), inv_sigma_(1.0 / sigma) {}
+  template <typename T>
+  bool operator()(const T* pose, T* residual) const {
+    const T c = ceres::cos(pose[2]), s = ceres::sin(pose[2]);
+    const T x = pose[0] + c * p_.x() - s * p_.y();
+    const T y = pose[1] + s * p_.x() + c * p_.y();
+    const double inv_res = 1.0 / grid_.resolution();
+    const T row = (y - grid_.origin().y()) * inv_res - 0.5;
+    const T col = (x - grid_.origin().x()) * inv_res - 0.5;
+    T d;
+    field_.Evaluate(row, col, &d);
+    residual[0] = d * inv_sigma_;
+    return true;
+  }
+  const Interpolator& field_;
+  const DistanceGrid& grid_;
+  Eigen::Vector2d p_;
+  double inv_sigma_;
+};
+
+// sqrt(I) (target^-1 T) for a pose prior (registration) or a relative pose (graph edge, with
+// T = from^-1 to).
+struct RelativePoseResidual {
+  RelativePoseResidual(const kernel::Pose2& measurement, const Eigen::Matrix3d& sqrt_information)
+      : m_(measurement.ToVector()), sqrt_information_(sqrt_information) {}
+  template <typename T>
+  bool operator()(const T* from, const T* to, T* residual) const {
+    const T c = ceres::cos(from[2]), s = ceres::sin(from[2]);
+    const T dx = to[0] - from[0], dy = to[1] - from[1];
+    Eigen::Matrix<T, 3, 1> r;
+    r(0) = c * dx + s * dy - T(m_.x());
+    r(1) = -s * dx + c * dy - T(m_.y());
+    r(2) = WrapAngle(to[2] - from[2] - T(m_.z()));
+    // The translation error in the measurement's frame, so that the information (given in the
+    // measured frame) applies to it.
+    const T cm = T(std::cos(m_.z())), sm = T(std::sin(m_.z()));
+    const T ex = cm * r(0) + sm * r(1), ey = -sm * r(0) + cm * r(1);
+    r(0) = ex;
+    r(1) = ey;
+    const Eigen::Matrix<T, 3, 1> w = sqrt_information_.cast<T>() * r;
+    for (int i = 0; i < 3; ++i) residual[i] = w(i);
+    return true;
+  }
+  Eigen::Vector3d m_;
+  Eigen::Matrix3d sqrt_information_;
+};
+
+// A prior: the relative pose from a fixed `anchor` to the free pose.
+struct PriorResidual {
+  PriorResidual(const kernel::Pose2& anchor, const Eigen::Matrix3d& sqrt_information)
+      : anchor_(anchor.ToVector()), relative_(kernel::Pose2(), sqrt_information) {}
+  template <typename T>
+  bool operator()(const T* pose, T* residual) const {
+    const T a[3] = {T(anchor_.x()), T(anchor_.y()), T(anchor_.z())};
+    return relative_(a, pose, residual);
+  }
+  Eigen::Vector3d anchor_;
+  RelativePoseResidual relative_;
+};
+
+Eigen::Matrix3d SqrtInformation(const Eigen::Matrix3d& information) {
+  return Eigen::LLT<Eigen::Matrix3d>(information).matrixU();
+}
+
+// J^T J of every residual of a problem with one 3-parameter block.
+Eigen::Matrix3d GaussNewtonHessian(ceres::Problem* problem) {
+  ceres::CRSMatrix j;
+  problem->Evaluate(ceres::Problem::EvaluateOptions(), nullptr, nullptr, nullptr, &j);
+  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+  for (int r = 0; r < j.num_rows; ++r) {
+    Eigen::Vector3d row = Eigen::Vector3d::Zero();
+    for (int k = j.rows[r]; k < j.rows[r + 1]; ++k) row(j.cols[k]) = j.values[k];
+    h += row * row.transpose();
+  }
+  return h;
+}
+
+}  // namespace
+
+RegistrationResult RegisterPoints(const std::vector<Eigen::Vector2d>& points,
+                                  const DistanceGrid& grid, const kernel::Pose2& prior,
+                                  const RegistrationOptions& options) {
+  RegistrationResult result;
+  result.pose = prior;
+  if (grid.empty() || static_cast<int>(points.size()) < options.min_points) {
+    result.reason = "too few points or an empty submap";
+    return result;
+  }
+  const ceres::Grid2D<double, 1> data(grid.values().data(), 0, grid.rows(), 0, grid.cols());
+  const Interpolator field(data);
+  double pose[3] = {prior.x(), prior.y(), prior.theta()};
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  ceres::HuberLoss loss(options.loss_scale_m / options.point_sigma_m);
+  for (const auto& p : points)
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointToMapResidual, 1, 3>(
+                                 new PointToMapResidual(field, grid, p, options.point_sigma_m)),
+                             &loss, pose);
+  const Eigen::Matrix3d prior_sqrt_information =
+      Eigen::Vector3d(1.0 / options.prior_sigma_m, 1.0 / options.prior_sigma_m,
+                      1.0 / options.prior_sigma_rad)
+          .asDiagonal();
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PriorResidual, 3, 3>(
+                               new PriorResidual(prior, prior_sqrt_information)),
+                           nullptr, pose);
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = options.max_iterations;
+  solver.logging_type = ceres::SILENT;
+  solver.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  result.iterations = static_cast<int>(summary.iterations.size());
+  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  result.pose = kernel::Pose2(pose[0], pose[1], pose[2]);
+  const Eigen::Matrix3d h = GaussNewtonHessian(&problem);
+  result.covariance = h.inverse();
+
+  int inliers = 0;
+  double sum_sq = 0.0;
+  for (const auto& p : points) {
+    double d = 0.0;
+    const Eigen::Vector2d cell = grid.CellCoordinates(result.pose * p);
+    field.Evaluate(cell.x(), cell.y(), &d);
+    if (std::abs(d) < options.inlier_distance_m) {
+      ++inliers;
+      sum_sq += d * d;
+    }
+  }
+  result.inlier_fraction = static_cast<double>(inliers) / static_cast<double>(points.size());
+  result.rms_m = inliers > 0 ? std::sqrt(sum_sq / inliers) : 0.0;
+  const kernel::Pose2 correction = prior.Between(result.pose);
+  if (!std::isfinite(pose[0] + pose[1] + pose[2]) || !result.covariance.allFinite())
+    result.reason = "the solution is not finite";
+  else if (result.inlier_fraction < options.min_inlier_fraction)
+    result.reason = "too few points near the map";
+  else if (correction.translation().norm() > options.max_correction_m ||
+           std::abs(correction.theta()) > options.max_correction_rad)
+    result.reason = "the correction is larger than the odometry can be off";
+  result.accepted = result.reason.empty();
+  return result;
+}
+
+void RegistrationOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("point_sigma_m", &point_sigma_m, "scale of a point's distance to the map, m");
+  v.Field("loss_scale_m", &loss_scale_m, "Huber loss: farther points count linearly, m");
+  v.Field("prior_sigma_m", &prior_sigma_m, "prior on the translation from odometry, m");
+  v.Field("prior_sigma_rad", &prior_sigma_rad, "prior on the heading from odometry, rad");
+  v.Field("max_iterations", &max_iterations, "Ceres iterations");
+  v.Field("inlier_distance_m", &inlier_distance_m, "a point this near the map is an inlier, m");
+  v.Field("min_inlier_fraction", &min_inlier_fraction, "quality test: inliers at least");
+  v.Field("min_points", &min_points, "quality test: points at least");
+  v.Field("max_correction_m", &max_correction_m, "quality test: moved from the prior at most, m");
+  v.Field("max_correction_rad", &max_correction_rad,
+          "quality test: turned from the prior at most, rad");
+}
+
+kernel::Status RegistrationOptions::Validate() const {
+  if (!(point_sigma_m > 0) || !(loss_scale_m > 0) || !(prior_sigma_m > 0) || !(prior_sigma_rad > 0))
+    return kernel::Status::Error("registration sigmas and loss scale must be positive");
+  if (max_iterations < 1 || min_points < 3)
+    return kernel::Status::Error("registration needs max_iterations >= 1 and min_points >= 3");
+  if (!(inlier_distance_m > 0) || !(min_inlier_fraction >= 0 && min_inlier_fraction <= 1) ||
+      !(max_correction_m > 0) || !(max_correction_rad > 0))
+    return kernel::Status::Error(
+        "registration quality test: positive distances, inlier fraction in [0, 1]");
+  return kernel::Status::Ok();
+}
+
+int PoseGraph::AddNode(const kernel::Pose2& pose) {
+  poses_.push_back(pose.ToVector());
+  return num_nodes() - 1;
+}
+
+void PoseGraph::AddEdge(const PoseGraphEdge& edge) { edges_.push_back(edge); }
+
+kernel::Pose2 PoseGraph::node(int i) const {
+  const Eigen::Vector3d& p = poses_[static_cast<std::size_t>(i)];
+  return {p.x(), p.y(), p.z()};
+}
+
+void PoseGraph::SetNode(int i, const kernel::Pose2& pose) {
+  poses_[static_cast<std::size_t>(i)] = pose.ToVector();
+}
+
+double PoseGraph::EdgeChi2(const PoseGraphEdge& e) const {
+  const RelativePoseResidual r(e.measurement, SqrtInformation(e.information));
+  double residual[3];
+  r(poses_[static_cast<std::size_t>(e.from)].data(), poses_[static_cast<std::size_t>(e.to)].data(),
+    residual);
+  return residual[0] * residual[0] + residual[1] * residual[1] + residual[2] * residual[2];
+}
+
+PoseGraphSummary PoseGraph::Optimize(const PoseGraphOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  PoseGraphSummary s;
+  s.nodes = num_nodes();
+  s.edges = static_cast<int>(edges_.size());
+  if (poses_.size() < 2) return s;
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  ceres::CauchyLoss loop_loss(options.loop_loss_scale);
+  for (const PoseGraphEdge& e : edges_) {
+    s.loop_edges += e.loop;
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<RelativePoseResidual, 3, 3, 3>(
+            new RelativePoseResidual(e.measurement, SqrtInformation(e.information))),
+        e.loop ? &loop_loss : nullptr, poses_[static_cast<std::size_t>(e.from)].data(),
+        poses_[static_cast<std::size_t>(e.to)].data());
+  }
+  problem.SetParameterBlockConstant(poses_.front().data());
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver.max_num_iterations = options.max_iterations;
+  solver.logging_type = ceres::SILENT;
+  solver.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  for (auto& p : poses_) p.z() = WrapAngle(p.z());
+  s.iterations = static_cast<int>(summary.iterations.size());
+  s.initial_cost = summary.initial_cost;
+  s.final_cost = summary.final_cost;
+  s.converged = summary.termination_type == ceres::CONVERGENCE;
+  s.time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return s;
+}
+
+void PoseGraphOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("loop_loss_scale", &loop_loss_scale,
+          "Cauchy loss on loop-closure edges, whitened residual units");
+  v.Field("max_iterations", &max_iterations, "Ceres iterations per optimisation");
+}
+
+kernel::Status PoseGraphOptions::Validate() const {
+  if (!(loop_loss_scale > 0) || max_iterations < 1)
+    return kernel::Status::Error("pose graph: loop_loss_scale > 0 and max_iterations >= 1");
+  return kernel::Status::Ok();
+}
+
+}  // namespace splam::estimation

@@ -1,0 +1,66 @@
+#ifndef SPLAM_ESTIMATION_POSE_GRAPH_H_
+#define SPLAM_ESTIMATION_POSE_GRAPH_H_
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "kernel/options.h"
+#include "kernel/pose2.h"
+#include "kernel/status.h"
+
+namespace splam::estimation {
+
+// One relative-pose constraint: the motion from node `from` to node `to` in from's frame
+// (from_T_to), with its information matrix (inverse covariance of (dx, dy, dtheta)).
+struct PoseGraphEdge {
+  int from = 0, to = 0;
+  kernel::Pose2 measurement;
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
+  bool loop = false;  // a loop closure (robust loss) rather than a front-end edge
+};
+
+struct PoseGraphOptions {
+  // Loop-closure edges get a Cauchy loss of this scale on their whitened residual: a wrong
+  // closure that survived the tests pulls with bounded force.
+  double loop_loss_scale = 2.0;
+  int max_iterations = 50;
+
+  void VisitFields(kernel::FieldVisitor& v);
+  kernel::Status Validate() const;
+};
+
+// What one optimisation did (kept per optimisation in summary.json).
+struct PoseGraphSummary {
+  int nodes = 0, edges = 0, loop_edges = 0;
+  int iterations = 0;
+  double initial_cost = 0.0, final_cost = 0.0;
+  bool converged = false;
+  double time_ms = 0.0;
+};
+
+// A 2-D pose graph (Ceres, after its examples/slam/pose_graph_2d): minimises
+//   sum_e rho_e(r_e^T I_e r_e),  r_e = (R_from^T (t_to - t_from) - t_m, wrap(th_to - th_from -
+//   th_m))
+// over every node but the first, which anchors the gauge.
+class PoseGraph {
+ public:
+  int AddNode(const kernel::Pose2& pose);
+  void AddEdge(const PoseGraphEdge& edge);
+  void RemoveLastEdge() { edges_.pop_back(); }
+  int num_nodes() const { return static_cast<int>(poses_.size()); }
+  const std::vector<PoseGraphEdge>& edges() const { return edges_; }
+  kernel::Pose2 node(int i) const;
+  void SetNode(int i, const kernel::Pose2& pose);
+  // Whitened squared residual r^T I r of edge `e` at the current node poses.
+  double EdgeChi2(const PoseGraphEdge& e) const;
+  PoseGraphSummary Optimize(const PoseGraphOptions& options);
+
+ private:
+  std::vector<Eigen::Vector3d> poses_;  // (x, y, theta)
+  std::vector<PoseGraphEdge> edges_;
+};
+
+}  // namespace splam::estimation
+
+#endif  // SPLAM_ESTIMATION_POSE_GRAPH_H_

@@ -1,0 +1,58 @@
+#ifndef SPLAM_ESTIMATION_SCAN_REGISTRATION_H_
+#define SPLAM_ESTIMATION_SCAN_REGISTRATION_H_
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "estimation/distance_grid.h"
+#include "kernel/options.h"
+#include "kernel/pose2.h"
+#include "kernel/status.h"
+
+namespace splam::estimation {
+
+// Scan-to-submap registration (front end of the graph SLAM, after Hess et al. 2016): the pose
+// T = (x, y, theta) minimising
+//   sum_i rho(D(T p_i)^2 / sigma^2) + |W (prior^-1 T)|^2
+// where D is the submap's distance field interpolated bicubically (ceres::BiCubicInterpolator),
+// p_i the scan's points in the robot frame, rho a Huber loss and W the prior's square-root
+// information (the odometry increment's uncertainty).
+struct RegistrationOptions {
+  double point_sigma_m = 0.03;   // the distance residual's scale, m
+  double loss_scale_m = 0.1;     // Huber: points farther from the map count linearly, m
+  double prior_sigma_m = 0.1;    // prior on the translation, m
+  double prior_sigma_rad = 0.1;  // prior on the heading, rad
+  int max_iterations = 20;
+  // Quality test: points within inlier_distance_m of the map make up at least
+  // min_inlier_fraction of the scan, at least min_points points, and the result moved from the
+  // prior by at most max_correction_m / max_correction_rad.
+  double inlier_distance_m = 0.1;
+  double min_inlier_fraction = 0.5;
+  int min_points = 20;
+  double max_correction_m = 0.3;
+  double max_correction_rad = 0.2;
+
+  void VisitFields(kernel::FieldVisitor& v);
+  kernel::Status Validate() const;
+};
+
+struct RegistrationResult {
+  kernel::Pose2 pose;                                        // the registered pose
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  // (J^T J)^-1 at the solution
+  double rms_m = 0.0;            // RMS distance of the inliers to the map
+  double inlier_fraction = 0.0;  // points within inlier_distance_m
+  int iterations = 0;
+  bool converged = false;
+  bool accepted = false;  // passed the quality test
+  std::string reason;     // why not, when not accepted
+};
+
+// Registers `points` (robot frame) against `grid` (world frame) from `prior`.
+RegistrationResult RegisterPoints(const std::vector<Eigen::Vector2d>& points,
+                                  const DistanceGrid& grid, const kernel::Pose2& prior,
+                                  const RegistrationOptions& options);
+
+}  // namespace splam::estimation
+
+#endif  // SPLAM_ESTIMATION_SCAN_REGISTRATION_H_
