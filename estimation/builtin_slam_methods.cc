@@ -195,6 +195,7 @@ class GraphSlamMethod : public SlamMethod {
     slam_.Update(scan, robot_T_laser);
   }
   kernel::Pose2 pose() const override { return slam_.pose(); }
+  void Finish() override { slam_.Finish(); }
   std::vector<kernel::Pose2> Trajectory() const override { return slam_.Trajectory(); }
   kernel::Status health() const override { return slam_.health(); }
   std::size_t MapSize() const override { return slam_.num_map_control_points(); }

@@ -74,6 +74,8 @@ RegistrationResult GraphSlam::RegisterScan(const std::vector<Eigen::Vector2d>& p
   // The odometry can be off by more than the registration's basin (wheel slip, a bump): a
   // correlative search around the prediction finds the basin, the registration refines it.
   ++recoveries_;
+  if (!submap_scores_)
+    submap_scores_ = std::make_unique<LikelihoodPyramid>(submap_, options_.loop_sigma_m, 3);
   const CorrelativeMatch match =
       SearchCorrelative(Thinned(points, options_.grid_resolution_m), *submap_scores_, pose_,
                         options_.recovery_window_m, options_.recovery_window_rad,
@@ -145,13 +147,13 @@ void GraphSlam::RebuildSubmap() {
   submap_ =
       DistanceGrid::Build(WorldRaster(last - options_.submap_keyframes + 1, last),
                           options_.grid_resolution_m, options_.truncation_m, options_.truncation_m);
-  submap_scores_ = std::make_unique<LikelihoodPyramid>(submap_, options_.loop_sigma_m, 3);
+  submap_scores_.reset();
   submap_dirty_ = false;
 }
 
-int GraphSlam::SearchLoopClosures(int k) {
+void GraphSlam::SearchLoopClosures(int k) {
   const int newest_candidate = k - options_.loop_min_gap_keyframes;
-  if (newest_candidate < 0) return 0;
+  if (newest_candidate < 0) return;
   const Keyframe& kf = keyframes_[static_cast<std::size_t>(k)];
   const double since = travelled_m_ - closure_at_m_;
   const double radius = std::min(options_.loop_radius_m + options_.loop_radius_per_m * since,
@@ -170,32 +172,47 @@ int GraphSlam::SearchLoopClosures(int k) {
                     [&](int c) { return std::abs(c - i) >= options_.loop_min_gap_keyframes; }))
       chosen.push_back(i);
   }
-  int accepted = 0;
   for (int c : chosen) {
-    const std::optional<PoseGraphEdge> edge = MatchLoop(k, c, radius, since);
-    if (!edge) continue;
-    // Agreement with the other edges: optimised with the closure, its residual stays small;
-    // otherwise it is removed and the poses restored.
-    std::vector<kernel::Pose2> before;
-    for (int i = 0; i < graph_.num_nodes(); ++i) before.push_back(graph_.node(i));
-    const kernel::Pose2 pose_before = pose_;
-    graph_.AddEdge(*edge);
-    Optimize();
-    if (graph_.EdgeChi2(graph_.edges().back()) > options_.loop_max_chi2) {
-      graph_.RemoveLastEdge();
-      for (int i = 0; i < graph_.num_nodes(); ++i) {
-        graph_.SetNode(i, before[static_cast<std::size_t>(i)]);
-        keyframes_[static_cast<std::size_t>(i)].pose = before[static_cast<std::size_t>(i)];
-      }
-      pose_ = pose_before;
-      ++loops_.rejected_disagreement;
-      continue;
+    if (std::optional<PoseGraphEdge> edge = MatchLoop(k, c, radius, since)) {
+      pending_.push_back(*edge);
+      closure_at_m_ = travelled_m_;
     }
-    ++loops_.accepted;
-    closure_at_m_ = travelled_m_;
-    ++accepted;
   }
-  return accepted;
+  if (!pending_.empty() && k - pending_.front().to >= options_.optimize_every_keyframes)
+    FlushClosures();
+}
+
+void GraphSlam::FlushClosures() {
+  if (pending_.empty()) return;
+  std::vector<kernel::Pose2> before;
+  for (int i = 0; i < graph_.num_nodes(); ++i) before.push_back(graph_.node(i));
+  const kernel::Pose2 pose_before = pose_;
+  const int first = static_cast<int>(graph_.edges().size());
+  for (const PoseGraphEdge& e : pending_) graph_.AddEdge(e);
+  pending_.clear();
+  Optimize();
+  // Agreement with the other edges: optimised together, a closure's residual stays small;
+  // those that do not are removed and the graph optimised again from where it was.
+  std::vector<int> disagree;
+  for (int e = first; e < static_cast<int>(graph_.edges().size()); ++e)
+    if (graph_.EdgeChi2(graph_.edges()[static_cast<std::size_t>(e)]) > options_.loop_max_chi2)
+      disagree.push_back(e);
+  loops_.accepted +=
+      static_cast<long>(graph_.edges().size()) - first - static_cast<long>(disagree.size());
+  if (disagree.empty()) return;
+  loops_.rejected_disagreement += static_cast<long>(disagree.size());
+  graph_.RemoveEdges(disagree);
+  for (int i = 0; i < graph_.num_nodes(); ++i) {
+    graph_.SetNode(i, before[static_cast<std::size_t>(i)]);
+    keyframes_[static_cast<std::size_t>(i)].pose = before[static_cast<std::size_t>(i)];
+  }
+  pose_ = pose_before;
+  if (static_cast<int>(graph_.edges().size()) > first) Optimize();
+}
+
+void GraphSlam::Finish() {
+  FlushClosures();
+  if (loops_.accepted > 0) Optimize();
 }
 
 std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double radius,
@@ -350,6 +367,8 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Nested("loop_registration", "fine registration of a closure", &loop_registration);
   v.Field("loop_sigma_floor_m", &loop_sigma_floor_m, "closure edge sigma floor, m");
   v.Field("loop_sigma_floor_rad", &loop_sigma_floor_rad, "closure edge sigma floor, rad");
+  v.Field("optimize_every_keyframes", &optimize_every_keyframes,
+          "closures found are optimised together this many keyframes after the first");
   v.Nested("pose_graph", "pose-graph optimisation", &pose_graph);
   v.Field("map_spacing_m", &map_spacing_m, "map curves from keyframes this far apart, m");
   v.Field("map_spacing_rad", &map_spacing_rad, "or turned this much from each other, rad");
@@ -382,6 +401,8 @@ kernel::Status GraphSlamOptions::Validate() const {
       !(loop_ambiguity_ratio > 0 && loop_ambiguity_ratio <= 1) || !(loop_max_rms_m > 0) ||
       !(loop_max_chi2 > 0) || !(loop_sigma_floor_m > 0) || !(loop_sigma_floor_rad > 0))
     return kernel::Status::Error("loop tests: score and ratio in (0, 1], bounds positive");
+  if (optimize_every_keyframes < 0)
+    return kernel::Status::Error("optimize_every_keyframes must be >= 0");
   if (!(map_spacing_m >= 0) || !(map_spacing_rad >= 0))
     return kernel::Status::Error("map spacing must be >= 0");
   return kernel::Status::Ok();

@@ -93,6 +93,9 @@ struct GraphSlamOptions {
   // Loop edge covariance: the registration's plus this floor (sigma, m and rad).
   double loop_sigma_floor_m = 0.02;
   double loop_sigma_floor_rad = 0.005;
+  // Closures found are added and optimised together, this many keyframes after the first of
+  // them (0: at once): on a revisit every keyframe closes, and one optimisation serves a few.
+  int optimize_every_keyframes = 5;
   PoseGraphOptions pose_graph;
 
   // The map: curves of keyframes at least map_spacing_m or map_spacing_rad from every earlier
@@ -130,6 +133,8 @@ class GraphSlam {
   void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser);
   // The next scan makes a keyframe (an exploration node).
   void ForceKeyframe() { force_keyframe_ = true; }
+  // The data has ended: optimises the pending closures and the whole graph once more.
+  void Finish();
 
   const kernel::Pose2& pose() const { return pose_; }
   const GraphSlamOptions& options() const { return options_; }
@@ -160,9 +165,10 @@ class GraphSlam {
   void RebuildSubmap();
   // Registers a scan at the predicted pose against the submap (see recovery_window_m).
   RegistrationResult RegisterScan(const std::vector<Eigen::Vector2d>& points);
-  // Searches the new keyframe k against earlier ones, optimising the graph with every closure
-  // found; returns the closures accepted.
-  int SearchLoopClosures(int k);
+  // Searches the new keyframe k against earlier ones; closures found wait in pending_.
+  void SearchLoopClosures(int k);
+  // Adds the pending closures, optimises, and removes those that disagree with the graph.
+  void FlushClosures();
   std::optional<PoseGraphEdge> MatchLoop(int k, int candidate, double radius, double travelled);
   // Optimises, then moves the current pose with its keyframe.
   void Optimize();
@@ -182,6 +188,7 @@ class GraphSlam {
     kernel::Pose2 offset;  // keyframe^-1 * scan pose
   };
   std::vector<ScanAnchor> scans_;
+  std::vector<PoseGraphEdge> pending_;  // closures found, not yet optimised
   long registrations_ = 0, fallbacks_ = 0, recoveries_ = 0, recovered_ = 0;
   LoopClosureCounts loops_;
   std::vector<PoseGraphSummary> optimizations_;

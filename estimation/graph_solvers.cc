@@ -207,6 +207,10 @@ int PoseGraph::AddNode(const kernel::Pose2& pose) {
 
 void PoseGraph::AddEdge(const PoseGraphEdge& edge) { edges_.push_back(edge); }
 
+void PoseGraph::RemoveEdges(const std::vector<int>& indices) {
+  for (auto it = indices.rbegin(); it != indices.rend(); ++it) edges_.erase(edges_.begin() + *it);
+}
+
 kernel::Pose2 PoseGraph::node(int i) const {
   const Eigen::Vector3d& p = poses_[static_cast<std::size_t>(i)];
   return {p.x(), p.y(), p.z()};

@@ -47,7 +47,8 @@ class PoseGraph {
  public:
   int AddNode(const kernel::Pose2& pose);
   void AddEdge(const PoseGraphEdge& edge);
-  void RemoveLastEdge() { edges_.pop_back(); }
+  // Removes the edges with these indices (ascending).
+  void RemoveEdges(const std::vector<int>& indices);
   int num_nodes() const { return static_cast<int>(poses_.size()); }
   const std::vector<PoseGraphEdge>& edges() const { return edges_; }
   kernel::Pose2 node(int i) const;

@@ -58,6 +58,8 @@ class SlamMethod {
   // A laser sweep taken at the predicted pose by a laser mounted at robot_T_laser.
   virtual void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) = 0;
   virtual kernel::Pose2 pose() const = 0;
+  // The data has ended (a log, an exploration): methods that work in batches finish theirs.
+  virtual void Finish() {}
   // The pose of every Update so far as the method now estimates it, for methods that revise the
   // past (a pose graph moves earlier poses when a loop closes); empty for filters, whose
   // trajectory is the sequence of pose() after each update.

@@ -49,6 +49,7 @@ void Replay(std::size_t count, const Reading& reading, SlamDriver* driver,
       result->nees.push_back(estimation::PoseNees(*truth, slam.pose(), *covariance));
     if (options.progress && (i + 1) % 1000 == 0) options.progress(i + 1, n);
   }
+  slam.Finish();
   // A method that revises the past (a pose graph) gives its final estimate of every pose; the
   // poses it gave while running are kept as `online`.
   if (const auto revised = slam.Trajectory(); revised.size() == result->estimate.size()) {
