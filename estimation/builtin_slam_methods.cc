@@ -232,6 +232,12 @@ class GraphSlamMethod : public SlamMethod {
                       {"loop_rejected_ambiguous", l.rejected_ambiguous},
                       {"loop_rejected_registration", l.rejected_registration},
                       {"loop_rejected_disagreement", l.rejected_disagreement}};
+    const GraphSlam::Times& t = slam_.times();
+    s.time_ms = {{"registration", t.registration_ms},
+                 {"keyframes", t.keyframe_ms},
+                 {"submaps", t.submap_ms},
+                 {"loop_search", t.loop_search_ms},
+                 {"optimization", t.optimization_ms}};
     s.optimizations = slam_.optimizations();
     s.solver_runs = static_cast<long>(s.optimizations.size());
     for (const auto& o : s.optimizations) s.solver_failures += !o.converged;

@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <unordered_set>
 
@@ -24,6 +25,24 @@ std::vector<Eigen::Vector2d> Thinned(const std::vector<Eigen::Vector2d>& points,
 Eigen::Matrix3d Diagonal(double sigma_m, double sigma_rad) {
   return Eigen::Vector3d(sigma_m * sigma_m, sigma_m * sigma_m, sigma_rad * sigma_rad).asDiagonal();
 }
+
+// Adds the wall time of its scope to a counter, ms.
+class ScopedTimer {
+ public:
+  explicit ScopedTimer(double* total_ms)
+      : total_ms_(total_ms), start_(std::chrono::steady_clock::now()) {}
+  ~ScopedTimer() {
+    *total_ms_ +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
+            .count();
+  }
+  ScopedTimer(const ScopedTimer&) = delete;
+  ScopedTimer& operator=(const ScopedTimer&) = delete;
+
+ private:
+  double* total_ms_;
+  std::chrono::steady_clock::time_point start_;
+};
 
 }  // namespace
 
@@ -69,6 +88,7 @@ void GraphSlam::Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_la
 }
 
 RegistrationResult GraphSlam::RegisterScan(const std::vector<Eigen::Vector2d>& points) {
+  const ScopedTimer timer(&times_.registration_ms);
   RegistrationResult r = RegisterPoints(points, submap_, pose_, options_.registration);
   if (r.accepted || options_.recovery_window_m <= 0) return r;
   // The odometry can be off by more than the registration's basin (wheel slip, a bump): a
@@ -96,6 +116,7 @@ RegistrationResult GraphSlam::RegisterScan(const std::vector<Eigen::Vector2d>& p
 void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                             std::vector<Eigen::Vector2d> points) {
   force_keyframe_ = false;
+  std::optional<ScopedTimer> timer(&times_.keyframe_ms);
   Keyframe kf;
   kf.pose = pose_;
   kf.travelled_m = travelled_m_;
@@ -107,6 +128,8 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   }
   if (options_.raster_points || kf.raster.empty())
     kf.raster.insert(kf.raster.end(), points.begin(), points.end());
+  // Curves are sampled every centimetre; a few samples per cell place it as well.
+  kf.raster = Thinned(kf.raster, options_.grid_resolution_m / 2);
   kf.points = std::move(points);
   kf.in_map = std::none_of(keyframes_.begin(), keyframes_.end(), [&](const Keyframe& o) {
     return o.in_map &&
@@ -114,6 +137,7 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
            std::abs(o.pose.Between(kf.pose).theta()) < options_.map_spacing_rad;
   });
 
+  const bool kf_in_map = kf.in_map;
   const int k = graph_.AddNode(kf.pose);
   if (k > 0) {
     const Keyframe& prev = keyframes_.back();
@@ -129,7 +153,13 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
     graph_.AddEdge(edge);
   }
   keyframes_.push_back(std::move(kf));
+  if (kf_in_map) {
+    map_curves_ += keyframes_.back().curves.size();
+    for (const auto& c : keyframes_.back().curves)
+      map_control_points_ += c.spline.control_points().size();
+  }
   submap_dirty_ = true;
+  timer.reset();
   if (options_.loop_closure) SearchLoopClosures(k);
 }
 
@@ -143,6 +173,7 @@ std::vector<Eigen::Vector2d> GraphSlam::WorldRaster(int first, int last) const {
 }
 
 void GraphSlam::RebuildSubmap() {
+  const ScopedTimer timer(&times_.submap_ms);
   const int last = static_cast<int>(keyframes_.size()) - 1;
   submap_ =
       DistanceGrid::Build(WorldRaster(last - options_.submap_keyframes + 1, last),
@@ -217,6 +248,7 @@ void GraphSlam::Finish() {
 
 std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double radius,
                                                   double travelled) {
+  const ScopedTimer timer(&times_.loop_search_ms);
   ++loops_.searches;
   const Keyframe& kf = keyframes_[static_cast<std::size_t>(k)];
   const kernel::Pose2 kf_inverse = kf.pose.Inverse();
@@ -226,7 +258,7 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
     const kernel::Pose2 k_T_i = kf_inverse * q.pose;
     for (const auto& p : q.points) query.push_back(k_T_i * p);
   }
-  query = Thinned(query, options_.grid_resolution_m);
+  query = Thinned(query, options_.loop_resolution_m);
   const int newest = k - options_.loop_min_gap_keyframes;
   const DistanceGrid target =
       DistanceGrid::Build(WorldRaster(candidate - options_.loop_target_keyframes,
@@ -270,6 +302,7 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
 }
 
 void GraphSlam::Optimize() {
+  const ScopedTimer timer(&times_.optimization_ms);
   const int last = graph_.num_nodes() - 1;
   const kernel::Pose2 offset = keyframes_.back().pose.Between(pose_);
   optimizations_.push_back(graph_.Optimize(options_.pose_graph));
@@ -294,20 +327,6 @@ std::vector<MapSpline> GraphSlam::MapSplines() const {
       splines.push_back({static_cast<int>(splines.size()), c.spline.Transformed(kf.pose), 1});
   }
   return splines;
-}
-
-std::size_t GraphSlam::num_map_curves() const {
-  std::size_t n = 0;
-  for (const Keyframe& kf : keyframes_) n += kf.in_map ? kf.curves.size() : 0;
-  return n;
-}
-
-std::size_t GraphSlam::num_map_control_points() const {
-  std::size_t n = 0;
-  for (const Keyframe& kf : keyframes_)
-    if (kf.in_map)
-      for (const auto& c : kf.curves) n += c.spline.control_points().size();
-  return n;
 }
 
 RegistrationOptions GraphSlamOptions::LoopRegistrationDefaults() {
@@ -356,6 +375,7 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
           "query: the new keyframe and this many before it");
   v.Field("loop_target_keyframes", &loop_target_keyframes,
           "target: the candidate and this many keyframes either side");
+  v.Field("loop_resolution_m", &loop_resolution_m, "loop search grid cell size, m");
   v.Field("loop_sigma_m", &loop_sigma_m, "correlative likelihood sigma, m");
   v.Field("loop_levels", &loop_levels, "correlative search resolution levels");
   v.Field("loop_min_score", &loop_min_score, "closure test: correlative score at least");
@@ -395,7 +415,8 @@ kernel::Status GraphSlamOptions::Validate() const {
         "loop_min_gap_keyframes, loop_candidates >= 1; loop_levels in [1, 8]");
   if (!(loop_radius_m > 0) || !(loop_radius_per_m >= 0) || !(loop_max_radius_m >= loop_radius_m) ||
       !(loop_max_window_m > 0) || !(loop_window_rad >= 0) || !(loop_window_rad_per_m >= 0) ||
-      !(loop_max_window_rad >= loop_window_rad) || !(loop_sigma_m > 0))
+      !(loop_max_window_rad >= loop_window_rad) || !(loop_sigma_m > 0) ||
+      !(loop_resolution_m > 0) || !(truncation_m > loop_resolution_m))
     return kernel::Status::Error("loop radii, windows and sigma must be positive and ordered");
   if (!(loop_min_score > 0 && loop_min_score <= 1) ||
       !(loop_ambiguity_ratio > 0 && loop_ambiguity_ratio <= 1) || !(loop_max_rms_m > 0) ||

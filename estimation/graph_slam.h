@@ -37,8 +37,11 @@ struct GraphSlamOptions {
 
   // Submap: the last submap_keyframes keyframes, rasterised at grid_resolution_m into a distance
   // field truncated at truncation_m; from their curves' samples and (raster_points) their points.
+  // 0.1 m cells: the field holds exact distances to the curves' points, and its bicubic
+  // interpolation is smooth at this size; 0.05 m was slower and no more accurate on intel and
+  // mit-csail (see docs/graph_slam.md).
   int submap_keyframes = 30;
-  double grid_resolution_m = 0.05;
+  double grid_resolution_m = 0.1;
   double truncation_m = 0.5;
   bool raster_points = true;
   RegistrationOptions registration;
@@ -77,7 +80,11 @@ struct GraphSlamOptions {
   // candidate's submap (loop_target_keyframes either side of it).
   int loop_query_keyframes = 10;
   int loop_target_keyframes = 15;
-  // Correlative search on a likelihood exp(-d^2 / 2 sigma^2) with loop_levels resolution levels.
+  // Correlative search on a likelihood exp(-d^2 / 2 sigma^2) with loop_levels resolution levels,
+  // on a grid of loop_resolution_m cells (the distances are exact to the curves, so a coarser
+  // grid than the front end's loses little and makes the search four times cheaper); the fine
+  // registration uses the same grid.
+  double loop_resolution_m = 0.1;
   double loop_sigma_m = 0.05;
   int loop_levels = 5;
   // Tests: correlative score at least loop_min_score; refused as ambiguous when a distinct pose
@@ -143,8 +150,8 @@ class GraphSlam {
   // Every scan's pose as now estimated (its keyframe's optimised pose times the offset).
   std::vector<kernel::Pose2> Trajectory() const;
   std::vector<MapSpline> MapSplines() const;
-  std::size_t num_map_curves() const;
-  std::size_t num_map_control_points() const;
+  std::size_t num_map_curves() const { return map_curves_; }
+  std::size_t num_map_control_points() const { return map_control_points_; }
 
   long registrations() const { return registrations_; }
   long registration_fallbacks() const { return fallbacks_; }
@@ -153,6 +160,12 @@ class GraphSlam {
   long recovered() const { return recovered_; }
   const LoopClosureCounts& loops() const { return loops_; }
   const std::vector<PoseGraphSummary>& optimizations() const { return optimizations_; }
+  // Wall time spent in each part, ms.
+  struct Times {
+    double registration_ms = 0, keyframe_ms = 0, submap_ms = 0, loop_search_ms = 0,
+           optimization_ms = 0;
+  };
+  const Times& times() const { return times_; }
   kernel::Status health() const { return health_; }
 
  private:
@@ -192,6 +205,8 @@ class GraphSlam {
   long registrations_ = 0, fallbacks_ = 0, recoveries_ = 0, recovered_ = 0;
   LoopClosureCounts loops_;
   std::vector<PoseGraphSummary> optimizations_;
+  Times times_;
+  std::size_t map_curves_ = 0, map_control_points_ = 0;
   kernel::Status health_;
 };
 

@@ -46,6 +46,8 @@ struct SlamStatistics {
   // Nonlinear least-squares solves (Ceres) and those that did not converge.
   long solver_runs = 0;
   long solver_failures = 0;
+  // Wall time by part of the method, ms (e.g. {"registration", 812.0}); may be empty.
+  std::vector<std::pair<std::string, double>> time_ms;
   // Every pose-graph optimisation (graph SLAM), in order.
   std::vector<PoseGraphSummary> optimizations;
 };

@@ -17,6 +17,11 @@ nlohmann::ordered_json StatisticsJson(const estimation::SlamStatistics& statisti
     json["least_squares"] = {{"solves", statistics.solver_runs},
                              {"not_converged", statistics.solver_failures}};
   }
+  if (!statistics.time_ms.empty()) {
+    nlohmann::ordered_json times = nlohmann::ordered_json::object();
+    for (const auto& [key, value] : statistics.time_ms) times[key] = value;
+    json["time_ms"] = times;
+  }
   if (!statistics.optimizations.empty()) {
     nlohmann::ordered_json list = nlohmann::ordered_json::array();
     for (const auto& o : statistics.optimizations)
