@@ -283,6 +283,9 @@ void AddBuiltinSlamMethods(SlamRegistry* registry) {
       "graph SLAM on curve maps: scan-to-submap registration, loop closure, Ceres pose graph",
       [](const GraphSlamOptions& o, const SlamContext& c) {
         return std::make_unique<GraphSlamMethod>(o, c);
+      },
+      [](const SensorNoise& noise, GraphSlamOptions* o) {
+        o->odometry = OdometryNoiseModel().Scaled(noise.odometry_noise_scale);
       }));
 }
 

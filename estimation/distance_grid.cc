@@ -5,17 +5,47 @@
 #include <opencv2/imgproc.hpp>
 
 namespace splam::estimation {
+namespace {
+
+// Each occupied cell stands for the piece of outline through its point: a segment along the
+// tangent (perpendicular to the normal) this many cells long either side, so that the pieces of
+// neighbouring cells (up to a diagonal apart) join.
+constexpr double kSegmentHalfLength = 1.5;
+
+// Distance from the point s + v to the piece of outline at s with unit normal n (or to s when n
+// is zero), signed by the side of n when signed_field.
+double SurfaceDistance(const Eigen::Vector2d& v, const Eigen::Vector2d& n, double half,
+                       bool signed_field) {
+  if (n.isZero()) return v.norm();
+  const double across = n.dot(v);
+  const double along = std::max(0.0, std::abs(n.x() * v.y() - n.y() * v.x()) - half);
+  const double d = std::hypot(across, along);
+  return signed_field && across < 0 ? -d : d;
+}
+
+}  // namespace
 
 DistanceGrid DistanceGrid::Build(const std::vector<Eigen::Vector2d>& points, double resolution_m,
-                                 double truncation_m, double margin_m) {
+                                 double truncation_m, double margin_m,
+                                 const std::vector<std::vector<Eigen::Vector2d>>& seen) {
+  std::vector<OrientedPoint> oriented;
+  oriented.reserve(points.size());
+  for (const auto& p : points) oriented.push_back({p, Eigen::Vector2d::Zero()});
+  return Build(oriented, resolution_m, truncation_m, margin_m, seen);
+}
+
+DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, double resolution_m,
+                                 double truncation_m, double margin_m,
+                                 const std::vector<std::vector<Eigen::Vector2d>>& seen,
+                                 bool signed_field) {
   DistanceGrid g;
   g.resolution_m_ = resolution_m;
   g.truncation_m_ = truncation_m;
-  if (points.empty()) return g;
-  Eigen::Vector2d lo = points.front(), hi = points.front();
-  for (const auto& p : points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
+  if (oriented.empty()) return g;
+  Eigen::Vector2d lo = oriented.front().point, hi = lo;
+  for (const auto& o : oriented) {
+    lo = lo.cwiseMin(o.point);
+    hi = hi.cwiseMax(o.point);
   }
   g.origin_ = lo.array() - margin_m;
   g.cols_ = static_cast<int>(std::ceil((hi.x() - lo.x() + 2 * margin_m) / resolution_m)) + 1;
@@ -25,12 +55,14 @@ DistanceGrid DistanceGrid::Build(const std::vector<Eigen::Vector2d>& points, dou
   cv::Mat free_cells(g.rows_, g.cols_, CV_8U, cv::Scalar(255));
   std::vector<Eigen::Vector2d> sum(static_cast<std::size_t>(g.rows_) * g.cols_,
                                    Eigen::Vector2d::Zero());
+  std::vector<Eigen::Vector2d> normal(sum.size(), Eigen::Vector2d::Zero());
   std::vector<int> count(sum.size(), 0);
-  for (const auto& p : points) {
+  for (const auto& [p, n] : oriented) {
     const int c = static_cast<int>((p.x() - g.origin_.x()) / resolution_m);
     const int r = static_cast<int>((p.y() - g.origin_.y()) / resolution_m);
     const std::size_t i = static_cast<std::size_t>(r) * g.cols_ + c;
     sum[i] += p;
+    normal[i] += n;
     ++count[i];
     free_cells.at<unsigned char>(r, c) = 0;
   }
@@ -38,25 +70,56 @@ DistanceGrid DistanceGrid::Build(const std::vector<Eigen::Vector2d>& points, dou
   cv::distanceTransform(free_cells, distance, labels, cv::DIST_L2, cv::DIST_MASK_5,
                         cv::DIST_LABEL_PIXEL);
   // label -> the point kept by that occupied cell.
-  std::vector<Eigen::Vector2d> kept;
+  std::vector<Eigen::Vector2d> kept, kept_normal;
   for (int r = 0; r < g.rows_; ++r)
     for (int c = 0; c < g.cols_; ++c) {
       const std::size_t i = static_cast<std::size_t>(r) * g.cols_ + c;
       if (count[i] == 0) continue;
       const auto label = static_cast<std::size_t>(labels.at<int>(r, c));
-      if (kept.size() <= label) kept.resize(label + 1, Eigen::Vector2d::Zero());
+      if (kept.size() <= label) {
+        kept.resize(label + 1, Eigen::Vector2d::Zero());
+        kept_normal.resize(label + 1, Eigen::Vector2d::Zero());
+      }
       kept[label] = sum[i] / count[i];
+      kept_normal[label] = normal[i];
     }
+  for (auto& n : kept_normal)
+    if (n.norm() > 1e-12) n.normalize();
+  const double half = kSegmentHalfLength * resolution_m;
   g.values_.resize(sum.size());
   for (int r = 0; r < g.rows_; ++r)
     for (int c = 0; c < g.cols_; ++c) {
       const Eigen::Vector2d centre = g.origin_ + resolution_m * Eigen::Vector2d(c + 0.5, r + 0.5);
       const auto label = static_cast<std::size_t>(labels.at<int>(r, c));
-      const double d = label < kept.size() ? (kept[label] - centre).norm()
-                                           : distance.at<float>(r, c) * resolution_m;
-      g.values_[static_cast<std::size_t>(r) * g.cols_ + c] = std::min(d, truncation_m);
+      double d = distance.at<float>(r, c) * resolution_m;
+      if (label < kept.size())
+        d = SurfaceDistance(centre - kept[label], kept_normal[label], half, signed_field);
+      g.values_[static_cast<std::size_t>(r) * g.cols_ + c] =
+          std::clamp(d, -truncation_m, truncation_m);
     }
+  if (seen.empty()) return g;
+  cv::Mat known(g.rows_, g.cols_, CV_8U, cv::Scalar(0));
+  std::vector<std::vector<cv::Point>> polygons;
+  for (const auto& polygon : seen) {
+    auto& cells = polygons.emplace_back();
+    for (const auto& p : polygon) {
+      const Eigen::Vector2d q = (p - g.origin_) / resolution_m;
+      cells.emplace_back(static_cast<int>(std::lround(std::clamp(q.x(), -1e6, 1e6))),
+                         static_cast<int>(std::lround(std::clamp(q.y(), -1e6, 1e6))));
+    }
+  }
+  for (const auto& cells : polygons)
+    cv::fillPoly(known, std::vector<std::vector<cv::Point>>{cells}, cv::Scalar(1));
+  known.setTo(cv::Scalar(1), free_cells == 0);
+  g.known_.assign(known.datastart, known.dataend);
   return g;
+}
+
+bool DistanceGrid::Known(const Eigen::Vector2d& p) const {
+  const int c = static_cast<int>(std::floor((p.x() - origin_.x()) / resolution_m_));
+  const int r = static_cast<int>(std::floor((p.y() - origin_.y()) / resolution_m_));
+  if (r < 0 || c < 0 || r >= rows_ || c >= cols_) return false;
+  return known_.empty() || known_[static_cast<std::size_t>(r) * cols_ + c] != 0;
 }
 
 double DistanceGrid::Nearest(const Eigen::Vector2d& p) const {
@@ -64,6 +127,23 @@ double DistanceGrid::Nearest(const Eigen::Vector2d& p) const {
   const int r = static_cast<int>(std::floor((p.y() - origin_.y()) / resolution_m_));
   if (r < 0 || c < 0 || r >= rows_ || c >= cols_) return truncation_m_;
   return At(r, c);
+}
+
+std::vector<OrientedPoint> OrientTowards(const std::vector<Eigen::Vector2d>& points,
+                                         const Eigen::Vector2d& sensor, double max_gap_m) {
+  std::vector<OrientedPoint> out(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d& p = points[i];
+    const bool has_prev = i > 0 && (points[i - 1] - p).norm() <= max_gap_m;
+    const bool has_next = i + 1 < points.size() && (points[i + 1] - p).norm() <= max_gap_m;
+    const Eigen::Vector2d tangent = (has_next ? points[i + 1] : p) - (has_prev ? points[i - 1] : p);
+    const Eigen::Vector2d to_sensor = sensor - p;
+    Eigen::Vector2d n =
+        tangent.norm() > 1e-9 ? Eigen::Vector2d(-tangent.y(), tangent.x()) : to_sensor;
+    if (n.dot(to_sensor) < 0) n = -n;
+    out[i] = {p, n.norm() > 1e-12 ? Eigen::Vector2d(n.normalized()) : Eigen::Vector2d::Zero()};
+  }
+  return out;
 }
 
 LikelihoodPyramid::LikelihoodPyramid(const DistanceGrid& grid, double sigma_m, int levels)

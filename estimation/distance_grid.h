@@ -6,6 +6,19 @@
 
 namespace splam::estimation {
 
+// A point of an outline and the unit normal of its free side (towards the sensor that saw it);
+// zero when unknown.
+struct OrientedPoint {
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();
+  Eigen::Vector2d normal = Eigen::Vector2d::Zero();
+};
+
+// An ordered run of points (a curve's samples, a scan's hits) with the normals of their free
+// side: perpendicular to p[i+1] - p[i-1] (or to the one neighbour within max_gap_m), turned
+// towards the sensor at `sensor`; the direction to the sensor for isolated points.
+std::vector<OrientedPoint> OrientTowards(const std::vector<Eigen::Vector2d>& points,
+                                         const Eigen::Vector2d& sensor, double max_gap_m);
+
 // A truncated Euclidean distance field on a regular grid: value(r, c) is the distance from the
 // centre of cell (r, c) to the nearest of a set of points (the samples of a submap's curves),
 // capped at `truncation_m`. Cell (r, c) has its centre at origin + ((c + 0.5) res, (r + 0.5) res).
@@ -18,8 +31,26 @@ class DistanceGrid {
   DistanceGrid() = default;
   // The field of `points` (any frame) over their bounding box widened by `margin_m`.
   // Preconditions: resolution_m > 0, truncation_m > 0, finite points.
+  //
+  // `seen` are the regions the points' scans saw (polygons from the sensor through every beam's
+  // end, same frame): cells inside one of them, widened by seen_margin_m, are known, the others
+  // were never seen. A wall seen to its end by range only continues in the unseen part, so the
+  // points a registration finds there must not be pulled back to where the known part ends.
+  // Empty `seen`: every cell is known.
   static DistanceGrid Build(const std::vector<Eigen::Vector2d>& points, double resolution_m,
-                            double truncation_m, double margin_m);
+                            double truncation_m, double margin_m,
+                            const std::vector<std::vector<Eigen::Vector2d>>& seen = {});
+  // Oriented points stand for pieces of outline: each occupied cell keeps a short segment through
+  // its point, perpendicular to its normal (1.5 cells either side), and the field holds the
+  // distance to the nearest cell's segment. One point per cell would read up to half a cell off
+  // on the outline itself (a bumpy valley that biases a registration); the segments read zero
+  // all along it. `signed_field`: negative behind the outline (against the normal), so that the
+  // field is linear across it, which bicubic interpolation reproduces exactly; it needs normals
+  // that are right (smooth outlines), and a wrong sign on clutter makes false zero crossings.
+  static DistanceGrid Build(const std::vector<OrientedPoint>& points, double resolution_m,
+                            double truncation_m, double margin_m,
+                            const std::vector<std::vector<Eigen::Vector2d>>& seen = {},
+                            bool signed_field = false);
 
   bool empty() const { return values_.empty(); }
   int rows() const { return rows_; }
@@ -32,6 +63,8 @@ class DistanceGrid {
   double At(int row, int col) const { return values_[static_cast<std::size_t>(row) * cols_ + col]; }
   // The value of the cell holding p; the truncation outside the grid.
   double Nearest(const Eigen::Vector2d& p) const;
+  // Whether the cell holding p was seen (false outside the grid).
+  bool Known(const Eigen::Vector2d& p) const;
   // Fractional (row, col) of a point, in the convention of ceres::Grid2D (cell centres at
   // integers).
   Eigen::Vector2d CellCoordinates(const Eigen::Vector2d& p) const {
@@ -44,6 +77,7 @@ class DistanceGrid {
   double resolution_m_ = 0.05, truncation_m_ = 1.0;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   std::vector<double> values_;
+  std::vector<unsigned char> known_;  // empty: all known
 };
 
 // Score grids for the correlative search (Olson 2009): level 0 holds the likelihood

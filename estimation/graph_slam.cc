@@ -9,17 +9,24 @@
 namespace splam::estimation {
 namespace {
 
-// One point per cell of a `spacing` grid (the first seen): the query of a correlative search
+// One element per cell of a `spacing` grid (the first seen): the query of a correlative search
 // costs per point, and the points of overlapping keyframes repeat each other.
-std::vector<Eigen::Vector2d> Thinned(const std::vector<Eigen::Vector2d>& points, double spacing) {
+template <class T, class PointOf>
+std::vector<T> Thinned(const std::vector<T>& elements, double spacing, PointOf point_of) {
   std::unordered_set<long long> seen;
-  std::vector<Eigen::Vector2d> out;
-  for (const auto& p : points) {
+  std::vector<T> out;
+  for (const T& e : elements) {
+    const Eigen::Vector2d& p = point_of(e);
     const long long key = (static_cast<long long>(std::floor(p.x() / spacing)) << 32) ^
                           (static_cast<long long>(std::floor(p.y() / spacing)) & 0xffffffffLL);
-    if (seen.insert(key).second) out.push_back(p);
+    if (seen.insert(key).second) out.push_back(e);
   }
   return out;
+}
+
+std::vector<Eigen::Vector2d> Thinned(const std::vector<Eigen::Vector2d>& points, double spacing) {
+  return Thinned(points, spacing,
+                 [](const Eigen::Vector2d& p) -> const Eigen::Vector2d& { return p; });
 }
 
 Eigen::Matrix3d Diagonal(double sigma_m, double sigma_rad) {
@@ -51,6 +58,7 @@ GraphSlam::GraphSlam(const kernel::Pose2& start, const GraphSlamOptions& options
 
 void GraphSlam::Predict(const kernel::Pose2& odometry_increment) {
   pose_ = pose_ * odometry_increment;
+  since_update_ = since_update_ * odometry_increment;
   travelled_m_ += odometry_increment.translation().norm();
 }
 
@@ -72,6 +80,7 @@ void GraphSlam::Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_la
     else
       ++fallbacks_;
   }
+  since_update_ = kernel::Pose2();
   if (!std::isfinite(pose_.x() + pose_.y() + pose_.theta())) {
     health_ = kernel::Status::Error("the pose estimate is not finite");
     return;
@@ -90,6 +99,18 @@ void GraphSlam::Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_la
 RegistrationResult GraphSlam::RegisterScan(const std::vector<Eigen::Vector2d>& points) {
   const ScopedTimer timer(&times_.registration_ms);
   RegistrationResult r = RegisterPoints(points, submap_, pose_, options_.registration);
+  if (r.accepted && options_.odometry_prior) {
+    // The scan alone agrees with the odometry within its noise model (chi^2(3) gate): the two
+    // are fused, the odometry's prior holding the directions the scan leaves loose. Otherwise
+    // the odometry is the outlier (a slip, a glitch) and the scan's own result stands.
+    const Eigen::Matrix3d odometry = options_.odometry.Covariance(since_update_);
+    const Eigen::Vector3d delta = pose_.Between(r.pose).ToVector();
+    if (delta.dot(odometry.inverse() * delta) <= options_.odometry_gate_chi2) {
+      RegistrationResult fused =
+          RegisterPoints(points, submap_, pose_, options_.registration, &odometry);
+      if (fused.accepted) return fused;
+    }
+  }
   if (r.accepted || options_.recovery_window_m <= 0) return r;
   // The odometry can be off by more than the registration's basin (wheel slip, a bump): a
   // correlative search around the prediction finds the basin, the registration refines it.
@@ -123,14 +144,28 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   const double range = options_.max_range_m > 0 ? options_.max_range_m : scan.max_range_m;
   for (const auto& curve : kernel::ExtractCurves(scan.Clipped(range), options_.extraction)) {
     kf.curves.push_back(kernel::Transformed(curve, robot_T_laser));
-    const auto& samples = kf.curves.back().samples;
-    kf.raster.insert(kf.raster.end(), samples.begin(), samples.end());
+    const auto samples = OrientTowards(kf.curves.back().samples, robot_T_laser.translation(),
+                                       options_.grid_resolution_m);
+    if (options_.raster_curves) kf.raster.insert(kf.raster.end(), samples.begin(), samples.end());
   }
-  if (options_.raster_points || kf.raster.empty())
-    kf.raster.insert(kf.raster.end(), points.begin(), points.end());
+  if (options_.raster_points || kf.raster.empty()) {
+    const auto oriented =
+        OrientTowards(points, robot_T_laser.translation(), options_.normal_max_gap_m);
+    kf.raster.insert(kf.raster.end(), oriented.begin(), oriented.end());
+  }
   // Curves are sampled every centimetre; a few samples per cell place it as well.
-  kf.raster = Thinned(kf.raster, options_.grid_resolution_m / 2);
+  kf.raster = Thinned(kf.raster, options_.grid_resolution_m / 2,
+                      [](const OrientedPoint& o) -> const Eigen::Vector2d& { return o.point; });
   kf.points = std::move(points);
+  // The scan's view: from the sensor to every beam's end (a hit, seen_margin_m behind it so that
+  // points just behind a wall count; or the range for a no-return).
+  kf.seen.push_back(robot_T_laser.translation());
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    if (!scan.IsHit(i) && !scan.IsNoReturn(i)) continue;
+    const double r = std::min(
+        scan.IsHit(i) ? scan.ranges_m[i] + options_.seen_margin_m : scan.max_range_m, range);
+    kf.seen.push_back(robot_T_laser * kernel::PolarToCartesian({r, scan.BeamAngle(i)}));
+  }
   kf.in_map = std::none_of(keyframes_.begin(), keyframes_.end(), [&](const Keyframe& o) {
     return o.in_map &&
            (o.pose.translation() - kf.pose.translation()).norm() < options_.map_spacing_m &&
@@ -163,21 +198,34 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   if (options_.loop_closure) SearchLoopClosures(k);
 }
 
-std::vector<Eigen::Vector2d> GraphSlam::WorldRaster(int first, int last) const {
-  std::vector<Eigen::Vector2d> raster;
+std::vector<OrientedPoint> GraphSlam::WorldRaster(int first, int last) const {
+  std::vector<OrientedPoint> raster;
   for (int i = std::max(first, 0); i <= last; ++i) {
     const Keyframe& kf = keyframes_[static_cast<std::size_t>(i)];
-    for (const auto& p : kf.raster) raster.push_back(kf.pose * p);
+    const Eigen::Matrix2d rotation = kf.pose.Rotation();
+    for (const auto& o : kf.raster) raster.push_back({kf.pose * o.point, rotation * o.normal});
   }
   return raster;
+}
+
+std::vector<std::vector<Eigen::Vector2d>> GraphSlam::WorldViews(int first, int last) const {
+  std::vector<std::vector<Eigen::Vector2d>> views;
+  for (int i = std::max(first, 0); i <= last; ++i) {
+    const Keyframe& kf = keyframes_[static_cast<std::size_t>(i)];
+    views.push_back(kf.pose * kf.seen);
+  }
+  return views;
 }
 
 void GraphSlam::RebuildSubmap() {
   const ScopedTimer timer(&times_.submap_ms);
   const int last = static_cast<int>(keyframes_.size()) - 1;
-  submap_ =
-      DistanceGrid::Build(WorldRaster(last - options_.submap_keyframes + 1, last),
-                          options_.grid_resolution_m, options_.truncation_m, options_.truncation_m);
+  const int first = last - options_.submap_keyframes + 1;
+  submap_ = DistanceGrid::Build(
+      WorldRaster(first, last), options_.grid_resolution_m, options_.truncation_m,
+      options_.truncation_m,
+      options_.mask_unseen ? WorldViews(first, last) : std::vector<std::vector<Eigen::Vector2d>>{},
+      options_.signed_distance);
   submap_scores_.reset();
   submap_dirty_ = false;
 }
@@ -348,8 +396,18 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("submap_keyframes", &submap_keyframes, "keyframes in the registration submap");
   v.Field("grid_resolution_m", &grid_resolution_m, "distance field cell size, m");
   v.Field("truncation_m", &truncation_m, "distance field truncation, m");
-  v.Field("raster_points", &raster_points, "rasterise the points besides the curves");
+  v.Field("raster_curves", &raster_curves, "rasterise the curves' samples");
+  v.Field("signed_distance", &signed_distance, "signed distance (needs smooth outlines)");
+  v.Field("raster_points", &raster_points, "rasterise the scan points");
+  v.Field("mask_unseen", &mask_unseen, "points where the submap's scans never saw are ignored");
+  v.Field("seen_margin_m", &seen_margin_m, "a scan saw this far behind its hits, m");
+  v.Field("normal_max_gap_m", &normal_max_gap_m,
+          "a scan point's normal from neighbours at most this far, m");
   v.Nested("registration", "scan-to-submap registration", &registration);
+  v.Field("odometry_prior", &odometry_prior, "the registration's prior is the odometry model");
+  v.Nested("odometry", "odometry noise model of that prior", &odometry);
+  v.Field("odometry_gate_chi2", &odometry_gate_chi2,
+          "the odometry is fused when the scan agrees within this chi^2");
   v.Field("recovery_window_m", &recovery_window_m,
           "a failed registration is searched again within this of the odometry (0: never), m");
   v.Field("recovery_window_rad", &recovery_window_rad, "and within this heading, rad");
@@ -395,12 +453,15 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
 }
 
 kernel::Status GraphSlamOptions::Validate() const {
-  if (kernel::Status e = kernel::FirstError(extraction.Validate(), registration.Validate(),
-                                            loop_registration.Validate(), pose_graph.Validate());
+  if (kernel::Status e =
+          kernel::FirstError(extraction.Validate(), registration.Validate(), odometry.Validate(),
+                             loop_registration.Validate(), pose_graph.Validate());
       !e.ok())
     return e;
   if (!(max_range_m >= 0) || !(keyframe_distance_m > 0) || !(keyframe_angle_rad > 0))
     return kernel::Status::Error("max_range_m >= 0, keyframe distance and angle > 0");
+  if (!(seen_margin_m >= 0) || !(normal_max_gap_m > 0))
+    return kernel::Status::Error("seen_margin_m >= 0 and normal_max_gap_m > 0");
   if (submap_keyframes < 1 || !(grid_resolution_m > 0) || !(truncation_m > grid_resolution_m))
     return kernel::Status::Error(
         "submap_keyframes >= 1, grid_resolution_m > 0, truncation_m > grid_resolution_m");

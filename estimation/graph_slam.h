@@ -9,6 +9,7 @@
 #include "estimation/correlative_matcher.h"
 #include "estimation/distance_grid.h"
 #include "estimation/map_spline.h"
+#include "estimation/models.h"
 #include "estimation/pose_graph.h"
 #include "estimation/scan_registration.h"
 #include "kernel/options.h"
@@ -36,15 +37,32 @@ struct GraphSlamOptions {
   double keyframe_angle_rad = 0.25;
 
   // Submap: the last submap_keyframes keyframes, rasterised at grid_resolution_m into a distance
-  // field truncated at truncation_m; from their curves' samples and (raster_points) their points.
-  // 0.1 m cells: the field holds exact distances to the curves' points, and its bicubic
-  // interpolation is smooth at this size; 0.05 m was slower and no more accurate on intel and
-  // mit-csail (see docs/graph_slam.md).
+  // field truncated at truncation_m (DistanceGrid), from their curves' samples (raster_curves)
+  // and their scan points (raster_points). Every rasterised point stands for a piece of outline
+  // along its tangent: a curve's, or for scan points the one through its neighbours at most
+  // normal_max_gap_m away. 0.1 m cells: the pieces keep the sub-cell position of the outline, and
+  // 0.05 m was slower and no more accurate on intel and mit-csail (docs/graph_slam.md).
   int submap_keyframes = 30;
   double grid_resolution_m = 0.1;
   double truncation_m = 0.5;
+  bool raster_curves = true;
   bool raster_points = true;
+  double normal_max_gap_m = 0.3;
+  bool signed_distance = false;  // see DistanceGrid::Build
+  // The part of the submap its scans saw (DistanceGrid's `seen`): each scan's view, its hits
+  // taken this far behind (a point just behind a wall is still matched to it), m. Not widened
+  // sideways: along a wall seen to where the range ended, the points beyond must find nothing.
+  bool mask_unseen = true;
+  double seen_margin_m = 0.2;
   RegistrationOptions registration;
+  // A scan is first registered with the registration's wide prior. When the result agrees with
+  // the odometry increment since the last scan within odometry_gate_chi2 (chi^2(3), 99 %) under
+  // this noise model (set from the sensors' noise, as for the EKFs), it is registered again with
+  // the odometry's covariance as the prior: the odometry holds the directions a scan leaves
+  // loose (a corridor, a round pillar). Otherwise the odometry is the outlier (a slip).
+  bool odometry_prior = true;
+  OdometryNoiseModel odometry;
+  double odometry_gate_chi2 = 11.34;
   // A registration that fails its quality test is searched again (correlative search on the
   // submap) within these windows around the odometry prediction, heading in steps of
   // recovery_step_rad, and refined; it is kept when it passes the test.
@@ -128,8 +146,9 @@ class GraphSlam {
   struct Keyframe {
     kernel::Pose2 pose;                       // world_T_robot, optimised
     std::vector<Eigen::Vector2d> points;      // robot frame
-    std::vector<Eigen::Vector2d> raster;      // curve samples (+ points), robot frame
+    std::vector<OrientedPoint> raster;        // curve samples (+ points), robot frame
     std::vector<kernel::SplineCurve> curves;  // robot frame
+    std::vector<Eigen::Vector2d> seen;        // the scan's view: sensor, then beam ends
     double travelled_m = 0.0;                 // path length at this keyframe
     bool in_map = false;
   };
@@ -174,7 +193,8 @@ class GraphSlam {
   void AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                    std::vector<Eigen::Vector2d> points);
   // The raster of keyframes [first, last] in the world frame.
-  std::vector<Eigen::Vector2d> WorldRaster(int first, int last) const;
+  std::vector<OrientedPoint> WorldRaster(int first, int last) const;
+  std::vector<std::vector<Eigen::Vector2d>> WorldViews(int first, int last) const;
   void RebuildSubmap();
   // Registers a scan at the predicted pose against the submap (see recovery_window_m).
   RegistrationResult RegisterScan(const std::vector<Eigen::Vector2d>& points);
@@ -195,7 +215,8 @@ class GraphSlam {
   bool submap_dirty_ = true;
   bool force_keyframe_ = false;
   double travelled_m_ = 0.0;
-  double closure_at_m_ = 0.0;  // travelled when the last closure was accepted
+  kernel::Pose2 since_update_;  // odometry since the last registered scan
+  double closure_at_m_ = 0.0;   // travelled when the last closure was accepted
   struct ScanAnchor {
     int keyframe;
     kernel::Pose2 offset;  // keyframe^-1 * scan pose

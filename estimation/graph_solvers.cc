@@ -6,6 +6,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -35,8 +36,14 @@ using Interpolator = ceres::BiCubicInterpolator<ceres::Grid2D<double, 1>>;
 class PointsToMapCost : public ceres::CostFunction {
  public:
   PointsToMapCost(const Interpolator& field, const DistanceGrid& grid,
-                  const std::vector<Eigen::Vector2d>& points, double sigma, double huber)
-      : field_(field), grid_(grid), points_(points), inv_sigma_(1.0 / sigma), huber_(huber) {
+                  const std::vector<Eigen::Vector2d>& points, double sigma, double scale,
+                  bool cauchy)
+      : field_(field),
+        grid_(grid),
+        points_(points),
+        inv_sigma_(1.0 / sigma),
+        huber_(scale),
+        cauchy_(cauchy) {
     set_num_residuals(static_cast<int>(points.size()));
     mutable_parameter_block_sizes()->push_back(3);
   }
@@ -52,12 +59,20 @@ class PointsToMapCost : public ceres::CostFunction {
       double d = 0.0, d_row = 0.0, d_col = 0.0;
       field_.Evaluate(cell.x(), cell.y(), &d, &d_row, &d_col);
       const double e = d * inv_sigma_;
+      double r = e, dr_de = 1.0;
       const double a = std::abs(e);
-      // r = e inside the Huber threshold, sign(e) sqrt(2 k |e| - k^2) outside.
-      const double r = a <= k ? e : std::copysign(std::sqrt(2 * k * a - k * k), e);
+      if (cauchy_) {
+        // r = sign(e) k sqrt(log(1 + e^2 / k^2)), dr/de = e / ((1 + e^2 / k^2) r).
+        const double u = e * e / (k * k);
+        r = std::copysign(k * std::sqrt(std::log1p(u)), e);
+        if (std::abs(r) > 1e-9) dr_de = e / ((1 + u) * r);
+      } else if (a > k) {
+        // Huber: r = sign(e) sqrt(2 k |e| - k^2), dr/de = k / |r|.
+        r = std::copysign(std::sqrt(2 * k * a - k * k), e);
+        dr_de = k / std::max(std::abs(r), 1e-12);
+      }
       residuals[i] = r;
       if (jacobians == nullptr || jacobians[0] == nullptr) continue;
-      const double dr_de = a <= k ? 1.0 : k / std::max(std::abs(r), 1e-12);
       const double scale = dr_de * inv_sigma_ / grid_.resolution();
       const double dx = d_col * scale, dy = d_row * scale;
       double* row = jacobians[0] + 3 * i;
@@ -73,6 +88,7 @@ class PointsToMapCost : public ceres::CostFunction {
   const DistanceGrid& grid_;
   const std::vector<Eigen::Vector2d>& points_;
   double inv_sigma_, huber_;
+  bool cauchy_;
 };
 
 // sqrt(I) (target^-1 T) for a pose prior (registration) or a relative pose (graph edge, with
@@ -136,24 +152,33 @@ Eigen::Matrix3d GaussNewtonHessian(ceres::Problem* problem) {
 
 RegistrationResult RegisterPoints(const std::vector<Eigen::Vector2d>& points,
                                   const DistanceGrid& grid, const kernel::Pose2& prior,
-                                  const RegistrationOptions& options) {
+                                  const RegistrationOptions& options,
+                                  const Eigen::Matrix3d* prior_covariance) {
   RegistrationResult result;
   result.pose = prior;
-  if (grid.empty() || static_cast<int>(points.size()) < options.min_points) {
-    result.reason = "too few points or an empty submap";
+  // Points the map never saw around (at the prior) carry no information: a wall the submap saw
+  // to where its range ended goes on, and its new points must not pull the scan back.
+  std::vector<Eigen::Vector2d> seen;
+  for (const auto& p : points)
+    if (grid.Known(prior * p)) seen.push_back(p);
+  if (grid.empty() || static_cast<int>(seen.size()) < options.min_points) {
+    result.reason = "too few points where the map has seen";
     return result;
   }
   const ceres::Grid2D<double, 1> data(grid.values().data(), 0, grid.rows(), 0, grid.cols());
   const Interpolator field(data);
   double pose[3] = {prior.x(), prior.y(), prior.theta()};
   ceres::Problem problem;
-  problem.AddResidualBlock(new PointsToMapCost(field, grid, points, options.point_sigma_m,
-                                               options.loss_scale_m / options.point_sigma_m),
-                           nullptr, pose);
+  problem.AddResidualBlock(
+      new PointsToMapCost(field, grid, seen, options.point_sigma_m,
+                          options.loss_scale_m / options.point_sigma_m, options.cauchy_loss),
+      nullptr, pose);
   const Eigen::Matrix3d prior_sqrt_information =
-      Eigen::Vector3d(1.0 / options.prior_sigma_m, 1.0 / options.prior_sigma_m,
-                      1.0 / options.prior_sigma_rad)
-          .asDiagonal();
+      prior_covariance != nullptr ? SqrtInformation(prior_covariance->inverse())
+                                  : Eigen::Matrix3d(Eigen::Vector3d(1.0 / options.prior_sigma_m,
+                                                                    1.0 / options.prior_sigma_m,
+                                                                    1.0 / options.prior_sigma_rad)
+                                                        .asDiagonal());
   problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PriorResidual, 3, 3>(
                                new PriorResidual(prior, prior_sqrt_information)),
                            nullptr, pose);
@@ -172,7 +197,7 @@ RegistrationResult RegisterPoints(const std::vector<Eigen::Vector2d>& points,
 
   int inliers = 0;
   double sum_sq = 0.0;
-  for (const auto& p : points) {
+  for (const auto& p : seen) {
     double d = 0.0;
     const Eigen::Vector2d cell = grid.CellCoordinates(result.pose * p);
     field.Evaluate(cell.x(), cell.y(), &d);
@@ -181,6 +206,8 @@ RegistrationResult RegisterPoints(const std::vector<Eigen::Vector2d>& points,
       sum_sq += d * d;
     }
   }
+  // Of the whole scan: a scan mostly outside what the map saw is not trusted (the recovery
+  // search or the odometry take over).
   result.inlier_fraction = static_cast<double>(inliers) / static_cast<double>(points.size());
   result.rms_m = inliers > 0 ? std::sqrt(sum_sq / inliers) : 0.0;
   const kernel::Pose2 correction = prior.Between(result.pose);
@@ -197,7 +224,8 @@ RegistrationResult RegisterPoints(const std::vector<Eigen::Vector2d>& points,
 
 void RegistrationOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("point_sigma_m", &point_sigma_m, "scale of a point's distance to the map, m");
-  v.Field("loss_scale_m", &loss_scale_m, "Huber loss: farther points count linearly, m");
+  v.Field("cauchy_loss", &cauchy_loss, "Cauchy loss instead of Huber");
+  v.Field("loss_scale_m", &loss_scale_m, "robust loss scale: farther points count less, m");
   v.Field("prior_sigma_m", &prior_sigma_m, "prior on the translation from odometry, m");
   v.Field("prior_sigma_rad", &prior_sigma_rad, "prior on the heading from odometry, rad");
   v.Field("max_iterations", &max_iterations, "Ceres iterations");

@@ -19,13 +19,17 @@ namespace splam::estimation {
 // p_i the scan's points in the robot frame, rho a Huber loss and W the prior's square-root
 // information (the odometry increment's uncertainty).
 struct RegistrationOptions {
-  double point_sigma_m = 0.03;   // the distance residual's scale, m
-  double loss_scale_m = 0.1;     // Huber: points farther from the map count linearly, m
+  double point_sigma_m = 0.03;  // the distance residual's scale, m
+  // Beyond loss_scale_m farther points count linearly (Huber) or, with cauchy_loss, their pull
+  // fades (Cauchy).
+  bool cauchy_loss = false;
+  double loss_scale_m = 0.1;     // m
   double prior_sigma_m = 0.1;    // prior on the translation, m
   double prior_sigma_rad = 0.1;  // prior on the heading, rad
   int max_iterations = 20;
-  // Quality test: points within inlier_distance_m of the map make up at least
-  // min_inlier_fraction of the scan, at least min_points points, and the result moved from the
+  // Points where the map has not seen (DistanceGrid::Known) carry no residual. Quality test: at
+  // least min_points points where the map has seen, of which points within inlier_distance_m of
+  // the map make up at least min_inlier_fraction, and the result moved from the
   // prior by at most max_correction_m / max_correction_rad.
   double inlier_distance_m = 0.1;
   double min_inlier_fraction = 0.5;
@@ -41,17 +45,20 @@ struct RegistrationResult {
   kernel::Pose2 pose;                                        // the registered pose
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  // (J^T J)^-1 at the solution
   double rms_m = 0.0;            // RMS distance of the inliers to the map
-  double inlier_fraction = 0.0;  // points within inlier_distance_m
+  double inlier_fraction = 0.0;  // of the points where the map has seen, those near it
   int iterations = 0;
   bool converged = false;
   bool accepted = false;  // passed the quality test
   std::string reason;     // why not, when not accepted
 };
 
-// Registers `points` (robot frame) against `grid` (world frame) from `prior`.
+// Registers `points` (robot frame) against `grid` (world frame) from `prior`, whose covariance
+// (in the prior's frame) is `prior_covariance`, or diag(prior_sigma_m^2, prior_sigma_m^2,
+// prior_sigma_rad^2) when null.
 RegistrationResult RegisterPoints(const std::vector<Eigen::Vector2d>& points,
                                   const DistanceGrid& grid, const kernel::Pose2& prior,
-                                  const RegistrationOptions& options);
+                                  const RegistrationOptions& options,
+                                  const Eigen::Matrix3d* prior_covariance = nullptr);
 
 }  // namespace splam::estimation
 

@@ -74,7 +74,11 @@ class Echo : public SlamMethod {
   std::size_t MapSize() const override { return static_cast<std::size_t>(updates_); }
   std::string MapDescription() const override { return "echo"; }
   SlamMap Map() const override { return {}; }
-  SlamStatistics Statistics() const override { return {"", {{"gain", long(gain_)}}, {}, 0, 0}; }
+  SlamStatistics Statistics() const override {
+    SlamStatistics s;
+    s.map = {{"gain", long(gain_)}};
+    return s;
+  }
 
  private:
   double gain_;
