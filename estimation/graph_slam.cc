@@ -100,12 +100,14 @@ RegistrationResult GraphSlam::RegisterScan(const std::vector<Eigen::Vector2d>& p
   const ScopedTimer timer(&times_.registration_ms);
   RegistrationResult r = RegisterPoints(points, submap_, pose_, options_.registration);
   if (r.accepted && options_.odometry_prior) {
-    // The scan alone agrees with the odometry within its noise model (chi^2(3) gate): the two
-    // are fused, the odometry's prior holding the directions the scan leaves loose. Otherwise
-    // the odometry is the outlier (a slip, a glitch) and the scan's own result stands.
+    // The scan alone agrees with the odometry within both their covariances (chi^2(3) gate; in
+    // a direction the scan leaves loose, a corridor's axis, its covariance is wide): the two are
+    // fused, the odometry's prior holding those directions. Otherwise the odometry is the
+    // outlier (a slip, a glitch) and the scan's own result stands.
     const Eigen::Matrix3d odometry = options_.odometry.Covariance(since_update_);
     const Eigen::Vector3d delta = pose_.Between(r.pose).ToVector();
-    if (delta.dot(odometry.inverse() * delta) <= options_.odometry_gate_chi2) {
+    const Eigen::Matrix3d both = odometry + r.covariance;
+    if (delta.dot(both.inverse() * delta) <= options_.odometry_gate_chi2) {
       RegistrationResult fused =
           RegisterPoints(points, submap_, pose_, options_.registration, &odometry);
       if (fused.accepted) return fused;

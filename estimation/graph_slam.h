@@ -57,7 +57,8 @@ struct GraphSlamOptions {
   RegistrationOptions registration;
   // A scan is first registered with the registration's wide prior. When the result agrees with
   // the odometry increment since the last scan within odometry_gate_chi2 (chi^2(3), 99 %) under
-  // this noise model (set from the sensors' noise, as for the EKFs), it is registered again with
+  // both covariances (the odometry's from this noise model, set from the sensors' noise as for
+  // the EKFs, and the registration's), it is registered again with
   // the odometry's covariance as the prior: the odometry holds the directions a scan leaves
   // loose (a corridor, a round pillar). Otherwise the odometry is the outlier (a slip).
   bool odometry_prior = true;

@@ -353,5 +353,36 @@ TEST(AssociationScoring, TheCurvatureAssociationIsRarelyWrongOnTheComplexRoute) 
   EXPECT_GT(r.mean_nees, 0.0);
 }
 
+// A whole loop through the office with the LMS-200: the graph SLAM closes loops and ends with its
+// final trajectory (every scan's pose after the last optimisation) more accurate than odometry.
+TEST(GraphSlam, ClosesTheOfficeLoop) {
+  const sim::World world = *sim::BuiltinWorld("office");
+  const sim::RayCaster caster(world);
+  sim::SimulatorOptions options;
+  options.laser = sim::LaserOptions::Lms200();
+  sim::Simulator simulator(caster, options, *world.start, 1);
+  const sim::RouteRun run = sim::FollowRoute(&simulator, world.route, sim::RouteOptions());
+  estimation::SensorNoise noise;
+  noise.odometry_noise_scale = 1.0;
+  const auto* info = estimation::SlamRegistry::Global().Find("graph");
+  ASSERT_NE(info, nullptr);
+  auto made = estimation::SlamRegistry::Global().Make("graph", info->default_options(noise).get(),
+                                                      {run.frames[0].odometry_pose, {}});
+  ASSERT_TRUE(made.ok());
+  SlamDriver driver(std::move(*made.value));
+  const ReplayResult replay = ReplayFrames(run.frames, options.laser.robot_T_laser, &driver);
+  const estimation::SlamStatistics stats = driver.method().Statistics();
+  long accepted = 0;
+  for (const auto& [key, value] : stats.associations)
+    accepted += key == "loop_accepted" ? value : 0;
+  EXPECT_GT(accepted, 10);
+  ASSERT_EQ(replay.online.size(), replay.estimate.size());  // the past was revised
+  const auto error = estimation::CompareToTruth(replay.truth, replay.estimate);
+  const auto odometry = estimation::CompareToTruth(replay.truth, replay.odometry);
+  EXPECT_LT(error.rmse_position_m, 0.1);
+  EXPECT_LT(error.rmse_position_m, odometry.rmse_position_m);
+  EXPECT_LT(error.rmse_heading_rad, kernel::DegToRad(1.0));
+}
+
 }  // namespace
 }  // namespace splam::loop
