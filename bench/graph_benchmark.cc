@@ -1,0 +1,122 @@
+// Graph SLAM parts (issue 16): one scan-to-submap registration, one loop-closure search and one
+// optimisation of a 1,000-keyframe pose graph. Run with --benchmark_repetitions=5 for medians.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "estimation/correlative_matcher.h"
+#include "estimation/distance_grid.h"
+#include "estimation/pose_graph.h"
+#include "estimation/scan_registration.h"
+#include "kernel/random.h"
+#include "sim/builtin_worlds.h"
+#include "sim/laser.h"
+#include "sim/ray_caster.h"
+
+namespace splam::estimation {
+namespace {
+
+using kernel::Pose2;
+
+// Scans of the simulated LMS-200 (361 beams, 8 m) in `complex` from poses along x.
+struct Scans {
+  Scans() : world(*sim::BuiltinWorld("complex")), caster(world) {}
+  std::vector<Eigen::Vector2d> At(const Pose2& pose) {
+    const sim::LaserOptions laser = sim::LaserOptions::Lms200();
+    return sim::SimulateLaser(caster, laser, pose, 0.0, &random).HitPoints();
+  }
+  std::vector<OrientedPoint> WorldAt(const Pose2& pose) {
+    std::vector<OrientedPoint> points = OrientTowards(At(pose), Eigen::Vector2d::Zero(), 0.3);
+    for (auto& p : points) p = {pose * p.point, pose.Rotation() * p.normal};
+    return points;
+  }
+  sim::World world;
+  sim::RayCaster caster;
+  kernel::Random random{5};
+};
+
+void BM_GraphRegistration(benchmark::State& state) {
+  Scans scans;
+  std::vector<OrientedPoint> submap;
+  for (int i = 0; i < 10; ++i) {
+    const auto part = scans.WorldAt(Pose2(4.0 + 0.3 * i, 3.0, 0.2));
+    submap.insert(submap.end(), part.begin(), part.end());
+  }
+  const DistanceGrid grid = DistanceGrid::Build(submap, 0.1, 0.5, 0.5);
+  const Pose2 truth(5.5, 3.05, 0.22);
+  const std::vector<Eigen::Vector2d> scan = scans.At(truth);
+  const Pose2 prior = truth * Pose2(0.08, -0.05, 0.03);
+  for (auto _ : state) {
+    const RegistrationResult r = RegisterPoints(scan, grid, prior, RegistrationOptions{});
+    benchmark::DoNotOptimize(r.pose);
+  }
+  state.counters["points"] = static_cast<double>(scan.size());
+}
+BENCHMARK(BM_GraphRegistration)->Unit(benchmark::kMillisecond);
+
+// A loop-closure search as the graph SLAM runs it: target grid and pyramid built from 31
+// keyframes, query of 11, a 3 m x 3 m x +-0.35 rad window.
+void BM_GraphLoopSearch(benchmark::State& state) {
+  Scans scans;
+  std::vector<OrientedPoint> target;
+  for (int i = 0; i < 31; ++i) {
+    const auto part = scans.WorldAt(Pose2(3.0 + 0.2 * i, 3.0, 0.1 * std::sin(i)));
+    target.insert(target.end(), part.begin(), part.end());
+  }
+  const Pose2 truth(5.0, 3.1, 0.05);
+  std::vector<Eigen::Vector2d> query;
+  for (int i = 0; i < 11; ++i) {
+    const Pose2 at = truth * Pose2(-0.2 * i, 0.0, 0.0);
+    for (const auto& p : scans.At(at)) query.push_back(truth.Inverse() * (at * p));
+  }
+  const Pose2 guess = truth * Pose2(1.2, -0.8, 0.25);
+  for (auto _ : state) {
+    const DistanceGrid grid = DistanceGrid::Build(target, 0.1, 0.5, 0.5);
+    const LikelihoodPyramid pyramid(grid, 0.05, 5);
+    const CorrelativeMatch m = SearchCorrelative(query, pyramid, guess, 3.0, 0.35, 0.55, 0.9);
+    benchmark::DoNotOptimize(m.pose);
+  }
+  state.counters["query_points"] = static_cast<double>(query.size());
+}
+BENCHMARK(BM_GraphLoopSearch)->Unit(benchmark::kMillisecond);
+
+// 1,000 keyframes on a random walk with 2 cm / 0.3 deg edges and 200 loop closures, optimised
+// from the dead-reckoning poses.
+void BM_PoseGraph1000(benchmark::State& state) {
+  std::mt19937 gen(11);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::vector<Pose2> truth = {Pose2()};
+  for (int i = 1; i < 1000; ++i)
+    truth.push_back(truth.back() * Pose2(0.3, 0.0, 0.3 * std::sin(0.05 * i)));
+  const Eigen::Matrix3d information = Eigen::Vector3d(2500, 2500, 40000).asDiagonal();
+  PoseGraph base;
+  Pose2 dead = truth.front();
+  base.AddNode(dead);
+  for (std::size_t i = 1; i < truth.size(); ++i) {
+    const Pose2 m = truth[i - 1].Between(truth[i]) *
+                    Pose2(0.02 * noise(gen), 0.02 * noise(gen), 0.005 * noise(gen));
+    dead = dead * m;
+    base.AddNode(dead);
+    base.AddEdge({static_cast<int>(i) - 1, static_cast<int>(i), m, information, false});
+  }
+  std::uniform_int_distribution<int> node(0, 999);
+  for (int k = 0; k < 200; ++k) {
+    const int a = node(gen), b = node(gen);
+    if (std::abs(a - b) < 50) continue;
+    base.AddEdge({a, b, truth[static_cast<std::size_t>(a)].Between(truth[static_cast<std::size_t>(b)]),
+                  information, true});
+  }
+  for (auto _ : state) {
+    PoseGraph graph = base;
+    const PoseGraphSummary s = graph.Optimize(PoseGraphOptions{});
+    benchmark::DoNotOptimize(s.final_cost);
+  }
+}
+BENCHMARK(BM_PoseGraph1000)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace splam::estimation
+
+BENCHMARK_MAIN();
