@@ -115,6 +115,7 @@ void WriteSlamFiles(const std::string& log, const std::string& out, const std::s
   picture.truth = run.truth;
   picture.odometry = run.odometry;
   picture.estimates = {{"estimate", run.estimate}};
+  picture.before_optimization = run.online;
   io::DrawMap(map, &picture);
   picture.pixels_per_meter = 40.0;
   errors->push_back(io::SaveRunPicture(picture, {out + "/map.svg", out + "/map.png"}));

@@ -25,6 +25,8 @@ inline constexpr Rgb kOdometry{0.85, 0.10, 0.65};  // odometry: magenta
 inline constexpr Rgb kEstimate{0.0, 0.0, 0.0};     // estimate: black
 inline constexpr Rgb kScan{0.95, 0.45, 0.05};      // laser points: orange
 inline constexpr Rgb kMap{0.75, 0.10, 0.10};       // estimated map: dark red
+inline constexpr Rgb kOnline{0.55, 0.55, 0.55};    // estimate before optimisation: grey
+inline constexpr Rgb kGraph{0.10, 0.60, 0.25};     // keyframe graph and loop closures: green
 }  // namespace palette
 
 struct FigureOptions {

@@ -60,7 +60,12 @@ std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::str
                      "inflection points");
   figure.DrawMarkers(picture.map_corners, io::Figure::Marker::kDiamond, io::palette::kMap, 5.0,
                      "map corners");
+  for (const auto& [a, b] : picture.graph_loops)
+    figure.DrawPolyline({a, b}, io::palette::kGraph, 0.8, "loop closures");
+  figure.DrawPoints(picture.graph_nodes, io::palette::kGraph, 1.5, "keyframes");
   figure.DrawPath(io::Poses(picture.odometry), io::palette::kOdometry, 1.5, "odometry");
+  figure.DrawPath(io::Poses(picture.before_optimization), io::palette::kOnline, 1.5,
+                  "before optimisation");
   for (const auto& [label, t] : picture.estimates)
     figure.DrawPath(io::Poses(t), io::palette::kEstimate, 1.5, label);
   figure.DrawPath(io::Poses(picture.truth), io::palette::kTrue, 1.5, "ground truth");
@@ -108,6 +113,11 @@ void DrawMap(const estimation::SlamMap& map, RunPicture* picture) {
       (f.type == kernel::FeatureType::kCorner ? picture->map_corners : picture->map_inflections)
           .push_back(f.position);
     }
+  }
+  for (const kernel::Pose2& k : map.keyframes) picture->graph_nodes.push_back(k.translation());
+  for (const auto& [a, b] : map.loop_edges) {
+    picture->graph_loops.emplace_back(map.keyframes[static_cast<std::size_t>(a)].translation(),
+                                      map.keyframes[static_cast<std::size_t>(b)].translation());
   }
 }
 

@@ -28,6 +28,11 @@ struct RunPicture {
   std::vector<std::vector<Eigen::Vector2d>> map_curves;  // estimated map curves as polylines
   std::vector<Eigen::Vector2d> map_control_points;       // ... their control points
   std::vector<Eigen::Vector2d> map_inflections;          // ... and inflection points
+  // A keyframe graph: its nodes and its loop-closure edges (world frame).
+  std::vector<Eigen::Vector2d> graph_nodes;
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> graph_loops;
+  // The estimate as the method gave it while running, before later optimisations moved it.
+  io::Trajectory before_optimization;
   io::Rgb world_color = io::palette::kWorld;
   double robot_radius_m = 0.0;  // > 0 draws the robot at the last true (else odometric) pose
   double pixels_per_meter = 40.0;
@@ -39,7 +44,7 @@ std::vector<Eigen::Vector2d> ScanPointsInWorld(const io::CarmenLog& log, int eve
 
 // Adds a SLAM map to the picture: lines and corners, or spline curves with control points
 // (small dots), inflection points (circles) and corners (diamonds) as paper 000 Figs. 13 and 16
-// draw them.
+// draw them; and a keyframe graph (nodes, loop closures) when the map has one.
 void DrawMap(const estimation::SlamMap& map, RunPicture* picture);
 
 // Draws the picture into each path (.svg or .png); empty on success, else the first error.
