@@ -135,6 +135,19 @@ Eigen::Matrix3d SqrtInformation(const Eigen::Matrix3d& information) {
   return Eigen::LLT<Eigen::Matrix3d>(information).matrixU();
 }
 
+// Solves on one thread without logging.
+ceres::Solver::Summary SolveSilently(ceres::Problem* problem, ceres::LinearSolverType solver_type,
+                                     int max_iterations) {
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = solver_type;
+  solver.max_num_iterations = max_iterations;
+  solver.logging_type = ceres::SILENT;
+  solver.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, problem, &summary);
+  return summary;
+}
+
 // J^T J of every residual of a problem with one 3-parameter block.
 Eigen::Matrix3d GaussNewtonHessian(ceres::Problem* problem) {
   ceres::CRSMatrix j;
@@ -182,13 +195,8 @@ RegistrationResult RegisterPoints(const std::vector<Eigen::Vector2d>& points,
   problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PriorResidual, 3, 3>(
                                new PriorResidual(prior, prior_sqrt_information)),
                            nullptr, pose);
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = options.max_iterations;
-  solver.logging_type = ceres::SILENT;
-  solver.num_threads = 1;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
+  const ceres::Solver::Summary summary =
+      SolveSilently(&problem, ceres::DENSE_QR, options.max_iterations);
   result.iterations = static_cast<int>(summary.iterations.size());
   result.converged = summary.termination_type == ceres::CONVERGENCE;
   result.pose = kernel::Pose2(pose[0], pose[1], pose[2]);
@@ -296,13 +304,8 @@ PoseGraphSummary PoseGraph::Optimize(const PoseGraphOptions& options) {
         poses_[static_cast<std::size_t>(e.to)].data());
   }
   problem.SetParameterBlockConstant(poses_.front().data());
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  solver.max_num_iterations = options.max_iterations;
-  solver.logging_type = ceres::SILENT;
-  solver.num_threads = 1;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
+  const ceres::Solver::Summary summary =
+      SolveSilently(&problem, ceres::SPARSE_NORMAL_CHOLESKY, options.max_iterations);
   for (auto& p : poses_) p.z() = WrapAngle(p.z());
   s.iterations = static_cast<int>(summary.iterations.size());
   s.initial_cost = summary.initial_cost;
