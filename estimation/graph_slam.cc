@@ -62,15 +62,11 @@ void GraphSlam::Predict(const kernel::Pose2& odometry_increment) {
   travelled_m_ += odometry_increment.translation().norm();
 }
 
-std::vector<Eigen::Vector2d> GraphSlam::RobotPoints(const kernel::Scan& scan,
-                                                    const kernel::Pose2& robot_T_laser) const {
-  const double range = options_.max_range_m > 0 ? options_.max_range_m : scan.max_range_m;
-  return robot_T_laser * scan.Clipped(range).HitPoints();
-}
-
-void GraphSlam::Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) {
+void GraphSlam::Update(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_laser) {
   if (!health_.ok()) return;
-  std::vector<Eigen::Vector2d> points = RobotPoints(scan, robot_T_laser);
+  const kernel::Scan scan =
+      raw_scan.Clipped(options_.max_range_m > 0 ? options_.max_range_m : raw_scan.max_range_m);
+  std::vector<Eigen::Vector2d> points = robot_T_laser * scan.HitPoints();
   if (!keyframes_.empty()) {
     if (submap_dirty_) RebuildSubmap();
     const RegistrationResult r = RegisterScan(points);
@@ -143,12 +139,12 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   Keyframe kf;
   kf.pose = pose_;
   kf.travelled_m = travelled_m_;
-  const double range = options_.max_range_m > 0 ? options_.max_range_m : scan.max_range_m;
-  for (const auto& curve : kernel::ExtractCurves(scan.Clipped(range), options_.extraction)) {
+  for (const auto& curve : kernel::ExtractCurves(scan, options_.extraction)) {
     kf.curves.push_back(kernel::Transformed(curve, robot_T_laser));
+    if (!options_.raster_curves) continue;
     const auto samples = OrientTowards(kf.curves.back().samples, robot_T_laser.translation(),
                                        options_.grid_resolution_m);
-    if (options_.raster_curves) kf.raster.insert(kf.raster.end(), samples.begin(), samples.end());
+    kf.raster.insert(kf.raster.end(), samples.begin(), samples.end());
   }
   if (options_.raster_points || kf.raster.empty()) {
     const auto oriented =
@@ -160,7 +156,8 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
                       [](const OrientedPoint& o) -> const Eigen::Vector2d& { return o.point; });
   kf.points = std::move(points);
   // The scan's view: from the sensor to every beam's end (a hit, seen_margin_m behind it so that
-  // points just behind a wall count; or the range for a no-return).
+  // points just behind a wall count; or the range for a no-return, clipped beams included).
+  const double range = options_.max_range_m > 0 ? options_.max_range_m : scan.max_range_m;
   kf.seen.push_back(robot_T_laser.translation());
   for (std::size_t i = 0; i < scan.size(); ++i) {
     if (!scan.IsHit(i) && !scan.IsNoReturn(i)) continue;
@@ -174,7 +171,10 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
            std::abs(o.pose.Between(kf.pose).theta()) < options_.map_spacing_rad;
   });
 
-  const bool kf_in_map = kf.in_map;
+  if (kf.in_map) {
+    map_curves_ += kf.curves.size();
+    for (const auto& c : kf.curves) map_control_points_ += c.spline.control_points().size();
+  }
   const int k = graph_.AddNode(kf.pose);
   if (k > 0) {
     const Keyframe& prev = keyframes_.back();
@@ -190,11 +190,6 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
     graph_.AddEdge(edge);
   }
   keyframes_.push_back(std::move(kf));
-  if (kf_in_map) {
-    map_curves_ += keyframes_.back().curves.size();
-    for (const auto& c : keyframes_.back().curves)
-      map_control_points_ += c.spline.control_points().size();
-  }
   submap_dirty_ = true;
   timer.reset();
   if (options_.loop_closure) SearchLoopClosures(k);
@@ -313,7 +308,7 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
   const DistanceGrid target =
       DistanceGrid::Build(WorldRaster(candidate - options_.loop_target_keyframes,
                                       std::min(candidate + options_.loop_target_keyframes, newest)),
-                          options_.grid_resolution_m, options_.truncation_m, options_.truncation_m);
+                          options_.loop_resolution_m, options_.truncation_m, options_.truncation_m);
   const LikelihoodPyramid pyramid(target, options_.loop_sigma_m, options_.loop_levels);
   const double window_rad =
       std::min(options_.loop_window_rad + options_.loop_window_rad_per_m * travelled,

@@ -189,8 +189,7 @@ class GraphSlam {
   kernel::Status health() const { return health_; }
 
  private:
-  std::vector<Eigen::Vector2d> RobotPoints(const kernel::Scan& scan,
-                                           const kernel::Pose2& robot_T_laser) const;
+  // `scan` is clipped to the usable range.
   void AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                    std::vector<Eigen::Vector2d> points);
   // The raster of keyframes [first, last] in the world frame.
