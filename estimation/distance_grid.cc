@@ -1,5 +1,6 @@
 #include "estimation/distance_grid.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -87,13 +88,18 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
     if (n.norm() > 1e-12) n.normalize();
   const double half = kSegmentHalfLength * resolution_m;
   g.values_.resize(sum.size());
+  g.nearest_.assign(sum.size(), -1);
+  g.pieces_.resize(kept.size());
+  for (std::size_t i = 0; i < kept.size(); ++i) g.pieces_[i] = {kept[i], kept_normal[i]};
   for (int r = 0; r < g.rows_; ++r)
     for (int c = 0; c < g.cols_; ++c) {
       const Eigen::Vector2d centre = g.origin_ + resolution_m * Eigen::Vector2d(c + 0.5, r + 0.5);
       const auto label = static_cast<std::size_t>(labels.at<int>(r, c));
       double d = distance.at<float>(r, c) * resolution_m;
-      if (label < kept.size())
+      if (label < kept.size()) {
         d = SurfaceDistance(centre - kept[label], kept_normal[label], half, signed_field);
+        g.nearest_[static_cast<std::size_t>(r) * g.cols_ + c] = static_cast<int>(label);
+      }
       g.values_[static_cast<std::size_t>(r) * g.cols_ + c] =
           std::clamp(d, -truncation_m, truncation_m);
     }
@@ -122,6 +128,39 @@ bool DistanceGrid::Known(const Eigen::Vector2d& p) const {
   return known_.empty() || known_[static_cast<std::size_t>(r) * cols_ + c] != 0;
 }
 
+double DistanceGrid::Distance(const Eigen::Vector2d& p, Eigen::Vector2d* gradient) const {
+  if (gradient != nullptr) gradient->setZero();
+  const int c = static_cast<int>(std::floor((p.x() - origin_.x()) / resolution_m_));
+  const int r = static_cast<int>(std::floor((p.y() - origin_.y()) / resolution_m_));
+  if (r < 0 || c < 0 || r >= rows_ || c >= cols_) return truncation_m_;
+  const int label = nearest_[static_cast<std::size_t>(r) * cols_ + c];
+  if (label < 0) return truncation_m_;
+  const auto& [q, n] = pieces_[static_cast<std::size_t>(label)];
+  const Eigen::Vector2d v = p - q;
+  // Across the piece along n, along it beyond its half length (the end's round cap).
+  Eigen::Vector2d across_dir = n, along_dir(-n.y(), n.x());
+  double across = n.dot(v), along_signed = along_dir.dot(v);
+  if (n.isZero()) {  // an isolated point: the distance to it
+    const double d = v.norm();
+    if (d >= truncation_m_) return truncation_m_;
+    if (gradient != nullptr && d > 1e-12) *gradient = v / d;
+    return d;
+  }
+  const double half = kSegmentHalfLength * resolution_m_;
+  const double along = std::max(0.0, std::abs(along_signed) - half);
+  const double d = std::hypot(across, along);
+  if (d >= truncation_m_) return truncation_m_;
+  const double sign = across < 0 ? -1.0 : 1.0;
+  if (gradient != nullptr) {
+    if (along <= 0.0 || d < 1e-12)
+      *gradient = across_dir;
+    else
+      *gradient =
+          sign * (across * across_dir + along * std::copysign(1.0, along_signed) * along_dir) / d;
+  }
+  return sign * d;
+}
+
 double DistanceGrid::Nearest(const Eigen::Vector2d& p) const {
   const int c = static_cast<int>(std::floor((p.x() - origin_.x()) / resolution_m_));
   const int r = static_cast<int>(std::floor((p.y() - origin_.y()) / resolution_m_));
@@ -134,12 +173,30 @@ std::vector<OrientedPoint> OrientTowards(const std::vector<Eigen::Vector2d>& poi
   std::vector<OrientedPoint> out(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector2d& p = points[i];
-    const bool has_prev = i > 0 && (points[i - 1] - p).norm() <= max_gap_m;
-    const bool has_next = i + 1 < points.size() && (points[i + 1] - p).norm() <= max_gap_m;
-    const Eigen::Vector2d tangent = (has_next ? points[i + 1] : p) - (has_prev ? points[i - 1] : p);
+    // The run's points within max_gap_m of p (reached through gaps of at most max_gap_m).
+    std::size_t first = i, last = i;
+    while (first > 0 && (points[first - 1] - p).norm() <= max_gap_m &&
+           (points[first - 1] - points[first]).norm() <= max_gap_m)
+      --first;
+    while (last + 1 < points.size() && (points[last + 1] - p).norm() <= max_gap_m &&
+           (points[last + 1] - points[last]).norm() <= max_gap_m)
+      ++last;
     const Eigen::Vector2d to_sensor = sensor - p;
-    Eigen::Vector2d n =
-        tangent.norm() > 1e-9 ? Eigen::Vector2d(-tangent.y(), tangent.x()) : to_sensor;
+    Eigen::Vector2d n = to_sensor;
+    if (last - first >= 2) {
+      // The normal of the total-least-squares line through them: the eigenvector of their
+      // scatter with the smaller eigenvalue.
+      Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+      for (std::size_t j = first; j <= last; ++j) mean += points[j];
+      mean /= static_cast<double>(last - first + 1);
+      Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+      for (std::size_t j = first; j <= last; ++j)
+        scatter += (points[j] - mean) * (points[j] - mean).transpose();
+      n = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter).eigenvectors().col(0);
+    } else if (last > first) {
+      const Eigen::Vector2d tangent = points[last] - points[first];
+      n = Eigen::Vector2d(-tangent.y(), tangent.x());
+    }
     if (n.dot(to_sensor) < 0) n = -n;
     out[i] = {p, n.norm() > 1e-12 ? Eigen::Vector2d(n.normalized()) : Eigen::Vector2d::Zero()};
   }

@@ -96,18 +96,19 @@ RegistrationResult GraphSlam::RegisterScan(const std::vector<Eigen::Vector2d>& p
   const ScopedTimer timer(&times_.registration_ms);
   RegistrationResult r = RegisterPoints(points, submap_, pose_, options_.registration);
   if (r.accepted && options_.odometry_prior) {
-    // The scan alone agrees with the odometry within both their covariances (chi^2(3) gate; in
-    // a direction the scan leaves loose, a corridor's axis, its covariance is wide): the two are
-    // fused, the odometry's prior holding those directions. Otherwise the odometry is the
-    // outlier (a slip, a glitch) and the scan's own result stands.
+    // Likelihood-ratio test between the scan alone and the scan fused with the odometry's prior
+    // (its increment's covariance): when the fused pose explains the scan nearly as well as the
+    // scan's own optimum (their points' costs, counted once per cell, differ by at most the
+    // chi^2(3) gate), the odometry agrees and holds the directions the scan leaves loose (a
+    // corridor's axis, a smooth wall's length). Otherwise the odometry is the outlier (a slip, a
+    // glitch) and the scan's own result stands. The test is on costs, not on the two poses'
+    // difference against their covariances: (J^T J)^-1 is overconfident where the map's
+    // outlines are noisy, and such a test would refuse the odometry exactly there.
     const Eigen::Matrix3d odometry = options_.odometry.Covariance(since_update_);
-    const Eigen::Vector3d delta = pose_.Between(r.pose).ToVector();
-    const Eigen::Matrix3d both = odometry + r.covariance;
-    if (delta.dot(both.inverse() * delta) <= options_.odometry_gate_chi2) {
-      RegistrationResult fused =
-          RegisterPoints(points, submap_, pose_, options_.registration, &odometry);
-      if (fused.accepted) return fused;
-    }
+    RegistrationResult fused =
+        RegisterPoints(points, submap_, pose_, options_.registration, &odometry);
+    if (fused.accepted && fused.points_cost - r.points_cost <= options_.odometry_gate_chi2)
+      return fused;
   }
   if (r.accepted || options_.recovery_window_m <= 0) return r;
   // The odometry can be off by more than the registration's basin (wheel slip, a bump): a
@@ -156,13 +157,17 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
                       [](const OrientedPoint& o) -> const Eigen::Vector2d& { return o.point; });
   kf.points = std::move(points);
   // The scan's view: from the sensor to every beam's end (a hit, seen_margin_m behind it so that
-  // points just behind a wall count; or the range for a no-return, clipped beams included).
+  // points just behind a wall count; or, for a no-return, clipped beams included, seen_margin_m
+  // short of the range: the view's edge is rasterised to whole cells, and a wall just beyond the
+  // range, seen by the next scan, must not land in cells the map calls seen and empty, where
+  // its points would be pulled towards the nearest known outline).
   const double range = options_.max_range_m > 0 ? options_.max_range_m : scan.max_range_m;
   kf.seen.push_back(robot_T_laser.translation());
   for (std::size_t i = 0; i < scan.size(); ++i) {
     if (!scan.IsHit(i) && !scan.IsNoReturn(i)) continue;
-    const double r = std::min(
-        scan.IsHit(i) ? scan.ranges_m[i] + options_.seen_margin_m : scan.max_range_m, range);
+    const double r = std::min(scan.IsHit(i) ? scan.ranges_m[i] + options_.seen_margin_m
+                                            : scan.max_range_m - options_.seen_margin_m,
+                              range);
     kf.seen.push_back(robot_T_laser * kernel::PolarToCartesian({r, scan.BeamAngle(i)}));
   }
   kf.in_map = std::none_of(keyframes_.begin(), keyframes_.end(), [&](const Keyframe& o) {
@@ -404,7 +409,7 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("odometry_prior", &odometry_prior, "the registration's prior is the odometry model");
   v.Nested("odometry", "odometry noise model of that prior", &odometry);
   v.Field("odometry_gate_chi2", &odometry_gate_chi2,
-          "the odometry is fused when the scan agrees within this chi^2");
+          "the odometry is fused when it raises the scan's cost by at most this chi^2");
   v.Field("recovery_window_m", &recovery_window_m,
           "a failed registration is searched again within this of the odometry (0: never), m");
   v.Field("recovery_window_rad", &recovery_window_rad, "and within this heading, rad");

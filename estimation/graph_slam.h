@@ -55,12 +55,12 @@ struct GraphSlamOptions {
   bool mask_unseen = true;
   double seen_margin_m = 0.2;
   RegistrationOptions registration;
-  // A scan is first registered with the registration's wide prior. When the result agrees with
-  // the odometry increment since the last scan within odometry_gate_chi2 (chi^2(3), 99 %) under
-  // both covariances (the odometry's from this noise model, set from the sensors' noise as for
-  // the EKFs, and the registration's), it is registered again with
-  // the odometry's covariance as the prior: the odometry holds the directions a scan leaves
-  // loose (a corridor, a round pillar). Otherwise the odometry is the outlier (a slip).
+  // A scan is registered twice: with the registration's wide prior alone, and with the
+  // odometry increment since the last scan as the prior (its covariance from this noise model,
+  // set from the sensors' noise as for the EKFs). The fused result stands when its points'
+  // cost exceeds the scan-alone optimum's by at most odometry_gate_chi2 (a likelihood-ratio
+  // test, chi^2(3) 99 %): the odometry then holds the directions a scan leaves loose (a
+  // corridor, a round pillar, a smooth wall). Otherwise the odometry is the outlier (a slip).
   bool odometry_prior = true;
   OdometryNoiseModel odometry;
   double odometry_gate_chi2 = 11.34;
