@@ -63,7 +63,7 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("name", args->name,
                   "Experiment: corridor-lines (paper 001 section 6), complex-bspline (paper 000 "
                   "Figs. 15-17), exploration (paper 003 Fig. 18) or splam (paper 003 Figs. "
-                  "19-22: SRT + ekf-lines, SRT + ekf-bspline, REG + topological)")
+                  "19-22: SRT + ekf-lines, SRT + ekf-bspline, REG + topological; and REG + graph)")
       ->check(CLI::IsMember({"corridor-lines", "complex-bspline", "exploration", "splam"}))
       ->capture_default_str();
   cmd->add_option("--runs", args->runs, "Seeded runs (default: 20 corridor-lines, 10 the others)")

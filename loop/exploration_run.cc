@@ -131,6 +131,9 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
   outcome.robot_radius_m = robot.description().radius_m;
   outcome.run = explorer->Run(&robot, localization.get());
   outcome.slam = std::dynamic_pointer_cast<SlamLocalization>(localization);
+  // A method that revises the past optimises what is pending, so that its map is final; the
+  // trajectory scored stays the one the explorer used.
+  if (outcome.slam && outcome.slam->driver() != nullptr) outcome.slam->Finish();
   if (outcome.run.termination == exploration::Termination::kInvalidInput) {
     outcome.error = outcome.run.message;
     return outcome;

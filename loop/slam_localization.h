@@ -27,6 +27,8 @@ class SlamLocalization : public exploration::Localization {
                     const exploration::Perception& first) override;
   kernel::Pose2 Update(const exploration::Perception& perception) override;
   void AtNode(const kernel::LocalSafeRegion& lsr) override;
+  // At the end of the run (after Start): the method's last optimisation (SlamMethod::Finish).
+  void Finish() { driver_->method().Finish(); }
 
   // The driver (after Start): the method, the wall time of every update and the map sizes.
   const SlamDriver* driver() const { return driver_ ? &*driver_ : nullptr; }

@@ -27,6 +27,7 @@ const std::vector<Strategy>& Strategies() {
       {"fig19", "srt", "ekf-lines", "SRT + ekf-lines", {0.90, 0.45, 0.05}},
       {"fig20", "srt", "ekf-bspline", "SRT + ekf-bspline", {0.10, 0.60, 0.25}},
       {"fig21", "reg", "topological", "REG + topological", {0.10, 0.35, 0.85}},
+      {"graph", "reg", "graph", "REG + graph", {0.55, 0.15, 0.60}},
   };
   return strategies;
 }

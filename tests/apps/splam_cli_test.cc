@@ -413,19 +413,20 @@ TEST(SplamCli, ExploreWithoutArgumentsRunsTheMainJob) {
   EXPECT_GT(report["slam"]["localization_steps"].get<int>(), 1000);
 }
 
-TEST(SplamCli, SplamExperimentComparesTheThreeStrategies) {
-  // One trial (seed 1) of paper 003 Figs. 19-22. Measured: position RMSE 0.162 m (ekf-lines,
-  // odometry 0.458 m), 0.125 m (ekf-bspline, odometry 0.590 m), 0.163 m (topological, odometry
-  // 0.664 m).
+TEST(SplamCli, SplamExperimentComparesTheFourStrategies) {
+  // One trial (seed 1) of paper 003 Figs. 19-22 and REG + graph. Measured: position RMSE
+  // 0.162 m (ekf-lines, odometry 0.458 m), 0.125 m (ekf-bspline, odometry 0.590 m), 0.163 m
+  // (topological, odometry 0.664 m), 0.102 m (graph, odometry 0.420 m).
   const fs::path out = Temp("experiment_splam");
   const Output run = Splam("experiment splam --runs 1 --out " + out.string());
   ASSERT_EQ(run.status, 0) << run.text;
   for (const char* f : {"table.md", "summary.json", "fig19-map.png", "fig19-errors.png",
                         "fig20-map.png", "fig21-map.png", "fig21-errors.svg", "fig22.png",
+                        "graph-map.png", "reg-graph-seed1/report.json",
                         "reg-topological-seed1/report.json", "srt-ekf-lines-seed1/map.dxf"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   const nlohmann::json summary = nlohmann::json::parse(Slurp(out / "summary.json"));
-  ASSERT_EQ(summary["strategies"].size(), 3u);
+  ASSERT_EQ(summary["strategies"].size(), 4u);
   for (const auto& [name, s] : summary["strategies"].items()) {
     EXPECT_EQ(s["explored_and_healthy"].get<int>(), 1) << name;
     EXPECT_LT(s["rmse_position_m"][0].get<double>(),
