@@ -13,15 +13,28 @@ namespace {
 // neighbouring cells (up to a diagonal apart) join.
 constexpr double kSegmentHalfLength = 1.5;
 
-// Distance from the point s + v to the piece of outline at s with unit normal n (or to s when n
-// is zero), signed by the side of n when signed_field.
-double SurfaceDistance(const Eigen::Vector2d& v, const Eigen::Vector2d& n, double half,
-                       bool signed_field) {
-  if (n.isZero()) return v.norm();
-  const double across = n.dot(v);
-  const double along = std::max(0.0, std::abs(n.x() * v.y() - n.y() * v.x()) - half);
+// Distance from the point s + v to the piece of outline at s with unit normal n, `half` either
+// side along its tangent t = (-n.y, n.x) and round beyond (to s itself when n is zero), signed
+// by the side of n; its gradient d/dv in *gradient when not null.
+double PieceDistance(const Eigen::Vector2d& v, const Eigen::Vector2d& n, double half,
+                     Eigen::Vector2d* gradient) {
+  if (n.isZero()) {
+    const double d = v.norm();
+    if (gradient != nullptr)
+      *gradient = d > 1e-12 ? Eigen::Vector2d(v / d) : Eigen::Vector2d::Zero();
+    return d;
+  }
+  const Eigen::Vector2d t(-n.y(), n.x());
+  const double across = n.dot(v), along_signed = t.dot(v);
+  const double along = std::max(0.0, std::abs(along_signed) - half);
   const double d = std::hypot(across, along);
-  return signed_field && across < 0 ? -d : d;
+  const double sign = across < 0 ? -1.0 : 1.0;
+  if (gradient != nullptr)
+    *gradient = along <= 0.0 || d < 1e-12
+                    ? n
+                    : Eigen::Vector2d(
+                          sign * (across * n + along * std::copysign(1.0, along_signed) * t) / d);
+  return sign * d;
 }
 
 }  // namespace
@@ -70,34 +83,29 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
   cv::Mat distance, labels;
   cv::distanceTransform(free_cells, distance, labels, cv::DIST_L2, cv::DIST_MASK_5,
                         cv::DIST_LABEL_PIXEL);
-  // label -> the point kept by that occupied cell.
-  std::vector<Eigen::Vector2d> kept, kept_normal;
+  // label -> the piece of that occupied cell.
   for (int r = 0; r < g.rows_; ++r)
     for (int c = 0; c < g.cols_; ++c) {
       const std::size_t i = static_cast<std::size_t>(r) * g.cols_ + c;
       if (count[i] == 0) continue;
       const auto label = static_cast<std::size_t>(labels.at<int>(r, c));
-      if (kept.size() <= label) {
-        kept.resize(label + 1, Eigen::Vector2d::Zero());
-        kept_normal.resize(label + 1, Eigen::Vector2d::Zero());
-      }
-      kept[label] = sum[i] / count[i];
-      kept_normal[label] = normal[i];
+      if (g.pieces_.size() <= label) g.pieces_.resize(label + 1);
+      g.pieces_[label] = {sum[i] / count[i], normal[i]};
     }
-  for (auto& n : kept_normal)
-    if (n.norm() > 1e-12) n.normalize();
+  for (auto& piece : g.pieces_)
+    if (piece.normal.norm() > 1e-12) piece.normal.normalize();
   const double half = kSegmentHalfLength * resolution_m;
   g.values_.resize(sum.size());
   g.nearest_.assign(sum.size(), -1);
-  g.pieces_.resize(kept.size());
-  for (std::size_t i = 0; i < kept.size(); ++i) g.pieces_[i] = {kept[i], kept_normal[i]};
   for (int r = 0; r < g.rows_; ++r)
     for (int c = 0; c < g.cols_; ++c) {
       const Eigen::Vector2d centre = g.origin_ + resolution_m * Eigen::Vector2d(c + 0.5, r + 0.5);
       const auto label = static_cast<std::size_t>(labels.at<int>(r, c));
       double d = distance.at<float>(r, c) * resolution_m;
-      if (label < kept.size()) {
-        d = SurfaceDistance(centre - kept[label], kept_normal[label], half, signed_field);
+      if (label < g.pieces_.size()) {
+        const OrientedPoint& piece = g.pieces_[label];
+        d = PieceDistance(centre - piece.point, piece.normal, half, nullptr);
+        if (!signed_field) d = std::abs(d);
         g.nearest_[static_cast<std::size_t>(r) * g.cols_ + c] = static_cast<int>(label);
       }
       g.values_[static_cast<std::size_t>(r) * g.cols_ + c] =
@@ -121,51 +129,35 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
   return g;
 }
 
-bool DistanceGrid::Known(const Eigen::Vector2d& p) const {
+long DistanceGrid::CellIndex(const Eigen::Vector2d& p) const {
   const int c = static_cast<int>(std::floor((p.x() - origin_.x()) / resolution_m_));
   const int r = static_cast<int>(std::floor((p.y() - origin_.y()) / resolution_m_));
-  if (r < 0 || c < 0 || r >= rows_ || c >= cols_) return false;
-  return known_.empty() || known_[static_cast<std::size_t>(r) * cols_ + c] != 0;
+  if (r < 0 || c < 0 || r >= rows_ || c >= cols_) return -1;
+  return static_cast<long>(r) * cols_ + c;
+}
+
+bool DistanceGrid::Known(const Eigen::Vector2d& p) const {
+  const long i = CellIndex(p);
+  return i >= 0 && (known_.empty() || known_[static_cast<std::size_t>(i)] != 0);
 }
 
 double DistanceGrid::Distance(const Eigen::Vector2d& p, Eigen::Vector2d* gradient) const {
   if (gradient != nullptr) gradient->setZero();
-  const int c = static_cast<int>(std::floor((p.x() - origin_.x()) / resolution_m_));
-  const int r = static_cast<int>(std::floor((p.y() - origin_.y()) / resolution_m_));
-  if (r < 0 || c < 0 || r >= rows_ || c >= cols_) return truncation_m_;
-  const int label = nearest_[static_cast<std::size_t>(r) * cols_ + c];
+  const long i = CellIndex(p);
+  const int label = i < 0 ? -1 : nearest_[static_cast<std::size_t>(i)];
   if (label < 0) return truncation_m_;
-  const auto& [q, n] = pieces_[static_cast<std::size_t>(label)];
-  const Eigen::Vector2d v = p - q;
-  // Across the piece along n, along it beyond its half length (the end's round cap).
-  Eigen::Vector2d across_dir = n, along_dir(-n.y(), n.x());
-  double across = n.dot(v), along_signed = along_dir.dot(v);
-  if (n.isZero()) {  // an isolated point: the distance to it
-    const double d = v.norm();
-    if (d >= truncation_m_) return truncation_m_;
-    if (gradient != nullptr && d > 1e-12) *gradient = v / d;
-    return d;
-  }
-  const double half = kSegmentHalfLength * resolution_m_;
-  const double along = std::max(0.0, std::abs(along_signed) - half);
-  const double d = std::hypot(across, along);
-  if (d >= truncation_m_) return truncation_m_;
-  const double sign = across < 0 ? -1.0 : 1.0;
-  if (gradient != nullptr) {
-    if (along <= 0.0 || d < 1e-12)
-      *gradient = across_dir;
-    else
-      *gradient =
-          sign * (across * across_dir + along * std::copysign(1.0, along_signed) * along_dir) / d;
-  }
-  return sign * d;
+  const OrientedPoint& piece = pieces_[static_cast<std::size_t>(label)];
+  Eigen::Vector2d g;
+  const double d =
+      PieceDistance(p - piece.point, piece.normal, kSegmentHalfLength * resolution_m_, &g);
+  if (std::abs(d) >= truncation_m_) return truncation_m_;
+  if (gradient != nullptr) *gradient = g;
+  return d;
 }
 
 double DistanceGrid::Nearest(const Eigen::Vector2d& p) const {
-  const int c = static_cast<int>(std::floor((p.x() - origin_.x()) / resolution_m_));
-  const int r = static_cast<int>(std::floor((p.y() - origin_.y()) / resolution_m_));
-  if (r < 0 || c < 0 || r >= rows_ || c >= cols_) return truncation_m_;
-  return At(r, c);
+  const long i = CellIndex(p);
+  return i < 0 ? truncation_m_ : values_[static_cast<std::size_t>(i)];
 }
 
 std::vector<OrientedPoint> OrientTowards(const std::vector<Eigen::Vector2d>& points,

@@ -84,6 +84,9 @@ class DistanceGrid {
   }
 
  private:
+  // Row-major index of the cell holding p; -1 outside the grid.
+  long CellIndex(const Eigen::Vector2d& p) const;
+
   int rows_ = 0, cols_ = 0;
   double resolution_m_ = 0.05, truncation_m_ = 1.0;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();

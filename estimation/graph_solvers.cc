@@ -28,26 +28,38 @@ T WrapAngle(const T& a) {
 
 using Interpolator = ceres::BiCubicInterpolator<ceres::Grid2D<double, 1>>;
 
+// D(q), a point's distance to the map: the grid's exact distance to its nearest outline piece
+// (DistanceGrid::Distance) or, with `bicubic`, the bicubic interpolation of the cell values
+// (Hess et al. 2016); dD/dq in *gradient when not null.
+struct MapDistance {
+  const DistanceGrid& grid;
+  const Interpolator& field;
+  bool bicubic;
+  double operator()(const Eigen::Vector2d& q, Eigen::Vector2d* gradient = nullptr) const {
+    if (!bicubic) return grid.Distance(q, gradient);
+    const Eigen::Vector2d cell = grid.CellCoordinates(q);
+    double d = 0.0, d_row = 0.0, d_col = 0.0;
+    field.Evaluate(cell.x(), cell.y(), &d, &d_row, &d_col);
+    if (gradient != nullptr) *gradient = Eigen::Vector2d(d_col, d_row) / grid.resolution();
+    return d;
+  }
+};
+
 // The distances of all the scan's points to the map in one block (one block of n rows costs far
-// less in Ceres than n blocks of one): D is the grid's exact distance to its nearest outline
-// piece (DistanceGrid::Distance) or, with `bicubic`, the bicubic interpolation of the cell values
-// (Hess et al. 2016). Residual i is the Huber-robustified distance
+// less in Ceres than n blocks of one), D a MapDistance. Residual i is the Huber-robustified
+// distance
 //   r_i = sqrt(rho(e_i^2)),  e_i = D(T p_i) / sigma,  rho(s) = s (s <= k^2), 2 k sqrt(s) - k^2,
 // so that sum r_i^2 is the robust cost, with the analytic Jacobian
-//   dr_i/dT = rho'(e_i^2) e_i / r_i * dD/dq * [I, R'(theta) p_i] / sigma,
-// where the interpolator gives dD/d(row, col).
+//   dr_i/dT = rho'(e_i^2) e_i / r_i * dD/dq * [I, R'(theta) p_i] / sigma.
 class PointsToMapCost : public ceres::CostFunction {
  public:
-  PointsToMapCost(const Interpolator& field, const DistanceGrid& grid,
-                  const std::vector<Eigen::Vector2d>& points, double sigma, double scale,
-                  bool cauchy, bool bicubic)
-      : field_(field),
-        grid_(grid),
+  PointsToMapCost(const MapDistance& distance, const std::vector<Eigen::Vector2d>& points,
+                  double sigma, double scale, bool cauchy)
+      : distance_(distance),
         points_(points),
         inv_sigma_(1.0 / sigma),
         huber_(scale),
-        cauchy_(cauchy),
-        bicubic_(bicubic) {
+        cauchy_(cauchy) {
     set_num_residuals(static_cast<int>(points.size()));
     mutable_parameter_block_sizes()->push_back(3);
   }
@@ -59,17 +71,8 @@ class PointsToMapCost : public ceres::CostFunction {
     for (std::size_t i = 0; i < points_.size(); ++i) {
       const Eigen::Vector2d& p = points_[i];
       const Eigen::Vector2d q(pose[0] + c * p.x() - s * p.y(), pose[1] + s * p.x() + c * p.y());
-      double d = 0.0;
       Eigen::Vector2d gradient;  // dD/dq
-      if (bicubic_) {
-        const Eigen::Vector2d cell = grid_.CellCoordinates(q);
-        double d_row = 0.0, d_col = 0.0;
-        field_.Evaluate(cell.x(), cell.y(), &d, &d_row, &d_col);
-        gradient = Eigen::Vector2d(d_col, d_row) / grid_.resolution();
-      } else {
-        d = grid_.Distance(q, &gradient);
-      }
-      const double e = d * inv_sigma_;
+      const double e = distance_(q, &gradient) * inv_sigma_;
       double r = e, dr_de = 1.0;
       const double a = std::abs(e);
       if (cauchy_) {
@@ -95,11 +98,10 @@ class PointsToMapCost : public ceres::CostFunction {
   }
 
  private:
-  const Interpolator& field_;
-  const DistanceGrid& grid_;
+  const MapDistance& distance_;
   const std::vector<Eigen::Vector2d>& points_;
   double inv_sigma_, huber_;
-  bool cauchy_, bicubic_;
+  bool cauchy_;
 };
 
 // sqrt(I) (target^-1 T) for a pose prior (registration) or a relative pose (graph edge, with
@@ -159,12 +161,14 @@ ceres::Solver::Summary SolveSilently(ceres::Problem* problem, ceres::LinearSolve
   return summary;
 }
 
-// J^T J of one residual block of a problem with one 3-parameter block.
-Eigen::Matrix3d GaussNewtonHessian(ceres::Problem* problem, ceres::ResidualBlockId block) {
+// J^T J of one residual block of a problem with one 3-parameter block, and the block's cost
+// (half its squared residuals, Ceres' convention) in *cost when not null.
+Eigen::Matrix3d GaussNewtonHessian(ceres::Problem* problem, ceres::ResidualBlockId block,
+                                   double* cost = nullptr) {
   ceres::CRSMatrix j;
   ceres::Problem::EvaluateOptions options;
   options.residual_blocks = {block};
-  problem->Evaluate(options, nullptr, nullptr, nullptr, &j);
+  problem->Evaluate(options, cost, nullptr, nullptr, &j);
   Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
   for (int r = 0; r < j.num_rows; ++r) {
     Eigen::Vector3d row = Eigen::Vector3d::Zero();
@@ -193,13 +197,13 @@ RegistrationResult RegisterPoints(const std::vector<Eigen::Vector2d>& points,
   }
   const ceres::Grid2D<double, 1> data(grid.values().data(), 0, grid.rows(), 0, grid.cols());
   const Interpolator field(data);
+  const MapDistance distance{grid, field, options.bicubic_field};
   double pose[3] = {prior.x(), prior.y(), prior.theta()};
   ceres::Problem problem;
-  const ceres::ResidualBlockId points_block =
-      problem.AddResidualBlock(new PointsToMapCost(field, grid, seen, options.point_sigma_m,
-                                                   options.loss_scale_m / options.point_sigma_m,
-                                                   options.cauchy_loss, options.bicubic_field),
-                               nullptr, pose);
+  const ceres::ResidualBlockId points_block = problem.AddResidualBlock(
+      new PointsToMapCost(distance, seen, options.point_sigma_m,
+                          options.loss_scale_m / options.point_sigma_m, options.cauchy_loss),
+      nullptr, pose);
   const Eigen::Matrix3d prior_sqrt_information =
       prior_covariance != nullptr ? SqrtInformation(prior_covariance->inverse())
                                   : Eigen::Matrix3d(Eigen::Vector3d(1.0 / options.prior_sigma_m,
@@ -226,28 +230,16 @@ RegistrationResult RegisterPoints(const std::vector<Eigen::Vector2d>& points,
                  static_cast<long long>(std::floor(cell.y())));
   }
   const double independent = static_cast<double>(cells.size()) / static_cast<double>(seen.size());
-  {
-    ceres::Problem::EvaluateOptions evaluate;
-    evaluate.residual_blocks = {points_block};
-    double cost = 0.0;
-    problem.Evaluate(evaluate, &cost, nullptr, nullptr, nullptr);
-    result.points_cost = 2.0 * cost * independent;
-  }
-  result.covariance = (independent * GaussNewtonHessian(&problem, points_block) +
-                       GaussNewtonHessian(&problem, prior_block))
-                          .inverse();
+  double points_cost = 0.0;
+  const Eigen::Matrix3d points_hessian = GaussNewtonHessian(&problem, points_block, &points_cost);
+  result.points_cost = 2.0 * points_cost * independent;
+  result.covariance =
+      (independent * points_hessian + GaussNewtonHessian(&problem, prior_block)).inverse();
 
   int inliers = 0;
   double sum_sq = 0.0;
   for (const auto& p : seen) {
-    const Eigen::Vector2d q = result.pose * p;
-    double d = 0.0;
-    if (options.bicubic_field) {
-      const Eigen::Vector2d cell = grid.CellCoordinates(q);
-      field.Evaluate(cell.x(), cell.y(), &d);
-    } else {
-      d = grid.Distance(q);
-    }
+    const double d = distance(result.pose * p);
     if (std::abs(d) < options.inlier_distance_m) {
       ++inliers;
       sum_sq += d * d;
