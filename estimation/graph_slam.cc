@@ -158,16 +158,16 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   kf.points = std::move(points);
   // The scan's view: from the sensor to every beam's end (a hit, seen_margin_m behind it so that
   // points just behind a wall count; or, for a no-return, clipped beams included, seen_margin_m
-  // short of the range: the view's edge is rasterised to whole cells, and a wall just beyond the
-  // range, seen by the next scan, must not land in cells the map calls seen and empty, where
-  // its points would be pulled towards the nearest known outline).
+  // short of the range (the laser's or max_range_m, whichever is shorter: beams clipped by
+  // max_range_m are no-returns): the view's edge is rasterised to whole cells, and a wall just
+  // beyond the range, seen by the next scan, must not land in cells the map calls seen and empty,
+  // where its points would be pulled towards the nearest known outline).
   const double range = options_.max_range_m > 0 ? options_.max_range_m : scan.max_range_m;
   kf.seen.push_back(robot_T_laser.translation());
   for (std::size_t i = 0; i < scan.size(); ++i) {
     if (!scan.IsHit(i) && !scan.IsNoReturn(i)) continue;
-    const double r = std::min(scan.IsHit(i) ? scan.ranges_m[i] + options_.seen_margin_m
-                                            : scan.max_range_m - options_.seen_margin_m,
-                              range);
+    const double r = scan.IsHit(i) ? std::min(scan.ranges_m[i] + options_.seen_margin_m, range)
+                                   : std::min(range, scan.max_range_m) - options_.seen_margin_m;
     kf.seen.push_back(robot_T_laser * kernel::PolarToCartesian({r, scan.BeamAngle(i)}));
   }
   kf.in_map = std::none_of(keyframes_.begin(), keyframes_.end(), [&](const Keyframe& o) {
@@ -309,19 +309,27 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
     for (const auto& p : q.points) query.push_back(k_T_i * p);
   }
   query = Thinned(query, options_.loop_resolution_m);
-  const int newest = k - options_.loop_min_gap_keyframes;
+  const int first = candidate - options_.loop_target_keyframes;
+  const int last =
+      std::min(candidate + options_.loop_target_keyframes, k - options_.loop_min_gap_keyframes);
   const DistanceGrid target =
-      DistanceGrid::Build(WorldRaster(candidate - options_.loop_target_keyframes,
-                                      std::min(candidate + options_.loop_target_keyframes, newest)),
-                          options_.loop_resolution_m, options_.truncation_m, options_.truncation_m);
+      DistanceGrid::Build(WorldRaster(first, last), options_.loop_resolution_m,
+                          options_.truncation_m, options_.truncation_m, WorldViews(first, last));
   const LikelihoodPyramid pyramid(target, options_.loop_sigma_m, options_.loop_levels);
   const double window_rad =
       std::min(options_.loop_window_rad + options_.loop_window_rad_per_m * travelled,
                options_.loop_max_window_rad);
-  const CorrelativeMatch match =
-      SearchCorrelative(query, pyramid, kf.pose, std::min(radius, options_.loop_max_window_m),
-                        window_rad, options_.loop_min_score, options_.loop_ambiguity_ratio);
-  if (!match.found) {
+  const CorrelativeMatch match = SearchCorrelative(
+      query, pyramid, kf.pose, std::min(radius, options_.loop_max_window_m), window_rad,
+      options_.loop_min_score * options_.loop_min_overlap, options_.loop_ambiguity_ratio);
+  std::vector<Eigen::Vector2d> overlapping;
+  if (match.found)
+    std::copy_if(query.begin(), query.end(), std::back_inserter(overlapping),
+                 [&](const Eigen::Vector2d& p) { return target.Known(match.pose * p); });
+  const double overlap =
+      static_cast<double>(overlapping.size()) / static_cast<double>(query.size());
+  if (!match.found || overlap < options_.loop_min_overlap ||
+      match.score < options_.loop_min_score * overlap) {
     ++loops_.rejected_score;
     return std::nullopt;
   }
@@ -330,7 +338,7 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
     return std::nullopt;
   }
   const RegistrationResult fine =
-      RegisterPoints(query, target, match.pose, options_.loop_registration);
+      RegisterPoints(overlapping, target, match.pose, options_.loop_registration);
   if (!fine.accepted || fine.rms_m > options_.loop_max_rms_m) {
     ++loops_.rejected_registration;
     return std::nullopt;
@@ -439,6 +447,8 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("loop_sigma_m", &loop_sigma_m, "correlative likelihood sigma, m");
   v.Field("loop_levels", &loop_levels, "correlative search resolution levels");
   v.Field("loop_min_score", &loop_min_score, "closure test: correlative score at least");
+  v.Field("loop_min_overlap", &loop_min_overlap,
+          "closure test: fraction of the query's points where the target has seen, at least");
   v.Field("loop_ambiguity_ratio", &loop_ambiguity_ratio,
           "closure refused when a distinct pose scores this fraction of the best");
   v.Field("loop_max_rms_m", &loop_max_rms_m, "closure test: registration inlier RMS at most, m");
@@ -482,6 +492,7 @@ kernel::Status GraphSlamOptions::Validate() const {
       !(loop_resolution_m > 0) || !(truncation_m > loop_resolution_m))
     return kernel::Status::Error("loop radii, windows and sigma must be positive and ordered");
   if (!(loop_min_score > 0 && loop_min_score <= 1) ||
+      !(loop_min_overlap > 0 && loop_min_overlap <= 1) ||
       !(loop_ambiguity_ratio > 0 && loop_ambiguity_ratio <= 1) || !(loop_max_rms_m > 0) ||
       !(loop_max_chi2 > 0) || !(loop_sigma_floor_m > 0) || !(loop_sigma_floor_rad > 0))
     return kernel::Status::Error("loop tests: score and ratio in (0, 1], bounds positive");

@@ -106,12 +106,17 @@ struct GraphSlamOptions {
   double loop_resolution_m = 0.1;
   double loop_sigma_m = 0.05;
   int loop_levels = 5;
-  // Tests: correlative score at least loop_min_score; refused as ambiguous when a distinct pose
-  // scores at least loop_ambiguity_ratio of the best; the fine registration passes
+  // Tests: at the best pose, at least loop_min_overlap of the query's points fall where the
+  // target has seen, and their mean likelihood (the correlative score over those points) is at
+  // least loop_min_score: the query's points where the target never looked say nothing for or
+  // against the match (a revisit from the other direction sees walls the target did not);
+  // refused as ambiguous when a distinct pose scores at least loop_ambiguity_ratio of the best;
+  // the fine registration passes
   // loop_registration's quality test with an inlier RMS at most loop_max_rms_m; after the
   // optimisation the closure's whitened squared residual is at most loop_max_chi2 (agreement
   // with the other edges; chi^2(3) 99.9 %).
   double loop_min_score = 0.55;
+  double loop_min_overlap = 0.3;
   double loop_ambiguity_ratio = 0.9;
   double loop_max_rms_m = 0.05;
   double loop_max_chi2 = 16.27;

@@ -35,9 +35,10 @@ struct RegistrationOptions {
   double prior_sigma_rad = 0.1;  // prior on the heading, rad
   int max_iterations = 20;
   // Points where the map has not seen (DistanceGrid::Known) carry no residual. Quality test: at
-  // least min_points points where the map has seen, of which points within inlier_distance_m of
-  // the map make up at least min_inlier_fraction, and the result moved from the
-  // prior by at most max_correction_m / max_correction_rad.
+  // least min_points points where the map has seen; points within inlier_distance_m of the map
+  // make up at least min_inlier_fraction of all the points (a scan mostly outside what the map
+  // saw is not trusted); the result moved from the prior by at most max_correction_m /
+  // max_correction_rad.
   double inlier_distance_m = 0.1;
   double min_inlier_fraction = 0.5;
   int min_points = 20;
@@ -55,7 +56,7 @@ struct RegistrationResult {
   // `covariance`): in chi^2 units, so that two poses' costs differ by a chi^2 value.
   double points_cost = 0.0;
   double rms_m = 0.0;            // RMS distance of the inliers to the map
-  double inlier_fraction = 0.0;  // of the points where the map has seen, those near it
+  double inlier_fraction = 0.0;  // of all the points, those near the map
   int iterations = 0;
   bool converged = false;
   bool accepted = false;  // passed the quality test
