@@ -200,8 +200,9 @@ class GraphSlamMethod : public SlamMethod {
   kernel::Status health() const override { return slam_.health(); }
   std::size_t MapSize() const override { return slam_.num_map_control_points(); }
   std::size_t MapCurves() const override { return slam_.num_map_curves(); }
-  // An exploration node becomes a keyframe.
-  void AtNode(const kernel::LocalSafeRegion& /*lsr*/) override { slam_.ForceKeyframe(); }
+  // An exploration node becomes a keyframe and moves with it.
+  void AtNode(const kernel::LocalSafeRegion& /*lsr*/) override { slam_.MarkNode(); }
+  std::vector<kernel::Pose2> NodePoses() const override { return slam_.NodePoses(); }
   std::string MapDescription() const override {
     return fmt::format("{} keyframes, {} loop closures, {} curves", slam_.keyframes().size(),
                        slam_.loops().accepted, slam_.num_map_curves());

@@ -27,7 +27,9 @@ double PieceDistance(const Eigen::Vector2d& v, const Eigen::Vector2d& n, double 
   const Eigen::Vector2d t(-n.y(), n.x());
   const double across = n.dot(v), along_signed = t.dot(v);
   const double along = std::max(0.0, std::abs(along_signed) - half);
-  const double d = std::hypot(across, along);
+  // sqrt rather than std::hypot: the terms are metres, far from overflow, and hypot took 6 % of a
+  // graph SLAM run on intel.
+  const double d = std::sqrt(across * across + along * along);
   const double sign = across < 0 ? -1.0 : 1.0;
   if (gradient != nullptr)
     *gradient = along <= 0.0 || d < 1e-12

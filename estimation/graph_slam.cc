@@ -194,6 +194,8 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
     edge.information = Diagonal(sigma_m, sigma_rad).inverse();
     graph_.AddEdge(edge);
   }
+  for (NodeAnchor& node : nodes_)
+    if (node.keyframe < 0) node = {k, kf.pose.Between(node.pose)};
   keyframes_.push_back(std::move(kf));
   submap_dirty_ = true;
   timer.reset();
@@ -374,6 +376,21 @@ std::vector<kernel::Pose2> GraphSlam::Trajectory() const {
   poses.reserve(scans_.size());
   for (const ScanAnchor& s : scans_)
     poses.push_back(keyframes_[static_cast<std::size_t>(s.keyframe)].pose * s.offset);
+  return poses;
+}
+
+void GraphSlam::MarkNode() {
+  nodes_.push_back({-1, pose_});
+  force_keyframe_ = true;
+}
+
+std::vector<kernel::Pose2> GraphSlam::NodePoses() const {
+  std::vector<kernel::Pose2> poses;
+  poses.reserve(nodes_.size());
+  for (const NodeAnchor& node : nodes_)
+    poses.push_back(node.keyframe < 0
+                        ? node.pose
+                        : keyframes_[static_cast<std::size_t>(node.keyframe)].pose * node.pose);
   return poses;
 }
 

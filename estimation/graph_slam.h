@@ -116,7 +116,7 @@ struct GraphSlamOptions {
   // optimisation the closure's whitened squared residual is at most loop_max_chi2 (agreement
   // with the other edges; chi^2(3) 99.9 %).
   double loop_min_score = 0.55;
-  double loop_min_overlap = 0.3;
+  double loop_min_overlap = 0.5;
   double loop_ambiguity_ratio = 0.9;
   double loop_max_rms_m = 0.05;
   double loop_max_chi2 = 16.27;
@@ -163,8 +163,11 @@ class GraphSlam {
 
   void Predict(const kernel::Pose2& odometry_increment);
   void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser);
-  // The next scan makes a keyframe (an exploration node).
-  void ForceKeyframe() { force_keyframe_ = true; }
+  // An exploration node at the current estimate: the next scan makes a keyframe, to which the
+  // node is anchored, so that the node moves with the keyframe when the graph is optimised.
+  void MarkNode();
+  // The nodes marked so far, where the graph now puts them.
+  std::vector<kernel::Pose2> NodePoses() const;
   // The data has ended: optimises the pending closures and the whole graph once more.
   void Finish();
 
@@ -219,6 +222,13 @@ class GraphSlam {
   std::unique_ptr<LikelihoodPyramid> submap_scores_;  // of submap_
   bool submap_dirty_ = true;
   bool force_keyframe_ = false;
+  // A marked node: keyframe_T_node of its keyframe, or (keyframe -1, until the next keyframe is
+  // made) its pose in the world.
+  struct NodeAnchor {
+    int keyframe = -1;
+    kernel::Pose2 pose;
+  };
+  std::vector<NodeAnchor> nodes_;
   double travelled_m_ = 0.0;
   kernel::Pose2 since_update_;  // odometry since the last registered scan
   double closure_at_m_ = 0.0;   // travelled when the last closure was accepted

@@ -28,6 +28,10 @@ class Localization {
   // SLAM methods may use it (the topological SLAM associates against the map curves in the
   // newest node's LSR and extends its map at the nodes).
   virtual void AtNode(const kernel::LocalSafeRegion& /*lsr*/) {}
+  // Where the localisation now puts the nodes of the AtNode calls so far, in order, when it
+  // revises the past (a pose graph moves them when a loop closes): the explorer then moves its
+  // nodes, their LSRs and frontiers and the paths between them. Empty: the nodes stay.
+  virtual std::vector<kernel::Pose2> NodePoses() const { return {}; }
 };
 
 // The simulator's ground truth; Perception::true_pose must be present.

@@ -127,6 +127,17 @@ double SegmentClearance(const LocalSafeRegion& region, const Eigen::Vector2d& a,
   return std::sqrt(best_sq);
 }
 
+LocalSafeRegion LocalSafeRegion::Transformed(const Pose2& moved_T_world) const {
+  LocalSafeRegion moved = *this;
+  moved.center_ = moved_T_world * center_;
+  for (auto& p : moved.boundary_) p = moved_T_world * p;
+  for (auto& arc : moved.frontiers_) {
+    arc.start_angle_rad += moved_T_world.theta();
+    arc.end_angle_rad += moved_T_world.theta();
+  }
+  return moved;
+}
+
 bool LocalSafeRegion::Contains(const Eigen::Vector2d& p) const {
   if (boundary_.size() < 3) return false;
   std::vector<CgalPoint> polygon;

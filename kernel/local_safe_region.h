@@ -50,6 +50,9 @@ class LocalSafeRegion {
   const std::vector<FrontierArc>& frontiers() const { return frontiers_; }
   // True when p lies inside or on the boundary; exact (CGAL's filtered predicates).
   bool Contains(const Eigen::Vector2d& p) const;
+  // The region moved by the rigid transform `moved_T_world` (world frame to world frame): its
+  // centre and boundary mapped, its arcs' angles turned by its heading.
+  LocalSafeRegion Transformed(const Pose2& moved_T_world) const;
   // The point of a frontier arc at `angle_rad` (on the circle of radius r).
   Eigen::Vector2d ArcPoint(double angle_rad) const;
   // True when the scan covered the full circle (the boundary has no vertex at the sensor).

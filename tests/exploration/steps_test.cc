@@ -214,6 +214,61 @@ TEST(Session, FrontiersShorterThanTheMinimumAreDropped) {
   EXPECT_EQ(kept[1].start_angle_rad, 2.0);
 }
 
+// A localisation that revises the past on demand, as a pose graph does when a loop closes.
+class RevisingLocalization : public GroundTruthLocalization {
+ public:
+  std::vector<Pose2> NodePoses() const override { return revised; }
+  std::vector<Pose2> revised;
+};
+
+TEST(Session, NodesFollowTheLocalisationsRevisedPoses) {
+  StillRobot robot;
+  RevisingLocalization localization;
+  const ExplorerOptions options;
+  Session session("reg", options, &robot, &localization);
+  graph::ExplorationGraph& g = session.graph();
+  const kernel::Scan wall = Circle([](double angle) {
+    const double s = std::sin(angle);
+    return s > 1e-9 ? 1.0 / s : kernel::Scan::kNoReturn;
+  });
+  for (const Pose2& at : {Pose2(0, 0, 0), Pose2(2, 0, 0)}) {
+    const graph::Vertex v = graph::AddNode(&g, at);
+    g[v].lsr = kernel::LocalSafeRegion::FromScan(wall, at, options.lsr_radius_m);
+    g[v].frontiers = session.LongEnough(g[v].lsr.frontiers());
+  }
+  graph::AddEdge(&g, 0, 1, {{0, 0}, {1, 0.5}, {2, 0}});
+  const graph::NodeData before = g[1];
+
+  session.FollowRevisedNodes();  // no revision: nothing moves
+  EXPECT_EQ(g[1].configuration.translation(), before.configuration.translation());
+
+  const Pose2 a(0.1, 0.0, 0.0), b(2.0, 0.2, 0.1);
+  localization.revised = {a, b};
+  session.FollowRevisedNodes();
+  EXPECT_EQ(g[0].configuration.translation(), a.translation());
+  EXPECT_NEAR(g[1].configuration.theta(), 0.1, 1e-12);
+  // Node 1's LSR and frontiers turned and moved with it: a point 0.5 m in front of it stays
+  // free, 0.5 m in front of where it is now; the point beyond its wall stays outside.
+  const Pose2 moved = b * before.configuration.Inverse();
+  EXPECT_NEAR((g[1].lsr.center() - b.translation()).norm(), 0.0, 1e-12);
+  EXPECT_TRUE(g[1].lsr.Contains(moved * Eigen::Vector2d(2.0, 0.5)));
+  EXPECT_FALSE(g[1].lsr.Contains(moved * Eigen::Vector2d(2.0, 1.5)));
+  ASSERT_EQ(g[1].frontiers.size(), before.frontiers.size());
+  for (std::size_t i = 0; i < before.frontiers.size(); ++i)
+    EXPECT_NEAR(g[1].frontiers[i].start_angle_rad, before.frontiers[i].start_angle_rad + 0.1,
+                1e-12);
+  // The path joins the moved nodes; its middle point moved by the mean of the two corrections.
+  const auto [edge, exists] = boost::edge(0, 1, g);
+  ASSERT_TRUE(exists);
+  const std::vector<Eigen::Vector2d>& path = g[edge].path;
+  EXPECT_NEAR((path.front() - a.translation()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((path.back() - b.translation()).norm(), 0.0, 1e-12);
+  const Eigen::Vector2d middle =
+      0.5 * (Pose2(0.1, 0, 0) * Eigen::Vector2d(1, 0.5)) + 0.5 * (moved * Eigen::Vector2d(1, 0.5));
+  EXPECT_NEAR((path[1] - middle).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(g[edge].length_m, (path[1] - path[0]).norm() + (path[2] - path[1]).norm(), 1e-12);
+}
+
 TEST(ExplorationGraph, NodesEdgesAndWaypoints) {
   graph::ExplorationGraph g;
   const graph::Vertex a = graph::AddNode(&g, Pose2(0, 0, 0));

@@ -252,6 +252,41 @@ TEST(RunExploration, TheLsrRadiusIsTheExplorersToo) {
     EXPECT_EQ(outcome.run.graph[v].lsr.radius(), 2.0);
 }
 
+// With the graph SLAM as localisation the explorer plans on the optimised graph: after the run
+// (and its closures) every node sits where the pose graph puts it, and every stored path still
+// joins its two nodes.
+TEST(RunExploration, TheGraphSlamMovesTheExplorersNodes) {
+  const sim::World world = *sim::BuiltinWorld("complex");
+  ExploreSetup setup;
+  setup.localization = "graph";
+  const ExploreOutcome outcome = RunExploration(world, setup);
+  ASSERT_TRUE(outcome.error.empty()) << outcome.error;
+  const std::vector<Pose2> nodes = outcome.slam_method()->NodePoses();
+  const graph::ExplorationGraph& g = outcome.run.graph;
+  ASSERT_EQ(nodes.size(), boost::num_vertices(g));
+  // How far the optimisations moved the nodes from where they were placed (the online estimate
+  // when each was perceived).
+  double moved = 0.0;
+  for (graph::Vertex v = 0; v < nodes.size(); ++v) {
+    EXPECT_NEAR((g[v].configuration.translation() - nodes[v].translation()).norm(), 0.0, 1e-9);
+    EXPECT_NEAR((g[v].lsr.center() - nodes[v].translation()).norm(), 0.0, 1e-9);
+    const auto placed =
+        std::find_if(outcome.run.trace.begin(), outcome.run.trace.end(),
+                     [&](const auto& t) { return t.time_s >= outcome.run.nodes[v].time_s; });
+    ASSERT_NE(placed, outcome.run.trace.end());
+    moved = std::max(moved, (placed->estimate.translation() - nodes[v].translation()).norm());
+  }
+  EXPECT_GT(moved, 0.02);
+  for (const auto e : boost::make_iterator_range(boost::edges(g))) {
+    const auto& path = g[e].path;
+    if (path.size() < 2) continue;
+    const auto a = std::min(boost::source(e, g), boost::target(e, g));
+    const auto b = std::max(boost::source(e, g), boost::target(e, g));
+    EXPECT_NEAR((path.front() - nodes[a].translation()).norm(), 0.0, 1e-9);
+    EXPECT_NEAR((path.back() - nodes[b].translation()).norm(), 0.0, 1e-9);
+  }
+}
+
 }  // namespace
 }  // namespace splam::loop
 
