@@ -80,7 +80,7 @@ void BM_GraphLoopSearch(benchmark::State& state) {
     const DistanceGrid grid = DistanceGrid::Build(target, 0.1, 0.5, 0.5);
     const LikelihoodPyramid pyramid(grid, 0.05, 5);
     const CorrelativeMatch m = SearchCorrelative(
-        query, pyramid, guess, 3.0, 0.35, options.loop_min_score * options.loop_min_overlap, 0.9);
+        query, pyramid, guess, 3.0, 0.35, options.loop.min_score * options.loop.min_overlap, 0.9);
     benchmark::DoNotOptimize(m.pose);
   }
   state.counters["query_points"] = static_cast<double>(query.size());

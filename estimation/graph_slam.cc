@@ -115,7 +115,7 @@ RegistrationResult GraphSlam::RegisterScan(const std::vector<Eigen::Vector2d>& p
   // correlative search around the prediction finds the basin, the registration refines it.
   ++recoveries_;
   if (!submap_scores_)
-    submap_scores_ = std::make_unique<LikelihoodPyramid>(submap_, options_.loop_sigma_m, 3);
+    submap_scores_ = std::make_unique<LikelihoodPyramid>(submap_, options_.loop.sigma_m, 3);
   const CorrelativeMatch match =
       SearchCorrelative(Thinned(points, options_.grid_resolution_m), *submap_scores_, pose_,
                         options_.recovery_window_m, options_.recovery_window_rad,
@@ -199,7 +199,7 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   keyframes_.push_back(std::move(kf));
   submap_dirty_ = true;
   timer.reset();
-  if (options_.loop_closure) SearchLoopClosures(k);
+  if (options_.loop.enabled) SearchLoopClosures(k);
 }
 
 std::vector<OrientedPoint> GraphSlam::WorldRaster(int first, int last) const {
@@ -235,12 +235,12 @@ void GraphSlam::RebuildSubmap() {
 }
 
 void GraphSlam::SearchLoopClosures(int k) {
-  const int newest_candidate = k - options_.loop_min_gap_keyframes;
+  const int newest_candidate = k - options_.loop.min_gap_keyframes;
   if (newest_candidate < 0) return;
   const Keyframe& kf = keyframes_[static_cast<std::size_t>(k)];
   const double since = travelled_m_ - closure_at_m_;
-  const double radius = std::min(options_.loop_radius_m + options_.loop_radius_per_m * since,
-                                 options_.loop_max_radius_m);
+  const double radius = std::min(options_.loop.radius_m + options_.loop.radius_per_m * since,
+                                 options_.loop.max_radius_m);
   std::vector<std::pair<double, int>> near;
   for (int i = 0; i <= newest_candidate; ++i) {
     const double d =
@@ -250,9 +250,9 @@ void GraphSlam::SearchLoopClosures(int k) {
   std::sort(near.begin(), near.end());
   std::vector<int> chosen;
   for (const auto& [d, i] : near) {
-    if (static_cast<int>(chosen.size()) >= options_.loop_candidates) break;
+    if (static_cast<int>(chosen.size()) >= options_.loop.candidates) break;
     if (std::all_of(chosen.begin(), chosen.end(),
-                    [&](int c) { return std::abs(c - i) >= options_.loop_min_gap_keyframes; }))
+                    [&](int c) { return std::abs(c - i) >= options_.loop.min_gap_keyframes; }))
       chosen.push_back(i);
   }
   for (int c : chosen) {
@@ -278,7 +278,7 @@ void GraphSlam::FlushClosures() {
   // those that do not are removed and the graph optimised again from where it was.
   std::vector<int> disagree;
   for (int e = first; e < static_cast<int>(graph_.edges().size()); ++e)
-    if (graph_.EdgeChi2(graph_.edges()[static_cast<std::size_t>(e)]) > options_.loop_max_chi2)
+    if (graph_.EdgeChi2(graph_.edges()[static_cast<std::size_t>(e)]) > options_.loop.max_chi2)
       disagree.push_back(e);
   loops_.accepted +=
       static_cast<long>(graph_.edges().size()) - first - static_cast<long>(disagree.size());
@@ -305,33 +305,33 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
   const Keyframe& kf = keyframes_[static_cast<std::size_t>(k)];
   const kernel::Pose2 kf_inverse = kf.pose.Inverse();
   std::vector<Eigen::Vector2d> query;
-  for (int i = std::max(0, k - options_.loop_query_keyframes); i <= k; ++i) {
+  for (int i = std::max(0, k - options_.loop.query_keyframes); i <= k; ++i) {
     const Keyframe& q = keyframes_[static_cast<std::size_t>(i)];
     const kernel::Pose2 k_T_i = kf_inverse * q.pose;
     for (const auto& p : q.points) query.push_back(k_T_i * p);
   }
-  query = Thinned(query, options_.loop_resolution_m);
-  const int first = candidate - options_.loop_target_keyframes;
+  query = Thinned(query, options_.loop.resolution_m);
+  const int first = candidate - options_.loop.target_keyframes;
   const int last =
-      std::min(candidate + options_.loop_target_keyframes, k - options_.loop_min_gap_keyframes);
+      std::min(candidate + options_.loop.target_keyframes, k - options_.loop.min_gap_keyframes);
   const DistanceGrid target =
-      DistanceGrid::Build(WorldRaster(first, last), options_.loop_resolution_m,
+      DistanceGrid::Build(WorldRaster(first, last), options_.loop.resolution_m,
                           options_.truncation_m, options_.truncation_m, WorldViews(first, last));
-  const LikelihoodPyramid pyramid(target, options_.loop_sigma_m, options_.loop_levels);
+  const LikelihoodPyramid pyramid(target, options_.loop.sigma_m, options_.loop.levels);
   const double window_rad =
-      std::min(options_.loop_window_rad + options_.loop_window_rad_per_m * travelled,
-               options_.loop_max_window_rad);
+      std::min(options_.loop.window_rad + options_.loop.window_rad_per_m * travelled,
+               options_.loop.max_window_rad);
   const CorrelativeMatch match = SearchCorrelative(
-      query, pyramid, kf.pose, std::min(radius, options_.loop_max_window_m), window_rad,
-      options_.loop_min_score * options_.loop_min_overlap, options_.loop_ambiguity_ratio);
+      query, pyramid, kf.pose, std::min(radius, options_.loop.max_window_m), window_rad,
+      options_.loop.min_score * options_.loop.min_overlap, options_.loop.ambiguity_ratio);
   std::vector<Eigen::Vector2d> overlapping;
   if (match.found)
     std::copy_if(query.begin(), query.end(), std::back_inserter(overlapping),
                  [&](const Eigen::Vector2d& p) { return target.Known(match.pose * p); });
   const double overlap =
       static_cast<double>(overlapping.size()) / static_cast<double>(query.size());
-  if (!match.found || overlap < options_.loop_min_overlap ||
-      match.score < options_.loop_min_score * overlap) {
+  if (!match.found || overlap < options_.loop.min_overlap ||
+      match.score < options_.loop.min_score * overlap) {
     ++loops_.rejected_score;
     return std::nullopt;
   }
@@ -340,8 +340,8 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
     return std::nullopt;
   }
   const RegistrationResult fine =
-      RegisterPoints(overlapping, target, match.pose, options_.loop_registration);
-  if (!fine.accepted || fine.rms_m > options_.loop_max_rms_m) {
+      RegisterPoints(overlapping, target, match.pose, options_.loop.registration);
+  if (!fine.accepted || fine.rms_m > options_.loop.max_rms_m) {
     ++loops_.rejected_registration;
     return std::nullopt;
   }
@@ -356,7 +356,7 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
   rotation.topLeftCorner<2, 2>() = fine.pose.Rotation().transpose();
   const Eigen::Matrix3d covariance =
       rotation * fine.covariance * rotation.transpose() +
-      Diagonal(options_.loop_sigma_floor_m, options_.loop_sigma_floor_rad);
+      Diagonal(options_.loop.sigma_floor_m, options_.loop.sigma_floor_rad);
   edge.information = covariance.inverse();
   return edge;
 }
@@ -404,7 +404,7 @@ std::vector<MapSpline> GraphSlam::MapSplines() const {
   return splines;
 }
 
-RegistrationOptions GraphSlamOptions::LoopRegistrationDefaults() {
+RegistrationOptions LoopClosureOptions::RegistrationDefaults() {
   RegistrationOptions o;
   // The correlative search is within a cell and an angular step: a weak prior around it.
   o.prior_sigma_m = 0.1;
@@ -413,6 +413,55 @@ RegistrationOptions GraphSlamOptions::LoopRegistrationDefaults() {
   o.max_correction_m = 0.2;
   o.max_correction_rad = 0.1;
   return o;
+}
+
+void LoopClosureOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("enabled", &enabled, "search for loop closures");
+  v.Field("min_gap_keyframes", &min_gap_keyframes,
+          "candidates are at least this many keyframes older");
+  v.Field("radius_m", &radius_m, "candidate radius right after a closure, m");
+  v.Field("radius_per_m", &radius_per_m,
+          "candidate radius growth per metre travelled since the last closure");
+  v.Field("max_radius_m", &max_radius_m, "candidate radius at most, m");
+  v.Field("candidates", &candidates, "candidates searched per keyframe");
+  v.Field("max_window_m", &max_window_m, "search window half-width at most, m");
+  v.Field("window_rad", &window_rad, "search heading half-width after a closure, rad");
+  v.Field("window_rad_per_m", &window_rad_per_m,
+          "heading half-width growth per metre travelled, rad/m");
+  v.Field("max_window_rad", &max_window_rad, "heading half-width at most, rad");
+  v.Field("query_keyframes", &query_keyframes, "query: the new keyframe and this many before it");
+  v.Field("target_keyframes", &target_keyframes,
+          "target: the candidate and this many keyframes either side");
+  v.Field("resolution_m", &resolution_m, "loop search grid cell size, m");
+  v.Field("sigma_m", &sigma_m, "correlative likelihood sigma, m");
+  v.Field("levels", &levels, "correlative search resolution levels");
+  v.Field("min_score", &min_score, "closure test: correlative score at least");
+  v.Field("min_overlap", &min_overlap,
+          "closure test: fraction of the query's points where the target has seen, at least");
+  v.Field("ambiguity_ratio", &ambiguity_ratio,
+          "closure refused when a distinct pose scores this fraction of the best");
+  v.Field("max_rms_m", &max_rms_m, "closure test: registration inlier RMS at most, m");
+  v.Field("max_chi2", &max_chi2,
+          "closure test: whitened squared residual after optimisation at most");
+  v.Nested("registration", "fine registration of a closure", &registration);
+  v.Field("sigma_floor_m", &sigma_floor_m, "closure edge sigma floor, m");
+  v.Field("sigma_floor_rad", &sigma_floor_rad, "closure edge sigma floor, rad");
+}
+
+kernel::Status LoopClosureOptions::Validate() const {
+  if (kernel::Status e = registration.Validate(); !e.ok()) return e;
+  if (min_gap_keyframes < 1 || candidates < 1 || query_keyframes < 0 || target_keyframes < 0 ||
+      levels < 1 || levels > 8)
+    return kernel::Status::Error("min_gap_keyframes, candidates >= 1; levels in [1, 8]");
+  if (!(radius_m > 0) || !(radius_per_m >= 0) || !(max_radius_m >= radius_m) ||
+      !(max_window_m > 0) || !(window_rad >= 0) || !(window_rad_per_m >= 0) ||
+      !(max_window_rad >= window_rad) || !(sigma_m > 0) || !(resolution_m > 0))
+    return kernel::Status::Error("loop radii, windows and sigma must be positive and ordered");
+  if (!(min_score > 0 && min_score <= 1) || !(min_overlap > 0 && min_overlap <= 1) ||
+      !(ambiguity_ratio > 0 && ambiguity_ratio <= 1) || !(max_rms_m > 0) || !(max_chi2 > 0) ||
+      !(sigma_floor_m > 0) || !(sigma_floor_rad > 0))
+    return kernel::Status::Error("loop tests: score and ratio in (0, 1], bounds positive");
+  return kernel::Status::Ok();
 }
 
 void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
@@ -443,37 +492,7 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("edge_sigma_per_m", &edge_sigma_per_m, "keyframe edge sigma: per metre travelled");
   v.Field("edge_sigma_rad", &edge_sigma_rad, "keyframe edge heading sigma: base, rad");
   v.Field("edge_sigma_per_rad", &edge_sigma_per_rad, "keyframe edge heading sigma: per radian");
-  v.Field("loop_closure", &loop_closure, "search for loop closures");
-  v.Field("loop_min_gap_keyframes", &loop_min_gap_keyframes,
-          "candidates are at least this many keyframes older");
-  v.Field("loop_radius_m", &loop_radius_m, "candidate radius right after a closure, m");
-  v.Field("loop_radius_per_m", &loop_radius_per_m,
-          "candidate radius growth per metre travelled since the last closure");
-  v.Field("loop_max_radius_m", &loop_max_radius_m, "candidate radius at most, m");
-  v.Field("loop_candidates", &loop_candidates, "candidates searched per keyframe");
-  v.Field("loop_max_window_m", &loop_max_window_m, "search window half-width at most, m");
-  v.Field("loop_window_rad", &loop_window_rad, "search heading half-width after a closure, rad");
-  v.Field("loop_window_rad_per_m", &loop_window_rad_per_m,
-          "heading half-width growth per metre travelled, rad/m");
-  v.Field("loop_max_window_rad", &loop_max_window_rad, "heading half-width at most, rad");
-  v.Field("loop_query_keyframes", &loop_query_keyframes,
-          "query: the new keyframe and this many before it");
-  v.Field("loop_target_keyframes", &loop_target_keyframes,
-          "target: the candidate and this many keyframes either side");
-  v.Field("loop_resolution_m", &loop_resolution_m, "loop search grid cell size, m");
-  v.Field("loop_sigma_m", &loop_sigma_m, "correlative likelihood sigma, m");
-  v.Field("loop_levels", &loop_levels, "correlative search resolution levels");
-  v.Field("loop_min_score", &loop_min_score, "closure test: correlative score at least");
-  v.Field("loop_min_overlap", &loop_min_overlap,
-          "closure test: fraction of the query's points where the target has seen, at least");
-  v.Field("loop_ambiguity_ratio", &loop_ambiguity_ratio,
-          "closure refused when a distinct pose scores this fraction of the best");
-  v.Field("loop_max_rms_m", &loop_max_rms_m, "closure test: registration inlier RMS at most, m");
-  v.Field("loop_max_chi2", &loop_max_chi2,
-          "closure test: whitened squared residual after optimisation at most");
-  v.Nested("loop_registration", "fine registration of a closure", &loop_registration);
-  v.Field("loop_sigma_floor_m", &loop_sigma_floor_m, "closure edge sigma floor, m");
-  v.Field("loop_sigma_floor_rad", &loop_sigma_floor_rad, "closure edge sigma floor, rad");
+  v.Nested("loop", "loop closure", &loop);
   v.Field("optimize_every_keyframes", &optimize_every_keyframes,
           "closures found are optimised together this many keyframes after the first");
   v.Nested("pose_graph", "pose-graph optimisation", &pose_graph);
@@ -484,7 +503,7 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
 kernel::Status GraphSlamOptions::Validate() const {
   if (kernel::Status e =
           kernel::FirstError(extraction.Validate(), registration.Validate(), odometry.Validate(),
-                             loop_registration.Validate(), pose_graph.Validate());
+                             loop.Validate(), pose_graph.Validate());
       !e.ok())
     return e;
   if (!(max_range_m >= 0) || !(keyframe_distance_m > 0) || !(keyframe_angle_rad > 0))
@@ -499,20 +518,8 @@ kernel::Status GraphSlamOptions::Validate() const {
   if (!(edge_sigma_m > 0) || !(edge_sigma_rad > 0) || !(edge_sigma_per_m >= 0) ||
       !(edge_sigma_per_rad >= 0))
     return kernel::Status::Error("edge sigmas must be positive");
-  if (loop_min_gap_keyframes < 1 || loop_candidates < 1 || loop_query_keyframes < 0 ||
-      loop_target_keyframes < 0 || loop_levels < 1 || loop_levels > 8)
-    return kernel::Status::Error(
-        "loop_min_gap_keyframes, loop_candidates >= 1; loop_levels in [1, 8]");
-  if (!(loop_radius_m > 0) || !(loop_radius_per_m >= 0) || !(loop_max_radius_m >= loop_radius_m) ||
-      !(loop_max_window_m > 0) || !(loop_window_rad >= 0) || !(loop_window_rad_per_m >= 0) ||
-      !(loop_max_window_rad >= loop_window_rad) || !(loop_sigma_m > 0) ||
-      !(loop_resolution_m > 0) || !(truncation_m > loop_resolution_m))
-    return kernel::Status::Error("loop radii, windows and sigma must be positive and ordered");
-  if (!(loop_min_score > 0 && loop_min_score <= 1) ||
-      !(loop_min_overlap > 0 && loop_min_overlap <= 1) ||
-      !(loop_ambiguity_ratio > 0 && loop_ambiguity_ratio <= 1) || !(loop_max_rms_m > 0) ||
-      !(loop_max_chi2 > 0) || !(loop_sigma_floor_m > 0) || !(loop_sigma_floor_rad > 0))
-    return kernel::Status::Error("loop tests: score and ratio in (0, 1], bounds positive");
+  if (!(truncation_m > loop.resolution_m))
+    return kernel::Status::Error("truncation_m > loop.resolution_m");
   if (optimize_every_keyframes < 0)
     return kernel::Status::Error("optimize_every_keyframes must be >= 0");
   if (!(map_spacing_m >= 0) || !(map_spacing_rad >= 0))

@@ -20,6 +20,57 @@
 
 namespace splam::estimation {
 
+// Loop closure of the graph SLAM (GraphSlamOptions::loop).
+struct LoopClosureOptions {
+  bool enabled = true;
+  // Candidates: keyframes at least min_gap_keyframes older than the new one, within
+  // radius_m + radius_per_m * (distance travelled since the last accepted closure), at most
+  // max_radius_m; the nearest `candidates` of them (kept min_gap_keyframes apart) are searched.
+  int min_gap_keyframes = 60;
+  double radius_m = 1.0;
+  double radius_per_m = 0.05;
+  double max_radius_m = 8.0;
+  int candidates = 2;
+  // The search window: translations within min(radius, max_window_m), headings within
+  // window_rad + window_rad_per_m * distance since the last closure.
+  double max_window_m = 3.0;
+  double window_rad = 0.2;
+  double window_rad_per_m = 0.005;
+  double max_window_rad = 0.8;
+  // Query: the points of the new keyframe and query_keyframes before it; target: the
+  // candidate's submap (target_keyframes either side of it).
+  int query_keyframes = 10;
+  int target_keyframes = 15;
+  // Correlative search on a likelihood exp(-d^2 / 2 sigma^2) with `levels` resolution levels,
+  // on a grid of resolution_m cells (the distances are exact to the curves, so a coarser
+  // grid than the front end's loses little and makes the search four times cheaper); the fine
+  // registration uses the same grid.
+  double resolution_m = 0.1;
+  double sigma_m = 0.05;
+  int levels = 5;
+  // Tests: at the best pose, at least min_overlap of the query's points fall where the
+  // target has seen, and their mean likelihood (the correlative score over those points) is at
+  // least min_score: the query's points where the target never looked say nothing for or
+  // against the match (a revisit from the other direction sees walls the target did not);
+  // refused as ambiguous when a distinct pose scores at least ambiguity_ratio of the best;
+  // the fine registration passes `registration`'s quality test with an inlier RMS at most
+  // max_rms_m; after the optimisation the closure's whitened squared residual is at most
+  // max_chi2 (agreement with the other edges; chi^2(3) 99.9 %).
+  double min_score = 0.55;
+  double min_overlap = 0.5;
+  double ambiguity_ratio = 0.9;
+  double max_rms_m = 0.05;
+  double max_chi2 = 16.27;
+  RegistrationOptions registration = RegistrationDefaults();
+  // Loop edge covariance: the registration's plus this floor (sigma, m and rad).
+  double sigma_floor_m = 0.02;
+  double sigma_floor_rad = 0.005;
+
+  static RegistrationOptions RegistrationDefaults();
+  void VisitFields(kernel::FieldVisitor& v);
+  kernel::Status Validate() const;
+};
+
 // Graph SLAM on curve maps (issue 16): keyframes keep their scan's B-spline curves and points;
 // every scan is registered against a submap rasterised from the curves of recent keyframes;
 // each new keyframe searches earlier ones for a loop closure; a Ceres pose graph over the
@@ -78,52 +129,8 @@ struct GraphSlamOptions {
   double edge_sigma_rad = 0.005;
   double edge_sigma_per_rad = 0.05;
 
-  // Loop closure.
-  bool loop_closure = true;
-  // Candidates: keyframes at least loop_min_gap_keyframes older than the new one, within
-  // loop_radius_m + loop_radius_per_m * (distance travelled since the last accepted closure),
-  // at most loop_max_radius_m; the nearest loop_candidates of them (kept loop_min_gap_keyframes
-  // apart) are searched.
-  int loop_min_gap_keyframes = 60;
-  double loop_radius_m = 1.0;
-  double loop_radius_per_m = 0.05;
-  double loop_max_radius_m = 8.0;
-  int loop_candidates = 2;
-  // The search window: translations within min(radius, loop_max_window_m), headings within
-  // loop_window_rad + loop_window_rad_per_m * distance since the last closure.
-  double loop_max_window_m = 3.0;
-  double loop_window_rad = 0.2;
-  double loop_window_rad_per_m = 0.005;
-  double loop_max_window_rad = 0.8;
-  // Query: the points of the new keyframe and loop_query_keyframes before it; target: the
-  // candidate's submap (loop_target_keyframes either side of it).
-  int loop_query_keyframes = 10;
-  int loop_target_keyframes = 15;
-  // Correlative search on a likelihood exp(-d^2 / 2 sigma^2) with loop_levels resolution levels,
-  // on a grid of loop_resolution_m cells (the distances are exact to the curves, so a coarser
-  // grid than the front end's loses little and makes the search four times cheaper); the fine
-  // registration uses the same grid.
-  double loop_resolution_m = 0.1;
-  double loop_sigma_m = 0.05;
-  int loop_levels = 5;
-  // Tests: at the best pose, at least loop_min_overlap of the query's points fall where the
-  // target has seen, and their mean likelihood (the correlative score over those points) is at
-  // least loop_min_score: the query's points where the target never looked say nothing for or
-  // against the match (a revisit from the other direction sees walls the target did not);
-  // refused as ambiguous when a distinct pose scores at least loop_ambiguity_ratio of the best;
-  // the fine registration passes
-  // loop_registration's quality test with an inlier RMS at most loop_max_rms_m; after the
-  // optimisation the closure's whitened squared residual is at most loop_max_chi2 (agreement
-  // with the other edges; chi^2(3) 99.9 %).
-  double loop_min_score = 0.55;
-  double loop_min_overlap = 0.5;
-  double loop_ambiguity_ratio = 0.9;
-  double loop_max_rms_m = 0.05;
-  double loop_max_chi2 = 16.27;
-  RegistrationOptions loop_registration = LoopRegistrationDefaults();
-  // Loop edge covariance: the registration's plus this floor (sigma, m and rad).
-  double loop_sigma_floor_m = 0.02;
-  double loop_sigma_floor_rad = 0.005;
+  // Loop closure: candidates, correlative search, tests, edges.
+  LoopClosureOptions loop;
   // Closures found are added and optimised together, this many keyframes after the first of
   // them (0: at once): on a revisit every keyframe closes, and one optimisation serves a few.
   int optimize_every_keyframes = 5;
@@ -134,7 +141,6 @@ struct GraphSlamOptions {
   double map_spacing_m = 1.0;
   double map_spacing_rad = 0.5;
 
-  static RegistrationOptions LoopRegistrationDefaults();
   void VisitFields(kernel::FieldVisitor& v);
   kernel::Status Validate() const;
 };
