@@ -4,29 +4,49 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <unordered_set>
+#include <unordered_map>
 
 namespace splam::estimation {
 namespace {
 
-// One element per cell of a `spacing` grid (the first seen): the query of a correlative search
-// costs per point, and the points of overlapping keyframes repeat each other.
-template <class T, class PointOf>
-std::vector<T> Thinned(const std::vector<T>& elements, double spacing, PointOf point_of) {
-  std::unordered_set<long long> seen;
-  std::vector<T> out;
-  for (const T& e : elements) {
-    const Eigen::Vector2d& p = point_of(e);
-    const long long key = (static_cast<long long>(std::floor(p.x() / spacing)) << 32) ^
-                          (static_cast<long long>(std::floor(p.y() / spacing)) & 0xffffffffLL);
-    if (seen.insert(key).second) out.push_back(e);
+// One element per cell of a `spacing` grid, the mean of the cell's points (and the normalised
+// sum of their normals), in the order the cells were first met. Keeping the first element of each
+// cell instead biases the outline: with a laser's range noise, the first point of a cell in beam
+// order is more often one that the noise pushed in from the previous cell along its beam, so
+// behind the wall on one side of the robot and in front of it on the other, and the map turned a
+// little at every keyframe (the front end's heading drifted by -3.3 deg over the `complex` route
+// with a points-only map, +0.8 to +1.6 deg with the beam order reversed).
+std::vector<OrientedPoint> Thinned(const std::vector<OrientedPoint>& elements, double spacing) {
+  std::unordered_map<long long, std::size_t> cell_of;
+  std::vector<OrientedPoint> out;
+  std::vector<int> count;
+  for (const OrientedPoint& e : elements) {
+    const long long key =
+        (static_cast<long long>(std::floor(e.point.x() / spacing)) << 32) ^
+        (static_cast<long long>(std::floor(e.point.y() / spacing)) & 0xffffffffLL);
+    const auto [it, inserted] = cell_of.emplace(key, out.size());
+    if (inserted) {
+      out.push_back({Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()});
+      count.push_back(0);
+    }
+    out[it->second].point += e.point;
+    out[it->second].normal += e.normal;
+    ++count[it->second];
+  }
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    out[i].point /= count[i];
+    if (out[i].normal.norm() > 1e-12) out[i].normal.normalize();
   }
   return out;
 }
 
 std::vector<Eigen::Vector2d> Thinned(const std::vector<Eigen::Vector2d>& points, double spacing) {
-  return Thinned(points, spacing,
-                 [](const Eigen::Vector2d& p) -> const Eigen::Vector2d& { return p; });
+  std::vector<OrientedPoint> oriented;
+  oriented.reserve(points.size());
+  for (const auto& p : points) oriented.push_back({p, Eigen::Vector2d::Zero()});
+  std::vector<Eigen::Vector2d> out;
+  for (const OrientedPoint& o : Thinned(oriented, spacing)) out.push_back(o.point);
+  return out;
 }
 
 Eigen::Matrix3d Diagonal(double sigma_m, double sigma_rad) {
@@ -153,8 +173,7 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
     kf.raster.insert(kf.raster.end(), oriented.begin(), oriented.end());
   }
   // Curves are sampled every centimetre; a few samples per cell place it as well.
-  kf.raster = Thinned(kf.raster, options_.grid_resolution_m / 2,
-                      [](const OrientedPoint& o) -> const Eigen::Vector2d& { return o.point; });
+  kf.raster = Thinned(kf.raster, options_.grid_resolution_m / 2);
   kf.points = std::move(points);
   // The scan's view: from the sensor to every beam's end (a hit, seen_margin_m behind it so that
   // points just behind a wall count; or, for a no-return, clipped beams included, seen_margin_m

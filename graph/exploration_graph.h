@@ -37,6 +37,12 @@ Vertex AddNode(ExplorationGraph* graph, const kernel::Pose2& q);
 // from the lower to the higher vertex); its length is the polyline's length, or the straight-line
 // distance when the path is empty.
 void AddEdge(ExplorationGraph* graph, Vertex a, Vertex b, std::vector<Eigen::Vector2d> path = {});
+// Moves the nodes to `poses` (one per vertex, in order; nothing when the sizes differ), as when a
+// pose graph revises where the nodes were: each node's configuration, LSR and frontiers by its
+// own rigid correction, and every point of a stored path by the blend of its two ends'
+// corrections in proportion to its arc length along the path, so the path joins the moved
+// nodes; edge lengths follow.
+void MoveNodes(ExplorationGraph* graph, const std::vector<kernel::Pose2>& poses);
 // True when a and b are joined by an edge.
 bool HasEdge(const ExplorationGraph& graph, Vertex a, Vertex b);
 // The waypoints that lead along the vertex path `vertices` (consecutive vertices must be joined):

@@ -133,7 +133,11 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
   outcome.slam = std::dynamic_pointer_cast<SlamLocalization>(localization);
   // A method that revises the past optimises what is pending, so that its map is final; the
   // trajectory scored stays the one the explorer used.
-  if (outcome.slam && outcome.slam->driver() != nullptr) outcome.slam->Finish();
+  if (outcome.slam && outcome.slam->driver() != nullptr) {
+    // The last optimisation moves the nodes once more; the graph reported is the final one.
+    outcome.slam->Finish();
+    graph::MoveNodes(&outcome.run.graph, outcome.slam->NodePoses());
+  }
   if (outcome.run.termination == exploration::Termination::kInvalidInput) {
     outcome.error = outcome.run.message;
     return outcome;

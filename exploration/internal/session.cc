@@ -95,48 +95,7 @@ graph::Vertex Session::AddNodeHere(int parent) {
   return v;
 }
 
-void Session::FollowRevisedNodes() {
-  const std::vector<kernel::Pose2> poses = localization_->NodePoses();
-  graph::ExplorationGraph& g = run_.graph;
-  if (poses.size() != boost::num_vertices(g)) return;
-  std::vector<kernel::Pose2> corrections;  // moved_T_world of every node
-  bool moved = false;
-  for (graph::Vertex v = 0; v < poses.size(); ++v) {
-    corrections.push_back(poses[v] * g[v].configuration.Inverse());
-    moved = moved || corrections.back().translation().norm() > 1e-9 ||
-            std::abs(corrections.back().theta()) > 1e-12;
-  }
-  if (!moved) return;
-  for (graph::Vertex v = 0; v < poses.size(); ++v) {
-    graph::NodeData& node = g[v];
-    node.configuration = poses[v];
-    node.lsr = node.lsr.Transformed(corrections[v]);
-    for (auto& arc : node.frontiers) {
-      arc.start_angle_rad += corrections[v].theta();
-      arc.end_angle_rad += corrections[v].theta();
-    }
-  }
-  for (const auto e : boost::make_iterator_range(boost::edges(g))) {
-    graph::EdgeData& edge = g[e];
-    const auto a = std::min(boost::source(e, g), boost::target(e, g));
-    const auto b = std::max(boost::source(e, g), boost::target(e, g));
-    if (edge.path.size() < 2) {
-      edge.length_m = (poses[a].translation() - poses[b].translation()).norm();
-      continue;
-    }
-    std::vector<double> along{0.0};
-    for (std::size_t i = 1; i < edge.path.size(); ++i)
-      along.push_back(along.back() + (edge.path[i] - edge.path[i - 1]).norm());
-    double length = 0.0;
-    for (std::size_t i = 0; i < edge.path.size(); ++i) {
-      const double s = along.back() > 0 ? along[i] / along.back() : 0.0;
-      const Eigen::Vector2d p = edge.path[i];
-      edge.path[i] = (1.0 - s) * (corrections[a] * p) + s * (corrections[b] * p);
-      if (i > 0) length += (edge.path[i] - edge.path[i - 1]).norm();
-    }
-    edge.length_m = length;
-  }
-}
+void Session::FollowRevisedNodes() { graph::MoveNodes(&run_.graph, localization_->NodePoses()); }
 
 graph::Vertex Session::NodeAfterFailedMove(graph::Vertex from) {
   constexpr double kProgress = 0.3;  // m

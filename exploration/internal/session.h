@@ -35,11 +35,9 @@ class Session {
   // perceives there (PathNear) to the farthest remaining waypoint it can reach, then follows
   // the rest; at most twice per move.
   MoveResult Drive(const std::vector<Eigen::Vector2d>& waypoints);
-  // Moves the nodes where the localisation now puts them (Localization::NodePoses; nothing when
-  // it does not revise the past): each node's configuration, LSR and frontiers by its own rigid
-  // correction, and every point of a stored path by the blend of its two ends' corrections in
-  // proportion to its arc length along the path, so the path joins the moved nodes. Called
-  // after every move and sensing, so that planning uses the optimised graph.
+  // Moves the nodes where the localisation now puts them (Localization::NodePoses, nothing when
+  // it does not revise the past; graph::MoveNodes). Called after every move and sensing, so
+  // that planning uses the optimised graph.
   void FollowRevisedNodes();
   // True when a cap is reached; the termination is then set.
   bool CapReached();
