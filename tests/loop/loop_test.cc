@@ -393,13 +393,14 @@ struct GraphRun {
   long loops_accepted = 0;
 };
 
-// The graph SLAM with its default options over a world's built-in route (seed 1).
-GraphRun RunGraphOnRoute(const std::string& world_name, const sim::LaserOptions& laser) {
+// The graph SLAM with its default options over a world's built-in route.
+GraphRun RunGraphOnRoute(const std::string& world_name, const sim::LaserOptions& laser,
+                         std::uint64_t seed = 1) {
   const sim::World world = *sim::BuiltinWorld(world_name);
   const sim::RayCaster caster(world);
   sim::SimulatorOptions options;
   options.laser = laser;
-  sim::Simulator simulator(caster, options, *world.start, 1);
+  sim::Simulator simulator(caster, options, *world.start, seed);
   const sim::RouteRun run = sim::FollowRoute(&simulator, world.route, sim::RouteOptions());
   estimation::SensorNoise noise;
   noise.odometry_noise_scale = 1.0;
@@ -430,13 +431,18 @@ TEST(GraphSlam, ClosesTheOfficeLoop) {
 
 // The complex route with the URG's 4 m range returns to its start from the other side: the last
 // keyframes see walls the first ones never saw, and their score counted over all their points
-// stayed below 0.4. Judged on the points where the target has seen, the closure is found.
+// stayed below 0.4 (no seed closed). Judged on the points where the target has seen, the loop
+// closes in most seeds (9 of 10; the URG's noise leaves correct matches near the 0.55 score).
 TEST(GraphSlam, ClosesTheComplexLoopSeenFromTheOtherSide) {
-  const GraphRun run = RunGraphOnRoute("complex", sim::LaserOptions::Urg04lx());
-  EXPECT_GE(run.loops_accepted, 1);
-  const auto error = estimation::CompareToTruth(run.replay.truth, run.replay.estimate);
-  const auto odometry = estimation::CompareToTruth(run.replay.truth, run.replay.odometry);
-  EXPECT_LT(error.rmse_position_m, 0.7 * odometry.rmse_position_m);
+  int closed = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const GraphRun run = RunGraphOnRoute("complex", sim::LaserOptions::Urg04lx(), seed);
+    closed += run.loops_accepted > 0;
+    const auto error = estimation::CompareToTruth(run.replay.truth, run.replay.estimate);
+    const auto odometry = estimation::CompareToTruth(run.replay.truth, run.replay.odometry);
+    EXPECT_LT(error.rmse_position_m, 0.7 * odometry.rmse_position_m) << "seed " << seed;
+  }
+  EXPECT_GE(closed, 3);
 }
 
 }  // namespace
