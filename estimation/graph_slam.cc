@@ -84,8 +84,7 @@ void GraphSlam::Predict(const kernel::Pose2& odometry_increment) {
 
 void GraphSlam::Update(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_laser) {
   if (!health_.ok()) return;
-  const kernel::Scan scan =
-      raw_scan.Clipped(options_.max_range_m > 0 ? options_.max_range_m : raw_scan.max_range_m);
+  const kernel::Scan scan = raw_scan.Clipped(UsableRange(raw_scan));
   std::vector<Eigen::Vector2d> points = robot_T_laser * scan.HitPoints();
   if (!keyframes_.empty()) {
     if (submap_dirty_) RebuildSubmap();
@@ -181,7 +180,7 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   // max_range_m are no-returns): the view's edge is rasterised to whole cells, and a wall just
   // beyond the range, seen by the next scan, must not land in cells the map calls seen and empty,
   // where its points would be pulled towards the nearest known outline).
-  const double range = options_.max_range_m > 0 ? options_.max_range_m : scan.max_range_m;
+  const double range = UsableRange(scan);
   kf.seen.push_back(robot_T_laser.translation());
   for (std::size_t i = 0; i < scan.size(); ++i) {
     if (!scan.IsHit(i) && !scan.IsNoReturn(i)) continue;
@@ -219,6 +218,10 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   submap_dirty_ = true;
   timer.reset();
   if (options_.loop.enabled) SearchLoopClosures(k);
+}
+
+double GraphSlam::UsableRange(const kernel::Scan& scan) const {
+  return options_.max_range_m > 0 ? options_.max_range_m : scan.max_range_m;
 }
 
 std::vector<OrientedPoint> GraphSlam::WorldRaster(int first, int last) const {

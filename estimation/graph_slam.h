@@ -206,6 +206,8 @@ class GraphSlam {
   // `scan` is clipped to the usable range.
   void AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                    std::vector<Eigen::Vector2d> points);
+  // Beams longer than this are not used: max_range_m, or the laser's range when it is 0.
+  double UsableRange(const kernel::Scan& scan) const;
   // The raster of keyframes [first, last] in the world frame.
   std::vector<OrientedPoint> WorldRaster(int first, int last) const;
   std::vector<std::vector<Eigen::Vector2d>> WorldViews(int first, int last) const;

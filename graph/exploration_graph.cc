@@ -11,14 +11,22 @@ Vertex AddNode(ExplorationGraph* graph, const kernel::Pose2& q) {
   return boost::add_vertex(std::move(data), *graph);
 }
 
-void AddEdge(ExplorationGraph* graph, Vertex a, Vertex b, std::vector<Eigen::Vector2d> path) {
+namespace {
+
+// The length of the edge's path, or the straight-line distance between its ends without one.
+double EdgeLength(const ExplorationGraph& graph, Vertex a, Vertex b,
+                  const std::vector<Eigen::Vector2d>& path) {
+  if (path.size() < 2)
+    return (graph[a].configuration.translation() - graph[b].configuration.translation()).norm();
   double length = 0.0;
-  if (path.size() < 2) {
-    length =
-        ((*graph)[a].configuration.translation() - (*graph)[b].configuration.translation()).norm();
-  } else {
-    for (std::size_t k = 1; k < path.size(); ++k) length += (path[k] - path[k - 1]).norm();
-  }
+  for (std::size_t k = 1; k < path.size(); ++k) length += (path[k] - path[k - 1]).norm();
+  return length;
+}
+
+}  // namespace
+
+void AddEdge(ExplorationGraph* graph, Vertex a, Vertex b, std::vector<Eigen::Vector2d> path) {
+  const double length = EdgeLength(*graph, a, b, path);
   if (a > b) std::reverse(path.begin(), path.end());
   boost::add_edge(a, b, EdgeData{std::move(path), length}, *graph);
 }
@@ -38,30 +46,21 @@ void MoveNodes(ExplorationGraph* graph, const std::vector<kernel::Pose2>& poses)
     NodeData& node = g[v];
     node.configuration = poses[v];
     node.lsr = node.lsr.Transformed(corrections[v]);
-    for (auto& arc : node.frontiers) {
-      arc.start_angle_rad += corrections[v].theta();
-      arc.end_angle_rad += corrections[v].theta();
-    }
+    for (auto& arc : node.frontiers) arc = arc.Turned(corrections[v].theta());
   }
   for (const auto e : boost::make_iterator_range(boost::edges(g))) {
     EdgeData& edge = g[e];
     const auto a = std::min(boost::source(e, g), boost::target(e, g));
     const auto b = std::max(boost::source(e, g), boost::target(e, g));
-    if (edge.path.size() < 2) {
-      edge.length_m = (poses[a].translation() - poses[b].translation()).norm();
-      continue;
-    }
     std::vector<double> along{0.0};
     for (std::size_t i = 1; i < edge.path.size(); ++i)
       along.push_back(along.back() + (edge.path[i] - edge.path[i - 1]).norm());
-    double length = 0.0;
     for (std::size_t i = 0; i < edge.path.size(); ++i) {
       const double s = along.back() > 0 ? along[i] / along.back() : 0.0;
       const Eigen::Vector2d p = edge.path[i];
       edge.path[i] = (1.0 - s) * (corrections[a] * p) + s * (corrections[b] * p);
-      if (i > 0) length += (edge.path[i] - edge.path[i - 1]).norm();
     }
-    edge.length_m = length;
+    edge.length_m = EdgeLength(g, a, b, edge.path);
   }
 }
 

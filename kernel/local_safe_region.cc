@@ -131,10 +131,7 @@ LocalSafeRegion LocalSafeRegion::Transformed(const Pose2& moved_T_world) const {
   LocalSafeRegion moved = *this;
   moved.center_ = moved_T_world * center_;
   for (auto& p : moved.boundary_) p = moved_T_world * p;
-  for (auto& arc : moved.frontiers_) {
-    arc.start_angle_rad += moved_T_world.theta();
-    arc.end_angle_rad += moved_T_world.theta();
-  }
+  for (auto& arc : moved.frontiers_) arc = arc.Turned(moved_T_world.theta());
   return moved;
 }
 

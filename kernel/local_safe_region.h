@@ -30,6 +30,10 @@ struct FrontierArc {
   double start_angle_rad = 0.0;
   double end_angle_rad = 0.0;  // >= start_angle_rad
   double AngularWidth() const { return end_angle_rad - start_angle_rad; }
+  // The arc turned by angle_rad about its region's centre.
+  FrontierArc Turned(double angle_rad) const {
+    return {start_angle_rad + angle_rad, end_angle_rad + angle_rad};
+  }
 };
 
 // Local safe region (SPEC §9, Oriolo et al. 2004): the star-shaped region around the sensor

@@ -131,10 +131,10 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
   outcome.robot_radius_m = robot.description().radius_m;
   outcome.run = explorer->Run(&robot, localization.get());
   outcome.slam = std::dynamic_pointer_cast<SlamLocalization>(localization);
-  // A method that revises the past optimises what is pending, so that its map is final; the
-  // trajectory scored stays the one the explorer used.
+  // A method that revises the past optimises what is pending, so that its map and the graph
+  // reported (its nodes moved once more) are final; the trajectory scored stays the one the
+  // explorer used.
   if (outcome.slam && outcome.slam->driver() != nullptr) {
-    // The last optimisation moves the nodes once more; the graph reported is the final one.
     outcome.slam->Finish();
     graph::MoveNodes(&outcome.run.graph, outcome.slam->NodePoses());
   }
