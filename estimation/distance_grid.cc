@@ -145,16 +145,20 @@ bool DistanceGrid::Known(const Eigen::Vector2d& p) const {
 
 double DistanceGrid::Distance(const Eigen::Vector2d& p, Eigen::Vector2d* gradient) const {
   if (gradient != nullptr) gradient->setZero();
-  const long i = CellIndex(p);
-  const int label = i < 0 ? -1 : nearest_[static_cast<std::size_t>(i)];
-  if (label < 0) return truncation_m_;
-  const OrientedPoint& piece = pieces_[static_cast<std::size_t>(label)];
+  const OrientedPoint* piece = NearestPiece(p);
+  if (piece == nullptr) return truncation_m_;
   Eigen::Vector2d g;
   const double d =
-      PieceDistance(p - piece.point, piece.normal, kSegmentHalfLength * resolution_m_, &g);
+      PieceDistance(p - piece->point, piece->normal, kSegmentHalfLength * resolution_m_, &g);
   if (std::abs(d) >= truncation_m_) return truncation_m_;
   if (gradient != nullptr) *gradient = g;
   return d;
+}
+
+const OrientedPoint* DistanceGrid::NearestPiece(const Eigen::Vector2d& p) const {
+  const long i = CellIndex(p);
+  const int label = i < 0 ? -1 : nearest_[static_cast<std::size_t>(i)];
+  return label < 0 ? nullptr : &pieces_[static_cast<std::size_t>(label)];
 }
 
 double DistanceGrid::Nearest(const Eigen::Vector2d& p) const {

@@ -76,6 +76,8 @@ class DistanceGrid {
   // crosses the cell, so a registration does not shift with the grid's origin. Returns the
   // truncation (gradient zero) beyond it and outside the grid.
   double Distance(const Eigen::Vector2d& p, Eigen::Vector2d* gradient = nullptr) const;
+  // The outline piece Distance(p) measures to; null where there is none within the truncation.
+  const OrientedPoint* NearestPiece(const Eigen::Vector2d& p) const;
   // Fractional (row, col) of a point, in the convention of ceres::Grid2D (cell centres at
   // integers).
   Eigen::Vector2d CellCoordinates(const Eigen::Vector2d& p) const {

@@ -40,12 +40,10 @@ std::vector<OrientedPoint> Thinned(const std::vector<OrientedPoint>& elements, d
   return out;
 }
 
-std::vector<Eigen::Vector2d> Thinned(const std::vector<Eigen::Vector2d>& points, double spacing) {
-  std::vector<OrientedPoint> oriented;
-  oriented.reserve(points.size());
-  for (const auto& p : points) oriented.push_back({p, Eigen::Vector2d::Zero()});
+std::vector<Eigen::Vector2d> Positions(const std::vector<OrientedPoint>& oriented) {
   std::vector<Eigen::Vector2d> out;
-  for (const OrientedPoint& o : Thinned(oriented, spacing)) out.push_back(o.point);
+  out.reserve(oriented.size());
+  for (const OrientedPoint& o : oriented) out.push_back(o.point);
   return out;
 }
 
@@ -85,7 +83,8 @@ void GraphSlam::Predict(const kernel::Pose2& odometry_increment) {
 void GraphSlam::Update(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_laser) {
   if (!health_.ok()) return;
   const kernel::Scan scan = raw_scan.Clipped(UsableRange(raw_scan));
-  std::vector<Eigen::Vector2d> points = robot_T_laser * scan.HitPoints();
+  std::vector<OrientedPoint> points = OrientTowards(
+      robot_T_laser * scan.HitPoints(), robot_T_laser.translation(), options_.normal_max_gap_m);
   if (!keyframes_.empty()) {
     if (submap_dirty_) RebuildSubmap();
     const RegistrationResult r = RegisterScan(points);
@@ -111,7 +110,7 @@ void GraphSlam::Update(const kernel::Scan& raw_scan, const kernel::Pose2& robot_
   scans_.push_back({k, keyframes_.back().pose.Between(pose_)});
 }
 
-RegistrationResult GraphSlam::RegisterScan(const std::vector<Eigen::Vector2d>& points) {
+RegistrationResult GraphSlam::RegisterScan(const std::vector<OrientedPoint>& points) {
   const ScopedTimer timer(&times_.registration_ms);
   RegistrationResult r = RegisterPoints(points, submap_, pose_, options_.registration);
   if (r.accepted && options_.odometry_prior) {
@@ -136,8 +135,8 @@ RegistrationResult GraphSlam::RegisterScan(const std::vector<Eigen::Vector2d>& p
   if (!submap_scores_)
     submap_scores_ = std::make_unique<LikelihoodPyramid>(submap_, options_.loop.sigma_m, 3);
   const CorrelativeMatch match =
-      SearchCorrelative(Thinned(points, options_.grid_resolution_m), *submap_scores_, pose_,
-                        options_.recovery_window_m, options_.recovery_window_rad,
+      SearchCorrelative(Positions(Thinned(points, options_.grid_resolution_m)), *submap_scores_,
+                        pose_, options_.recovery_window_m, options_.recovery_window_rad,
                         options_.registration.min_inlier_fraction, 1.0,
                         {.angular_step_rad = options_.recovery_step_rad});
   if (!match.found) return r;
@@ -153,7 +152,7 @@ RegistrationResult GraphSlam::RegisterScan(const std::vector<Eigen::Vector2d>& p
 }
 
 void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
-                            std::vector<Eigen::Vector2d> points) {
+                            std::vector<OrientedPoint> points) {
   force_keyframe_ = false;
   std::optional<ScopedTimer> timer(&times_.keyframe_ms);
   Keyframe kf;
@@ -166,11 +165,8 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
                                        options_.grid_resolution_m);
     kf.raster.insert(kf.raster.end(), samples.begin(), samples.end());
   }
-  if (options_.raster_points || kf.raster.empty()) {
-    const auto oriented =
-        OrientTowards(points, robot_T_laser.translation(), options_.normal_max_gap_m);
-    kf.raster.insert(kf.raster.end(), oriented.begin(), oriented.end());
-  }
+  if (options_.raster_points || kf.raster.empty())
+    kf.raster.insert(kf.raster.end(), points.begin(), points.end());
   // Curves are sampled every centimetre; a few samples per cell place it as well.
   kf.raster = Thinned(kf.raster, options_.grid_resolution_m / 2);
   kf.points = std::move(points);
@@ -326,11 +322,12 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
   ++loops_.searches;
   const Keyframe& kf = keyframes_[static_cast<std::size_t>(k)];
   const kernel::Pose2 kf_inverse = kf.pose.Inverse();
-  std::vector<Eigen::Vector2d> query;
+  std::vector<OrientedPoint> query;
   for (int i = std::max(0, k - options_.loop.query_keyframes); i <= k; ++i) {
     const Keyframe& q = keyframes_[static_cast<std::size_t>(i)];
     const kernel::Pose2 k_T_i = kf_inverse * q.pose;
-    for (const auto& p : q.points) query.push_back(k_T_i * p);
+    const Eigen::Matrix2d rotation = k_T_i.Rotation();
+    for (const auto& o : q.points) query.push_back({k_T_i * o.point, rotation * o.normal});
   }
   query = Thinned(query, options_.loop.resolution_m);
   const int first = candidate - options_.loop.target_keyframes;
@@ -344,12 +341,14 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
       std::min(options_.loop.window_rad + options_.loop.window_rad_per_m * travelled,
                options_.loop.max_window_rad);
   const CorrelativeMatch match = SearchCorrelative(
-      query, pyramid, kf.pose, std::min(radius, options_.loop.max_window_m), window_rad,
+      Positions(query), pyramid, kf.pose, std::min(radius, options_.loop.max_window_m), window_rad,
       options_.loop.min_score * options_.loop.min_overlap, options_.loop.ambiguity_ratio);
-  std::vector<Eigen::Vector2d> overlapping;
+  std::vector<OrientedPoint> overlapping;
   if (match.found)
     std::copy_if(query.begin(), query.end(), std::back_inserter(overlapping),
-                 [&](const Eigen::Vector2d& p) { return target.Known(match.pose * p); });
+                 [&](const OrientedPoint& o) {
+                   return Matchable(target, match.pose, o, options_.loop.registration);
+                 });
   const double overlap =
       static_cast<double>(overlapping.size()) / static_cast<double>(query.size());
   if (!match.found || overlap < options_.loop.min_overlap ||

@@ -49,13 +49,13 @@ struct LoopClosureOptions {
   double sigma_m = 0.05;
   int levels = 5;
   // Tests: at the best pose, at least min_overlap of the query's points fall where the
-  // target has seen, and their mean likelihood (the correlative score over those points) is at
-  // least min_score: the query's points where the target never looked say nothing for or
-  // against the match (a revisit from the other direction sees walls the target did not);
-  // refused as ambiguous when a distinct pose scores at least ambiguity_ratio of the best;
-  // the fine registration passes `registration`'s quality test with an inlier RMS at most
-  // max_rms_m; after the optimisation the closure's whitened squared residual is at most
-  // max_chi2 (agreement with the other edges; chi^2(3) 99.9 %).
+  // target has seen and face as the target's outline there (Matchable), and their mean likelihood
+  // (the correlative score over those points) is at least min_score: the query's points where the
+  // target never looked say nothing for or against the match (a revisit from the other direction
+  // sees walls the target did not); refused as ambiguous when a distinct pose scores at least
+  // ambiguity_ratio of the best; the fine registration passes `registration`'s quality test with an
+  // inlier RMS at most max_rms_m; after the optimisation the closure's whitened squared residual is
+  // at most max_chi2 (agreement with the other edges; chi^2(3) 99.9 %).
   double min_score = 0.55;
   double min_overlap = 0.5;
   double ambiguity_ratio = 0.9;
@@ -157,7 +157,7 @@ class GraphSlam {
  public:
   struct Keyframe {
     kernel::Pose2 pose;                       // world_T_robot, optimised
-    std::vector<Eigen::Vector2d> points;      // robot frame
+    std::vector<OrientedPoint> points;        // the scan's hits, robot frame, with normals
     std::vector<OrientedPoint> raster;        // curve samples (+ points), robot frame
     std::vector<kernel::SplineCurve> curves;  // robot frame
     std::vector<Eigen::Vector2d> seen;        // the scan's view: sensor, then beam ends
@@ -205,7 +205,7 @@ class GraphSlam {
  private:
   // `scan` is clipped to the usable range.
   void AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
-                   std::vector<Eigen::Vector2d> points);
+                   std::vector<OrientedPoint> points);
   // Beams longer than this are not used: max_range_m, or the laser's range when it is 0.
   double UsableRange(const kernel::Scan& scan) const;
   // The raster of keyframes [first, last] in the world frame.
@@ -213,7 +213,7 @@ class GraphSlam {
   std::vector<std::vector<Eigen::Vector2d>> WorldViews(int first, int last) const;
   void RebuildSubmap();
   // Registers a scan at the predicted pose against the submap (see recovery_window_m).
-  RegistrationResult RegisterScan(const std::vector<Eigen::Vector2d>& points);
+  RegistrationResult RegisterScan(const std::vector<OrientedPoint>& points);
   // Searches the new keyframe k against earlier ones; closures found wait in pending_.
   void SearchLoopClosures(int k);
   // Adds the pending closures, optimises, and removes those that disagree with the graph.

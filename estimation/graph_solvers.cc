@@ -180,17 +180,39 @@ Eigen::Matrix3d GaussNewtonHessian(ceres::Problem* problem, ceres::ResidualBlock
 
 }  // namespace
 
+bool Matchable(const DistanceGrid& grid, const kernel::Pose2& pose, const OrientedPoint& point,
+               const RegistrationOptions& options) {
+  const Eigen::Vector2d q = pose * point.point;
+  if (!grid.Known(q)) return false;
+  if (options.max_normal_angle_rad >= M_PI || point.normal.isZero()) return true;
+  const OrientedPoint* piece = grid.NearestPiece(q);
+  return piece == nullptr || piece->normal.isZero() ||
+         (pose.Rotation() * point.normal).dot(piece->normal) >=
+             std::cos(options.max_normal_angle_rad);
+}
+
 RegistrationResult RegisterPoints(const std::vector<Eigen::Vector2d>& points,
+                                  const DistanceGrid& grid, const kernel::Pose2& prior,
+                                  const RegistrationOptions& options,
+                                  const Eigen::Matrix3d* prior_covariance) {
+  std::vector<OrientedPoint> oriented;
+  oriented.reserve(points.size());
+  for (const auto& p : points) oriented.push_back({p, Eigen::Vector2d::Zero()});
+  return RegisterPoints(oriented, grid, prior, options, prior_covariance);
+}
+
+RegistrationResult RegisterPoints(const std::vector<OrientedPoint>& points,
                                   const DistanceGrid& grid, const kernel::Pose2& prior,
                                   const RegistrationOptions& options,
                                   const Eigen::Matrix3d* prior_covariance) {
   RegistrationResult result;
   result.pose = prior;
   // Points the map never saw around (at the prior) carry no information: a wall the submap saw
-  // to where its range ended goes on, and its new points must not pull the scan back.
+  // to where its range ended goes on, and its new points must not pull the scan back. Nor do
+  // points facing away from their nearest piece (options.max_normal_angle_rad).
   std::vector<Eigen::Vector2d> seen;
-  for (const auto& p : points)
-    if (grid.Known(prior * p)) seen.push_back(p);
+  for (const auto& o : points)
+    if (Matchable(grid, prior, o, options)) seen.push_back(o.point);
   if (grid.empty() || static_cast<int>(seen.size()) < options.min_points) {
     result.reason = "too few points where the map has seen";
     return result;
@@ -276,6 +298,8 @@ void RegistrationOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("max_correction_m", &max_correction_m, "quality test: moved from the prior at most, m");
   v.Field("max_correction_rad", &max_correction_rad,
           "quality test: turned from the prior at most, rad");
+  v.Field("max_normal_angle_rad", &max_normal_angle_rad,
+          "a point turned from its nearest piece's normal by more is not matched (pi: off), rad");
 }
 
 kernel::Status RegistrationOptions::Validate() const {
@@ -284,7 +308,8 @@ kernel::Status RegistrationOptions::Validate() const {
   if (max_iterations < 1 || min_points < 3)
     return kernel::Status::Error("registration needs max_iterations >= 1 and min_points >= 3");
   if (!(inlier_distance_m > 0) || !(min_inlier_fraction >= 0 && min_inlier_fraction <= 1) ||
-      !(max_correction_m > 0) || !(max_correction_rad > 0))
+      !(max_correction_m > 0) || !(max_correction_rad > 0) ||
+      !(max_normal_angle_rad > 0 && max_normal_angle_rad <= M_PI))
     return kernel::Status::Error(
         "registration quality test: positive distances, inlier fraction in [0, 1]");
   return kernel::Status::Ok();

@@ -86,6 +86,37 @@ TEST_F(ComplexWorld, RegistrationRecoversKnownTransforms) {
   EXPECT_GE(within_covariance, 92);
 }
 
+// Normal compatibility: the map saw a wall (y = 0) and the south half of a round pillar; a scan at
+// the true pose sees the wall and the pillar's north-west side. Matched to the pieces of the
+// side the map saw, those points pull the scan sideways (the wall leaves x loose); facing away
+// from those pieces, they are not matched. Measured: 5.0 cm off with every point matched, 2.4 cm
+// with the test (the points next to the silhouette still face the last piece the map saw within
+// 1 rad, and that piece's straight extension is off the round pillar).
+TEST(Registration, PointsFacingAwayFromTheMapAreNotMatched) {
+  const Eigen::Vector2d centre(0.0, 1.5);
+  const double radius = 0.3;
+  auto arc = [&](double from, double to) {
+    std::vector<OrientedPoint> points;
+    for (double a = from; a <= to; a += 0.02) {
+      const Eigen::Vector2d n(std::cos(a), std::sin(a));
+      points.push_back({centre + radius * n, n});
+    }
+    return points;
+  };
+  std::vector<OrientedPoint> map = arc(M_PI, 2 * M_PI), scan = arc(M_PI / 2, 1.25 * M_PI);
+  for (double x = -2; x <= 2; x += 0.02) {
+    map.push_back({{x, 0.0}, {0.0, 1.0}});
+    scan.push_back({{x, 0.0}, {0.0, 1.0}});
+  }
+  const DistanceGrid grid = DistanceGrid::Build(map, 0.1, 0.5, 0.5);
+  RegistrationOptions options;
+  const Pose2 with = RegisterPoints(scan, grid, Pose2(), options).pose;
+  options.max_normal_angle_rad = M_PI;
+  const Pose2 without = RegisterPoints(scan, grid, Pose2(), options).pose;
+  EXPECT_LT(with.translation().norm(), 0.03);
+  EXPECT_LT(with.translation().norm(), 0.6 * without.translation().norm());
+}
+
 // A distance field of outline pieces reads the distance to a straight wall exactly, whatever its
 // angle and its offset in the cells (a field of points would read up to half a cell off).
 TEST(DistanceGrid, OutlinePiecesReadTheDistanceToAWall) {
