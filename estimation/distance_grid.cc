@@ -161,6 +161,8 @@ const OrientedPoint* DistanceGrid::NearestPiece(const Eigen::Vector2d& p) const 
   return label < 0 ? nullptr : &pieces_[static_cast<std::size_t>(label)];
 }
 
+double DistanceGrid::PieceHalfLength() const { return kSegmentHalfLength * resolution_m_; }
+
 double DistanceGrid::Nearest(const Eigen::Vector2d& p) const {
   const long i = CellIndex(p);
   return i < 0 ? truncation_m_ : values_[static_cast<std::size_t>(i)];

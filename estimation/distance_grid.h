@@ -78,6 +78,8 @@ class DistanceGrid {
   double Distance(const Eigen::Vector2d& p, Eigen::Vector2d* gradient = nullptr) const;
   // The outline piece Distance(p) measures to; null where there is none within the truncation.
   const OrientedPoint* NearestPiece(const Eigen::Vector2d& p) const;
+  // Half the length of an outline piece, m.
+  double PieceHalfLength() const;
   // Fractional (row, col) of a point, in the convention of ceres::Grid2D (cell centres at
   // integers).
   Eigen::Vector2d CellCoordinates(const Eigen::Vector2d& p) const {

@@ -184,9 +184,13 @@ bool Matchable(const DistanceGrid& grid, const kernel::Pose2& pose, const Orient
                const RegistrationOptions& options) {
   const Eigen::Vector2d q = pose * point.point;
   if (!grid.Known(q)) return false;
-  if (options.max_normal_angle_rad >= M_PI || point.normal.isZero()) return true;
   const OrientedPoint* piece = grid.NearestPiece(q);
-  return piece == nullptr || piece->normal.isZero() ||
+  if (piece == nullptr || piece->normal.isZero()) return true;
+  const Eigen::Vector2d tangent(-piece->normal.y(), piece->normal.x());
+  if (options.skip_past_outline_ends &&
+      std::abs(tangent.dot(q - piece->point)) > grid.PieceHalfLength())
+    return false;
+  return options.max_normal_angle_rad >= M_PI || point.normal.isZero() ||
          (pose.Rotation() * point.normal).dot(piece->normal) >=
              std::cos(options.max_normal_angle_rad);
 }
@@ -298,6 +302,8 @@ void RegistrationOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("max_correction_m", &max_correction_m, "quality test: moved from the prior at most, m");
   v.Field("max_correction_rad", &max_correction_rad,
           "quality test: turned from the prior at most, rad");
+  v.Field("skip_past_outline_ends", &skip_past_outline_ends,
+          "points past the end of their nearest outline piece are not matched");
   v.Field("max_normal_angle_rad", &max_normal_angle_rad,
           "a point turned from its nearest piece's normal by more is not matched (pi: off), rad");
 }

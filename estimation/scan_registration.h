@@ -44,6 +44,13 @@ struct RegistrationOptions {
   int min_points = 20;
   double max_correction_m = 0.3;
   double max_correction_rad = 0.2;
+  // Outline ends: a point that lies past the end of its nearest outline piece (along the
+  // piece, beyond the 1.5 cells either side of its cell that overlap the neighbouring pieces of a
+  // continuous outline) carries no residual: the outline the map saw ends there, and the point
+  // is on a part it has not seen (the rest of a pillar round from its silhouette, a wall going on
+  // past a corner). Matched, such points were pulled to the end of the piece's straight extension
+  // and turned loop closures on `complex` by 0.7-1.1 deg (docs/graph_slam.md).
+  bool skip_past_outline_ends = true;
   // Normal compatibility: a point whose free side (its normal, towards the sensor that saw it)
   // is turned from that of its nearest outline piece by more than max_normal_angle_rad (at the
   // prior) carries no residual either: it lies on a side of an object the map has not seen (the
@@ -76,7 +83,8 @@ struct RegistrationResult {
 // (in the prior's frame) is `prior_covariance`, or diag(prior_sigma_m^2, prior_sigma_m^2,
 // prior_sigma_rad^2) when null.
 // Whether `point` (robot frame, with its normal or zero) placed at `pose` gets a residual: the
-// grid has seen where it falls and, when both have normals, the point's agrees with its nearest
+// grid has seen where it falls; it lies along its nearest outline piece, not past its end
+// (options.skip_past_outline_ends); when both have normals, the point's agrees with the
 // piece's within options.max_normal_angle_rad.
 bool Matchable(const DistanceGrid& grid, const kernel::Pose2& pose, const OrientedPoint& point,
                const RegistrationOptions& options);
