@@ -53,7 +53,7 @@ DistanceGrid DistanceGrid::Build(const std::vector<Eigen::Vector2d>& points, dou
 DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, double resolution_m,
                                  double truncation_m, double margin_m,
                                  const std::vector<std::vector<Eigen::Vector2d>>& seen,
-                                 bool signed_field) {
+                                 bool signed_field, double seen_margin_m) {
   DistanceGrid g;
   g.resolution_m_ = resolution_m;
   g.truncation_m_ = truncation_m;
@@ -115,18 +115,32 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
     }
   if (seen.empty()) return g;
   cv::Mat known(g.rows_, g.cols_, CV_8U, cv::Scalar(0));
-  std::vector<std::vector<cv::Point>> polygons;
+  auto cell = [&](const Eigen::Vector2d& p) {
+    const Eigen::Vector2d q = (p - g.origin_) / resolution_m;
+    return cv::Point(static_cast<int>(std::lround(std::clamp(q.x(), -1e6, 1e6))),
+                     static_cast<int>(std::lround(std::clamp(q.y(), -1e6, 1e6))));
+  };
+  // Every view's whole polygon first, then the parts seen free, so that no view's margin covers
+  // another's free space.
   for (const auto& polygon : seen) {
-    auto& cells = polygons.emplace_back();
-    for (const auto& p : polygon) {
-      const Eigen::Vector2d q = (p - g.origin_) / resolution_m;
-      cells.emplace_back(static_cast<int>(std::lround(std::clamp(q.x(), -1e6, 1e6))),
-                         static_cast<int>(std::lround(std::clamp(q.y(), -1e6, 1e6))));
-    }
+    std::vector<cv::Point> outer;
+    for (const auto& p : polygon) outer.push_back(cell(p));
+    cv::fillPoly(known, std::vector<std::vector<cv::Point>>{outer}, cv::Scalar(1));
   }
-  for (const auto& cells : polygons)
-    cv::fillPoly(known, std::vector<std::vector<cv::Point>>{cells}, cv::Scalar(1));
-  known.setTo(cv::Scalar(1), free_cells == 0);
+  for (const auto& polygon : seen) {
+    if (seen_margin_m <= 0) break;
+    std::vector<cv::Point> inner;
+    for (const auto& p : polygon) {
+      const Eigen::Vector2d ray = p - polygon.front();
+      const double length = ray.norm();
+      inner.push_back(cell(length <= seen_margin_m
+                               ? polygon.front()
+                               : Eigen::Vector2d(p - seen_margin_m / length * ray)));
+    }
+    cv::fillPoly(known, std::vector<std::vector<cv::Point>>{inner}, cv::Scalar(2));
+  }
+  if (seen_margin_m <= 0) known.setTo(cv::Scalar(2), known == 1);
+  known.setTo(cv::Scalar(2), free_cells == 0);
   g.known_.assign(known.datastart, known.dataend);
   return g;
 }
@@ -141,6 +155,11 @@ long DistanceGrid::CellIndex(const Eigen::Vector2d& p) const {
 bool DistanceGrid::Known(const Eigen::Vector2d& p) const {
   const long i = CellIndex(p);
   return i >= 0 && (known_.empty() || known_[static_cast<std::size_t>(i)] != 0);
+}
+
+bool DistanceGrid::SeenFree(const Eigen::Vector2d& p) const {
+  const long i = CellIndex(p);
+  return i >= 0 && (known_.empty() || known_[static_cast<std::size_t>(i)] == 2);
 }
 
 double DistanceGrid::Distance(const Eigen::Vector2d& p, Eigen::Vector2d* gradient) const {

@@ -47,13 +47,17 @@ class DistanceGrid {
   // its point, perpendicular to its normal (1.5 cells either side), and the field holds the
   // distance to the nearest cell's segment. One point per cell would read up to half a cell off
   // on the outline itself (a bumpy valley that biases a registration); the segments read zero
-  // all along it. `signed_field`: negative behind the outline (against the normal), so that the
+  // all along it.
+  // `signed_field`: negative behind the outline (against the normal), so that the
   // field is linear across it, which bicubic interpolation reproduces exactly; it needs normals
   // that are right (smooth outlines), and a wrong sign on clutter makes false zero crossings.
+  // `seen_margin_m`: how far the `seen` polygons reach behind their hits (their vertices after
+  // the first, the sensor); the cells inside the polygons pulled back by it towards the sensor
+  // were seen free (SeenFree).
   static DistanceGrid Build(const std::vector<OrientedPoint>& points, double resolution_m,
                             double truncation_m, double margin_m,
                             const std::vector<std::vector<Eigen::Vector2d>>& seen = {},
-                            bool signed_field = false);
+                            bool signed_field = false, double seen_margin_m = 0.0);
 
   bool empty() const { return values_.empty(); }
   int rows() const { return rows_; }
@@ -68,6 +72,9 @@ class DistanceGrid {
   double Nearest(const Eigen::Vector2d& p) const;
   // Whether the cell holding p was seen (false outside the grid).
   bool Known(const Eigen::Vector2d& p) const;
+  // Whether a beam crossed the cell holding p, or an outline lies in it: known, and not only as
+  // the margin behind a hit (true everywhere without `seen`, false outside the grid).
+  bool SeenFree(const Eigen::Vector2d& p) const;
   // The exact distance from p to the outline piece of the occupied cell nearest to p's cell
   // (the piece the field's value at that cell measures to), signed by the side of the piece's
   // normal (its sign only orients the gradient: |Distance| is the distance), and its gradient
@@ -95,7 +102,7 @@ class DistanceGrid {
   double resolution_m_ = 0.05, truncation_m_ = 1.0;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   std::vector<double> values_;
-  std::vector<unsigned char> known_;   // empty: all known
+  std::vector<unsigned char> known_;   // 0 unseen, 1 behind a hit, 2 seen free; empty: all 2
   std::vector<int> nearest_;           // per cell: index into pieces_ of its nearest piece
   std::vector<OrientedPoint> pieces_;  // the occupied cells' outline pieces
 };

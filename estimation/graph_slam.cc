@@ -47,6 +47,18 @@ std::vector<Eigen::Vector2d> Positions(const std::vector<OrientedPoint>& oriente
   return out;
 }
 
+// The mean of exp(-D^2 / (2 sigma^2)) over `points` placed at `pose`, D their exact distance to
+// the grid's outline (DistanceGrid::Distance).
+double MeanLikelihood(const DistanceGrid& grid, const kernel::Pose2& pose,
+                      const std::vector<OrientedPoint>& points, double sigma) {
+  double sum = 0.0;
+  for (const OrientedPoint& o : points) {
+    const double d = grid.Distance(pose * o.point);
+    sum += std::exp(-d * d / (2 * sigma * sigma));
+  }
+  return points.empty() ? 0.0 : sum / static_cast<double>(points.size());
+}
+
 Eigen::Matrix3d Diagonal(double sigma_m, double sigma_rad) {
   return Eigen::Vector3d(sigma_m * sigma_m, sigma_m * sigma_m, sigma_rad * sigma_rad).asDiagonal();
 }
@@ -247,7 +259,7 @@ void GraphSlam::RebuildSubmap() {
       WorldRaster(first, last), options_.grid_resolution_m, options_.truncation_m,
       options_.truncation_m,
       options_.mask_unseen ? WorldViews(first, last) : std::vector<std::vector<Eigen::Vector2d>>{},
-      options_.signed_distance);
+      options_.signed_distance, options_.seen_margin_m);
   submap_scores_.reset();
   submap_dirty_ = false;
 }
@@ -333,9 +345,9 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
   const int first = candidate - options_.loop.target_keyframes;
   const int last =
       std::min(candidate + options_.loop.target_keyframes, k - options_.loop.min_gap_keyframes);
-  const DistanceGrid target =
-      DistanceGrid::Build(WorldRaster(first, last), options_.loop.resolution_m,
-                          options_.truncation_m, options_.truncation_m, WorldViews(first, last));
+  const DistanceGrid target = DistanceGrid::Build(
+      WorldRaster(first, last), options_.loop.resolution_m, options_.truncation_m,
+      options_.truncation_m, WorldViews(first, last), false, options_.seen_margin_m);
   const LikelihoodPyramid pyramid(target, options_.loop.sigma_m, options_.loop.levels);
   const double window_rad =
       std::min(options_.loop.window_rad + options_.loop.window_rad_per_m * travelled,
@@ -351,8 +363,7 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
                  });
   const double overlap =
       static_cast<double>(overlapping.size()) / static_cast<double>(query.size());
-  if (!match.found || overlap < options_.loop.min_overlap ||
-      match.score < options_.loop.min_score * overlap) {
+  if (!match.found || overlap < options_.loop.min_overlap) {
     ++loops_.rejected_score;
     return std::nullopt;
   }
@@ -364,6 +375,11 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
       RegisterPoints(overlapping, target, match.pose, options_.loop.registration);
   if (!fine.accepted || fine.rms_m > options_.loop.max_rms_m) {
     ++loops_.rejected_registration;
+    return std::nullopt;
+  }
+  if (MeanLikelihood(target, fine.pose, overlapping, options_.loop.sigma_m) <
+      options_.loop.min_score) {
+    ++loops_.rejected_score;
     return std::nullopt;
   }
   PoseGraphEdge edge;

@@ -50,7 +50,9 @@ struct LoopClosureOptions {
   int levels = 5;
   // Tests: at the best pose, at least min_overlap of the query's points fall where the
   // target has seen and face as the target's outline there (Matchable), and their mean likelihood
-  // (the correlative score over those points) is at least min_score: the query's points where the
+  // at the fine registration's pose, with exact distances, is at least min_score (the correlative
+  // score, over all the points on the cells' values, also counted the unmatched points' pull and
+  // let a 3 m wrong closure through in an exploration of `complex`): the query's points where the
   // target never looked say nothing for or against the match (a revisit from the other direction
   // sees walls the target did not); refused as ambiguous when a distinct pose scores at least
   // ambiguity_ratio of the best; the fine registration passes `registration`'s quality test with an

@@ -188,7 +188,7 @@ bool Matchable(const DistanceGrid& grid, const kernel::Pose2& pose, const Orient
   if (piece == nullptr || piece->normal.isZero()) return true;
   const Eigen::Vector2d tangent(-piece->normal.y(), piece->normal.x());
   if (options.skip_past_outline_ends &&
-      std::abs(tangent.dot(q - piece->point)) > grid.PieceHalfLength())
+      std::abs(tangent.dot(q - piece->point)) > grid.PieceHalfLength() && !grid.SeenFree(q))
     return false;
   return options.max_normal_angle_rad >= M_PI || point.normal.isZero() ||
          (pose.Rotation() * point.normal).dot(piece->normal) >=

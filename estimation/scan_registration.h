@@ -46,10 +46,13 @@ struct RegistrationOptions {
   double max_correction_rad = 0.2;
   // Outline ends: a point that lies past the end of its nearest outline piece (along the
   // piece, beyond the 1.5 cells either side of its cell that overlap the neighbouring pieces of a
-  // continuous outline) carries no residual: the outline the map saw ends there, and the point
-  // is on a part it has not seen (the rest of a pillar round from its silhouette, a wall going on
-  // past a corner). Matched, such points were pulled to the end of the piece's straight extension
-  // and turned loop closures on `complex` by 0.7-1.1 deg (docs/graph_slam.md).
+  // continuous outline), where the map did not see free space (DistanceGrid::SeenFree: only the
+  // margin behind its hits), carries no residual: the outline the map saw ends there, and the
+  // point is on a part it has not seen (the rest of a pillar round from its silhouette, a wall
+  // going on past a corner). Matched, such points were pulled to the end of the piece's straight
+  // extension and turned loop closures on `complex` by 0.7-1.1 deg (docs/graph_slam.md). Where
+  // the map saw free space (a doorway) the point stays: evidence against the pose; without that
+  // exception a corridor's closures slid 0.7 m along it in `office` explorations.
   bool skip_past_outline_ends = true;
   // Normal compatibility: a point whose free side (its normal, towards the sensor that saw it)
   // is turned from that of its nearest outline piece by more than max_normal_angle_rad (at the
@@ -83,9 +86,9 @@ struct RegistrationResult {
 // (in the prior's frame) is `prior_covariance`, or diag(prior_sigma_m^2, prior_sigma_m^2,
 // prior_sigma_rad^2) when null.
 // Whether `point` (robot frame, with its normal or zero) placed at `pose` gets a residual: the
-// grid has seen where it falls; it lies along its nearest outline piece, not past its end
-// (options.skip_past_outline_ends); when both have normals, the point's agrees with the
-// piece's within options.max_normal_angle_rad.
+// grid has seen where it falls; it lies along its nearest outline piece, or past its end where
+// the grid saw free space (options.skip_past_outline_ends); when both have normals, the point's
+// agrees with the piece's within options.max_normal_angle_rad.
 bool Matchable(const DistanceGrid& grid, const kernel::Pose2& pose, const OrientedPoint& point,
                const RegistrationOptions& options);
 
