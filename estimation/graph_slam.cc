@@ -356,11 +356,11 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
       Positions(query), pyramid, kf.pose, std::min(radius, options_.loop.max_window_m), window_rad,
       options_.loop.min_score * options_.loop.min_overlap, options_.loop.ambiguity_ratio);
   std::vector<OrientedPoint> overlapping;
-  if (match.found)
-    std::copy_if(query.begin(), query.end(), std::back_inserter(overlapping),
-                 [&](const OrientedPoint& o) {
-                   return Matchable(target, match.pose, o, options_.loop.registration);
-                 });
+  if (match.found) {
+    const std::vector<OrientedPoint> placed = Placed(match.pose, query);
+    for (std::size_t i = 0; i < query.size(); ++i)
+      if (Matchable(target, placed[i], options_.loop.registration)) overlapping.push_back(query[i]);
+  }
   const double overlap =
       static_cast<double>(overlapping.size()) / static_cast<double>(query.size());
   if (!match.found || overlap < options_.loop.min_overlap) {

@@ -180,19 +180,28 @@ Eigen::Matrix3d GaussNewtonHessian(ceres::Problem* problem, ceres::ResidualBlock
 
 }  // namespace
 
-bool Matchable(const DistanceGrid& grid, const kernel::Pose2& pose, const OrientedPoint& point,
+bool Matchable(const DistanceGrid& grid, const OrientedPoint& placed,
                const RegistrationOptions& options) {
-  const Eigen::Vector2d q = pose * point.point;
-  if (!grid.Known(q)) return false;
-  const OrientedPoint* piece = grid.NearestPiece(q);
+  if (!grid.Known(placed.point)) return false;
+  const OrientedPoint* piece = grid.NearestPiece(placed.point);
   if (piece == nullptr || piece->normal.isZero()) return true;
   const Eigen::Vector2d tangent(-piece->normal.y(), piece->normal.x());
   if (options.skip_past_outline_ends &&
-      std::abs(tangent.dot(q - piece->point)) > grid.PieceHalfLength() && !grid.SeenFree(q))
+      std::abs(tangent.dot(placed.point - piece->point)) > grid.PieceHalfLength() &&
+      !grid.SeenFree(placed.point))
     return false;
-  return options.max_normal_angle_rad >= M_PI || point.normal.isZero() ||
-         (pose.Rotation() * point.normal).dot(piece->normal) >=
-             std::cos(options.max_normal_angle_rad);
+  return options.max_normal_angle_rad >= M_PI || placed.normal.isZero() ||
+         placed.normal.dot(piece->normal) >= std::cos(options.max_normal_angle_rad);
+}
+
+std::vector<OrientedPoint> Placed(const kernel::Pose2& pose,
+                                  const std::vector<OrientedPoint>& points) {
+  const Eigen::Matrix2d rotation = pose.Rotation();
+  std::vector<OrientedPoint> placed;
+  placed.reserve(points.size());
+  for (const OrientedPoint& o : points)
+    placed.push_back({rotation * o.point + pose.translation(), rotation * o.normal});
+  return placed;
 }
 
 RegistrationResult RegisterPoints(const std::vector<Eigen::Vector2d>& points,
@@ -215,8 +224,9 @@ RegistrationResult RegisterPoints(const std::vector<OrientedPoint>& points,
   // to where its range ended goes on, and its new points must not pull the scan back. Nor do
   // points facing away from their nearest piece (options.max_normal_angle_rad).
   std::vector<Eigen::Vector2d> seen;
-  for (const auto& o : points)
-    if (Matchable(grid, prior, o, options)) seen.push_back(o.point);
+  const std::vector<OrientedPoint> placed = Placed(prior, points);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (Matchable(grid, placed[i], options)) seen.push_back(points[i].point);
   if (grid.empty() || static_cast<int>(seen.size()) < options.min_points) {
     result.reason = "too few points where the map has seen";
     return result;

@@ -85,12 +85,15 @@ struct RegistrationResult {
 // Registers `points` (robot frame) against `grid` (world frame) from `prior`, whose covariance
 // (in the prior's frame) is `prior_covariance`, or diag(prior_sigma_m^2, prior_sigma_m^2,
 // prior_sigma_rad^2) when null.
-// Whether `point` (robot frame, with its normal or zero) placed at `pose` gets a residual: the
+// Whether a point `placed` in the grid's frame (with its normal, or zero) gets a residual: the
 // grid has seen where it falls; it lies along its nearest outline piece, or past its end where
 // the grid saw free space (options.skip_past_outline_ends); when both have normals, the point's
 // agrees with the piece's within options.max_normal_angle_rad.
-bool Matchable(const DistanceGrid& grid, const kernel::Pose2& pose, const OrientedPoint& point,
+bool Matchable(const DistanceGrid& grid, const OrientedPoint& placed,
                const RegistrationOptions& options);
+// `points` (robot frame) placed at `pose`.
+std::vector<OrientedPoint> Placed(const kernel::Pose2& pose,
+                                  const std::vector<OrientedPoint>& points);
 
 // Registers the points that are Matchable at the prior.
 RegistrationResult RegisterPoints(const std::vector<OrientedPoint>& points,

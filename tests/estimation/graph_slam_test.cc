@@ -128,7 +128,7 @@ TEST(Registration, PointsTheMapDoesNotExplainAreNotMatched) {
   for (double x = -2; x <= 2; x += 0.02) scan.push_back({{x, 0.0}, {0.0, 1.0}});
   const DistanceGrid grid = DistanceGrid::Build(map, 0.1, 0.5, 0.5, {view}, false, margin);
   RegistrationOptions options;
-  EXPECT_TRUE(Matchable(grid, Pose2(), {{1.25, 0.0}, {0.0, 1.0}}, options));
+  EXPECT_TRUE(Matchable(grid, {{1.25, 0.0}, {0.0, 1.0}}, options));
   const double both = RegisterPoints(scan, grid, Pose2(), options).pose.translation().norm();
   options.skip_past_outline_ends = false;
   const double normals = RegisterPoints(scan, grid, Pose2(), options).pose.translation().norm();
