@@ -127,19 +127,21 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
     for (const auto& p : polygon) outer.push_back(cell(p));
     cv::fillPoly(known, std::vector<std::vector<cv::Point>>{outer}, cv::Scalar(1));
   }
-  for (const auto& polygon : seen) {
-    if (seen_margin_m <= 0) break;
-    std::vector<cv::Point> inner;
-    for (const auto& p : polygon) {
-      const Eigen::Vector2d ray = p - polygon.front();
-      const double length = ray.norm();
-      inner.push_back(cell(length <= seen_margin_m
-                               ? polygon.front()
-                               : Eigen::Vector2d(p - seen_margin_m / length * ray)));
+  if (seen_margin_m <= 0) {
+    known.setTo(cv::Scalar(2), known == 1);
+  } else {
+    for (const auto& polygon : seen) {
+      std::vector<cv::Point> inner;
+      for (const auto& p : polygon) {
+        const Eigen::Vector2d ray = p - polygon.front();
+        const double length = ray.norm();
+        inner.push_back(cell(length <= seen_margin_m
+                                 ? polygon.front()
+                                 : Eigen::Vector2d(p - seen_margin_m / length * ray)));
+      }
+      cv::fillPoly(known, std::vector<std::vector<cv::Point>>{inner}, cv::Scalar(2));
     }
-    cv::fillPoly(known, std::vector<std::vector<cv::Point>>{inner}, cv::Scalar(2));
   }
-  if (seen_margin_m <= 0) known.setTo(cv::Scalar(2), known == 1);
   known.setTo(cv::Scalar(2), free_cells == 0);
   g.known_.assign(known.datastart, known.dataend);
   return g;

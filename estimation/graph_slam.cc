@@ -47,13 +47,13 @@ std::vector<Eigen::Vector2d> Positions(const std::vector<OrientedPoint>& oriente
   return out;
 }
 
-// The mean of exp(-D^2 / (2 sigma^2)) over `points` placed at `pose`, D their exact distance to
-// the grid's outline (DistanceGrid::Distance).
-double MeanLikelihood(const DistanceGrid& grid, const kernel::Pose2& pose,
-                      const std::vector<OrientedPoint>& points, double sigma) {
+// The mean of exp(-D^2 / (2 sigma^2)) over `points` (the grid's frame), D their exact distance
+// to the grid's outline (DistanceGrid::Distance).
+double MeanLikelihood(const DistanceGrid& grid, const std::vector<OrientedPoint>& points,
+                      double sigma) {
   double sum = 0.0;
   for (const OrientedPoint& o : points) {
-    const double d = grid.Distance(pose * o.point);
+    const double d = grid.Distance(o.point);
     sum += std::exp(-d * d / (2 * sigma * sigma));
   }
   return points.empty() ? 0.0 : sum / static_cast<double>(points.size());
@@ -236,8 +236,8 @@ std::vector<OrientedPoint> GraphSlam::WorldRaster(int first, int last) const {
   std::vector<OrientedPoint> raster;
   for (int i = std::max(first, 0); i <= last; ++i) {
     const Keyframe& kf = keyframes_[static_cast<std::size_t>(i)];
-    const Eigen::Matrix2d rotation = kf.pose.Rotation();
-    for (const auto& o : kf.raster) raster.push_back({kf.pose * o.point, rotation * o.normal});
+    const std::vector<OrientedPoint> placed = Placed(kf.pose, kf.raster);
+    raster.insert(raster.end(), placed.begin(), placed.end());
   }
   return raster;
 }
@@ -337,9 +337,8 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
   std::vector<OrientedPoint> query;
   for (int i = std::max(0, k - options_.loop.query_keyframes); i <= k; ++i) {
     const Keyframe& q = keyframes_[static_cast<std::size_t>(i)];
-    const kernel::Pose2 k_T_i = kf_inverse * q.pose;
-    const Eigen::Matrix2d rotation = k_T_i.Rotation();
-    for (const auto& o : q.points) query.push_back({k_T_i * o.point, rotation * o.normal});
+    const std::vector<OrientedPoint> placed = Placed(kf_inverse * q.pose, q.points);
+    query.insert(query.end(), placed.begin(), placed.end());
   }
   query = Thinned(query, options_.loop.resolution_m);
   const int first = candidate - options_.loop.target_keyframes;
@@ -377,7 +376,7 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
     ++loops_.rejected_registration;
     return std::nullopt;
   }
-  if (MeanLikelihood(target, fine.pose, overlapping, options_.loop.sigma_m) <
+  if (MeanLikelihood(target, Placed(fine.pose, overlapping), options_.loop.sigma_m) <
       options_.loop.min_score) {
     ++loops_.rejected_score;
     return std::nullopt;

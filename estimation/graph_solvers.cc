@@ -327,7 +327,8 @@ kernel::Status RegistrationOptions::Validate() const {
       !(max_correction_m > 0) || !(max_correction_rad > 0) ||
       !(max_normal_angle_rad > 0 && max_normal_angle_rad <= M_PI))
     return kernel::Status::Error(
-        "registration quality test: positive distances, inlier fraction in [0, 1]");
+        "registration quality test: positive distances, inlier fraction in [0, 1], normal angle "
+        "in (0, pi]");
   return kernel::Status::Ok();
 }
 

@@ -82,9 +82,6 @@ struct RegistrationResult {
   std::string reason;     // why not, when not accepted
 };
 
-// Registers `points` (robot frame) against `grid` (world frame) from `prior`, whose covariance
-// (in the prior's frame) is `prior_covariance`, or diag(prior_sigma_m^2, prior_sigma_m^2,
-// prior_sigma_rad^2) when null.
 // Whether a point `placed` in the grid's frame (with its normal, or zero) gets a residual: the
 // grid has seen where it falls; it lies along its nearest outline piece, or past its end where
 // the grid saw free space (options.skip_past_outline_ends); when both have normals, the point's
@@ -95,7 +92,10 @@ bool Matchable(const DistanceGrid& grid, const OrientedPoint& placed,
 std::vector<OrientedPoint> Placed(const kernel::Pose2& pose,
                                   const std::vector<OrientedPoint>& points);
 
-// Registers the points that are Matchable at the prior.
+// Registers `points` (robot frame; those Matchable at the prior) against `grid` (world frame)
+// from `prior`, whose covariance (in the prior's frame) is `prior_covariance`, or
+// diag(prior_sigma_m^2, prior_sigma_m^2, prior_sigma_rad^2) when null. The second form: points
+// without normals.
 RegistrationResult RegisterPoints(const std::vector<OrientedPoint>& points,
                                   const DistanceGrid& grid, const kernel::Pose2& prior,
                                   const RegistrationOptions& options,
