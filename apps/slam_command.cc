@@ -131,10 +131,11 @@ void PrintSlamSummary(const std::string& label, const estimation::SlamMethod& sl
                       const loop::ReplayResult& run, const nlohmann::ordered_json& summary) {
   fmt::print(
       "{} scans ({:.0f} s of data) in {:.1f} s: {:.1f}x real time, {:.2f} ms per scan (median "
-      "{:.2f})\n",
+      "{:.2f}, slowest {:.1f}); peak memory {:.0f} MB\n",
       run.estimate.size(), run.data_s(), run.wall_s, summary["real_time_factor"].get<double>(),
       summary["time_per_scan_ms"]["mean"].get<double>(),
-      summary["time_per_scan_ms"]["median"].get<double>());
+      summary["time_per_scan_ms"]["median"].get<double>(),
+      summary["time_per_scan_ms"]["max"].get<double>(), summary["peak_memory_mb"].get<double>());
   fmt::print("map: {}; associations: {}\n", slam.MapDescription(), summary["associations"].dump());
   if (!run.truth.empty()) {
     const auto e = estimation::CompareToTruth(run.truth, run.estimate);

@@ -12,6 +12,9 @@ Status BSplineFitOptions::Validate() const {
   if (min_control_points < 4) return Status::Error("min_control_points must be at least 4");
   if (max_control_points < min_control_points)
     return Status::Error("max_control_points must be >= min_control_points");
+  if (!(max_length_ratio >= 1.0)) return Status::Error("max_length_ratio must be at least 1");
+  if (!(points_per_control_point >= 1.0))
+    return Status::Error("points_per_control_point must be at least 1");
   if (parameter_smoothing_half_window < 0)
     return Status::Error("parameter_smoothing_half_window must be >= 0");
   return Status::Ok();
@@ -63,7 +66,13 @@ bool FitParametersAndKnots(const std::vector<Eigen::Vector2d>& points,
 
   int wanted = static_cast<int>(std::lround(length / options.control_point_spacing_m)) + 1;
   wanted = std::clamp(wanted, options.min_control_points, options.max_control_points);
-  const std::size_t n = std::min(static_cast<std::size_t>(wanted), distinct);  // control points
+  // At most one control point per points_per_control_point distinct points: with as many control
+  // points as points the least squares interpolates, and on sparse points (a far wall at 1 deg
+  // steps) the curve rings between them, hundreds of metres long for a 14 m wall.
+  const std::size_t by_points = static_cast<std::size_t>(
+      std::floor(static_cast<double>(distinct) / options.points_per_control_point));
+  const std::size_t n = std::max<std::size_t>(
+      4, std::min({static_cast<std::size_t>(wanted), distinct, by_points}));  // control points
 
   // Knots by averaging (Piegl & Tiller eq. 9.69): every span contains parameters.
   std::vector<double> knots(n + 4, 0.0);
@@ -136,7 +145,18 @@ std::optional<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& 
   }
   std::vector<Eigen::Vector2d> control(static_cast<std::size_t>(x.rows()));
   for (Eigen::Index i = 0; i < x.rows(); ++i) control[static_cast<std::size_t>(i)] = x.row(i);
-  return CubicBSpline::Create(std::move(control), std::move(knots), error);
+  std::optional<CubicBSpline> spline =
+      CubicBSpline::Create(std::move(control), std::move(knots), error);
+  // A curve longer than max_length_ratio times the points' polyline (which noise only lengthens)
+  // rings between them: refused, so that no later step samples a curve of kilometres.
+  double polyline = 0.0;
+  for (std::size_t k = 1; k < points.size(); ++k) polyline += (points[k] - points[k - 1]).norm();
+  if (spline && spline->Length() > options.max_length_ratio * polyline) {
+    SetError(error, "the fitted curve is " + std::to_string(spline->Length() / polyline) +
+                        " times as long as its points' polyline");
+    return std::nullopt;
+  }
+  return spline;
 }
 
 std::optional<BSplineFitOperator> CubicBSplineFitOperator(
@@ -162,6 +182,10 @@ void BSplineFitOptions::VisitFields(FieldVisitor& v) {
           "one control point per this much chord length, m");
   v.Field("min_control_points", &min_control_points, "at least this many control points (>= 4)");
   v.Field("max_control_points", &max_control_points, "at most this many control points");
+  v.Field("points_per_control_point", &points_per_control_point,
+          "at least this many distinct points per control point (at least 4 control points)");
+  v.Field("max_length_ratio", &max_length_ratio,
+          "fits longer than this times their points' polyline are refused (they ring)");
   v.Field("parameter_smoothing_half_window", &parameter_smoothing_half_window,
           "chord-length parameters along a moving average of 2 h + 1 points (0: raw points)");
 }

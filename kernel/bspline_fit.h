@@ -18,6 +18,13 @@ struct BSplineFitOptions {
   double control_point_spacing_m = 0.25;
   int min_control_points = 4;   // >= 4 (a single cubic piece)
   int max_control_points = 64;  // cap for very long segments
+  // At least this many distinct points per control point (but at least 4 control points), so
+  // that the fit is a least-squares approximation, not an interpolation that rings between
+  // sparse points.
+  double points_per_control_point = 1.5;
+  // A fit longer than this times the polyline through its points is refused: it rings (the
+  // polyline is already longer than the curve it samples; a good fit is shorter still).
+  double max_length_ratio = 2.0;
   // The chord-length parameters are measured along a moving average of 2 h + 1 points (h this
   // value), so that range noise does not inflate the length; 0 uses the raw points.
   int parameter_smoothing_half_window = 3;
@@ -32,9 +39,10 @@ struct BSplineFitOptions {
 // knots placed by de Boor's averaging so that every span holds data, and all control points
 // minimising sum_k |C(t_k) - D_k|^2 (the curve's ends are fitted too, not pinned to noisy end
 // points). The number of control points is round(chord length / spacing) + 1, clamped to
-// [min_control_points, max_control_points] and to the number of distinct parameters.
-// Fails (nullopt, *error set) for fewer than 4 points, non-finite points, or fewer than 4
-// distinct points along the chord (e.g. all points equal).
+// [min_control_points, max_control_points] and to distinct / points_per_control_point (at least 4).
+// Fails (nullopt, *error set) for fewer than 4 points, non-finite points, fewer than 4
+// distinct points along the chord (e.g. all points equal), or a curve longer than
+// max_length_ratio times the points' polyline.
 std::optional<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& points,
                                             const BSplineFitOptions& options = {},
                                             std::string* error = nullptr);

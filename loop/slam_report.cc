@@ -1,5 +1,7 @@
 #include "loop/slam_report.h"
 
+#include <sys/resource.h>
+
 #include <cmath>
 
 #include "estimation/chi_square.h"
@@ -71,6 +73,11 @@ nlohmann::ordered_json ReplaySummaryJson(const estimation::SlamMethod& slam,
       {"median", Percentile(step_ms, 0.5)},
       {"p95", Percentile(step_ms, 0.95)},
       {"max", Percentile(step_ms, 1.0)}};
+  // The process's peak resident memory so far (Linux reports kilobytes): bounded by the map a
+  // method builds, not by the log's length or the laser's range.
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  summary["peak_memory_mb"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
   summary["time_per_scan_vs_map_size"] = TimeBinsJson(TimeByMapSize(step_ms, driver.map_size()));
   summary.update(StatisticsJson(statistics));
   summary["health"] = {{"healthy", slam.healthy()},

@@ -76,10 +76,11 @@ struct DriveResult {
 // Drives `world`'s route (at most max_scans scans) with a URG-04LX and replays it through the
 // method by its registry name, with the SLAM driver every command uses.
 DriveResult Drive(const sim::World& world, int max_scans, std::uint64_t seed,
-                  const TopologicalSlamOptions& options = {}) {
+                  const TopologicalSlamOptions& options = {},
+                  const sim::LaserOptions& laser = sim::LaserOptions::Urg04lx()) {
   const sim::RayCaster caster(world);
   sim::SimulatorOptions sim_options;
-  sim_options.laser = sim::LaserOptions::Urg04lx();
+  sim_options.laser = laser;
   sim::Simulator simulator(caster, sim_options, *world.start, seed);
   sim::RouteOptions route;
   route.max_steps = max_scans - 1;
@@ -120,6 +121,38 @@ TEST(TopologicalSlam, CorridorWallsSeenBitByBitAreSplicedOntoOneCurveEach) {
     EXPECT_LT(m.spline.Length(), 1.1 * (hi - lo));  // no wall piece mapped twice
   }
   EXPECT_LT(MapError(world, run.map), 0.03);
+}
+
+TEST(TopologicalSlam, ALongRangeLaserInLongCorridorsKeepsTheMapTheSizeOfTheWalls) {
+  // A SICK at 1 deg with an 80 m range in a 60 m x 40 m ring of corridors (the benchmark world
+  // bench/worlds/long_corridors.yaml): walls up to 60 m away at grazing incidence, points metres
+  // apart. Their fits used to ring between the points (one 14 m wall became an 87 km curve at
+  // scan ~930, and resampling it at 1 cm took minutes and gigabytes). The map's curves stay as
+  // long as the walls they stand for.
+  sim::World world;
+  world.obstacles.push_back(sim::Polyline{{{0, 0}, {60, 0}, {60, 40}, {0, 40}, {0, 0}}, false});
+  world.obstacles.push_back(sim::Polyline{{{2.5, 2.5}, {20, 2.5}}, false});
+  world.obstacles.push_back(sim::Polyline{{{21.5, 2.5}, {40, 2.5}}, false});
+  world.obstacles.push_back(sim::Polyline{{{41.5, 2.5}, {57.5, 2.5}, {57.5, 20}}, false});
+  world.obstacles.push_back(sim::Polyline{{{20, 2.5}, {21.5, 2.5}, {21.5, 6}, {20, 6}}, true});
+  world.start = kernel::Pose2(2, 1.25, 0);
+  world.route = {{57, 1.25}, {58.5, 2}, {58.75, 20}};
+  sim::LaserOptions sick = sim::LaserOptions::Lms200(1.0);
+  sick.max_range_m = 80;
+  const DriveResult run = Drive(world, 1200, 1, {}, sick);
+  ASSERT_EQ(run.estimate.size(), 1200u);
+  double walls = 0, mapped = 0;
+  for (const sim::Shape& shape : world.obstacles) {
+    const auto& v = std::get<sim::Polyline>(shape).vertices;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (i + 1 < v.size() || std::get<sim::Polyline>(shape).closed)
+        walls += (v[(i + 1) % v.size()] - v[i]).norm();
+  }
+  for (const MapSpline& m : run.map) {
+    EXPECT_LT(m.spline.Length(), 70.0);
+    mapped += m.spline.Length();
+  }
+  EXPECT_LT(mapped, 1.5 * walls);
 }
 
 TEST(TopologicalSlam, AssociatesOnlyWithTheCurvesOfTheLocalRegion) {

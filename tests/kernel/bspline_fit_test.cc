@@ -71,6 +71,67 @@ TEST(FitCubicBSpline, DegenerateInputsGiveDefinedResults) {
   EXPECT_NEAR(line->Length(), 4 * std::sqrt(2.0), 1e-6);
 }
 
+// A wall seen at grazing incidence by a long-range 1 deg laser: points metres apart, farther
+// apart the farther they are (a hospital corridor's wall, 5-60 m away).
+std::vector<Eigen::Vector2d> GrazingWall(Random& random) {
+  const double distance = random.Uniform(1.0, 3.0);  // from the laser to the wall's line
+  const double first = random.Uniform(1.5, 4.0) * M_PI / 180;
+  const int beams = 8 + static_cast<int>(random.Index(30));
+  const double bend = random.Uniform(-0.002, 0.002);  // a gently curved wall
+  std::vector<Eigen::Vector2d> points;
+  for (int i = beams - 1; i >= 0; --i) {
+    const double angle = first + i * M_PI / 180;
+    const double x = distance / std::tan(angle);
+    points.emplace_back(x, distance + bend * x * x + random.Gaussian(0.01));
+  }
+  return points;
+}
+
+TEST(FitCubicBSpline, PropertySparsePointsDoNotRing) {
+  // With a control point per point the least squares interpolates, and on such points the curve
+  // rang between them: tens of kilometres for a 14 m wall, which every later step resampled.
+  Random random(73);
+  int rang = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const std::vector<Eigen::Vector2d> points = GrazingWall(random);
+    double polyline = 0;
+    for (std::size_t k = 1; k < points.size(); ++k) polyline += (points[k] - points[k - 1]).norm();
+    BSplineFitOptions interpolating;
+    interpolating.points_per_control_point = 1.0;
+    interpolating.max_length_ratio = 1e9;
+    const auto old = FitCubicBSpline(points, interpolating);
+    rang += old && old->Length() > 2 * polyline;
+    std::string error;
+    const auto fit = FitCubicBSpline(points, {}, &error);
+    ASSERT_TRUE(fit.has_value()) << "trial " << trial << ": " << error;
+    EXPECT_LT(fit->Length(), 1.05 * polyline) << "trial " << trial;
+    // It still follows the wall: every point within 0.1 m of the curve's samples.
+    const std::vector<Eigen::Vector2d> samples = fit->ResampleByArcLength(0.02);
+    for (const Eigen::Vector2d& p : points) {
+      double nearest = INFINITY;
+      for (const Eigen::Vector2d& q : samples) nearest = std::min(nearest, (p - q).norm());
+      EXPECT_LT(nearest, 0.1) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(rang, 10);  // the trials hold the case that rang
+}
+
+TEST(FitCubicBSpline, RingingFitsAreRefused) {
+  Random random(5);
+  BSplineFitOptions interpolating;
+  interpolating.points_per_control_point = 1.0;
+  int refused = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const std::vector<Eigen::Vector2d> points = GrazingWall(random);
+    std::string error;
+    const auto fit = FitCubicBSpline(points, interpolating, &error);
+    if (fit) continue;
+    ++refused;
+    EXPECT_NE(error.find("times as long as its points' polyline"), std::string::npos) << error;
+  }
+  EXPECT_GT(refused, 10);
+}
+
 TEST(CubicBSplineFitOperator, PropertyReproducesTheFitAndIsAffine) {
   // X = M D gives FitCubicBSpline's control points, and every row of M sums to 1: translating
   // the data translates the control points (a least-squares fit of an affine-invariant basis).
@@ -104,6 +165,12 @@ TEST(BSplineFitOptions, Validate) {
   EXPECT_TRUE(BSplineFitOptions().Validate().ok());
   BSplineFitOptions o;
   o.min_control_points = 3;
+  EXPECT_FALSE(o.Validate().ok());
+  o = {};
+  o.points_per_control_point = 0.5;
+  EXPECT_FALSE(o.Validate().ok());
+  o = {};
+  o.max_length_ratio = 0.9;
   EXPECT_FALSE(o.Validate().ok());
 }
 
