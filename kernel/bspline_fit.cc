@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kernel/shapes.h"
+
 namespace splam::kernel {
 
 Status BSplineFitOptions::Validate() const {
@@ -149,8 +151,7 @@ std::optional<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& 
       CubicBSpline::Create(std::move(control), std::move(knots), error);
   // A curve longer than max_length_ratio times the points' polyline (which noise only lengthens)
   // rings between them: refused, so that no later step samples a curve of kilometres.
-  double polyline = 0.0;
-  for (std::size_t k = 1; k < points.size(); ++k) polyline += (points[k] - points[k - 1]).norm();
+  const double polyline = PolylineLength(points);
   if (spline && spline->Length() > options.max_length_ratio * polyline) {
     SetError(error, "the fitted curve is " + std::to_string(spline->Length() / polyline) +
                         " times as long as its points' polyline");

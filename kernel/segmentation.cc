@@ -4,14 +4,11 @@
 #include <cmath>
 
 #include "kernel/angle.h"
+#include "kernel/shapes.h"
 
 namespace splam::kernel {
 
-double ScanSegment::Length() const {
-  double length = 0.0;
-  for (std::size_t i = 1; i < points.size(); ++i) length += (points[i] - points[i - 1]).norm();
-  return length;
-}
+double ScanSegment::Length() const { return PolylineLength(points); }
 
 Status SegmentationOptions::Validate() const {
   if (!(dietmayer_c0_m >= 0.0)) return Status::Error("dietmayer_c0_m must be >= 0");

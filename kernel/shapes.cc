@@ -154,4 +154,10 @@ bool Overlaps(const Box2& box, const Segment2& segment) {
   return positive < 4 && negative < 4;
 }
 
+double PolylineLength(const std::vector<Eigen::Vector2d>& points) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < points.size(); ++i) length += (points[i] - points[i - 1]).norm();
+  return length;
+}
+
 }  // namespace splam::kernel

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <limits>
+#include <vector>
 
 namespace splam::kernel {
 
@@ -80,6 +81,9 @@ double Intersect(const Ray2& ray, const Ellipse2& ellipse, double t_min, double 
 
 // True when the box and the segment share a point (separating-axis test).
 bool Overlaps(const Box2& box, const Segment2& segment);
+
+// Length of the open polyline through the points, metres (0 for fewer than two).
+double PolylineLength(const std::vector<Eigen::Vector2d>& points);
 
 }  // namespace splam::kernel
 

@@ -11,6 +11,7 @@
 #include "estimation/metrics.h"
 #include "kernel/angle.h"
 #include "kernel/random.h"
+#include "kernel/shapes.h"
 #include "loop/log_replay.h"
 #include "sim/builtin_worlds.h"
 #include "sim/ray_caster.h"
@@ -143,10 +144,9 @@ TEST(TopologicalSlam, ALongRangeLaserInLongCorridorsKeepsTheMapTheSizeOfTheWalls
   ASSERT_EQ(run.estimate.size(), 1200u);
   double walls = 0, mapped = 0;
   for (const sim::Shape& shape : world.obstacles) {
-    const auto& v = std::get<sim::Polyline>(shape).vertices;
-    for (std::size_t i = 0; i < v.size(); ++i)
-      if (i + 1 < v.size() || std::get<sim::Polyline>(shape).closed)
-        walls += (v[(i + 1) % v.size()] - v[i]).norm();
+    std::vector<Eigen::Vector2d> v = std::get<sim::Polyline>(shape).vertices;
+    if (std::get<sim::Polyline>(shape).closed) v.push_back(v.front());
+    walls += kernel::PolylineLength(v);
   }
   for (const MapSpline& m : run.map) {
     EXPECT_LT(m.spline.Length(), 70.0);

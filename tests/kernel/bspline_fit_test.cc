@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "kernel/random.h"
+#include "kernel/shapes.h"
 
 namespace splam::kernel {
 namespace {
@@ -94,8 +95,7 @@ TEST(FitCubicBSpline, PropertySparsePointsDoNotRing) {
   int rang = 0;
   for (int trial = 0; trial < 300; ++trial) {
     const std::vector<Eigen::Vector2d> points = GrazingWall(random);
-    double polyline = 0;
-    for (std::size_t k = 1; k < points.size(); ++k) polyline += (points[k] - points[k - 1]).norm();
+    const double polyline = PolylineLength(points);
     BSplineFitOptions interpolating;
     interpolating.points_per_control_point = 1.0;
     interpolating.max_length_ratio = 1e9;
