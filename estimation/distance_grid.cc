@@ -189,16 +189,57 @@ double DistanceGrid::Nearest(const Eigen::Vector2d& p) const {
   return i < 0 ? truncation_m_ : values_[static_cast<std::size_t>(i)];
 }
 
+namespace {
+
+// Consecutive spacings of a surface's points grow smoothly with the incidence (by about 1.6
+// times per beam 14-22 m along a wall 1.25 m from a 1 deg laser); a spacing more than this
+// times its neighbour is a jump, however well the short one lines up with it.
+constexpr double kMaxSpacingRatio = 3.0;
+
+// Whether b lies strictly between a and c along their chord and within `tolerance` of it, with
+// |b - a| and |c - b| within kMaxSpacingRatio of each other.
+bool Collinear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+               double tolerance) {
+  const Eigen::Vector2d chord = c - a;
+  const double length = chord.norm();
+  const double first = (b - a).norm(), second = (c - b).norm();
+  if (length < 1e-12 || first > kMaxSpacingRatio * second || second > kMaxSpacingRatio * first)
+    return false;
+  const Eigen::Vector2d u = chord / length;
+  const Eigen::Vector2d v = b - a;
+  const double along = u.dot(v);
+  return along > 0 && along < length && std::abs(u.x() * v.y() - u.y() * v.x()) <= tolerance;
+}
+
+}  // namespace
+
+std::vector<bool> LinkedToNext(const std::vector<Eigen::Vector2d>& p, double max_gap_m,
+                               double line_tolerance_m) {
+  const std::size_t n = p.size();
+  std::vector<bool> linked(n, false);
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    linked[i] = (p[i + 1] - p[i]).norm() <= max_gap_m ||
+                (line_tolerance_m > 0 &&
+                 ((i > 0 && Collinear(p[i - 1], p[i], p[i + 1], line_tolerance_m)) ||
+                  (i + 2 < n && Collinear(p[i], p[i + 1], p[i + 2], line_tolerance_m))));
+  return linked;
+}
+
 std::vector<OrientedPoint> OrientTowards(const std::vector<Eigen::Vector2d>& points,
-                                         const Eigen::Vector2d& sensor, double max_gap_m) {
+                                         const Eigen::Vector2d& sensor, double max_gap_m,
+                                         double line_tolerance_m) {
+  const std::vector<bool> linked = LinkedToNext(points, max_gap_m, line_tolerance_m);
   std::vector<OrientedPoint> out(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector2d& p = points[i];
-    // The run's points within max_gap_m of p (reached through gaps of at most max_gap_m).
+    // The run's points within max_gap_m of p (reached through gaps of at most max_gap_m), and
+    // at least its immediate linked neighbours.
     std::size_t first = i, last = i;
+    if (first > 0 && linked[first - 1]) --first;
     while (first > 0 && (points[first - 1] - p).norm() <= max_gap_m &&
            (points[first - 1] - points[first]).norm() <= max_gap_m)
       --first;
+    if (last + 1 < points.size() && linked[last]) ++last;
     while (last + 1 < points.size() && (points[last + 1] - p).norm() <= max_gap_m &&
            (points[last + 1] - points[last]).norm() <= max_gap_m)
       ++last;
@@ -222,6 +263,27 @@ std::vector<OrientedPoint> OrientTowards(const std::vector<Eigen::Vector2d>& poi
     out[i] = {p, n.norm() > 1e-12 ? Eigen::Vector2d(n.normalized()) : Eigen::Vector2d::Zero()};
   }
   return out;
+}
+
+std::vector<OrientedPoint> FillLinkedGaps(const std::vector<OrientedPoint>& oriented,
+                                          double max_gap_m, double line_tolerance_m,
+                                          double spacing_m) {
+  std::vector<Eigen::Vector2d> points;
+  points.reserve(oriented.size());
+  for (const OrientedPoint& o : oriented) points.push_back(o.point);
+  const std::vector<bool> linked = LinkedToNext(points, max_gap_m, line_tolerance_m);
+  std::vector<OrientedPoint> fill;
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    const Eigen::Vector2d chord = points[i + 1] - points[i];
+    const double length = chord.norm();
+    if (!linked[i] || length <= max_gap_m) continue;
+    Eigen::Vector2d n(-chord.y() / length, chord.x() / length);
+    if (n.dot(oriented[i].normal + oriented[i + 1].normal) < 0) n = -n;
+    const int steps = static_cast<int>(std::ceil(length / spacing_m));
+    for (int s = 1; s < steps; ++s)
+      fill.push_back({points[i] + chord * (static_cast<double>(s) / steps), n});
+  }
+  return fill;
 }
 
 LikelihoodPyramid::LikelihoodPyramid(const DistanceGrid& grid, double sigma_m, int levels)

@@ -59,6 +59,44 @@ double MeanLikelihood(const DistanceGrid& grid, const std::vector<OrientedPoint>
   return points.empty() ? 0.0 : sum / static_cast<double>(points.size());
 }
 
+// The scan's view (robot frame): from the sensor to every beam's end, a hit seen_margin_m behind
+// it so that points just behind a wall count, a no-return (clipped beams included) seen_margin_m
+// short of `range` (the laser's or max_range_m, whichever is shorter): the view's edge is
+// rasterised to whole cells, and a wall just beyond the range, seen by the next scan, must not
+// land in cells the map calls seen and empty, where its points would be pulled towards the
+// nearest known outline. Between two neighbouring beams the view reaches only the shorter one's
+// end (a step on the longer beam), not the chord between their ends: a beam sees along its
+// ray, and the chord between two hits on a wall at grazing incidence, metres apart, runs along
+// the wall itself. A scan that saw that part of the wall was held where its points met the
+// last outline piece the submap had there, by the pull of points on "seen free" wall (a 60 m
+// corridor with 1 deg beams clipped at 30 m: the front end stopped for metres at each
+// opening).
+std::vector<Eigen::Vector2d> ScanView(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+                                      double range, double seen_margin_m) {
+  std::vector<std::pair<double, double>> ends;  // (range, angle) of each usable beam's end
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    if (scan.IsHit(i))
+      ends.emplace_back(std::min(scan.ranges_m[i] + seen_margin_m, range), scan.BeamAngle(i));
+    else if (scan.IsNoReturn(i))
+      ends.emplace_back(std::min(range, scan.max_range_m) - seen_margin_m, scan.BeamAngle(i));
+  }
+  std::vector<Eigen::Vector2d> view{robot_T_laser.translation()};
+  const auto add = [&](double r, double angle) {
+    view.push_back(robot_T_laser * kernel::PolarToCartesian({r, angle}));
+  };
+  for (std::size_t k = 0; k < ends.size(); ++k) {
+    const auto [r, angle] = ends[k];
+    add(r, angle);
+    if (k + 1 == ends.size()) break;
+    const auto [next_r, next_angle] = ends[k + 1];
+    if (next_r < r)
+      add(next_r, angle);
+    else if (r < next_r)
+      add(r, next_angle);
+  }
+  return view;
+}
+
 Eigen::Matrix3d Diagonal(double sigma_m, double sigma_rad) {
   return Eigen::Vector3d(sigma_m * sigma_m, sigma_m * sigma_m, sigma_rad * sigma_rad).asDiagonal();
 }
@@ -95,8 +133,9 @@ void GraphSlam::Predict(const kernel::Pose2& odometry_increment) {
 void GraphSlam::Update(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_laser) {
   if (!health_.ok()) return;
   const kernel::Scan scan = raw_scan.Clipped(UsableRange(raw_scan));
-  std::vector<OrientedPoint> points = OrientTowards(
-      robot_T_laser * scan.HitPoints(), robot_T_laser.translation(), options_.normal_max_gap_m);
+  std::vector<OrientedPoint> points =
+      OrientTowards(robot_T_laser * scan.HitPoints(), robot_T_laser.translation(),
+                    options_.normal_max_gap_m, options_.line_tolerance_m);
   if (!keyframes_.empty()) {
     if (submap_dirty_) RebuildSubmap();
     const RegistrationResult r = RegisterScan(points);
@@ -177,25 +216,17 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
                                        options_.grid_resolution_m);
     kf.raster.insert(kf.raster.end(), samples.begin(), samples.end());
   }
-  if (options_.raster_points || kf.raster.empty())
+  if (options_.raster_points || kf.raster.empty()) {
     kf.raster.insert(kf.raster.end(), points.begin(), points.end());
+    const std::vector<OrientedPoint> fill =
+        FillLinkedGaps(points, options_.normal_max_gap_m, options_.line_tolerance_m,
+                       options_.grid_resolution_m / 2);
+    kf.raster.insert(kf.raster.end(), fill.begin(), fill.end());
+  }
   // Curves are sampled every centimetre; a few samples per cell place it as well.
   kf.raster = Thinned(kf.raster, options_.grid_resolution_m / 2);
   kf.points = std::move(points);
-  // The scan's view: from the sensor to every beam's end (a hit, seen_margin_m behind it so that
-  // points just behind a wall count; or, for a no-return, clipped beams included, seen_margin_m
-  // short of the range (the laser's or max_range_m, whichever is shorter: beams clipped by
-  // max_range_m are no-returns): the view's edge is rasterised to whole cells, and a wall just
-  // beyond the range, seen by the next scan, must not land in cells the map calls seen and empty,
-  // where its points would be pulled towards the nearest known outline).
-  const double range = UsableRange(scan);
-  kf.seen.push_back(robot_T_laser.translation());
-  for (std::size_t i = 0; i < scan.size(); ++i) {
-    if (!scan.IsHit(i) && !scan.IsNoReturn(i)) continue;
-    const double r = scan.IsHit(i) ? std::min(scan.ranges_m[i] + options_.seen_margin_m, range)
-                                   : std::min(range, scan.max_range_m) - options_.seen_margin_m;
-    kf.seen.push_back(robot_T_laser * kernel::PolarToCartesian({r, scan.BeamAngle(i)}));
-  }
+  kf.seen = ScanView(scan, robot_T_laser, UsableRange(scan), options_.seen_margin_m);
   kf.in_map = std::none_of(keyframes_.begin(), keyframes_.end(), [&](const Keyframe& o) {
     return o.in_map &&
            (o.pose.translation() - kf.pose.translation()).norm() < options_.map_spacing_m &&
@@ -515,6 +546,8 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("seen_margin_m", &seen_margin_m, "a scan saw this far behind its hits, m");
   v.Field("normal_max_gap_m", &normal_max_gap_m,
           "a scan point's normal from neighbours at most this far, m");
+  v.Field("line_tolerance_m", &line_tolerance_m,
+          "farther neighbours on a line with a third within this are one outline (0: off), m");
   v.Nested("registration", "scan-to-submap registration", &registration);
   v.Field("odometry_prior", &odometry_prior, "the registration's prior is the odometry model");
   v.Nested("odometry", "odometry noise model of that prior", &odometry);
@@ -544,8 +577,9 @@ kernel::Status GraphSlamOptions::Validate() const {
     return e;
   if (!(max_range_m >= 0) || !(keyframe_distance_m > 0) || !(keyframe_angle_rad > 0))
     return kernel::Status::Error("max_range_m >= 0, keyframe distance and angle > 0");
-  if (!(seen_margin_m >= 0) || !(normal_max_gap_m > 0))
-    return kernel::Status::Error("seen_margin_m >= 0 and normal_max_gap_m > 0");
+  if (!(seen_margin_m >= 0) || !(normal_max_gap_m > 0) || !(line_tolerance_m >= 0))
+    return kernel::Status::Error(
+        "seen_margin_m >= 0, normal_max_gap_m > 0 and line_tolerance_m >= 0");
   if (submap_keyframes < 1 || !(grid_resolution_m > 0) || !(truncation_m > grid_resolution_m))
     return kernel::Status::Error(
         "submap_keyframes >= 1, grid_resolution_m > 0, truncation_m > grid_resolution_m");

@@ -101,6 +101,15 @@ struct GraphSlamOptions {
   bool raster_curves = true;
   bool raster_points = true;
   double normal_max_gap_m = 0.3;
+  // Scan points farther apart than normal_max_gap_m are still one outline when they lie on a
+  // line with a third neighbour within line_tolerance_m (LinkedToNext: a wall at grazing
+  // incidence, its points metres apart with a SICK's 0.5-1 deg beams): their normals are fitted
+  // together and the chord between them is rasterised. Without it such a wall is a row of
+  // isolated points, each an outline piece across the wall (its normal the beam's), and a scan
+  // registered against them is held where the submap's scan was: bench/long_range.sh's 1 deg
+  // laser along 60 m corridors, 41 m off with it at 0, 0.09 m with it (docs/graph_slam.md;
+  // 0 disables), m.
+  double line_tolerance_m = 0.03;
   bool signed_distance = false;  // see DistanceGrid::Build
   // The part of the submap its scans saw (DistanceGrid's `seen`): each scan's view, its hits
   // taken this far behind (a point just behind a wall is still matched to it), m. Not widened

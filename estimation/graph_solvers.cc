@@ -266,9 +266,7 @@ RegistrationResult RegisterPoints(const std::vector<OrientedPoint>& points,
                  static_cast<long long>(std::floor(cell.y())));
   }
   const double independent = static_cast<double>(cells.size()) / static_cast<double>(seen.size());
-  double points_cost = 0.0;
-  const Eigen::Matrix3d points_hessian = GaussNewtonHessian(&problem, points_block, &points_cost);
-  result.points_cost = 2.0 * points_cost * independent;
+  const Eigen::Matrix3d points_hessian = GaussNewtonHessian(&problem, points_block);
   result.covariance =
       (independent * points_hessian + GaussNewtonHessian(&problem, prior_block)).inverse();
 
@@ -276,11 +274,14 @@ RegistrationResult RegisterPoints(const std::vector<OrientedPoint>& points,
   double sum_sq = 0.0;
   for (const auto& p : seen) {
     const double d = distance(result.pose * p);
+    const double capped = std::min(std::abs(d), options.inlier_distance_m) / options.point_sigma_m;
+    result.points_cost += capped * capped;
     if (std::abs(d) < options.inlier_distance_m) {
       ++inliers;
       sum_sq += d * d;
     }
   }
+  result.points_cost *= independent;
   // Of the whole scan: a scan mostly outside what the map saw is not trusted (the recovery
   // search or the odometry take over).
   result.inlier_fraction = static_cast<double>(inliers) / static_cast<double>(points.size());

@@ -71,8 +71,11 @@ struct RegistrationOptions {
 struct RegistrationResult {
   kernel::Pose2 pose;                                        // the registered pose
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  // (J^T J)^-1 at the solution
-  // The points' robust squared residuals summed, counting each cell's points once (see
-  // `covariance`): in chi^2 units, so that two poses' costs differ by a chi^2 value.
+  // The points' squared residuals (distance / point_sigma_m)^2, each at most
+  // (inlier_distance_m / point_sigma_m)^2 (the log-likelihood of an inlier or a uniform outlier,
+  // up to a constant), summed counting each cell's points once (see `covariance`): in chi^2
+  // units, so that two poses' costs differ by a chi^2 value, and no single point (a wall's
+  // point that the map's scans saw free at 10 cm cells past a doorway's edge) outweighs the rest.
   double points_cost = 0.0;
   double rms_m = 0.0;            // RMS distance of the inliers to the map
   double inlier_fraction = 0.0;  // of all the points, those near the map

@@ -161,6 +161,56 @@ TEST(DistanceGrid, OutlinePiecesReadTheDistanceToAWall) {
   }
 }
 
+// Property: a laser's points on a wall at grazing incidence (0.5-1 deg beams, the wall 0.5-3 m
+// from the sensor at any heading, 1 cm range noise; the points metres apart) are linked into one
+// outline: their normals are the wall's, not the beams', and the gaps between them are filled on
+// the wall. A depth jump from a near wall to a far one is not linked, nor a short gap next to a
+// long one (the last point of a wall before a corridor's far side, 2.5 m across).
+TEST(DistanceGrid, PropertyGrazingWallPointsAreOneOutlineAndJumpsAreNot) {
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  for (int trial = 0; trial < 200; ++trial) {
+    const double step = kernel::DegToRad(0.5 + 0.5 * u(gen)), offset = 0.5 + 2.5 * u(gen);
+    const double heading = 2 * M_PI * u(gen);
+    const Eigen::Vector2d along(std::cos(heading), std::sin(heading)), n(-along.y(), along.x());
+    // Beams from 30 m along the wall to 20 deg from it, each hitting the wall at offset/sin(a).
+    std::vector<Eigen::Vector2d> points;
+    for (double a = std::atan2(offset, 30.0); a < kernel::DegToRad(20); a += step) {
+      const double range = offset / std::sin(a) + noise(gen);
+      points.push_back(range * (std::cos(a) * along + std::sin(a) * n));
+    }
+    ASSERT_GE(points.size(), 10u);
+    const std::vector<bool> linked = LinkedToNext(points, 0.3, 0.03);
+    for (std::size_t i = 0; i + 1 < points.size(); ++i) EXPECT_TRUE(linked[i]) << trial << " " << i;
+    const std::vector<OrientedPoint> oriented =
+        OrientTowards(points, Eigen::Vector2d::Zero(), 0.3, 0.03);
+    // Within 10 deg of the wall's (1 cm noise over the dense near points' 0.3 m); the direction
+    // to the sensor, which isolated points had, is within 20 deg of the wall itself.
+    for (const OrientedPoint& o : oriented) EXPECT_GT(o.normal.dot(-n), 0.985) << trial;
+    const std::vector<OrientedPoint> fill = FillLinkedGaps(oriented, 0.3, 0.03, 0.05);
+    double covered = 0;
+    for (std::size_t i = 0; i + 1 < points.size(); ++i)
+      if ((points[i + 1] - points[i]).norm() > 0.3) covered += (points[i + 1] - points[i]).norm();
+    EXPECT_GE(static_cast<double>(fill.size()),
+              covered / 0.05 - static_cast<double>(points.size()));
+    for (const OrientedPoint& f : fill) {
+      EXPECT_NEAR(f.point.dot(n), offset, 0.05) << trial;
+      EXPECT_GT(f.normal.dot(-n), 0.999) << trial;
+    }
+  }
+  // A near wall's dense end, then a far wall: the jump is not linked, the walls' points are.
+  std::vector<Eigen::Vector2d> jump;
+  for (int i = 0; i < 5; ++i) jump.push_back({1.0, 0.02 * i});
+  for (int i = 0; i < 5; ++i) jump.push_back({4.0, 0.3 + 0.07 * i});
+  const std::vector<bool> linked = LinkedToNext(jump, 0.3, 0.03);
+  for (std::size_t i = 0; i + 1 < jump.size(); ++i) EXPECT_EQ(linked[i], i != 4) << i;
+  // One wall's last point 2 cm from the one before it, the other wall 2.5 m across: the short
+  // spacing lines up with anything, and the spacing ratio refuses it.
+  const std::vector<Eigen::Vector2d> across = {{3.67, -1.25}, {3.69, -1.25}, {3.72, 1.24}};
+  EXPECT_FALSE(LinkedToNext(across, 0.3, 0.03)[1]);
+}
+
 // Property: a 2-D pose graph of a square loop with noisy odometry edges and one loop closure
 // recovers the true poses better than the odometry, within a few sigmas of its noise.
 TEST(PoseGraph, SyntheticLoopRecoversTruePoses) {

@@ -429,6 +429,17 @@ TEST(GraphSlam, ClosesTheOfficeLoop) {
   EXPECT_LT(error.rmse_heading_rad, kernel::DegToRad(1.0));
 }
 
+// The office with a SICK at 1 deg: walls seen at grazing incidence give points metres apart.
+// As isolated points, each an outline piece across its wall, and with the view's chords between
+// them marking the wall itself seen free, they held the front end where the submap's scans had
+// been: 0.20 m RMSE on seed 1 (0.19 +- 0.06 m over seeds 1-10), against 0.007 m now.
+TEST(GraphSlam, FollowsAOneDegreeLaserAlongGrazingWalls) {
+  const GraphRun run = RunGraphOnRoute("office", sim::LaserOptions::Lms200(1.0));
+  const auto error = estimation::CompareToTruth(run.replay.truth, run.replay.estimate);
+  EXPECT_LT(error.rmse_position_m, 0.05);
+  EXPECT_LT(error.rmse_heading_rad, kernel::DegToRad(0.5));
+}
+
 // The complex route with the URG's 4 m range returns to its start from the other side: the last
 // keyframes see walls the first ones never saw, and their score counted over all their points
 // stayed below 0.4 (no seed closed). Judged on the points where the target has seen, the loop
