@@ -21,6 +21,7 @@
 #include "kernel/angle.h"
 #include "loop/log_replay.h"
 #include "loop/slam_report.h"
+#include "loop/step_trace.h"
 
 namespace splam::apps {
 namespace {
@@ -35,6 +36,7 @@ struct SlamArgs {
   std::string out;
   std::string world;
   int max_scans = 0;
+  bool trace = false;
   double flaser_step_deg = 0.0;
   double flaser_max_range_m = 81.8;
   // The sensors' noise; negative: chosen from the log's laser type (loop::SensorNoiseOf).
@@ -207,6 +209,7 @@ int RunSlam(const SlamArgs& args) {
                                          .message()};
 
   loop::SlamDriver driver(std::move(*made.value));
+  driver.RecordSteps(args.trace);
   loop::ReplayOptions replay_options;
   replay_options.max_scans = static_cast<std::size_t>(args.max_scans);
   const estimation::SlamMethod& slam = driver.method();
@@ -224,6 +227,12 @@ int RunSlam(const SlamArgs& args) {
                                 ? config.method
                                 : config.method + " (" + statistics.association + ")";
   WriteSlamFiles(args.log, out, label, *world.value ? &**world.value : nullptr, slam, run, &errors);
+  if (args.trace) {
+    std::vector<double> times;
+    for (const kernel::StampedPose& p : run.online.empty() ? run.estimate : run.online)
+      times.push_back(p.time_s);
+    errors.push_back(loop::WriteStepTrace(out + "/steps.csv", driver.steps(), times, run.truth));
+  }
 
   nlohmann::ordered_json summary;
   summary["method"] = config.method;
@@ -243,8 +252,9 @@ int RunSlam(const SlamArgs& args) {
   PrintSlamSummary(label, slam, run, summary);
   fmt::print(
       "wrote {}/{{config.yaml, trajectory.txt, odometry.txt, map.txt, map.dxf, map.svg, map.png, "
-      "summary.json{}}}\n",
-      out, run.truth.empty() ? "" : ", truth.txt, errors.svg, errors.png");
+      "summary.json{}{}}}\n",
+      out, run.truth.empty() ? "" : ", truth.txt, errors.svg, errors.png",
+      args.trace ? ", steps.csv" : "");
   if (!slam.healthy()) return kExitIncomplete;
   return kExitOk;
 }
@@ -279,6 +289,9 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
                   "World to draw under the map (default: world.yaml beside the log, if any)");
   cmd->add_option("--max-scans", args->max_scans, "Process only the first N scans (0 = all)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--trace", args->trace,
+                "Also write steps.csv: every step's predicted and corrected pose, their errors "
+                "against the truth when the log has it, and what the method's update did");
   cmd->add_option("--flaser-step-deg", args->flaser_step_deg,
                   "FLASER beam spacing in degrees (0: 180/n or 180/(n-1))")
       ->check(CLI::NonNegativeNumber);

@@ -6,6 +6,7 @@
 #include "estimation/graph_slam.h"
 #include "estimation/slam_method.h"
 #include "estimation/topological_slam.h"
+#include "kernel/angle.h"
 
 namespace splam::estimation {
 namespace {
@@ -129,6 +130,7 @@ class TopologicalSlamMethod : public SlamMethod {
   void Predict(const kernel::Pose2& u) override { slam_.Predict(u); }
   void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) override {
     const TopologicalUpdateReport r = slam_.Update(scan, robot_T_laser);
+    last_ = r;
     observed_ += r.observed_curves;
     associated_ += r.associated_curves;
     verified_ += r.verified_curves;
@@ -153,6 +155,22 @@ class TopologicalSlamMethod : public SlamMethod {
     map.splines = slam_.MapSplines();
     map.spline_features = slam_.options().extraction;
     return map;
+  }
+  std::vector<std::pair<std::string, double>> LastUpdate() const override {
+    const TopologicalUpdateReport& r = last_;
+    return {{"observed_curves", r.observed_curves},
+            {"local_map_curves", r.local_map_curves},
+            {"associated_curves", r.associated_curves},
+            {"localized", r.localized},
+            {"fallback", r.used_fallback},
+            {"verified_curves", r.verified_curves},
+            {"heading_correction_deg", kernel::RadToDeg(r.heading_correction_rad)},
+            {"translation_correction_x_m", r.translation_correction.x()},
+            {"translation_correction_y_m", r.translation_correction.y()},
+            {"map_updated", r.map_updated},
+            {"added_curves", r.added_curves},
+            {"extended_curves", r.extended_curves},
+            {"map_curves", static_cast<double>(slam_.num_curves())}};
   }
   SlamStatistics Statistics() const override {
     SlamStatistics s;
@@ -180,6 +198,7 @@ class TopologicalSlamMethod : public SlamMethod {
   }
 
   TopologicalSlam slam_;
+  TopologicalUpdateReport last_;
   long observed_ = 0, associated_ = 0, verified_ = 0;
   long localized_ = 0, fallbacks_ = 0, failed_ = 0, created_ = 0, extended_ = 0;
   SolverCounts solver_;

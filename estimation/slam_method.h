@@ -79,6 +79,9 @@ class SlamMethod {
   virtual std::string MapDescription() const = 0;
   virtual SlamMap Map() const = 0;
   virtual SlamStatistics Statistics() const = 0;
+  // What the last Update did, as named numbers (associations, corrections, map changes): the
+  // per-step trace of `splam slam --trace`. Empty for methods that keep none.
+  virtual std::vector<std::pair<std::string, double>> LastUpdate() const { return {}; }
   // A new exploration node with its local safe region (world frame, placed at the estimate).
   // The topological SLAM associates against the curves in the newest node's LSR.
   virtual void AtNode(const kernel::LocalSafeRegion& /*lsr*/) {}

@@ -3,6 +3,8 @@
 
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "estimation/slam_method.h"
@@ -10,6 +12,13 @@
 #include "kernel/scan.h"
 
 namespace splam::loop {
+
+// One step as the method saw it (SlamDriver::RecordSteps): its pose after the prediction and
+// after the update, and what the update did (SlamMethod::LastUpdate; empty without a scan).
+struct StepRecord {
+  kernel::Pose2 predicted, corrected;
+  std::vector<std::pair<std::string, double>> values;
+};
 
 // The predict/update step of every SLAM run, written once: log replay, the SPLAM loop, tests,
 // benchmarks and examples feed readings through it. Each reading predicts with the odometry
@@ -34,12 +43,17 @@ class SlamDriver {
   const std::vector<double>& update_ms() const { return update_ms_; }
   const std::vector<std::size_t>& map_size() const { return map_size_; }
   const std::vector<std::size_t>& map_curves() const { return map_curves_; }
+  // Keep a StepRecord of every Step from now on (off by default: a few hundred bytes a step).
+  void RecordSteps(bool on) { record_steps_ = on; }
+  const std::vector<StepRecord>& steps() const { return steps_; }
 
  private:
   std::unique_ptr<estimation::SlamMethod> method_;
   std::optional<kernel::Pose2> last_odometry_;
   std::vector<double> update_ms_;
   std::vector<std::size_t> map_size_, map_curves_;
+  bool record_steps_ = false;
+  std::vector<StepRecord> steps_;
 };
 
 }  // namespace splam::loop

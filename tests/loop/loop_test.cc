@@ -2,6 +2,11 @@
 // any registered method, and the scoring of runs.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
 #include "estimation/metrics.h"
 #include "estimation/topological_slam.h"
 #include "io/simulation_log.h"
@@ -12,6 +17,7 @@
 #include "loop/log_replay.h"
 #include "loop/scoring.h"
 #include "loop/slam_driver.h"
+#include "loop/step_trace.h"
 #include "sim/builtin_worlds.h"
 
 namespace splam::loop {
@@ -427,6 +433,57 @@ TEST(GraphSlam, ClosesTheOfficeLoop) {
   EXPECT_LT(error.rmse_position_m, 0.1);
   EXPECT_LT(error.rmse_position_m, odometry.rmse_position_m);
   EXPECT_LT(error.rmse_heading_rad, kernel::DegToRad(1.0));
+}
+
+// The step trace of `splam slam --trace`: one record per reading with the predicted and the
+// corrected pose and the topological SLAM's own values; the CSV's errors are those of the
+// recorded poses against the truth.
+TEST(StepTrace, RecordsEachStepsPredictionCorrectionAndValuesWithTheirErrors) {
+  const sim::World world = *sim::BuiltinWorld("complex");
+  const sim::RayCaster caster(world);
+  sim::Simulator simulator(caster, sim::SimulatorOptions(), *world.start, 3);
+  sim::RouteOptions route;
+  route.max_steps = 299;
+  const sim::RouteRun run = sim::FollowRoute(&simulator, world.route, route);
+  const auto* info = estimation::SlamRegistry::Global().Find("topological");
+  auto made = estimation::SlamRegistry::Global().Make(
+      "topological", info->default_options({}).get(), {run.frames[0].odometry_pose, {}});
+  SlamDriver driver(std::move(*made.value));
+  driver.RecordSteps(true);
+  const ReplayResult replay = ReplayFrames(run.frames, Pose2(), &driver);
+  ASSERT_EQ(driver.steps().size(), run.frames.size());
+  int localized = 0;
+  for (std::size_t i = 0; i < driver.steps().size(); ++i) {
+    const StepRecord& s = driver.steps()[i];
+    EXPECT_NEAR(s.corrected.x(), replay.estimate[i].pose.x(), 1e-12);
+    ASSERT_FALSE(s.values.empty());
+    EXPECT_EQ(s.values[3].first, "localized");
+    localized += s.values[3].second > 0;
+    // An update that did not localise leaves the prediction as it is.
+    if (s.values[3].second == 0) {
+      EXPECT_NEAR(s.predicted.theta(), s.corrected.theta(), 1e-12);
+    }
+  }
+  EXPECT_GT(localized, 50);  // 91 of the 300
+  const std::string path = ::testing::TempDir() + "/steps.csv";
+  std::vector<double> times;
+  for (const auto& p : replay.estimate) times.push_back(p.time_s);
+  ASSERT_EQ(WriteStepTrace(path, driver.steps(), times, replay.truth), "");
+  std::ifstream in(path);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_NE(header.find("predicted_heading_error_deg,heading_error_deg"), std::string::npos);
+  EXPECT_NE(header.find("verified_curves"), std::string::npos);
+  int rows = 0;
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) v.push_back(std::stod(cell));
+    const Pose2& truth = replay.truth[static_cast<std::size_t>(rows)].pose;
+    EXPECT_NEAR(v[12], std::hypot(v[5] - truth.x(), v[6] - truth.y()), 1e-5);  // position_error_m
+    ++rows;
+  }
+  EXPECT_EQ(rows, static_cast<int>(run.frames.size()));
 }
 
 // The office with a SICK at 1 deg: walls seen at grazing incidence give points metres apart.
