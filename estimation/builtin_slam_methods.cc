@@ -136,6 +136,7 @@ class TopologicalSlamMethod : public SlamMethod {
     verified_ += r.verified_curves;
     localized_ += r.localized;
     fallbacks_ += r.used_fallback;
+    refused_ += r.refused_no_better;
     failed_ += r.associated_curves > 0 && !r.localized;
     created_ += r.added_curves;
     extended_ += r.extended_curves;
@@ -163,6 +164,7 @@ class TopologicalSlamMethod : public SlamMethod {
             {"associated_curves", r.associated_curves},
             {"localized", r.localized},
             {"fallback", r.used_fallback},
+            {"refused_no_better", r.refused_no_better},
             {"verified_curves", r.verified_curves},
             {"heading_correction_deg", kernel::RadToDeg(r.heading_correction_rad)},
             {"translation_correction_x_m", r.translation_correction.x()},
@@ -182,6 +184,7 @@ class TopologicalSlamMethod : public SlamMethod {
                       {"verified_curves", verified_},
                       {"localized_scans", localized_},
                       {"fallback_to_single_curves", fallbacks_},
+                      {"refused_no_better", refused_},
                       {"failed_localizations", failed_},
                       {"new_curves", created_},
                       {"extensions", extended_}};
@@ -200,7 +203,7 @@ class TopologicalSlamMethod : public SlamMethod {
   TopologicalSlam slam_;
   TopologicalUpdateReport last_;
   long observed_ = 0, associated_ = 0, verified_ = 0;
-  long localized_ = 0, fallbacks_ = 0, failed_ = 0, created_ = 0, extended_ = 0;
+  long localized_ = 0, fallbacks_ = 0, refused_ = 0, failed_ = 0, created_ = 0, extended_ = 0;
   SolverCounts solver_;
 };
 

@@ -318,6 +318,9 @@ std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> FeaturePairs(const Spli
   return out;
 }
 
+// Spacing of the points along a matched stretch at which its fit to the map curve is measured, m.
+constexpr double kFitSpacingM = 0.1;
+
 // The start and end of a matched stretch, `trim` inside it when it is long enough.
 std::pair<double, double> TrimmedEnds(const CurveStretch& s, double trim) {
   if (s.end_m - s.start_m <= 4.0 * trim) return {s.start_m, s.end_m};
@@ -406,6 +409,24 @@ bool TopologicalSlam::Verifies(const SplineCurve& observed, const Association& a
   for (const auto& [robot, map_point] : FeaturePairs(observed, m, options_.association.epsilon_m))
     if ((pose * robot - map_point).norm() > threshold) return false;
   return true;
+}
+
+double TopologicalSlam::MeanSquaredDistance(const std::vector<SplineCurve>& observed,
+                                            const std::vector<Association>& associations,
+                                            const Pose2& pose) const {
+  double sum = 0.0;
+  int n = 0;
+  for (const Association& a : associations) {
+    const SplineCurve& o = observed[static_cast<std::size_t>(a.observed)];
+    const CubicBSpline& map = curves_[static_cast<std::size_t>(a.map)].spline;
+    const auto [s0, s1] = TrimmedEnds(a.match.observed, options_.end_trim_m);
+    for (double s = s0; s <= s1; s += kFitSpacingM) {
+      const double d = map.Closest(pose * PointAt(o, s)).distance;
+      sum += d * d;
+      ++n;
+    }
+  }
+  return n > 0 ? sum / n : 0.0;
 }
 
 bool TopologicalSlam::NearMap(const std::vector<Eigen::Vector2d>& points, int except) const {
@@ -561,6 +582,16 @@ TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
     report.localized = false;  // too little to trust: keep the prediction, do not map
     pose = predicted;
   }
+  // A correction that does not bring the verified curves closer to the map than the prediction
+  // had them is refused (it turned or moved them along themselves): the prediction stands and the
+  // map is not extended from it.
+  if (report.localized && options_.verify_improves &&
+      MeanSquaredDistance(observed, verified, pose) >=
+          MeanSquaredDistance(observed, verified, predicted)) {
+    report.localized = false;
+    report.refused_no_better = true;
+    pose = predicted;
+  }
   const double k = options_.correction_gain;
   pose_ = Pose2(predicted.translation() + k * (pose.translation() - predicted.translation()),
                 predicted.theta() + k * kernel::WrapAngle(pose.theta() - predicted.theta()));
@@ -609,6 +640,8 @@ void TopologicalSlamOptions::VisitFields(kernel::FieldVisitor& v) {
           "VERIFY_LOCALIZATION: matched points within this of their map curve, m");
   v.Field("min_verified_curves", &min_verified_curves, "a localisation verifies this many curves");
   v.Field("verify_rms_m", &verify_rms_m, "... with an RMS distance under this (0: unchecked), m");
+  v.Field("verify_improves", &verify_improves,
+          "... and closer to the map than at the prediction (false: paper 003's test)");
   v.Field("map_update_distance_m", &map_update_distance_m,
           "map extended after this much motion, m");
   v.Field("map_update_angle_rad", &map_update_angle_rad, "... or this much turning, rad");
