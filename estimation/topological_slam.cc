@@ -396,14 +396,9 @@ bool TopologicalSlam::Verifies(const SplineCurve& observed, const Association& a
   }
   // The whole stretch must lie on the map curve, not just its ends.
   if (options_.verify_rms_m > 0.0) {
-    double sum = 0.0;
     int n = 0;
-    for (double s = s0; s <= s1;
-         s += options_.point_spacing_m > 0.0 ? options_.point_spacing_m : 0.1) {
-      const double d = map.Closest(pose * PointAt(observed, s)).distance;
-      sum += d * d;
-      ++n;
-    }
+    const double sum = SquaredDistances(
+        observed, a, pose, options_.point_spacing_m > 0.0 ? options_.point_spacing_m : 0.1, &n);
     if (n > 0 && std::sqrt(sum / n) > options_.verify_rms_m) return false;
   }
   for (const auto& [robot, map_point] : FeaturePairs(observed, m, options_.association.epsilon_m))
@@ -411,21 +406,27 @@ bool TopologicalSlam::Verifies(const SplineCurve& observed, const Association& a
   return true;
 }
 
+double TopologicalSlam::SquaredDistances(const SplineCurve& observed, const Association& a,
+                                         const Pose2& pose, double spacing_m, int* count) const {
+  const CubicBSpline& map = curves_[static_cast<std::size_t>(a.map)].spline;
+  const auto [s0, s1] = TrimmedEnds(a.match.observed, options_.end_trim_m);
+  double sum = 0.0;
+  for (double s = s0; s <= s1; s += spacing_m) {
+    const double d = map.Closest(pose * PointAt(observed, s)).distance;
+    sum += d * d;
+    ++*count;
+  }
+  return sum;
+}
+
 double TopologicalSlam::MeanSquaredDistance(const std::vector<SplineCurve>& observed,
                                             const std::vector<Association>& associations,
                                             const Pose2& pose) const {
   double sum = 0.0;
   int n = 0;
-  for (const Association& a : associations) {
-    const SplineCurve& o = observed[static_cast<std::size_t>(a.observed)];
-    const CubicBSpline& map = curves_[static_cast<std::size_t>(a.map)].spline;
-    const auto [s0, s1] = TrimmedEnds(a.match.observed, options_.end_trim_m);
-    for (double s = s0; s <= s1; s += kFitSpacingM) {
-      const double d = map.Closest(pose * PointAt(o, s)).distance;
-      sum += d * d;
-      ++n;
-    }
-  }
+  for (const Association& a : associations)
+    sum +=
+        SquaredDistances(observed[static_cast<std::size_t>(a.observed)], a, pose, kFitSpacingM, &n);
   return n > 0 ? sum / n : 0.0;
 }
 

@@ -184,6 +184,10 @@ class TopologicalSlam {
                         SolverCounts* solver) const;
   bool Verifies(const kernel::SplineCurve& observed, const Association& association,
                 const kernel::Pose2& pose) const;
+  // The squared distances (m^2) of the matched stretch's points every spacing_m (its trimmed
+  // ends included) at `pose` to the map curve, summed; *count grows by their number.
+  double SquaredDistances(const kernel::SplineCurve& observed, const Association& association,
+                          const kernel::Pose2& pose, double spacing_m, int* count) const;
   // Mean squared distance of the associated stretches' points (every 0.1 m) at `pose` to their
   // map curves, m^2.
   double MeanSquaredDistance(const std::vector<kernel::SplineCurve>& observed,

@@ -12,17 +12,20 @@ bool SlamDriver::Step(const kernel::Pose2& odometry_pose, const kernel::Scan* sc
   const auto begin = std::chrono::steady_clock::now();
   if (last_odometry_) method_->Predict(last_odometry_->Between(odometry_pose));
   last_odometry_ = odometry_pose;
-  StepRecord record{method_->pose(), method_->pose(), {}};
-  if (scan != nullptr && !scan->ranges_m.empty() && method_->healthy()) {
+  const kernel::Pose2 predicted = method_->pose();
+  const bool update = scan != nullptr && !scan->ranges_m.empty() && method_->healthy();
+  if (update) {
     method_->Update(*scan, robot_T_laser);
-    if (record_steps_) record = {record.predicted, method_->pose(), method_->LastUpdate()};
     update_ms_.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin)
             .count());
     map_size_.push_back(method_->MapSize());
     map_curves_.push_back(method_->MapCurves());
   }
-  if (record_steps_) steps_.push_back(std::move(record));
+  if (record_steps_)
+    steps_.push_back(
+        {predicted, method_->pose(),
+         update ? method_->LastUpdate() : std::vector<std::pair<std::string, double>>{}});
   return method_->healthy();
 }
 

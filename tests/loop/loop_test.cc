@@ -394,6 +394,35 @@ TEST(AssociationScoring, TheCurvatureAssociationIsRarelyWrongOnTheComplexRoute) 
   EXPECT_GT(r.mean_nees, 0.0);
 }
 
+// A built-in world's route driven with `laser` (at most max_steps steps) and replayed through
+// the registry's `method` with its default options (steps recorded when asked).
+struct RouteReplay {
+  sim::RouteRun route;
+  ReplayResult replay;
+  std::unique_ptr<SlamDriver> driver;
+};
+RouteReplay ReplayRoute(const std::string& method, const std::string& world_name,
+                        const sim::LaserOptions& laser, std::uint64_t seed,
+                        int max_steps = sim::RouteOptions().max_steps, bool record_steps = false) {
+  const sim::World world = *sim::BuiltinWorld(world_name);
+  const sim::RayCaster caster(world);
+  sim::SimulatorOptions options;
+  options.laser = laser;
+  sim::Simulator simulator(caster, options, *world.start, seed);
+  sim::RouteOptions route;
+  route.max_steps = max_steps;
+  RouteReplay r;
+  r.route = sim::FollowRoute(&simulator, world.route, route);
+  const auto* info = estimation::SlamRegistry::Global().Find(method);
+  auto made = estimation::SlamRegistry::Global().Make(
+      method, info->default_options(estimation::SensorNoise()).get(),
+      {r.route.frames[0].odometry_pose, {}});
+  r.driver = std::make_unique<SlamDriver>(std::move(*made.value));
+  r.driver->RecordSteps(record_steps);
+  r.replay = ReplayFrames(r.route.frames, laser.robot_T_laser, r.driver.get());
+  return r;
+}
+
 struct GraphRun {
   ReplayResult replay;
   long loops_accepted = 0;
@@ -402,21 +431,10 @@ struct GraphRun {
 // The graph SLAM with its default options over a world's built-in route.
 GraphRun RunGraphOnRoute(const std::string& world_name, const sim::LaserOptions& laser,
                          std::uint64_t seed = 1) {
-  const sim::World world = *sim::BuiltinWorld(world_name);
-  const sim::RayCaster caster(world);
-  sim::SimulatorOptions options;
-  options.laser = laser;
-  sim::Simulator simulator(caster, options, *world.start, seed);
-  const sim::RouteRun run = sim::FollowRoute(&simulator, world.route, sim::RouteOptions());
-  estimation::SensorNoise noise;
-  noise.odometry_noise_scale = 1.0;
-  const auto* info = estimation::SlamRegistry::Global().Find("graph");
-  auto made = estimation::SlamRegistry::Global().Make("graph", info->default_options(noise).get(),
-                                                      {run.frames[0].odometry_pose, {}});
-  SlamDriver driver(std::move(*made.value));
+  RouteReplay run = ReplayRoute("graph", world_name, laser, seed);
   GraphRun result;
-  result.replay = ReplayFrames(run.frames, options.laser.robot_T_laser, &driver);
-  for (const auto& [key, value] : driver.method().Statistics().associations)
+  result.replay = std::move(run.replay);
+  for (const auto& [key, value] : run.driver->method().Statistics().associations)
     result.loops_accepted += key == "loop_accepted" ? value : 0;
   return result;
 }
@@ -439,18 +457,11 @@ TEST(GraphSlam, ClosesTheOfficeLoop) {
 // corrected pose and the topological SLAM's own values; the CSV's errors are those of the
 // recorded poses against the truth.
 TEST(StepTrace, RecordsEachStepsPredictionCorrectionAndValuesWithTheirErrors) {
-  const sim::World world = *sim::BuiltinWorld("complex");
-  const sim::RayCaster caster(world);
-  sim::Simulator simulator(caster, sim::SimulatorOptions(), *world.start, 3);
-  sim::RouteOptions route;
-  route.max_steps = 299;
-  const sim::RouteRun run = sim::FollowRoute(&simulator, world.route, route);
-  const auto* info = estimation::SlamRegistry::Global().Find("topological");
-  auto made = estimation::SlamRegistry::Global().Make(
-      "topological", info->default_options({}).get(), {run.frames[0].odometry_pose, {}});
-  SlamDriver driver(std::move(*made.value));
-  driver.RecordSteps(true);
-  const ReplayResult replay = ReplayFrames(run.frames, Pose2(), &driver);
+  const RouteReplay r =
+      ReplayRoute("topological", "complex", sim::SimulatorOptions().laser, 3, 299, true);
+  const sim::RouteRun& run = r.route;
+  const SlamDriver& driver = *r.driver;
+  const ReplayResult& replay = r.replay;
   ASSERT_EQ(driver.steps().size(), run.frames.size());
   int localized = 0;
   for (std::size_t i = 0; i < driver.steps().size(); ++i) {
