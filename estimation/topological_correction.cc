@@ -2,6 +2,7 @@
 
 #include <ceres/ceres.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <cmath>
 
@@ -26,6 +27,33 @@ struct PointResidual {
   bool operator()(const T* e, T* residual) const {
     residual[0] = T(difference.x()) - e[0];
     residual[1] = T(difference.y()) - e[1];
+    return true;
+  }
+};
+
+// n . (R(theta) p + t - X): the signed distance of the seen point to the map curve's tangent.
+struct PointToCurveResidual {
+  CurvePointPair pair;
+  template <class T>
+  bool operator()(const T* pose, T* residual) const {
+    const T c = ceres::cos(pose[2]), s = ceres::sin(pose[2]);
+    const T x = c * pair.robot_point.x() - s * pair.robot_point.y() + pose[0] - pair.map_point.x();
+    const T y = s * pair.robot_point.x() + c * pair.robot_point.y() + pose[1] - pair.map_point.y();
+    residual[0] = pair.map_normal.x() * x + pair.map_normal.y() * y;
+    return true;
+  }
+};
+
+// R(theta) p + t - X: a paired feature, a physical point.
+struct FeatureResidual {
+  PointPair pair;
+  template <class T>
+  bool operator()(const T* pose, T* residual) const {
+    const T c = ceres::cos(pose[2]), s = ceres::sin(pose[2]);
+    residual[0] =
+        c * pair.robot_point.x() - s * pair.robot_point.y() + pose[0] - pair.map_point.x();
+    residual[1] =
+        s * pair.robot_point.x() + c * pair.robot_point.y() + pose[1] - pair.map_point.y();
     return true;
   }
 };
@@ -83,6 +111,50 @@ Eigen::Vector2d SolveTranslationCorrection(const std::vector<PointPair>& points,
   }
   SolveQuietly(&problem, counts);
   return {e[0], e[1]};
+}
+
+kernel::Pose2 SolvePoseCorrection(const std::vector<CurvePointPair>& on_curves,
+                                  const std::vector<PointPair>& features, const kernel::Pose2& pose,
+                                  double min_information, const CorrectionLossOptions& loss,
+                                  SolverCounts* counts) {
+  if (on_curves.empty() && features.empty()) return pose;
+  double x[3] = {pose.x(), pose.y(), pose.theta()};
+  ceres::Problem problem;
+  for (const CurvePointPair& p : on_curves) {
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<PointToCurveResidual, 1, 3>(new PointToCurveResidual{p}),
+        WeightedHuber(loss.translation_scale_m, p.weight), x);
+  }
+  for (const PointPair& p : features) {
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<FeatureResidual, 2, 3>(new FeatureResidual{p}),
+        WeightedHuber(loss.translation_scale_m, p.weight), x);
+  }
+  SolveQuietly(&problem, counts);
+
+  // The information of the points about (x, y, theta * 1 m), at the start: rows n^T [I, R' p]
+  // for the curve points, [I, R' p] for the features (R' = dR / dtheta).
+  const Eigen::Rotation2Dd turned(pose.theta() + 0.5 * M_PI);  // R' p = R(theta + pi/2) p
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  auto add = [&](const Eigen::Vector2d& row_xy, const Eigen::Vector2d& robot_point) {
+    const Eigen::Vector3d j(row_xy.x(), row_xy.y(), row_xy.dot(turned * robot_point));
+    information += j * j.transpose();
+  };
+  for (const CurvePointPair& p : on_curves) add(p.map_normal, p.robot_point);
+  for (const PointPair& p : features) {
+    add(Eigen::Vector2d::UnitX(), p.robot_point);
+    add(Eigen::Vector2d::UnitY(), p.robot_point);
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(information);
+  const Eigen::Vector3d step(x[0] - pose.x(), x[1] - pose.y(),
+                             std::remainder(x[2] - pose.theta(), 2.0 * M_PI));
+  Eigen::Vector3d kept = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i) {
+    if (eigen.eigenvalues()(i) < min_information) continue;
+    const Eigen::Vector3d v = eigen.eigenvectors().col(i);
+    kept += v.dot(step) * v;
+  }
+  return kernel::Pose2(pose.x() + kept.x(), pose.y() + kept.y(), pose.theta() + kept.z());
 }
 
 void CorrectionLossOptions::VisitFields(kernel::FieldVisitor& v) {

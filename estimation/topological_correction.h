@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "kernel/options.h"
+#include "kernel/pose2.h"
 
 // The two weighted least-squares problems of the topological localisation (SPEC §10, paper 003
 // eqs. 6-10), solved with Ceres. Everything Ceres is confined to this header's source file.
@@ -22,6 +23,15 @@ struct ChordPair {
 struct PointPair {
   Eigen::Vector2d map_point = Eigen::Vector2d::Zero();
   Eigen::Vector2d robot_point = Eigen::Vector2d::Zero();
+  double weight = 1.0;
+};
+
+// One point of an associated stretch: where the robot sees it (robot frame), and the map curve
+// linearised at the point's projection (world frame): the closest point X and the unit normal n.
+struct CurvePointPair {
+  Eigen::Vector2d robot_point = Eigen::Vector2d::Zero();
+  Eigen::Vector2d map_point = Eigen::Vector2d::Zero();
+  Eigen::Vector2d map_normal = Eigen::Vector2d::UnitY();
   double weight = 1.0;
 };
 
@@ -61,6 +71,22 @@ Eigen::Vector2d SolveTranslationCorrection(const std::vector<PointPair>& points,
                                            const Eigen::Vector2d& translation, double theta_rad,
                                            const CorrectionLossOptions& loss = {},
                                            SolverCounts* counts = nullptr);
+
+// Joint correction of heading and position from point-to-curve distances (the default in
+// place of eqs. 7-10): the pose (x, y, theta) = argmin sum_i C_i rho(n_i . (R(theta) p_i + t -
+// X_i)) + sum_j C_j rho(|R(theta) p_j + t - X_j|) over the curve points i and the paired
+// features j, started at `pose`. A point may slide along its curve at no cost, so a position
+// error along a smooth curve is not read as a heading error (as a chord projected onto the map
+// is). Where the curves leave a direction of (x, y, theta) unconstrained (along one straight
+// wall, about the centre of one circle), the solution would slide along it with the noise of the
+// fitted curves' normals: the step from `pose` is kept only along the eigenvectors of the points'
+// information sum_i J_i^T J_i (unweighted, J_i = d residual_i / d(x, y, theta * 1 m)) whose
+// eigenvalue is at least min_information, in units of points whose normal lies along that
+// direction (a feature counts 2). Returns `pose` without points.
+kernel::Pose2 SolvePoseCorrection(const std::vector<CurvePointPair>& on_curves,
+                                  const std::vector<PointPair>& features, const kernel::Pose2& pose,
+                                  double min_information, const CorrectionLossOptions& loss = {},
+                                  SolverCounts* counts = nullptr);
 
 }  // namespace splam::estimation
 

@@ -28,37 +28,46 @@ std::vector<double> ControlPointArcs(const CubicBSpline& spline) {
   return arcs;
 }
 
-// The map curve with `head` control points put before its first and `tail` after its last
-// (paper 003 Fig. 16). The knot vector is extended, not rebuilt: the old interior knots stay, the
-// clamped ends move outward by one knot step h (the mean interior knot spacing) per new control
-// point, so the old curve keeps its shape except in the three spans next to a junction.
-std::optional<CubicBSpline> Spliced(const CubicBSpline& map,
-                                    const std::vector<Eigen::Vector2d>& head,
+// The map curve without its first `drop_front` and last `drop_back` control points, with `head`
+// control points put before and `tail` after (paper 003 Fig. 16). The knot vector is extended,
+// not rebuilt: the kept interior knots stay, the clamped ends move outward by one knot step h
+// (the mean interior knot spacing) per new control point, so the kept curve keeps its shape
+// except in the three spans next to a junction. Needs n - drop_front - drop_back >= 4.
+std::optional<CubicBSpline> Spliced(const CubicBSpline& map, std::size_t drop_front,
+                                    std::size_t drop_back, const std::vector<Eigen::Vector2d>& head,
                                     const std::vector<Eigen::Vector2d>& tail) {
   const std::vector<double>& old = map.knots();
-  const std::size_t n = map.control_points().size();
-  const double a = old.front(), b = old.back();
-  const double h = (b - a) / static_cast<double>(n - 3);  // n - 3 spans of a clamped cubic
+  const std::vector<Eigen::Vector2d>& kept = map.control_points();
+  const std::size_t n = kept.size();
+  if (n < drop_front + drop_back + 4) return std::nullopt;
+  const double h = (old.back() - old.front()) / static_cast<double>(n - 3);  // n - 3 spans
+  // Knots 0-3 and n-n+3 are the clamped ends; dropping control points moves them inward.
+  const double a = old[3 + drop_front], b = old[n - drop_back];
   std::vector<double> knots;
   const auto front = static_cast<double>(head.size()), back = static_cast<double>(tail.size());
   knots.insert(knots.end(), 4, a - front * h);
   for (std::size_t k = head.size(); k >= 1; --k)
     knots.push_back(a - static_cast<double>(k - 1) * h);
-  knots.insert(knots.end(), old.begin() + 4, old.end() - 4);
+  knots.insert(knots.end(), old.begin() + 4 + static_cast<std::ptrdiff_t>(drop_front),
+               old.end() - 4 - static_cast<std::ptrdiff_t>(drop_back));
   for (std::size_t k = 0; k < tail.size(); ++k) knots.push_back(b + static_cast<double>(k) * h);
   knots.insert(knots.end(), 4, b + back * h);
   std::vector<Eigen::Vector2d> points = head;
-  points.insert(points.end(), map.control_points().begin(), map.control_points().end());
+  points.insert(points.end(), kept.begin() + static_cast<std::ptrdiff_t>(drop_front),
+                kept.end() - static_cast<std::ptrdiff_t>(drop_back));
   points.insert(points.end(), tail.begin(), tail.end());
   return CubicBSpline::Create(std::move(points), std::move(knots));
 }
 
 // The parts of an observed curve (world frame) that continue a map curve beyond the matched
 // stretch (paper 003 Fig. 16), as control points in the map curve's direction: `head` goes before
-// the map curve's first control point, `tail` after its last. The observed control points at the
-// start and end of the matched stretch, and those between, are dropped.
+// the map curve's first control point, `tail` after its last. The map curve's control points
+// within end_trim_m of a continued end are dropped (drop_front, drop_back): the last span of a
+// fitted curve bends with the noise of its last few points, and kept, that bend stays in the
+// map as a kink. The observation continues from where the kept map curve ends.
 struct Continuation {
   std::vector<Eigen::Vector2d> head, tail;
+  std::size_t drop_front = 0, drop_back = 0;
 };
 Continuation ContinuationOf(const CubicBSpline& map, const CubicBSpline& observed,
                             const CurveMatch& match, const TopologicalSlamOptions& options) {
@@ -76,15 +85,26 @@ Continuation ContinuationOf(const CubicBSpline& map, const CubicBSpline& observe
   }
   const double map_lo = std::min(match.map.start_m, match.map.end_m);
   const double map_hi = std::max(match.map.start_m, match.map.end_m);
+  const std::vector<double> map_arcs = ControlPointArcs(map);
+  const std::size_t n = map_arcs.size();
   // Control points closer than half their spacing to the junction would fold the curve there.
   const double gap = 0.5 * lo / static_cast<double>(points.size() - 1);
   if (map_hi >= lm - options.end_tolerance_m && lo - s1 >= options.min_extension_length_m) {
+    while (c.drop_back + 5 < n && map_arcs[n - 1 - c.drop_back] > lm - options.end_trim_m)
+      ++c.drop_back;
+    // The observed arc length where the kept map curve ends.
+    const double junction = s1 - (map_hi - map_arcs[n - 1 - c.drop_back]);
     for (std::size_t i = 0; i < points.size(); ++i)
-      if (arcs[i] > s1 + gap) c.tail.push_back(points[i]);
+      if (arcs[i] > junction + gap) c.tail.push_back(points[i]);
+    if (c.tail.empty()) c.drop_back = 0;
   }
   if (map_lo <= options.end_tolerance_m && s0 >= options.min_extension_length_m) {
+    while (c.drop_front + c.drop_back + 5 < n && map_arcs[c.drop_front] < options.end_trim_m)
+      ++c.drop_front;
+    const double junction = s0 + (map_arcs[c.drop_front] - map_lo);
     for (std::size_t i = 0; i < points.size(); ++i)
-      if (arcs[i] < s0 - gap) c.head.push_back(points[i]);
+      if (arcs[i] < junction - gap) c.head.push_back(points[i]);
+    if (c.head.empty()) c.drop_front = 0;
   }
   return c;
 }
@@ -98,6 +118,7 @@ kernel::Status TopologicalSlamOptions::Validate() const {
   if (!(region_margin_m >= 0.0) || !region.Validate().ok())
     return kernel::Status::Error(
         "the local region needs margin >= 0, radius > 0 and 0 < alpha < 1");
+  if (!(min_information >= 0.0)) return kernel::Status::Error("min_information must be >= 0");
   if (correction_rounds < 1) return kernel::Status::Error("correction_rounds must be >= 1");
   if (!(correction_gain > 0.0 && correction_gain <= 1.0))
     return kernel::Status::Error("correction_gain must be in (0, 1]");
@@ -320,6 +341,9 @@ std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> FeaturePairs(const Spli
 
 // Spacing of the points along a matched stretch at which its fit to the map curve is measured, m.
 constexpr double kFitSpacingM = 0.1;
+// Rounds of projection and solution of the point-to-curve correction (it stops earlier when a
+// round moves the pose by less than 0.1 mm and 1e-5 rad).
+constexpr int kPointToCurveIterations = 3;
 
 // The start and end of a matched stretch, `trim` inside it when it is long enough.
 std::pair<double, double> TrimmedEnds(const CurveStretch& s, double trim) {
@@ -332,6 +356,63 @@ std::pair<double, double> TrimmedEnds(const CurveStretch& s, double trim) {
 Pose2 TopologicalSlam::Correct(const std::vector<SplineCurve>& observed,
                                const std::vector<Association>& associations, const Pose2& pose,
                                SolverCounts* solver) const {
+  return options_.correction == TopologicalCorrection::kPaper
+             ? CorrectAsPaper(observed, associations, pose, solver)
+             : CorrectPointToCurve(observed, associations, pose, solver);
+}
+
+Pose2 TopologicalSlam::CorrectPointToCurve(const std::vector<SplineCurve>& observed,
+                                           const std::vector<Association>& associations,
+                                           const Pose2& pose, SolverCounts* solver) const {
+  const double spacing = options_.point_spacing_m > 0.0 ? options_.point_spacing_m : kFitSpacingM;
+  // The stretches' points (robot frame), every `spacing` between the trimmed ends, with their
+  // curve and weight; the paired features.
+  struct Sample {
+    Eigen::Vector2d robot;
+    const CubicBSpline* map;
+    double weight;
+  };
+  std::vector<Sample> samples;
+  std::vector<PointPair> features;
+  for (const Association& a : associations) {
+    const SplineCurve& o = observed[static_cast<std::size_t>(a.observed)];
+    const CubicBSpline* map = &curves_[static_cast<std::size_t>(a.map)].spline;
+    const auto [s0, s1] = TrimmedEnds(a.match.observed, options_.end_trim_m);
+    for (double s = s0; s <= s1 + 1e-9; s += spacing)
+      samples.push_back({PointAt(o, s), map, a.reliability});
+    for (const auto& [robot, map_point] : FeaturePairs(o, a.match, options_.association.epsilon_m))
+      features.push_back({map_point, robot, a.reliability});
+  }
+  // Iterative closest points on the curves: each round linearises every curve at the projection
+  // of its points seen from the previous round's pose.
+  Pose2 current = pose;
+  for (int i = 0; i < kPointToCurveIterations; ++i) {
+    std::vector<CurvePointPair> pairs;
+    pairs.reserve(samples.size());
+    for (const Sample& sample : samples) {
+      const CubicBSpline::ClosestPoint c = sample.map->Closest(current * sample.robot);
+      // The last span of a map curve bends with the noise of its last points, and a point that
+      // projects onto the end lies beyond it: neither gives a direction to trust.
+      const double arc = sample.map->ArcLengthAt(c.t);
+      if (arc < options_.end_trim_m || arc > sample.map->Length() - options_.end_trim_m) continue;
+      const Eigen::Vector2d d = sample.map->Derivative(c.t);
+      if (d.norm() < 1e-12) continue;
+      pairs.push_back(
+          {sample.robot, c.point, Eigen::Vector2d(-d.y(), d.x()).normalized(), sample.weight});
+    }
+    const Pose2 next = SolvePoseCorrection(pairs, features, current, options_.min_information,
+                                           options_.loss, solver);
+    const bool settled = (next.translation() - current.translation()).norm() < 1e-4 &&
+                         std::abs(kernel::WrapAngle(next.theta() - current.theta())) < 1e-5;
+    current = next;
+    if (settled) break;
+  }
+  return current;
+}
+
+Pose2 TopologicalSlam::CorrectAsPaper(const std::vector<SplineCurve>& observed,
+                                      const std::vector<Association>& associations,
+                                      const Pose2& pose, SolverCounts* solver) const {
   const double epsilon = options_.association.epsilon_m;
   auto map_of = [&](const Association& a) -> const CubicBSpline& {
     return curves_[static_cast<std::size_t>(a.map)].spline;
@@ -467,13 +548,14 @@ void TopologicalSlam::ExtendMap(const std::vector<SplineCurve>& observed,
     const CubicBSpline& map = curves_[static_cast<std::size_t>(a.map)].spline;
     Continuation c = ContinuationOf(map, world.spline, a.match, options_);
     // A continuation that runs onto another map curve would duplicate it.
-    if (!c.head.empty() && NearMap(c.head, a.map)) c.head.clear();
-    if (!c.tail.empty() && NearMap(c.tail, a.map)) c.tail.clear();
-    const std::size_t total = c.head.size() + map.control_points().size() + c.tail.size();
+    if (!c.head.empty() && NearMap(c.head, a.map)) c = {{}, c.tail, 0, c.drop_back};
+    if (!c.tail.empty() && NearMap(c.tail, a.map)) c = {c.head, {}, c.drop_front, 0};
+    const std::size_t total =
+        c.head.size() + map.control_points().size() + c.tail.size() - c.drop_front - c.drop_back;
     if ((c.head.empty() && c.tail.empty()) ||
         total > static_cast<std::size_t>(options_.max_control_points))
       continue;
-    std::optional<CubicBSpline> spliced = Spliced(map, c.head, c.tail);
+    std::optional<CubicBSpline> spliced = Spliced(map, c.drop_front, c.drop_back, c.head, c.tail);
     if (!spliced) continue;
     Unregister(a.map);
     curves_[static_cast<std::size_t>(a.map)] =
@@ -622,6 +704,13 @@ void TopologicalSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("region_margin_m", &region_margin_m, "local region widened by this margin, m");
   // `region` is the explorer's r and alpha: set once, in the local_region section (see
   // SlamContext).
+  int method = static_cast<int>(correction);
+  v.Choice("correction", &method, {"point_to_curve", "paper"},
+           "heading and position from point-to-curve distances, or paper 003's chords then "
+           "points");
+  correction = static_cast<TopologicalCorrection>(method);
+  v.Field("min_information", &min_information,
+          "point_to_curve: directions constrained by fewer points' worth are not corrected");
   v.Field("correction_rounds", &correction_rounds, "associate-correct rounds per scan");
   v.Field("end_trim_m", &end_trim_m, "ends of a matched stretch taken this far inside, m");
   v.Field("min_chord_length_m", &min_chord_length_m, "shorter chords give no heading, m");

@@ -20,6 +20,17 @@
 
 namespace splam::estimation {
 
+// How the pose is corrected from the associated curves.
+enum class TopologicalCorrection {
+  // Heading and position together, from the distances of points along every matched stretch to
+  // their map curves (SolvePoseCorrection), the projections re-computed kPointToCurveIterations
+  // times: a position error is not read as a heading error.
+  kPointToCurve,
+  // Paper 003 eqs. 7-10: the heading from the chords of the matched stretches, then the
+  // translation from their points at that heading.
+  kPaper,
+};
+
 struct TopologicalSlamOptions {
   // How curves are extracted from every scan (segmentation, fit, curvature, features).
   kernel::SplineExtractionOptions extraction;
@@ -40,6 +51,12 @@ struct TopologicalSlamOptions {
   // configuration) through SlamContext, so both use the same values.
   kernel::LocalRegionOptions region;
 
+  TopologicalCorrection correction = TopologicalCorrection::kPointToCurve;
+  // Point-to-curve: a direction of the pose is corrected only when the points constrain it at
+  // least as much as this many points whose curve normal lies along it (SolvePoseCorrection):
+  // along one straight wall the fitted curves' normals wobble by a few degrees, and without
+  // this test the pose slid 0.1 m along the wall per correction (`complex` route, seed 9).
+  double min_information = 3.0;
   // Associate, correct the heading, correct the translation; repeated this many times, each
   // round associating at the pose the previous one corrected.
   int correction_rounds = 2;
@@ -178,10 +195,16 @@ class TopologicalSlam {
   std::vector<Association> Associate(const std::vector<kernel::SplineCurve>& observed,
                                      const kernel::Pose2& pose,
                                      const std::vector<int>& local) const;
-  // The heading-then-translation correction of `pose` from the associations.
+  // The correction of `pose` from the associations (options_.correction).
   kernel::Pose2 Correct(const std::vector<kernel::SplineCurve>& observed,
                         const std::vector<Association>& associations, const kernel::Pose2& pose,
                         SolverCounts* solver) const;
+  kernel::Pose2 CorrectPointToCurve(const std::vector<kernel::SplineCurve>& observed,
+                                    const std::vector<Association>& associations,
+                                    const kernel::Pose2& pose, SolverCounts* solver) const;
+  kernel::Pose2 CorrectAsPaper(const std::vector<kernel::SplineCurve>& observed,
+                               const std::vector<Association>& associations,
+                               const kernel::Pose2& pose, SolverCounts* solver) const;
   bool Verifies(const kernel::SplineCurve& observed, const Association& association,
                 const kernel::Pose2& pose) const;
   // The squared distances (m^2) of the matched stretch's points every spacing_m (its trimmed
