@@ -131,30 +131,39 @@ kernel::Pose2 SolvePoseCorrection(const std::vector<CurvePointPair>& on_curves,
         WeightedHuber(loss.translation_scale_m, p.weight), x);
   }
   SolveQuietly(&problem, counts);
-
-  // The information of the points about (x, y, theta * 1 m), at the start: rows n^T [I, R' p]
-  // for the curve points, [I, R' p] for the features (R' = dR / dtheta).
-  const Eigen::Rotation2Dd turned(pose.theta() + 0.5 * M_PI);  // R' p = R(theta + pi/2) p
-  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
-  auto add = [&](const Eigen::Vector2d& row_xy, const Eigen::Vector2d& robot_point) {
-    const Eigen::Vector3d j(row_xy.x(), row_xy.y(), row_xy.dot(turned * robot_point));
-    information += j * j.transpose();
-  };
-  for (const CurvePointPair& p : on_curves) add(p.map_normal, p.robot_point);
-  for (const PointPair& p : features) {
-    add(Eigen::Vector2d::UnitX(), p.robot_point);
-    add(Eigen::Vector2d::UnitY(), p.robot_point);
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(information);
+  // The step, kept only in the directions the points constrain.
   const Eigen::Vector3d step(x[0] - pose.x(), x[1] - pose.y(),
                              std::remainder(x[2] - pose.theta(), 2.0 * M_PI));
-  Eigen::Vector3d kept = Eigen::Vector3d::Zero();
+  const Eigen::Vector3d kept =
+      PointInformation(on_curves, features, pose.theta(), min_information).projector * step;
+  return kernel::Pose2(pose.x() + kept.x(), pose.y() + kept.y(), pose.theta() + kept.z());
+}
+
+PoseInformation PointInformation(const std::vector<CurvePointPair>& on_curves,
+                                 const std::vector<PointPair>& features, double theta_rad,
+                                 double min_information) {
+  // Rows n^T [I, R' p] for the curve points, [I, R' p] for the features (R' = dR / dtheta).
+  const Eigen::Rotation2Dd turned(theta_rad + 0.5 * M_PI);  // R' p = R(theta + pi/2) p
+  Eigen::Matrix3d counted = Eigen::Matrix3d::Zero(), weighted = Eigen::Matrix3d::Zero();
+  auto add = [&](const Eigen::Vector2d& row_xy, const Eigen::Vector2d& robot_point, double weight) {
+    const Eigen::Vector3d j(row_xy.x(), row_xy.y(), row_xy.dot(turned * robot_point));
+    counted += j * j.transpose();
+    weighted += weight * j * j.transpose();
+  };
+  for (const CurvePointPair& p : on_curves) add(p.map_normal, p.robot_point, p.weight);
+  for (const PointPair& p : features) {
+    add(Eigen::Vector2d::UnitX(), p.robot_point, p.weight);
+    add(Eigen::Vector2d::UnitY(), p.robot_point, p.weight);
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(counted);
+  PoseInformation out;
   for (int i = 0; i < 3; ++i) {
     if (eigen.eigenvalues()(i) < min_information) continue;
     const Eigen::Vector3d v = eigen.eigenvectors().col(i);
-    kept += v.dot(step) * v;
+    out.projector += v * v.transpose();
   }
-  return kernel::Pose2(pose.x() + kept.x(), pose.y() + kept.y(), pose.theta() + kept.z());
+  out.weighted = out.projector * weighted * out.projector;
+  return out;
 }
 
 void CorrectionLossOptions::VisitFields(kernel::FieldVisitor& v) {

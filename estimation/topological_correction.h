@@ -72,6 +72,20 @@ Eigen::Vector2d SolveTranslationCorrection(const std::vector<PointPair>& points,
                                            const CorrectionLossOptions& loss = {},
                                            SolverCounts* counts = nullptr);
 
+// What a set of point pairs says about the pose (x, y, theta), linearised at heading theta_rad:
+// the residuals' Jacobians J_i = d r_i / d(x, y, theta) (theta in radians, so a direction mixes
+// metres and radians as if the points were 1 m away). `projector` projects onto the eigenvectors
+// of the unweighted information sum_i J_i^T J_i whose eigenvalue is at least min_information (in
+// units of points whose normal lies along that direction; a feature counts 2): the directions the
+// points constrain. `weighted` is sum_i C_i J_i^T J_i restricted to them.
+struct PoseInformation {
+  Eigen::Matrix3d weighted = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d projector = Eigen::Matrix3d::Zero();
+};
+PoseInformation PointInformation(const std::vector<CurvePointPair>& on_curves,
+                                 const std::vector<PointPair>& features, double theta_rad,
+                                 double min_information);
+
 // Joint correction of heading and position from point-to-curve distances (the default in
 // place of eqs. 7-10): the pose (x, y, theta) = argmin sum_i C_i rho(n_i . (R(theta) p_i + t -
 // X_i)) + sum_j C_j rho(|R(theta) p_j + t - X_j|) over the curve points i and the paired
@@ -79,10 +93,8 @@ Eigen::Vector2d SolveTranslationCorrection(const std::vector<PointPair>& points,
 // error along a smooth curve is not read as a heading error (as a chord projected onto the map
 // is). Where the curves leave a direction of (x, y, theta) unconstrained (along one straight
 // wall, about the centre of one circle), the solution would slide along it with the noise of the
-// fitted curves' normals: the step from `pose` is kept only along the eigenvectors of the points'
-// information sum_i J_i^T J_i (unweighted, J_i = d residual_i / d(x, y, theta * 1 m)) whose
-// eigenvalue is at least min_information, in units of points whose normal lies along that
-// direction (a feature counts 2). Returns `pose` without points.
+// fitted curves' normals: the step from `pose` is kept only in the directions the points
+// constrain (PointInformation's projector at `pose`). Returns `pose` without points.
 kernel::Pose2 SolvePoseCorrection(const std::vector<CurvePointPair>& on_curves,
                                   const std::vector<PointPair>& features, const kernel::Pose2& pose,
                                   double min_information, const CorrectionLossOptions& loss = {},

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <utility>
 
+#include <Eigen/Eigenvalues>
+
 #include "kernel/angle.h"
 
 namespace splam::estimation {
@@ -119,6 +121,8 @@ kernel::Status TopologicalSlamOptions::Validate() const {
     return kernel::Status::Error(
         "the local region needs margin >= 0, radius > 0 and 0 < alpha < 1");
   if (!(min_information >= 0.0)) return kernel::Status::Error("min_information must be >= 0");
+  if (!(point_sigma_m > 0.0)) return kernel::Status::Error("point_sigma_m must be positive");
+  if (kernel::Status e = odometry.Validate(); !e.ok()) return e;
   if (correction_rounds < 1) return kernel::Status::Error("correction_rounds must be >= 1");
   if (!(correction_gain > 0.0 && correction_gain <= 1.0))
     return kernel::Status::Error("correction_gain must be in (0, 1]");
@@ -172,7 +176,35 @@ TopologicalSlam::TopologicalSlam(const Pose2& initial_pose, const TopologicalSla
       pose_(initial_pose) {}
 
 void TopologicalSlam::Predict(const Pose2& odometry_increment) {
-  if (healthy()) pose_ = pose_ * odometry_increment;
+  if (!healthy()) return;
+  MotionJacobians j;
+  pose_ = MotionModel(pose_, odometry_increment, &j);
+  covariance_ = j.f_x * covariance_ * j.f_x.transpose() +
+                j.f_u * options_.odometry.Covariance(odometry_increment) * j.f_u.transpose();
+}
+
+void TopologicalSlam::Fuse(const Pose2& predicted, const Pose2& corrected,
+                           const PoseInformation& information) {
+  // The directions the points constrain (the projector's unit eigenvalues) as the rows of H.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(information.projector);
+  std::vector<int> kept;
+  for (int i = 0; i < 3; ++i)
+    if (eigen.eigenvalues()(i) > 0.5) kept.push_back(i);
+  if (kept.empty()) return;
+  Eigen::MatrixXd h(kept.size(), 3);
+  for (std::size_t r = 0; r < kept.size(); ++r)
+    h.row(static_cast<Eigen::Index>(r)) = eigen.eigenvectors().col(kept[r]).transpose();
+  const double var = options_.point_sigma_m * options_.point_sigma_m;
+  const Eigen::MatrixXd r = (h * information.weighted * h.transpose() / var).inverse();
+  const Eigen::MatrixXd k =
+      covariance_ * h.transpose() * (h * covariance_ * h.transpose() + r).inverse();
+  const Eigen::Vector3d innovation(corrected.x() - predicted.x(), corrected.y() - predicted.y(),
+                                   kernel::WrapAngle(corrected.theta() - predicted.theta()));
+  const Eigen::Vector3d step = k * (h * innovation);
+  pose_ = Pose2(predicted.x() + step.x(), predicted.y() + step.y(),
+                kernel::WrapAngle(predicted.theta() + step.z()));
+  covariance_ = (Eigen::Matrix3d::Identity() - k * h) * covariance_;
+  covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
 }
 
 void TopologicalSlam::SetRegion(const kernel::LocalSafeRegion& region) {
@@ -361,47 +393,50 @@ Pose2 TopologicalSlam::Correct(const std::vector<SplineCurve>& observed,
              : CorrectPointToCurve(observed, associations, pose, solver);
 }
 
-Pose2 TopologicalSlam::CorrectPointToCurve(const std::vector<SplineCurve>& observed,
-                                           const std::vector<Association>& associations,
-                                           const Pose2& pose, SolverCounts* solver) const {
+TopologicalSlam::CurvePoints TopologicalSlam::PointsOf(
+    const std::vector<SplineCurve>& observed, const std::vector<Association>& associations) const {
   const double spacing = options_.point_spacing_m > 0.0 ? options_.point_spacing_m : kFitSpacingM;
-  // The stretches' points (robot frame), every `spacing` between the trimmed ends, with their
-  // curve and weight; the paired features.
-  struct Sample {
-    Eigen::Vector2d robot;
-    const CubicBSpline* map;
-    double weight;
-  };
-  std::vector<Sample> samples;
-  std::vector<PointPair> features;
+  CurvePoints out;
   for (const Association& a : associations) {
     const SplineCurve& o = observed[static_cast<std::size_t>(a.observed)];
     const CubicBSpline* map = &curves_[static_cast<std::size_t>(a.map)].spline;
     const auto [s0, s1] = TrimmedEnds(a.match.observed, options_.end_trim_m);
     for (double s = s0; s <= s1 + 1e-9; s += spacing)
-      samples.push_back({PointAt(o, s), map, a.reliability});
+      out.samples.push_back({PointAt(o, s), map, a.reliability});
     for (const auto& [robot, map_point] : FeaturePairs(o, a.match, options_.association.epsilon_m))
-      features.push_back({map_point, robot, a.reliability});
+      out.features.push_back({map_point, robot, a.reliability});
   }
+  return out;
+}
+
+std::vector<CurvePointPair> TopologicalSlam::PairsAt(const CurvePoints& points,
+                                                     const Pose2& pose) const {
+  std::vector<CurvePointPair> pairs;
+  pairs.reserve(points.samples.size());
+  for (const CurvePoints::Sample& sample : points.samples) {
+    const CubicBSpline::ClosestPoint c = sample.map->Closest(pose * sample.robot);
+    // The last span of a map curve bends with the noise of its last points, and a point that
+    // projects onto the end lies beyond it: neither gives a direction to trust.
+    const double arc = sample.map->ArcLengthAt(c.t);
+    if (arc < options_.end_trim_m || arc > sample.map->Length() - options_.end_trim_m) continue;
+    const Eigen::Vector2d d = sample.map->Derivative(c.t);
+    if (d.norm() < 1e-12) continue;
+    pairs.push_back(
+        {sample.robot, c.point, Eigen::Vector2d(-d.y(), d.x()).normalized(), sample.weight});
+  }
+  return pairs;
+}
+
+Pose2 TopologicalSlam::CorrectPointToCurve(const std::vector<SplineCurve>& observed,
+                                           const std::vector<Association>& associations,
+                                           const Pose2& pose, SolverCounts* solver) const {
+  const CurvePoints points = PointsOf(observed, associations);
   // Iterative closest points on the curves: each round linearises every curve at the projection
   // of its points seen from the previous round's pose.
   Pose2 current = pose;
   for (int i = 0; i < kPointToCurveIterations; ++i) {
-    std::vector<CurvePointPair> pairs;
-    pairs.reserve(samples.size());
-    for (const Sample& sample : samples) {
-      const CubicBSpline::ClosestPoint c = sample.map->Closest(current * sample.robot);
-      // The last span of a map curve bends with the noise of its last points, and a point that
-      // projects onto the end lies beyond it: neither gives a direction to trust.
-      const double arc = sample.map->ArcLengthAt(c.t);
-      if (arc < options_.end_trim_m || arc > sample.map->Length() - options_.end_trim_m) continue;
-      const Eigen::Vector2d d = sample.map->Derivative(c.t);
-      if (d.norm() < 1e-12) continue;
-      pairs.push_back(
-          {sample.robot, c.point, Eigen::Vector2d(-d.y(), d.x()).normalized(), sample.weight});
-    }
-    const Pose2 next = SolvePoseCorrection(pairs, features, current, options_.min_information,
-                                           options_.loss, solver);
+    const Pose2 next = SolvePoseCorrection(PairsAt(points, current), points.features, current,
+                                           options_.min_information, options_.loss, solver);
     const bool settled = (next.translation() - current.translation()).norm() < 1e-4 &&
                          std::abs(kernel::WrapAngle(next.theta() - current.theta())) < 1e-5;
     current = next;
@@ -675,9 +710,16 @@ TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
     report.refused_no_better = true;
     pose = predicted;
   }
-  const double k = options_.correction_gain;
-  pose_ = Pose2(predicted.translation() + k * (pose.translation() - predicted.translation()),
-                predicted.theta() + k * kernel::WrapAngle(pose.theta() - predicted.theta()));
+  if (options_.correction == TopologicalCorrection::kPaper) {
+    const double k = options_.correction_gain;
+    pose_ = Pose2(predicted.translation() + k * (pose.translation() - predicted.translation()),
+                  predicted.theta() + k * kernel::WrapAngle(pose.theta() - predicted.theta()));
+  } else if (report.localized) {
+    const CurvePoints points = PointsOf(observed, verified);
+    Fuse(predicted, pose,
+         PointInformation(PairsAt(points, pose), points.features, pose.theta(),
+                          options_.min_information));
+  }
   report.heading_correction_rad = kernel::WrapAngle(pose_.theta() - predicted.theta());
   report.translation_correction = pose_.translation() - predicted.translation();
 
@@ -711,6 +753,9 @@ void TopologicalSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   correction = static_cast<TopologicalCorrection>(method);
   v.Field("min_information", &min_information,
           "point_to_curve: directions constrained by fewer points' worth are not corrected");
+  v.Field("point_sigma_m", &point_sigma_m,
+          "point_to_curve: sigma of a point's distance to its map curve, m");
+  v.Nested("odometry", "point_to_curve: odometry noise of the pose covariance", &odometry);
   v.Field("correction_rounds", &correction_rounds, "associate-correct rounds per scan");
   v.Field("end_trim_m", &end_trim_m, "ends of a matched stretch taken this far inside, m");
   v.Field("min_chord_length_m", &min_chord_length_m, "shorter chords give no heading, m");

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "estimation/ekf_bspline_slam.h"
+#include "estimation/models.h"
 #include "estimation/spline_association.h"
 #include "estimation/topological_correction.h"
 #include "kernel/local_safe_region.h"
@@ -57,6 +58,16 @@ struct TopologicalSlamOptions {
   // along one straight wall the fitted curves' normals wobble by a few degrees, and without
   // this test the pose slid 0.1 m along the wall per correction (`complex` route, seed 9).
   double min_information = 3.0;
+  // Point-to-curve: the corrected pose is fused with the prediction as a measurement (a pose-only
+  // Kalman update) whose information is sum_i C_i J_i^T J_i / point_sigma_m^2 over the verified
+  // points (every point_spacing_m along the stretches), in the directions they constrain; the
+  // prediction's covariance grows with the odometry noise model. The gain then follows how much
+  // the odometry and the curves each know, where a constant gain (correction_gain, the paper
+  // formulation) passed the centimetre noise of every scan's curves into the heading while
+  // odometry drifted by a tenth of a degree (`complex` route, seed 6, along the south wall).
+  // sigma: range noise, fit and map errors of a point together, metres.
+  double point_sigma_m = 0.03;
+  OdometryNoiseModel odometry;
   // Associate, correct the heading, correct the translation; repeated this many times, each
   // round associating at the pose the previous one corrected.
   int correction_rounds = 2;
@@ -84,7 +95,7 @@ struct TopologicalSlamOptions {
   // at its nodes). Applied at every scan of a 10 Hz laser, the full correction passes the
   // centimetre jitter of the two-step solution into the pose and, through map extension, into
   // the map; a gain below 1 averages it over a few scans (a constant-gain observer).
-  double correction_gain = 0.3;  // measured on `complex`: 1 drifts (see README)
+  double correction_gain = 0.3;  // correction: paper only; measured on `complex`: 1 drifts
   // A correction larger than this cannot come from odometry drift since the last update: it is
   // a wrong association (a round obstacle fits any rotation about its centre) and fails
   // verification. Radians and metres.
@@ -202,6 +213,24 @@ class TopologicalSlam {
   kernel::Pose2 CorrectPointToCurve(const std::vector<kernel::SplineCurve>& observed,
                                     const std::vector<Association>& associations,
                                     const kernel::Pose2& pose, SolverCounts* solver) const;
+  // The points of the matched stretches (robot frame), every point_spacing_m between their trimmed
+  // ends, with their map curve and weight C_i; and the paired features.
+  struct CurvePoints {
+    struct Sample {
+      Eigen::Vector2d robot;
+      const kernel::CubicBSpline* map;
+      double weight;
+    };
+    std::vector<Sample> samples;
+    std::vector<PointPair> features;
+  };
+  CurvePoints PointsOf(const std::vector<kernel::SplineCurve>& observed,
+                       const std::vector<Association>& associations) const;
+  // Each point paired with its map curve linearised at its projection from `pose`.
+  std::vector<CurvePointPair> PairsAt(const CurvePoints& points, const kernel::Pose2& pose) const;
+  // The pose-only Kalman update of pose_ and covariance_ (see point_sigma_m).
+  void Fuse(const kernel::Pose2& predicted, const kernel::Pose2& corrected,
+            const PoseInformation& information);
   kernel::Pose2 CorrectAsPaper(const std::vector<kernel::SplineCurve>& observed,
                                const std::vector<Association>& associations,
                                const kernel::Pose2& pose, SolverCounts* solver) const;
@@ -231,6 +260,7 @@ class TopologicalSlam {
   std::string health_;
   CurvatureAssociation association_;
   kernel::Pose2 pose_;
+  Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Zero();  // of pose_ (point_to_curve)
   std::vector<kernel::SplineCurve> curves_;
   std::vector<int> observations_;
   std::unordered_map<std::int64_t, std::vector<int>> cells_;
