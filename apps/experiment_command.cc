@@ -8,8 +8,10 @@
 #include <fmt/core.h>
 
 #include "apps/commands.h"
+#include "io/world_file.h"
 #include "loop/bspline_experiment.h"
 #include "loop/corridor_experiment.h"
+#include "loop/exit_status.h"
 #include "loop/exploration_experiment.h"
 #include "loop/splam_experiment.h"
 
@@ -26,6 +28,8 @@ struct ExperimentArgs {
   double speed_mps = 1.0;
   std::uint64_t seed = 1;
   std::string out;
+  std::string world = "complex";      // splam
+  double resolution_m_per_px = 0.05;  // splam, floor-plan images
   bool corners = true;
   double corner_floor_m = 0.01;
   double odometry_floor = 1e-4;
@@ -80,6 +84,14 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--seed", args->seed, "Seed of the first run; run i uses seed + i")
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output directory (default runs/experiment-<name>)");
+  cmd->add_option("--world", args->world,
+                  "splam: the world, a built-in name (corridor, office, complex), a YAML world "
+                  "file or a floor-plan image")
+      ->capture_default_str();
+  cmd->add_option("--resolution", args->resolution_m_per_px,
+                  "splam: metres per pixel of a floor-plan image")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--odometry-noise", args->odometry_noise_scale,
                   "complex-bspline: scale of the odometry noise (simulated and modelled)")
       ->check(CLI::PositiveNumber)
@@ -102,7 +114,20 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->callback([args, exit_code] {
     if (args->name == "splam") {
-      *exit_code = loop::RunSplamExperiment(WithCommonArgs<loop::SplamExperimentArgs>(*args));
+      loop::SplamExperimentArgs s = WithCommonArgs<loop::SplamExperimentArgs>(*args);
+      io::FloorPlanOptions floor_plan;
+      floor_plan.resolution_m_per_px = args->resolution_m_per_px;
+      io::Result<sim::World> world = io::LoadWorld(args->world, floor_plan);
+      kernel::Status problem =
+          world.ok() ? world.value->Validate() : kernel::Status::Error(world.error);
+      if (!problem.ok()) {
+        fmt::print(stderr, "splam experiment: {}: {}\n", args->world, problem.message());
+        *exit_code = loop::kExitBadInput;
+        return;
+      }
+      s.world = std::move(*world.value);
+      s.world_name = args->world;
+      *exit_code = loop::RunSplamExperiment(s);
       return;
     }
     if (args->name == "exploration") {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "estimation/metrics.h"
+#include "io/config.h"
 #include "io/plot.h"
 #include "kernel/angle.h"
 #include "loop/exit_status.h"
@@ -20,14 +21,21 @@ namespace {
 struct Strategy {
   std::string figure, explorer, method, label;
   io::Rgb color;
+  std::string set;  // an option of the method's defaults changed, "key=value" (empty: none)
 };
 
 const std::vector<Strategy>& Strategies() {
   static const std::vector<Strategy> strategies = {
-      {"fig19", "srt", "ekf-lines", "SRT + ekf-lines", {0.90, 0.45, 0.05}},
-      {"fig20", "srt", "ekf-bspline", "SRT + ekf-bspline", {0.10, 0.60, 0.25}},
-      {"fig21", "reg", "topological", "REG + topological", {0.10, 0.35, 0.85}},
-      {"graph", "reg", "graph", "REG + graph", {0.55, 0.15, 0.60}},
+      {"fig19", "srt", "ekf-lines", "SRT + ekf-lines", {0.90, 0.45, 0.05}, ""},
+      {"fig20", "srt", "ekf-bspline", "SRT + ekf-bspline", {0.10, 0.60, 0.25}, ""},
+      {"fig21", "reg", "topological", "REG + topological", {0.10, 0.35, 0.85}, ""},
+      {"fig21-paper",
+       "reg",
+       "topological",
+       "REG + topological (paper)",
+       {0.35, 0.65, 0.95},
+       "correction=paper"},
+      {"graph", "reg", "graph", "REG + graph", {0.55, 0.15, 0.60}, ""},
   };
   return strategies;
 }
@@ -94,6 +102,18 @@ const std::vector<std::pair<std::string, double Trial::*>>& SummaryFields() {
   return fields;
 }
 
+// Copies a trial's map and error plots to <out>/<prefix>-map.svg/png and -errors.svg/png.
+std::string CopyPictures(const std::string& dir, const std::string& out,
+                         const std::string& prefix) {
+  for (const std::string name : {"map.svg", "map.png", "errors.svg", "errors.png"}) {
+    std::error_code ec;
+    std::filesystem::copy_file(dir + "/" + name, out + "/" + prefix + "-" + name,
+                               std::filesystem::copy_options::overwrite_existing, ec);
+    if (ec) return fmt::format("cannot copy {}/{}: {}", dir, name, ec.message());
+  }
+  return "";
+}
+
 }  // namespace
 
 int RunSplamExperiment(const SplamExperimentArgs& args) {
@@ -103,9 +123,12 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
     fmt::print(stderr, "splam experiment: cannot create {}: {}\n", args.out, ec.message());
     return kExitBadInput;
   }
-  const sim::World world = *sim::BuiltinWorld("complex");
+  const sim::World& world = args.world;
   const std::vector<Strategy>& strategies = Strategies();
   std::vector<std::vector<Trial>> trials(strategies.size());
+  // The trial with the largest position RMSE of each strategy: its pictures are copied too.
+  std::vector<std::string> worst_dirs(strategies.size());
+  std::vector<std::size_t> worst_index(strategies.size(), 0);
   bool all_good = true;
   for (std::size_t s = 0; s < strategies.size(); ++s) {
     for (int i = 0; i < args.runs; ++i) {
@@ -113,29 +136,44 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
       setup.explorer = strategies[s].explorer;
       setup.localization = strategies[s].method;
       setup.seed = args.seed + static_cast<std::uint64_t>(i);
+      std::shared_ptr<estimation::SlamOptions> options = DefaultSlamOptions(setup);
+      const io::ConfigRoot root = [&options](kernel::FieldVisitor& v) { options->VisitFields(v); };
+      if (!strategies[s].set.empty()) {
+        if (const kernel::Status set = io::SetConfigValue(root, strategies[s].set); !set.ok()) {
+          fmt::print(stderr, "splam experiment: {}\n", set.message());
+          return kExitBadInput;
+        }
+      }
+      setup.slam_options = options;
       const ExploreOutcome outcome = RunExploration(world, setup);
       if (!outcome.error.empty()) {
         fmt::print(stderr, "splam experiment: {}\n", outcome.error);
         return kExitBadInput;
       }
+      // <explorer>-<method>[-<value of the changed option>]-seed<N>
+      const std::string& set = strategies[s].set;
       const std::string dir =
-          fmt::format("{}/{}-{}-seed{}", args.out, setup.explorer, setup.localization, setup.seed);
+          fmt::format("{}/{}-{}{}-seed{}", args.out, setup.explorer, setup.localization,
+                      set.empty() ? "" : "-" + set.substr(set.find('=') + 1), setup.seed);
       std::filesystem::create_directories(dir, ec);
       const nlohmann::json report = ExplorationReport(world, setup, outcome);
       std::vector<std::string> written;
       std::string error = WriteExplorationRun(world, setup, outcome, report, dir, &written);
-      for (const std::string name : {"map.svg", "map.png", "errors.svg", "errors.png"}) {
-        if (i > 0 || !error.empty()) break;  // Figs. 19-21: the first seed's pictures
-        std::filesystem::copy_file(dir + "/" + name,
-                                   args.out + "/" + strategies[s].figure + "-" + name,
-                                   std::filesystem::copy_options::overwrite_existing, ec);
-        if (ec) error = fmt::format("cannot copy {}/{}: {}", dir, name, ec.message());
-      }
+      if (error.empty())
+        error = io::WriteConfig(dir + "/slam_options.yaml", root,
+                                "the options of " + setup.localization + " in this trial")
+                    .message();
+      if (i == 0 && error.empty())  // Figs. 19-21: the first seed's pictures
+        error = CopyPictures(dir, args.out, strategies[s].figure);
       if (!error.empty()) {
         fmt::print(stderr, "splam experiment: {}\n", error);
         return kExitBadInput;
       }
       const Trial trial = TrialOf(report, outcome);
+      if (worst_dirs[s].empty() || trial.rmse_m > trials[s][worst_index[s]].rmse_m) {
+        worst_dirs[s] = dir;
+        worst_index[s] = trials[s].size();
+      }
       all_good &= trial.explored && trial.healthy;
       fmt::print(
           "{} seed {}: {}, {:.1f} % explored; position RMSE {:.3f} m (odometry {:.3f} m), "
@@ -145,6 +183,14 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
           trial.map, trial.wall_s);
       std::fflush(stdout);
       trials[s].push_back(trial);
+    }
+  }
+
+  for (std::size_t s = 0; s < strategies.size(); ++s) {
+    if (std::string error = CopyPictures(worst_dirs[s], args.out, strategies[s].figure + "-worst");
+        !error.empty()) {
+      fmt::print(stderr, "splam experiment: {}\n", error);
+      return kExitBadInput;
     }
   }
 
@@ -167,7 +213,8 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
     panels.push_back(std::move(panel));
   }
   io::PlotOptions plot;
-  plot.title = fmt::format("complex: SPLAM strategies, {} trials (paper 003 Fig. 22)", args.runs);
+  plot.title =
+      fmt::format("{}: SPLAM strategies, {} trials (paper 003 Fig. 22)", world.name, args.runs);
   plot.x_label = "trial";
   plot.panel_height_px = 150.0;
   if (std::string error =
@@ -179,8 +226,8 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
 
   // The table and the summary.
   std::string table = fmt::format(
-      "# SPLAM strategies in `complex` (paper 003 Figs. 19-22): {} trials each, seeds {}-{}\n\n",
-      args.runs, args.seed, args.seed + static_cast<std::uint64_t>(args.runs) - 1);
+      "# SPLAM strategies in `{}` (paper 003 Figs. 19-22): {} trials each, seeds {}-{}\n\n",
+      args.world_name, args.runs, args.seed, args.seed + static_cast<std::uint64_t>(args.runs) - 1);
   table +=
       "| strategy | explored | position RMSE (m) | max position error (m) | heading RMSE (deg) | "
       "odometry RMSE (m) | odometry heading RMSE (deg) | map curves | map control points or "
@@ -188,7 +235,7 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
       "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   nlohmann::ordered_json summary;
   summary["experiment"] = "splam (paper 003 section 4.2, Figs. 19-22)";
-  summary["world"] = "complex";
+  summary["world"] = args.world_name;
   summary["seeds"] = {args.seed, args.seed + static_cast<std::uint64_t>(args.runs) - 1};
   for (std::size_t s = 0; s < strategies.size(); ++s) {
     const std::vector<Trial>& v = trials[s];
@@ -208,14 +255,16 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
     nlohmann::ordered_json& j = summary["strategies"][strategies[s].label];
     j["explorer"] = strategies[s].explorer;
     j["method"] = strategies[s].method;
+    if (!strategies[s].set.empty()) j["option"] = strategies[s].set;
     j["explored_and_healthy"] = explored;
     for (const auto& [key, field] : SummaryFields()) j[key] = Values(v, field);
   }
   std::ofstream(args.out + "/table.md") << table;
   std::ofstream(args.out + "/summary.json") << summary.dump(2) << "\n";
   fmt::print(
-      "{}wrote {}/{{table.md, summary.json, fig19/20/21-map.png, fig19/20/21-errors.png, "
-      "fig22.png, one directory per trial}}\n",
+      "{}wrote {}/{{table.md, summary.json, fig22.png, <figure>-map.png and <figure>-errors.png "
+      "(first seed) and <figure>-worst-map.png and -errors.png (largest position RMSE) for "
+      "fig19, fig20, fig21, fig21-paper and graph, one directory per trial}}\n",
       table, args.out);
   return all_good ? kExitOk : kExitIncomplete;
 }

@@ -4,19 +4,28 @@
 #include <cstdint>
 #include <string>
 
+#include "sim/builtin_worlds.h"
+#include "sim/world.h"
+
 namespace splam::loop {
 
-// Paper 003 §4.2 (Figs. 19-22): exploration coupled with SLAM in the `complex` world, three
-// strategies as the paper compares them: SRT + EKF-SLAM with lines and corners (Fig. 19), SRT +
-// the B-spline EKF (Fig. 20) and REG + the topological B-spline SLAM (Fig. 21), `runs` seeded
-// trials each (seeds seed .. seed + runs - 1, the same seeds for every strategy).
+// Paper 003 §4.2 (Figs. 19-22): exploration coupled with SLAM in a world (`complex` as the
+// paper), three strategies as the paper compares them: SRT + EKF-SLAM with lines and corners
+// (Fig. 19), SRT + the B-spline EKF (Fig. 20) and REG + the topological B-spline SLAM (Fig. 21),
+// with the topological SLAM's default correction and paper 003's formulation side by side; and
+// REG + graph. `runs` seeded trials each (seeds seed .. seed + runs - 1, the same seeds for every
+// strategy).
 //
-// Writes into `out`: a full run directory per trial (<explorer>-<method>-seed<N>/: report.json,
-// map, graph, x/y/theta errors, trajectories); fig19/20/21-map.png and -errors.png, the first
-// seed's map with the true, odometric and estimated trajectories and its errors over time;
-// fig22.svg/png, the errors, map size and wall time of every trial (Fig. 22); table.md with
-// mean +- std per strategy; summary.json with every trial's numbers.
+// Writes into `out`: a full run directory per trial (<explorer>-<method>[-paper]-seed<N>/:
+// report.json, slam_options.yaml, map, graph, x/y/theta errors, trajectories); <figure>-map.png and
+// -errors.png (figure: fig19, fig20, fig21, fig21-paper, graph), the first seed's map with the
+// true, odometric and estimated trajectories and its errors over time, and <figure>-worst-map.png
+// and -errors.png, those of the trial with the largest position RMSE; fig22.svg/png, the errors,
+// map size and wall time of every trial (Fig. 22); table.md with mean +- std per strategy;
+// summary.json with every trial's numbers.
 struct SplamExperimentArgs {
+  sim::World world = *sim::BuiltinWorld("complex");
+  std::string world_name = "complex";  // as the user gave it: a name or a path
   int runs = 10;
   std::uint64_t seed = 1;
   std::string out = "runs/experiment-splam";

@@ -413,22 +413,34 @@ TEST(SplamCli, ExploreWithoutArgumentsRunsTheMainJob) {
   EXPECT_GT(report["slam"]["localization_steps"].get<int>(), 1000);
 }
 
-TEST(SplamCli, SplamExperimentComparesTheFourStrategies) {
-  // One trial (seed 1) of paper 003 Figs. 19-22 and REG + graph. Measured: position RMSE
-  // 0.162 m (ekf-lines, odometry 0.458 m), 0.125 m (ekf-bspline, odometry 0.590 m), 0.163 m
-  // (topological, odometry 0.664 m), 0.102 m (graph, odometry 0.420 m).
+TEST(SplamCli, SplamExperimentComparesTheStrategies) {
+  // One trial (seed 1) of paper 003 Figs. 19-22 (the topological SLAM with its default
+  // correction and with the paper's), and REG + graph. Measured: position RMSE 0.162 m
+  // (ekf-lines, odometry 0.458 m), 0.125 m (ekf-bspline, odometry 0.590 m), 0.093 m
+  // (topological, odometry 0.250 m; the paper's formulation 0.330 m, odometry 0.233 m),
+  // 0.053 m (graph, odometry 0.694 m).
   const fs::path out = Temp("experiment_splam");
-  const Output run = Splam("experiment splam --runs 1 --out " + out.string());
+  const Output run = Splam("experiment splam --world complex --runs 1 --out " + out.string());
   ASSERT_EQ(run.status, 0) << run.text;
-  for (const char* f : {"table.md", "summary.json", "fig19-map.png", "fig19-errors.png",
-                        "fig20-map.png", "fig21-map.png", "fig21-errors.svg", "fig22.png",
-                        "graph-map.png", "reg-graph-seed1/report.json",
-                        "reg-topological-seed1/report.json", "srt-ekf-lines-seed1/map.dxf"})
+  for (const char* f :
+       {"table.md", "summary.json", "fig19-map.png", "fig19-errors.png", "fig20-map.png",
+        "fig21-map.png", "fig21-errors.svg", "fig21-paper-map.png", "fig21-worst-map.png",
+        "fig22.png", "graph-map.png", "reg-graph-seed1/report.json",
+        "reg-topological-seed1/report.json", "reg-topological-paper-seed1/slam_options.yaml",
+        "srt-ekf-lines-seed1/map.dxf"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
+  // The paper's formulation is what its run says it used.
+  EXPECT_NE(
+      Slurp(out / "reg-topological-paper-seed1/slam_options.yaml").find("correction: \"paper\""),
+      std::string::npos);
   const nlohmann::json summary = nlohmann::json::parse(Slurp(out / "summary.json"));
-  ASSERT_EQ(summary["strategies"].size(), 4u);
+  EXPECT_EQ(summary["world"], "complex");
+  ASSERT_EQ(summary["strategies"].size(), 5u);
   for (const auto& [name, s] : summary["strategies"].items()) {
     EXPECT_EQ(s["explored_and_healthy"].get<int>(), 1) << name;
+    // The paper's formulation is reported beside the default, not held to its accuracy (seed 1:
+    // 0.330 m against odometry's 0.233 m).
+    if (s.contains("option")) continue;
     EXPECT_LT(s["rmse_position_m"][0].get<double>(),
               0.5 * s["odometry_rmse_position_m"][0].get<double>())
         << name;
@@ -438,6 +450,13 @@ TEST(SplamCli, SplamExperimentComparesTheFourStrategies) {
       EXPECT_LT(s["map_accuracy_m"][0].get<double>(), 0.15) << name;
     }
   }
+}
+
+TEST(SplamCli, SplamExperimentNamesAWorldItCannotRead) {
+  const fs::path out = Temp("experiment_splam_bad_world");
+  const Output run = Splam("experiment splam --world no_such_world.yaml --out " + out.string());
+  EXPECT_EQ(run.status, 2) << run.text;
+  EXPECT_NE(run.text.find("no_such_world.yaml"), std::string::npos) << run.text;
 }
 
 TEST(SplamCli, ConfigFileEditedChangesTheRunAndAMisspeltKeyIsRefused) {
