@@ -26,6 +26,7 @@ struct ExploreArgs {
   std::string world = "complex";
   std::string out;
   double resolution_m_per_px = 0.05;
+  bool trace = false;
 };
 
 // The setup: defaults, then the configuration file, then the command line (flags and --set).
@@ -121,6 +122,7 @@ int RunExplore(const ExploreArgs& args) {
     return kExitBadInput;
   }
   loop::ExploreSetup& setup = config.setup;
+  setup.trace_steps = args.trace;
   fmt::print("splam explore: {} with {} localisation in '{}', seed {}\n", setup.explorer,
              setup.localization, world.value->name, setup.seed);
   std::fflush(stdout);
@@ -257,6 +259,9 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
                   "Metres per pixel of a floor-plan image world")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_flag("--trace", args->trace,
+                "With a SLAM localisation, also write steps.csv: every step's predicted and "
+                "corrected pose, their errors against the truth and what the method's update did");
   cmd->callback([args, exit_code, flags] {
     args->given.clear();
     for (const auto& [name, option] : flags)

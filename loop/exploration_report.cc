@@ -14,6 +14,7 @@
 #include "io/run_picture.h"
 #include "io/trajectory.h"
 #include "loop/slam_report.h"
+#include "loop/step_trace.h"
 #include "sim/ray_caster.h"
 #include "sim/simulator.h"
 
@@ -128,6 +129,10 @@ std::string WriteExplorationRun(const sim::World& world, const ExploreSetup& set
     errors.insert(errors.end(), map_errors.begin(), map_errors.end());
     if (std::all_of(map_errors.begin(), map_errors.end(), [](auto& e) { return e.empty(); }))
       written->insert(written->end(), {"map.txt", "map.dxf"});
+    if (setup.trace_steps)
+      errors.push_back(
+          save("steps.csv", WriteStepTrace(dir + "/steps.csv", outcome.slam->driver()->steps(),
+                                           outcome.slam->step_times(), t.truth)));
   }
   for (const std::string& error : errors) {
     if (!error.empty()) return error;

@@ -24,8 +24,8 @@ std::string RunTitle(const sim::World& world, const ExploreSetup& setup,
 
 // Writes a run into `dir` (which must exist): `report` as report.json, graph, explored and
 // errors pictures (.svg and .png), truth/odometry/estimate.txt and, with a SLAM localisation,
-// map.svg/png/txt/dxf. The names written are appended to *written. Empty on success, else the
-// first error (the files written before it stay).
+// map.svg/png/txt/dxf, and steps.csv when setup.trace_steps (WriteStepTrace). The names written are
+// appended to *written. Empty on success, else the first error (the files written before it stay).
 std::string WriteExplorationRun(const sim::World& world, const ExploreSetup& setup,
                                 const ExploreOutcome& outcome, const nlohmann::json& report,
                                 const std::string& dir, std::vector<std::string>* written);

@@ -21,7 +21,9 @@ std::shared_ptr<exploration::Localization> MakeLocalization(const ExploreSetup& 
   if (estimation::SlamRegistry::Global().Find(name) == nullptr) return nullptr;
   std::shared_ptr<const estimation::SlamOptions> options = setup.slam_options;
   if (!options) options = DefaultSlamOptions(setup);
-  return std::make_shared<SlamLocalization>(name, options, setup.region);
+  auto slam = std::make_shared<SlamLocalization>(name, options, setup.region);
+  slam->RecordSteps(setup.trace_steps);
+  return slam;
 }
 
 // The explored fraction after every node: the LSRs at the nodes' true poses over the free

@@ -32,6 +32,8 @@ struct ExploreSetup {
   std::optional<sim::SimulatorOptions> simulator;
   // The SLAM method's options; null: DefaultSlamOptions(*this).
   std::shared_ptr<const estimation::SlamOptions> slam_options;
+  // Keep every SLAM step (SlamDriver::RecordSteps) for steps.csv (WriteExplorationRun).
+  bool trace_steps = false;
 };
 
 // The simulator of a setup: defaults with the URG-04LX, the sonar ring when `sonar`, and the

@@ -16,12 +16,14 @@ std::string SlamLocalization::Start(const exploration::RobotDescription& robot,
   if (!made.ok()) return made.error;
   driver_.emplace(std::move(*made.value));
   driver_->SetOdometryOrigin(first.odometry_pose);
+  driver_->RecordSteps(record_steps_);
   robot_T_laser_ = robot.robot_T_laser;
   return "";
 }
 
 kernel::Pose2 SlamLocalization::Update(const exploration::Perception& perception) {
   driver_->Step(perception.odometry_pose, &perception.scan, robot_T_laser_);
+  if (record_steps_) step_times_.push_back(perception.time_s);
   return driver_->method().pose();
 }
 

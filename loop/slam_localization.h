@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "estimation/slam_method.h"
 #include "exploration/localization.h"
@@ -35,6 +36,9 @@ class SlamLocalization : public exploration::Localization {
 
   // The driver (after Start): the method, the wall time of every update and the map sizes.
   const SlamDriver* driver() const { return driver_ ? &*driver_ : nullptr; }
+  // Keep every step (SlamDriver::steps) and its time from Start on; call before Start.
+  void RecordSteps(bool on) { record_steps_ = on; }
+  const std::vector<double>& step_times() const { return step_times_; }
 
  private:
   std::string method_;
@@ -42,6 +46,8 @@ class SlamLocalization : public exploration::Localization {
   kernel::LocalRegionOptions region_;
   kernel::Pose2 robot_T_laser_;
   std::optional<SlamDriver> driver_;
+  bool record_steps_ = false;
+  std::vector<double> step_times_;  // s, of every recorded step
 };
 
 }  // namespace splam::loop
