@@ -300,6 +300,9 @@ void AddBuiltinSlamMethods(SlamRegistry* registry) {
       "topological B-spline SLAM: local-region association, Ceres corrections (paper 003)",
       [](const TopologicalSlamOptions& o, const SlamContext& c) {
         return std::make_unique<TopologicalSlamMethod>(o, c);
+      },
+      [](const SensorNoise& noise, TopologicalSlamOptions* o) {
+        o->odometry = OdometryNoiseModel().Scaled(noise.odometry_noise_scale);
       }));
   registry->Add(MakeSlamMethodInfo<GraphSlamOptions>(
       "graph",
