@@ -43,7 +43,7 @@ std::optional<CubicBSpline> Spliced(const CubicBSpline& map, std::size_t drop_fr
   const std::size_t n = kept.size();
   if (n < drop_front + drop_back + 4) return std::nullopt;
   const double h = (old.back() - old.front()) / static_cast<double>(n - 3);  // n - 3 spans
-  // Knots 0-3 and n-n+3 are the clamped ends; dropping control points moves them inward.
+  // Knots 0..3 and n..n+3 are the clamped ends; dropping control points moves them inward.
   const double a = old[3 + drop_front], b = old[n - drop_back];
   std::vector<double> knots;
   const auto front = static_cast<double>(head.size()), back = static_cast<double>(tail.size());

@@ -68,8 +68,8 @@ struct TopologicalSlamOptions {
   // sigma: range noise, fit and map errors of a point together, metres.
   double point_sigma_m = 0.03;
   OdometryNoiseModel odometry;
-  // Associate, correct the heading, correct the translation; repeated this many times, each
-  // round associating at the pose the previous one corrected.
+  // Associate and correct; repeated this many times, each round associating at the pose the
+  // previous one corrected.
   int correction_rounds = 2;
   // The start and end points of a matched stretch are taken this far inside it: the last span of
   // a fitted B-spline bends with the noise of the last few points (metres).
@@ -113,10 +113,9 @@ struct TopologicalSlamOptions {
   // points every 0.1 m) at the corrected pose than at the prediction. Paper 003 checks only the
   // corrected pose: a raw 4 deg turn of two short curves passed it on the `complex` route (seed 5,
   // scan 201) and the map then agreed with the wrong heading. With this test the route's seeds
-  // 1-10 went from 0.074-0.346 m (3 worse than odometry) to 0.037-0.135 m (README); keeping the
-  // prediction but still extending the map from it gave 0.040-0.197 m. Not yet the default:
-  // explorations and real logs are still to be measured with it (issue 17). false: the paper's
-  // test alone.
+  // 1-10 went from 0.074-0.346 m (3 worse than odometry) to 0.037-0.135 m with the paper's
+  // correction (README). With the point-to-curve correction it does not help: REG explorations of
+  // `complex` (seeds 1-10) averaged 0.158 m with it, 0.139 m without. false: the paper's test.
   bool verify_improves = false;
 
   // The map is extended when the robot has moved this far or turned this much since the last
