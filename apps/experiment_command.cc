@@ -117,11 +117,9 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       loop::SplamExperimentArgs s = WithCommonArgs<loop::SplamExperimentArgs>(*args);
       io::FloorPlanOptions floor_plan;
       floor_plan.resolution_m_per_px = args->resolution_m_per_px;
-      io::Result<sim::World> world = io::LoadWorld(args->world, floor_plan);
-      kernel::Status problem =
-          world.ok() ? world.value->Validate() : kernel::Status::Error(world.error);
-      if (!problem.ok()) {
-        fmt::print(stderr, "splam experiment: {}: {}\n", args->world, problem.message());
+      io::Result<sim::World> world = io::LoadValidWorld(args->world, floor_plan);
+      if (!world.ok()) {
+        fmt::print(stderr, "splam experiment: {}\n", world.error);
         *exit_code = loop::kExitBadInput;
         return;
       }

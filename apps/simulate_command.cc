@@ -77,13 +77,9 @@ kernel::Status Configure(const SimulateArgs& args, sim::SimulatorOptions* option
 int RunSimulate(const SimulateArgs& args) {
   io::FloorPlanOptions floor_plan;
   floor_plan.resolution_m_per_px = args.resolution_m_per_px;
-  io::Result<sim::World> world = io::LoadWorld(args.world, floor_plan);
+  io::Result<sim::World> world = io::LoadValidWorld(args.world, floor_plan);
   if (!world.ok()) {
     fmt::print(stderr, "splam simulate: {}\n", world.error);
-    return kExitBadInput;
-  }
-  if (const kernel::Status problem = world.value->Validate(); !problem.ok()) {
-    fmt::print(stderr, "splam simulate: {}: {}\n", args.world, problem.message());
     return kExitBadInput;
   }
 

@@ -31,15 +31,23 @@ struct PointResidual {
   }
 };
 
+// R(theta) p + t - X at pose = (x, y, theta): where the robot sees p (robot frame) in the
+// world, minus where the map has it.
+template <class T>
+void SeenMinusMap(const T* pose, const Eigen::Vector2d& p, const Eigen::Vector2d& x, T* d) {
+  const T c = ceres::cos(pose[2]), s = ceres::sin(pose[2]);
+  d[0] = c * p.x() - s * p.y() + pose[0] - x.x();
+  d[1] = s * p.x() + c * p.y() + pose[1] - x.y();
+}
+
 // n . (R(theta) p + t - X): the signed distance of the seen point to the map curve's tangent.
 struct PointToCurveResidual {
   CurvePointPair pair;
   template <class T>
   bool operator()(const T* pose, T* residual) const {
-    const T c = ceres::cos(pose[2]), s = ceres::sin(pose[2]);
-    const T x = c * pair.robot_point.x() - s * pair.robot_point.y() + pose[0] - pair.map_point.x();
-    const T y = s * pair.robot_point.x() + c * pair.robot_point.y() + pose[1] - pair.map_point.y();
-    residual[0] = pair.map_normal.x() * x + pair.map_normal.y() * y;
+    T d[2];
+    SeenMinusMap(pose, pair.robot_point, pair.map_point, d);
+    residual[0] = pair.map_normal.x() * d[0] + pair.map_normal.y() * d[1];
     return true;
   }
 };
@@ -49,11 +57,7 @@ struct FeatureResidual {
   PointPair pair;
   template <class T>
   bool operator()(const T* pose, T* residual) const {
-    const T c = ceres::cos(pose[2]), s = ceres::sin(pose[2]);
-    residual[0] =
-        c * pair.robot_point.x() - s * pair.robot_point.y() + pose[0] - pair.map_point.x();
-    residual[1] =
-        s * pair.robot_point.x() + c * pair.robot_point.y() + pose[1] - pair.map_point.y();
+    SeenMinusMap(pose, pair.robot_point, pair.map_point, residual);
     return true;
   }
 };
@@ -135,7 +139,7 @@ kernel::Pose2 SolvePoseCorrection(const std::vector<CurvePointPair>& on_curves,
   const Eigen::Vector3d step(x[0] - pose.x(), x[1] - pose.y(),
                              std::remainder(x[2] - pose.theta(), 2.0 * M_PI));
   const Eigen::Vector3d kept =
-      PointInformation(on_curves, features, pose.theta(), min_information).projector * step;
+      PointInformation(on_curves, features, pose.theta(), min_information).Projector() * step;
   return kernel::Pose2(pose.x() + kept.x(), pose.y() + kept.y(), pose.theta() + kept.z());
 }
 
@@ -157,12 +161,12 @@ PoseInformation PointInformation(const std::vector<CurvePointPair>& on_curves,
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(counted);
   PoseInformation out;
+  out.weighted = weighted;
   for (int i = 0; i < 3; ++i) {
     if (eigen.eigenvalues()(i) < min_information) continue;
-    const Eigen::Vector3d v = eigen.eigenvectors().col(i);
-    out.projector += v * v.transpose();
+    out.directions.conservativeResize(Eigen::NoChange, out.directions.cols() + 1);
+    out.directions.rightCols<1>() = eigen.eigenvectors().col(i);
   }
-  out.weighted = out.projector * weighted * out.projector;
   return out;
 }
 

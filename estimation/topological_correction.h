@@ -74,13 +74,15 @@ Eigen::Vector2d SolveTranslationCorrection(const std::vector<PointPair>& points,
 
 // What a set of point pairs says about the pose (x, y, theta), linearised at heading theta_rad:
 // the residuals' Jacobians J_i = d r_i / d(x, y, theta) (theta in radians, so a direction mixes
-// metres and radians as if the points were 1 m away). `projector` projects onto the eigenvectors
-// of the unweighted information sum_i J_i^T J_i whose eigenvalue is at least min_information (in
-// units of points whose normal lies along that direction; a feature counts 2): the directions the
-// points constrain. `weighted` is sum_i C_i J_i^T J_i restricted to them.
+// metres and radians as if the points were 1 m away). `directions` are the orthonormal
+// eigenvectors of the unweighted information sum_i J_i^T J_i whose eigenvalue is at least
+// min_information (in units of points whose normal lies along that direction; a feature counts
+// 2): the directions the points constrain, one per column. `weighted` is sum_i C_i J_i^T J_i.
 struct PoseInformation {
   Eigen::Matrix3d weighted = Eigen::Matrix3d::Zero();
-  Eigen::Matrix3d projector = Eigen::Matrix3d::Zero();
+  Eigen::Matrix<double, 3, Eigen::Dynamic> directions = Eigen::Matrix<double, 3, 0>();
+  // Projects (x, y, theta) onto the constrained directions.
+  Eigen::Matrix3d Projector() const { return directions * directions.transpose(); }
 };
 PoseInformation PointInformation(const std::vector<CurvePointPair>& on_curves,
                                  const std::vector<PointPair>& features, double theta_rad,
@@ -94,7 +96,7 @@ PoseInformation PointInformation(const std::vector<CurvePointPair>& on_curves,
 // is). Where the curves leave a direction of (x, y, theta) unconstrained (along one straight
 // wall, about the centre of one circle), the solution would slide along it with the noise of the
 // fitted curves' normals: the step from `pose` is kept only in the directions the points
-// constrain (PointInformation's projector at `pose`). Returns `pose` without points.
+// constrain (PointInformation's directions at `pose`). Returns `pose` without points.
 kernel::Pose2 SolvePoseCorrection(const std::vector<CurvePointPair>& on_curves,
                                   const std::vector<PointPair>& features, const kernel::Pose2& pose,
                                   double min_information, const CorrectionLossOptions& loss = {},

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <utility>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
 #include "kernel/angle.h"
 
@@ -185,15 +185,9 @@ void TopologicalSlam::Predict(const Pose2& odometry_increment) {
 
 void TopologicalSlam::Fuse(const Pose2& predicted, const Pose2& corrected,
                            const PoseInformation& information) {
-  // The directions the points constrain (the projector's unit eigenvalues) as the rows of H.
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(information.projector);
-  std::vector<int> kept;
-  for (int i = 0; i < 3; ++i)
-    if (eigen.eigenvalues()(i) > 0.5) kept.push_back(i);
-  if (kept.empty()) return;
-  Eigen::MatrixXd h(kept.size(), 3);
-  for (std::size_t r = 0; r < kept.size(); ++r)
-    h.row(static_cast<Eigen::Index>(r)) = eigen.eigenvectors().col(kept[r]).transpose();
+  // The measurement: the corrected pose along the directions the points constrain (rows of H).
+  if (information.directions.cols() == 0) return;
+  const Eigen::MatrixXd h = information.directions.transpose();
   const double var = options_.point_sigma_m * options_.point_sigma_m;
   const Eigen::MatrixXd r = (h * information.weighted * h.transpose() / var).inverse();
   const Eigen::MatrixXd k =

@@ -211,4 +211,13 @@ Result<sim::World> LoadWorld(const std::string& name_or_path, const FloorPlanOpt
   return ReadWorldFile(name_or_path);
 }
 
+Result<sim::World> LoadValidWorld(const std::string& name_or_path,
+                                  const FloorPlanOptions& floor_plan) {
+  Result<sim::World> world = LoadWorld(name_or_path, floor_plan);
+  if (!world.ok()) return world;
+  if (const kernel::Status problem = world.value->Validate(); !problem.ok())
+    return Result<sim::World>::Fail(name_or_path + ": " + problem.message());
+  return world;
+}
+
 }  // namespace splam::io

@@ -37,6 +37,10 @@ std::string WriteWorldFile(const std::string& path, const sim::World& world);
 // image (.png, .jpg, .pgm, .bmp) read with `floor_plan`.
 Result<sim::World> LoadWorld(const std::string& name_or_path,
                              const FloorPlanOptions& floor_plan = {});
+// LoadWorld, then sim::World::Validate: a world to simulate in. A problem of the world is
+// reported as "name_or_path: problem".
+Result<sim::World> LoadValidWorld(const std::string& name_or_path,
+                                  const FloorPlanOptions& floor_plan = {});
 
 }  // namespace splam::io
 

@@ -1,6 +1,7 @@
 #include "loop/splam_experiment.h"
 
 #include <fmt/core.h>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -102,6 +103,13 @@ const std::vector<std::pair<std::string, double Trial::*>>& SummaryFields() {
   return fields;
 }
 
+// A trial's run directory: <out>/<explorer>-<method>[-<value of the changed option>]-seed<N>.
+std::string TrialDir(const std::string& out, const Strategy& strategy, std::uint64_t seed) {
+  const std::string& set = strategy.set;
+  return fmt::format("{}/{}-{}{}-seed{}", out, strategy.explorer, strategy.method,
+                     set.empty() ? "" : "-" + set.substr(set.find('=') + 1), seed);
+}
+
 // Copies a trial's map and error plots to <out>/<prefix>-map.svg/png and -errors.svg/png.
 std::string CopyPictures(const std::string& dir, const std::string& out,
                          const std::string& prefix) {
@@ -126,9 +134,6 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
   const sim::World& world = args.world;
   const std::vector<Strategy>& strategies = Strategies();
   std::vector<std::vector<Trial>> trials(strategies.size());
-  // The trial with the largest position RMSE of each strategy: its pictures are copied too.
-  std::vector<std::string> worst_dirs(strategies.size());
-  std::vector<std::size_t> worst_index(strategies.size(), 0);
   bool all_good = true;
   for (std::size_t s = 0; s < strategies.size(); ++s) {
     for (int i = 0; i < args.runs; ++i) {
@@ -150,11 +155,7 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
         fmt::print(stderr, "splam experiment: {}\n", outcome.error);
         return kExitBadInput;
       }
-      // <explorer>-<method>[-<value of the changed option>]-seed<N>
-      const std::string& set = strategies[s].set;
-      const std::string dir =
-          fmt::format("{}/{}-{}{}-seed{}", args.out, setup.explorer, setup.localization,
-                      set.empty() ? "" : "-" + set.substr(set.find('=') + 1), setup.seed);
+      const std::string dir = TrialDir(args.out, strategies[s], setup.seed);
       std::filesystem::create_directories(dir, ec);
       const nlohmann::json report = ExplorationReport(world, setup, outcome);
       std::vector<std::string> written;
@@ -170,10 +171,6 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
         return kExitBadInput;
       }
       const Trial trial = TrialOf(report, outcome);
-      if (worst_dirs[s].empty() || trial.rmse_m > trials[s][worst_index[s]].rmse_m) {
-        worst_dirs[s] = dir;
-        worst_index[s] = trials[s].size();
-      }
       all_good &= trial.explored && trial.healthy;
       fmt::print(
           "{} seed {}: {}, {:.1f} % explored; position RMSE {:.3f} m (odometry {:.3f} m), "
@@ -187,7 +184,13 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
   }
 
   for (std::size_t s = 0; s < strategies.size(); ++s) {
-    if (std::string error = CopyPictures(worst_dirs[s], args.out, strategies[s].figure + "-worst");
+    // The trial with the largest position RMSE: its pictures too.
+    const auto worst =
+        std::max_element(trials[s].begin(), trials[s].end(),
+                         [](const Trial& a, const Trial& b) { return a.rmse_m < b.rmse_m; });
+    const std::string dir = TrialDir(
+        args.out, strategies[s], args.seed + static_cast<std::uint64_t>(worst - trials[s].begin()));
+    if (std::string error = CopyPictures(dir, args.out, strategies[s].figure + "-worst");
         !error.empty()) {
       fmt::print(stderr, "splam experiment: {}\n", error);
       return kExitBadInput;

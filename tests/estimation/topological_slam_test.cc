@@ -112,8 +112,8 @@ TEST(TopologicalCorrection, OneStraightWallCorrectsNothingAlongIt) {
     solved = SolvePoseCorrection(pairs, {}, start, 3.0);
     EXPECT_NEAR(along.dot(solved.translation() - start.translation()), 0.0, 0.005) << trial;
     const PoseInformation info = PointInformation(pairs, {}, start.theta(), 3.0);
-    EXPECT_NEAR(info.projector.trace(), 2.0, 1e-9);
-    EXPECT_LT((info.projector * Eigen::Vector3d(along.x(), along.y(), 0.0)).norm(), 0.05);
+    EXPECT_NEAR(info.Projector().trace(), 2.0, 1e-9);
+    EXPECT_LT((info.Projector() * Eigen::Vector3d(along.x(), along.y(), 0.0)).norm(), 0.05);
   }
 }
 
