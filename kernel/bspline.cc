@@ -184,6 +184,8 @@ CubicBSpline::CubicBSpline(std::vector<Eigen::Vector2d> control_points, std::vec
       cumulative_.push_back({k, b, cumulative_.back().arc_length + PieceLength(pieces_[k], a, b)});
     }
   }
+  boxes_.reserve(pieces_.size());
+  for (const CubicBezier& piece : pieces_) boxes_.push_back(piece.ControlBounds());
 }
 
 std::pair<std::size_t, double> CubicBSpline::Locate(double t) const {
@@ -262,9 +264,27 @@ std::vector<Eigen::Vector2d> CubicBSpline::ResampleByArcLength(double epsilon_m)
 }
 
 CubicBSpline::ClosestPoint CubicBSpline::Closest(const Eigen::Vector2d& q) const {
+  // Squared distance from q to piece k's box: a lower bound of its distance to the piece.
+  auto box_distance2 = [&](std::size_t k) {
+    const Eigen::Vector2d d =
+        (boxes_[k].min - q).cwiseMax(q - boxes_[k].max).cwiseMax(Eigen::Vector2d::Zero());
+    return d.squaredNorm();
+  };
+  // Start from the piece with the nearest box, so that the bound prunes from the first test.
+  std::size_t first = 0;
+  double nearest = kNoHit;
+  for (std::size_t k = 0; k < pieces_.size(); ++k) {
+    const double d2 = box_distance2(k);
+    if (d2 < nearest) {
+      nearest = d2;
+      first = k;
+    }
+  }
   ClosestPoint best;
   best.distance = kNoHit;
-  for (std::size_t k = 0; k < pieces_.size(); ++k) {
+  for (std::size_t i = 0; i < pieces_.size(); ++i) {
+    const std::size_t k = i == 0 ? first : (i <= first ? i - 1 : i);
+    if (i > 0 && box_distance2(k) > best.distance * best.distance) continue;
     const double u = pieces_[k].ClosestParameter(q);
     const Eigen::Vector2d p = pieces_[k].Point(u);
     const double d = (p - q).norm();

@@ -66,7 +66,10 @@ class CubicBSpline {
     Eigen::Vector2d point = Eigen::Vector2d::Zero();
     double distance = 0.0;
   };
-  // The point of the curve closest to q (the best over all pieces).
+  // The point of the curve closest to q (the best over all pieces). A piece lies inside the box
+  // of its Bezier control points (convex hull property), so a piece whose box is farther from q
+  // than the best point found so far is skipped: the cost grows with the pieces near q, not with
+  // the curve's length (up to one box test per piece).
   ClosestPoint Closest(const Eigen::Vector2d& q) const;
 
   // The curve moved rigidly: a_T_b applied to a curve given in frame b. B-splines are affine
@@ -94,6 +97,7 @@ class CubicBSpline {
   std::vector<CubicBezier> pieces_;
   std::vector<double> span_starts_;
   std::vector<TableEntry> cumulative_;
+  std::vector<Box2> boxes_;  // per piece, the box of its Bezier control points
 };
 
 // The four cubic basis functions N_{span-3..span,3}(t) that can be non-zero on the knot span

@@ -100,6 +100,31 @@ TEST(CubicBSplineGeometry, PropertyClosestPointAgreesWithDenseSampling) {
   }
 }
 
+// Closest skips the pieces whose control-point box is farther than the best point so far: on long,
+// winding curves (where it skips most) it must find what a test of every piece finds.
+TEST(CubicBSplineGeometry, PropertyClosestPointEqualsTheBestOfEveryPiece) {
+  Random random(57);
+  for (int trial = 0; trial < 40; ++trial) {
+    std::vector<Eigen::Vector2d> control;
+    double heading = random.Uniform(-kPi, kPi);
+    Eigen::Vector2d p = Eigen::Vector2d::Zero();
+    for (int i = 0; i < 200; ++i) {  // a random walk that crosses itself
+      control.push_back(p);
+      heading += random.Uniform(-1.0, 1.0);
+      p += random.Uniform(0.1, 2.0) * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+    }
+    const CubicBSpline s = *CubicBSpline::ClampedUniform(control);
+    for (int k = 0; k < 50; ++k) {
+      const Eigen::Vector2d q = control[random.Index(control.size())] +
+                                Eigen::Vector2d(random.Uniform(-3, 3), random.Uniform(-3, 3));
+      double best = kNoHit;
+      for (const CubicBezier& piece : s.pieces())
+        best = std::min(best, (piece.Point(piece.ClosestParameter(q)) - q).norm());
+      EXPECT_EQ(s.Closest(q).distance, best) << "trial " << trial << " query " << k;
+    }
+  }
+}
+
 TEST(CubicBSplineGeometry, PropertyRayIntersectionAgreesWithDenseSampling) {
   Random random(55);
   int hits = 0;
