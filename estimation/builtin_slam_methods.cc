@@ -5,6 +5,7 @@
 #include "estimation/ekf_line_slam.h"
 #include "estimation/graph_slam.h"
 #include "estimation/slam_method.h"
+#include "estimation/topological_graph_slam.h"
 #include "estimation/topological_slam.h"
 #include "kernel/angle.h"
 
@@ -122,14 +123,17 @@ class BSplineSlam : public FilterMethod<EkfBSplineSlam, EkfBSplineSlamOptions> {
   long created_ = 0, extended_ = 0, ignored_ = 0, with_features_ = 0;
 };
 
-// Topological B-spline SLAM: no covariance; the map is curves with their control points.
-class TopologicalSlamMethod : public SlamMethod {
+TopologicalSlamOptions WithRegion(TopologicalSlamOptions options,
+                                  const kernel::LocalRegionOptions& region) {
+  options.region = region;
+  return options;
+}
+
+// What the topological SLAM's updates did (methods topological and topological-graph): totals,
+// and the last update for the per-step trace.
+class TopologicalTally {
  public:
-  TopologicalSlamMethod(const TopologicalSlamOptions& options, const SlamContext& context)
-      : slam_(context.start, WithRegion(options, context.region)) {}
-  void Predict(const kernel::Pose2& u) override { slam_.Predict(u); }
-  void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) override {
-    const TopologicalUpdateReport r = slam_.Update(scan, robot_T_laser);
+  void Add(const TopologicalUpdateReport& r) {
     last_ = r;
     observed_ += r.observed_curves;
     associated_ += r.associated_curves;
@@ -141,6 +145,57 @@ class TopologicalSlamMethod : public SlamMethod {
     created_ += r.added_curves;
     extended_ += r.extended_curves;
     solver_ += r.solver;
+  }
+  std::vector<std::pair<std::string, double>> LastUpdate(const TopologicalSlam& slam) const {
+    const TopologicalUpdateReport& r = last_;
+    return {{"observed_curves", r.observed_curves},
+            {"local_map_curves", r.local_map_curves},
+            {"associated_curves", r.associated_curves},
+            {"localized", r.localized},
+            {"fallback", r.used_fallback},
+            {"refused_no_better", r.refused_no_better},
+            {"verified_curves", r.verified_curves},
+            {"heading_correction_deg", kernel::RadToDeg(r.heading_correction_rad)},
+            {"translation_correction_x_m", r.translation_correction.x()},
+            {"translation_correction_y_m", r.translation_correction.y()},
+            {"map_updated", r.map_updated},
+            {"added_curves", r.added_curves},
+            {"extended_curves", r.extended_curves},
+            {"map_curves", static_cast<double>(slam.num_curves())}};
+  }
+  // The map and association counters, and the solves, into *s.
+  void Fill(const TopologicalSlam& slam, SlamStatistics* s) const {
+    s->association = "curvature";
+    s->map = {{"curves", static_cast<long>(slam.num_curves())},
+              {"control_points", static_cast<long>(slam.num_control_points())}};
+    s->associations = {{"observed_curves", observed_},
+                       {"associated_curves", associated_},
+                       {"verified_curves", verified_},
+                       {"localized_scans", localized_},
+                       {"fallback_to_single_curves", fallbacks_},
+                       {"refused_no_better", refused_},
+                       {"failed_localizations", failed_},
+                       {"new_curves", created_},
+                       {"extensions", extended_}};
+    s->solver_runs += solver_.runs;
+    s->solver_failures += solver_.failures;
+  }
+
+ private:
+  TopologicalUpdateReport last_;
+  long observed_ = 0, associated_ = 0, verified_ = 0;
+  long localized_ = 0, fallbacks_ = 0, refused_ = 0, failed_ = 0, created_ = 0, extended_ = 0;
+  SolverCounts solver_;
+};
+
+// Topological B-spline SLAM: no covariance; the map is curves with their control points.
+class TopologicalSlamMethod : public SlamMethod {
+ public:
+  TopologicalSlamMethod(const TopologicalSlamOptions& options, const SlamContext& context)
+      : slam_(context.start, WithRegion(options, context.region)) {}
+  void Predict(const kernel::Pose2& u) override { slam_.Predict(u); }
+  void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) override {
+    tally_.Add(slam_.Update(scan, robot_T_laser));
   }
   kernel::Pose2 pose() const override { return slam_.pose(); }
   kernel::Status health() const override { return StatusOf(slam_.health()); }
@@ -158,54 +213,46 @@ class TopologicalSlamMethod : public SlamMethod {
     return map;
   }
   std::vector<std::pair<std::string, double>> LastUpdate() const override {
-    const TopologicalUpdateReport& r = last_;
-    return {{"observed_curves", r.observed_curves},
-            {"local_map_curves", r.local_map_curves},
-            {"associated_curves", r.associated_curves},
-            {"localized", r.localized},
-            {"fallback", r.used_fallback},
-            {"refused_no_better", r.refused_no_better},
-            {"verified_curves", r.verified_curves},
-            {"heading_correction_deg", kernel::RadToDeg(r.heading_correction_rad)},
-            {"translation_correction_x_m", r.translation_correction.x()},
-            {"translation_correction_y_m", r.translation_correction.y()},
-            {"map_updated", r.map_updated},
-            {"added_curves", r.added_curves},
-            {"extended_curves", r.extended_curves},
-            {"map_curves", static_cast<double>(slam_.num_curves())}};
+    return tally_.LastUpdate(slam_);
   }
   SlamStatistics Statistics() const override {
     SlamStatistics s;
-    s.association = "curvature";
-    s.map = {{"curves", static_cast<long>(slam_.num_curves())},
-             {"control_points", static_cast<long>(slam_.num_control_points())}};
-    s.associations = {{"observed_curves", observed_},
-                      {"associated_curves", associated_},
-                      {"verified_curves", verified_},
-                      {"localized_scans", localized_},
-                      {"fallback_to_single_curves", fallbacks_},
-                      {"refused_no_better", refused_},
-                      {"failed_localizations", failed_},
-                      {"new_curves", created_},
-                      {"extensions", extended_}};
-    s.solver_runs = solver_.runs;
-    s.solver_failures = solver_.failures;
+    tally_.Fill(slam_, &s);
     return s;
   }
 
  private:
-  static TopologicalSlamOptions WithRegion(TopologicalSlamOptions options,
-                                           const kernel::LocalRegionOptions& region) {
-    options.region = region;
-    return options;
-  }
-
   TopologicalSlam slam_;
-  TopologicalUpdateReport last_;
-  long observed_ = 0, associated_ = 0, verified_ = 0;
-  long localized_ = 0, fallbacks_ = 0, refused_ = 0, failed_ = 0, created_ = 0, extended_ = 0;
-  SolverCounts solver_;
+  TopologicalTally tally_;
 };
+
+// The keyframe graph with its loop-closure edges, into *map.
+void AddGraph(const GraphSlam& graph, SlamMap* map) {
+  for (const auto& kf : graph.keyframes()) map->keyframes.push_back(kf.pose);
+  for (const auto& e : graph.graph().edges())
+    if (e.loop) map->loop_edges.emplace_back(e.from, e.to);
+}
+
+// The loop-closure counters, times and optimisations of a graph, appended to *s.
+void AddGraphStatistics(const GraphSlam& graph, SlamStatistics* s) {
+  const LoopClosureCounts& l = graph.loops();
+  s->associations.insert(s->associations.end(),
+                         {{"loop_searches", l.searches},
+                          {"loop_accepted", l.accepted},
+                          {"loop_rejected_score", l.rejected_score},
+                          {"loop_rejected_ambiguous", l.rejected_ambiguous},
+                          {"loop_rejected_registration", l.rejected_registration},
+                          {"loop_rejected_disagreement", l.rejected_disagreement}});
+  const GraphSlam::Times& t = graph.times();
+  s->time_ms = {{"registration", t.registration_ms},
+                {"keyframes", t.keyframe_ms},
+                {"submaps", t.submap_ms},
+                {"loop_search", t.loop_search_ms},
+                {"optimization", t.optimization_ms}};
+  s->optimizations = graph.optimizations();
+  s->solver_runs += static_cast<long>(s->optimizations.size());
+  for (const auto& o : s->optimizations) s->solver_failures += !o.converged;
+}
 
 // Graph SLAM on curve maps: no covariance of its own; the map is the curves of its keyframes.
 class GraphSlamMethod : public SlamMethod {
@@ -233,9 +280,7 @@ class GraphSlamMethod : public SlamMethod {
     SlamMap map;
     map.splines = slam_.MapSplines();
     map.spline_features = slam_.options().extraction;
-    for (const auto& kf : slam_.keyframes()) map.keyframes.push_back(kf.pose);
-    for (const auto& e : slam_.graph().edges())
-      if (e.loop) map.loop_edges.emplace_back(e.from, e.to);
+    AddGraph(slam_, &map);
     return map;
   }
   SlamStatistics Statistics() const override {
@@ -244,31 +289,69 @@ class GraphSlamMethod : public SlamMethod {
     s.map = {{"keyframes", static_cast<long>(slam_.keyframes().size())},
              {"curves", static_cast<long>(slam_.num_map_curves())},
              {"control_points", static_cast<long>(slam_.num_map_control_points())}};
-    const LoopClosureCounts& l = slam_.loops();
     s.associations = {{"registrations", slam_.registrations()},
                       {"registration_recovery_searches", slam_.recovery_searches()},
                       {"registration_recovered", slam_.recovered()},
-                      {"registration_fallbacks", slam_.registration_fallbacks()},
-                      {"loop_searches", l.searches},
-                      {"loop_accepted", l.accepted},
-                      {"loop_rejected_score", l.rejected_score},
-                      {"loop_rejected_ambiguous", l.rejected_ambiguous},
-                      {"loop_rejected_registration", l.rejected_registration},
-                      {"loop_rejected_disagreement", l.rejected_disagreement}};
-    const GraphSlam::Times& t = slam_.times();
-    s.time_ms = {{"registration", t.registration_ms},
-                 {"keyframes", t.keyframe_ms},
-                 {"submaps", t.submap_ms},
-                 {"loop_search", t.loop_search_ms},
-                 {"optimization", t.optimization_ms}};
-    s.optimizations = slam_.optimizations();
-    s.solver_runs = static_cast<long>(s.optimizations.size());
-    for (const auto& o : s.optimizations) s.solver_failures += !o.converged;
+                      {"registration_fallbacks", slam_.registration_fallbacks()}};
+    AddGraphStatistics(slam_, &s);
     return s;
   }
 
  private:
   GraphSlam slam_;
+};
+
+// The topological SLAM with the graph SLAM's back end: the topological map, re-anchored to the
+// optimised keyframes; the trajectory from the graph.
+class TopologicalGraphSlamMethod : public SlamMethod {
+ public:
+  TopologicalGraphSlamMethod(TopologicalGraphSlamOptions options, const SlamContext& context)
+      : slam_(context.start, WithTopologicalRegion(std::move(options), context.region)) {}
+  void Predict(const kernel::Pose2& u) override { slam_.Predict(u); }
+  void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) override {
+    tally_.Add(slam_.Update(scan, robot_T_laser));
+  }
+  kernel::Pose2 pose() const override { return slam_.pose(); }
+  void Finish() override { slam_.Finish(); }
+  std::vector<kernel::Pose2> Trajectory() const override { return slam_.graph().Trajectory(); }
+  kernel::Status health() const override { return slam_.health(); }
+  std::size_t MapSize() const override { return slam_.topological().num_control_points(); }
+  std::size_t MapCurves() const override { return slam_.topological().num_curves(); }
+  void AtNode(const kernel::LocalSafeRegion& lsr) override { slam_.SetLocalRegion(lsr); }
+  std::vector<kernel::Pose2> NodePoses() const override { return slam_.graph().NodePoses(); }
+  std::string MapDescription() const override {
+    return fmt::format("{} curves, {} control points, {} keyframes, {} loop closures",
+                       slam_.topological().num_curves(), slam_.topological().num_control_points(),
+                       slam_.graph().keyframes().size(), slam_.graph().loops().accepted);
+  }
+  SlamMap Map() const override {
+    SlamMap map;
+    map.splines = slam_.topological().MapSplines();
+    map.spline_features = slam_.topological().options().extraction;
+    AddGraph(slam_.graph(), &map);
+    return map;
+  }
+  std::vector<std::pair<std::string, double>> LastUpdate() const override {
+    return tally_.LastUpdate(slam_.topological());
+  }
+  SlamStatistics Statistics() const override {
+    SlamStatistics s;
+    tally_.Fill(slam_.topological(), &s);
+    s.association = "curvature; correlative loop closure";
+    s.map.emplace_back("keyframes", static_cast<long>(slam_.graph().keyframes().size()));
+    AddGraphStatistics(slam_.graph(), &s);
+    return s;
+  }
+
+ private:
+  static TopologicalGraphSlamOptions WithTopologicalRegion(
+      TopologicalGraphSlamOptions options, const kernel::LocalRegionOptions& region) {
+    options.topological.region = region;
+    return options;
+  }
+
+  TopologicalGraphSlam slam_;
+  TopologicalTally tally_;
 };
 
 }  // namespace
@@ -312,6 +395,16 @@ void AddBuiltinSlamMethods(SlamRegistry* registry) {
       },
       [](const SensorNoise& noise, GraphSlamOptions* o) {
         o->odometry = OdometryNoiseModel().Scaled(noise.odometry_noise_scale);
+      }));
+  registry->Add(MakeSlamMethodInfo<TopologicalGraphSlamOptions>(
+      "topological-graph",
+      "the topological SLAM with the graph SLAM's loop closures and pose graph behind it",
+      [](const TopologicalGraphSlamOptions& o, const SlamContext& c) {
+        return std::make_unique<TopologicalGraphSlamMethod>(o, c);
+      },
+      [](const SensorNoise& noise, TopologicalGraphSlamOptions* o) {
+        o->topological.odometry = OdometryNoiseModel().Scaled(noise.odometry_noise_scale);
+        o->graph.odometry = o->topological.odometry;
       }));
 }
 

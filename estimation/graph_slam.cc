@@ -130,13 +130,25 @@ void GraphSlam::Predict(const kernel::Pose2& odometry_increment) {
   travelled_m_ += odometry_increment.translation().norm();
 }
 
-void GraphSlam::Update(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_laser) {
+void GraphSlam::Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) {
+  Step(scan, robot_T_laser, nullptr);
+}
+
+void GraphSlam::UpdateAt(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+                         const kernel::Pose2& pose) {
+  Step(scan, robot_T_laser, &pose);
+}
+
+void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_laser,
+                     const kernel::Pose2* localised) {
   if (!health_.ok()) return;
   const kernel::Scan scan = raw_scan.Clipped(UsableRange(raw_scan));
   std::vector<OrientedPoint> points =
       OrientTowards(robot_T_laser * scan.HitPoints(), robot_T_laser.translation(),
                     options_.normal_max_gap_m, options_.line_tolerance_m);
-  if (!keyframes_.empty()) {
+  if (localised != nullptr) {
+    pose_ = *localised;
+  } else if (!keyframes_.empty()) {
     if (submap_dirty_) RebuildSubmap();
     const RegistrationResult r = RegisterScan(points);
     ++registrations_;

@@ -180,6 +180,11 @@ class GraphSlam {
 
   void Predict(const kernel::Pose2& odometry_increment);
   void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser);
+  // As Update, but the scan was localised by another front end (the topological SLAM, method
+  // topological-graph) at `pose`: no registration; keyframes, loop closure and the pose graph
+  // work as in Update.
+  void UpdateAt(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+                const kernel::Pose2& pose);
   // An exploration node at the current estimate: the next scan makes a keyframe, to which the
   // node is anchored, so that the node moves with the keyframe when the graph is optimised.
   void MarkNode();
@@ -214,6 +219,9 @@ class GraphSlam {
   kernel::Status health() const { return health_; }
 
  private:
+  // Update, registering the scan when `localised` is null, else taking that pose.
+  void Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_laser,
+            const kernel::Pose2* localised);
   // `scan` is clipped to the usable range.
   void AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                    std::vector<OrientedPoint> points);

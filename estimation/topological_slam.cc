@@ -272,6 +272,30 @@ void TopologicalSlam::AddMapCurve(SplineCurve curve) {
   Register(static_cast<int>(curves_.size() - 1));
 }
 
+void TopologicalSlam::Reanchor(const std::function<Pose2(int)>& correction, const Pose2& pose) {
+  for (std::size_t i = 0; i < curves_.size(); ++i) {
+    const Pose2 c = correction(static_cast<int>(i));
+    if (c.translation().isZero() && c.theta() == 0.0) continue;
+    Unregister(static_cast<int>(i));
+    curves_[i] = kernel::Transformed(curves_[i], c);
+    Register(static_cast<int>(i));
+  }
+  const Pose2 moved = pose * pose_.Inverse();  // the pose's own correction
+  if (region_) {
+    region_->center = moved * region_->center;
+    // Bearings are world-frame angles: turn them and keep them sorted.
+    std::vector<std::pair<double, double>> polar;
+    for (std::size_t k = 0; k < region_->bearings_rad.size(); ++k)
+      polar.emplace_back(kernel::WrapAngle(region_->bearings_rad[k] + moved.theta()),
+                         region_->ranges_m[k]);
+    std::sort(polar.begin(), polar.end());
+    for (std::size_t k = 0; k < polar.size(); ++k)
+      std::tie(region_->bearings_rad[k], region_->ranges_m[k]) = polar[k];
+  }
+  if (last_map_update_) last_map_update_ = moved * *last_map_update_;
+  pose_ = pose;
+}
+
 std::vector<int> TopologicalSlam::LocalCurves() const {
   std::vector<int> candidates;
   if (!region_) return candidates;

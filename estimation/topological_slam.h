@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -186,6 +187,12 @@ class TopologicalSlam {
 
   // Adds a curve to the map as it is (world frame), e.g. a prior map or a benchmark's.
   void AddMapCurve(kernel::SplineCurve curve);
+
+  // After a pose-graph optimisation behind this SLAM (method topological-graph): every map curve
+  // i moves rigidly by the world-frame correction correction(i) (new = correction(i) * old), the
+  // pose becomes `pose`, and the local region moves with the pose.
+  void Reanchor(const std::function<kernel::Pose2(int curve)>& correction,
+                const kernel::Pose2& pose);
 
  private:
   struct Association;
