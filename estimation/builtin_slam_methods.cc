@@ -140,6 +140,7 @@ class TopologicalTally {
     verified_ += r.verified_curves;
     localized_ += r.localized;
     fallbacks_ += r.used_fallback;
+    dense_ += r.dense;
     refused_ += r.refused_no_better;
     failed_ += r.associated_curves > 0 && !r.localized;
     created_ += r.added_curves;
@@ -153,6 +154,8 @@ class TopologicalTally {
             {"associated_curves", r.associated_curves},
             {"localized", r.localized},
             {"fallback", r.used_fallback},
+            {"dense", r.dense},
+            {"dense_points", r.dense_points},
             {"refused_no_better", r.refused_no_better},
             {"verified_curves", r.verified_curves},
             {"heading_correction_deg", kernel::RadToDeg(r.heading_correction_rad)},
@@ -173,6 +176,7 @@ class TopologicalTally {
                        {"verified_curves", verified_},
                        {"localized_scans", localized_},
                        {"fallback_to_single_curves", fallbacks_},
+                       {"dense_refinements", dense_},
                        {"refused_no_better", refused_},
                        {"failed_localizations", failed_},
                        {"new_curves", created_},
@@ -184,7 +188,8 @@ class TopologicalTally {
  private:
   TopologicalUpdateReport last_;
   long observed_ = 0, associated_ = 0, verified_ = 0;
-  long localized_ = 0, fallbacks_ = 0, refused_ = 0, failed_ = 0, created_ = 0, extended_ = 0;
+  long localized_ = 0, fallbacks_ = 0, dense_ = 0, refused_ = 0, failed_ = 0, created_ = 0,
+       extended_ = 0;
   SolverCounts solver_;
 };
 

@@ -143,6 +143,8 @@ kernel::Status TopologicalSlamOptions::Validate() const {
     return kernel::Status::Error("new curves need a length >= 0 and at least 4 points");
   if (!(min_extension_length_m > 0.0) || !(end_tolerance_m >= 0.0) || max_control_points < 4)
     return kernel::Status::Error("bad extension thresholds");
+  if (dense_min_points < 3 || !(dense_max_angle_rad > 0.0))
+    return kernel::Status::Error("dense_min_points must be >= 3 and dense_max_angle_rad positive");
   if (!(index_cell_m > 0.0)) return kernel::Status::Error("index_cell_m must be positive");
   return kernel::Status::Ok();
 }
@@ -463,6 +465,85 @@ Pose2 TopologicalSlam::CorrectPointToCurve(const std::vector<SplineCurve>& obser
   return current;
 }
 
+std::optional<TopologicalSlam::DenseResult> TopologicalSlam::RefineDense(
+    const std::vector<SplineCurve>& observed, const std::vector<int>& local, const Pose2& start,
+    const Pose2& predicted, SolverCounts* solver) const {
+  const double spacing = options_.point_spacing_m > 0.0 ? options_.point_spacing_m : kFitSpacingM;
+  // Every observed curve's points with their unit tangents, robot frame.
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> samples;
+  for (const SplineCurve& o : observed) {
+    const CurveStretch whole{0.0, o.spline.Length()};
+    const auto [s0, s1] = TrimmedEnds(whole, options_.end_trim_m);
+    for (double s = s0; s <= s1 + 1e-9; s += spacing) {
+      const double t = o.spline.ParameterAtArcLength(s);
+      const Eigen::Vector2d d = o.spline.Derivative(t);
+      if (d.norm() > 1e-12) samples.emplace_back(o.spline.Point(t), d.normalized());
+    }
+  }
+  if (static_cast<int>(samples.size()) < options_.dense_min_points) return std::nullopt;
+  const double cos_max = std::cos(options_.dense_max_angle_rad);
+  const double cell = options_.index_cell_m;
+  Pose2 current = start;
+  DenseResult result;
+  for (int round = 0; round < kPointToCurveIterations; ++round) {
+    const double gate =
+        round == 0 ? options_.max_translation_correction_m : options_.verify_threshold_m;
+    result.pairs.clear();
+    for (const auto& [robot, tangent] : samples) {
+      const Eigen::Vector2d world = current * robot;
+      const Eigen::Vector2d world_tangent = current.Rotation() * tangent;
+      const auto ix = static_cast<std::int64_t>(std::floor(world.x() / cell));
+      const auto iy = static_cast<std::int64_t>(std::floor(world.y() / cell));
+      const CubicBSpline* best_map = nullptr;
+      CubicBSpline::ClosestPoint best{};
+      best.distance = gate;
+      for (std::int64_t dx = -1; dx <= 1; ++dx) {
+        for (std::int64_t dy = -1; dy <= 1; ++dy) {
+          const auto it = cells_.find(CellKey(ix + dx, iy + dy));
+          if (it == cells_.end()) continue;
+          for (int m : it->second) {
+            if (!std::binary_search(local.begin(), local.end(), m)) continue;
+            const CubicBSpline& map = curves_[static_cast<std::size_t>(m)].spline;
+            const CubicBSpline::ClosestPoint c = map.Closest(world);
+            if (c.distance >= best.distance) continue;
+            const Eigen::Vector2d d = map.Derivative(c.t);
+            if (d.norm() < 1e-12 || std::abs(d.normalized().dot(world_tangent)) < cos_max) continue;
+            const double arc = map.ArcLengthAt(c.t);
+            if (arc < options_.end_trim_m || arc > map.Length() - options_.end_trim_m) continue;
+            best = c;
+            best_map = &map;
+          }
+        }
+      }
+      if (best_map == nullptr) continue;
+      const Eigen::Vector2d d = best_map->Derivative(best.t);
+      result.pairs.push_back({robot, best.point, Eigen::Vector2d(-d.y(), d.x()).normalized(), 1.0});
+    }
+    if (static_cast<int>(result.pairs.size()) < options_.dense_min_points) return std::nullopt;
+    const Pose2 next = SolvePoseCorrection(result.pairs, {}, current, options_.min_information,
+                                           options_.loss, solver);
+    const bool settled = (next.translation() - current.translation()).norm() < 1e-4 &&
+                         std::abs(kernel::WrapAngle(next.theta() - current.theta())) < 1e-5;
+    current = next;
+    if (settled && round > 0) break;
+  }
+  if (std::abs(kernel::WrapAngle(current.theta() - predicted.theta())) >
+          options_.max_heading_correction_rad ||
+      (current.translation() - predicted.translation()).norm() >
+          options_.max_translation_correction_m)
+    return std::nullopt;
+  double sum = 0.0;
+  for (const CurvePointPair& p : result.pairs) {
+    const double d = p.map_normal.dot(current * p.robot_point - p.map_point);
+    sum += d * d;
+  }
+  if (options_.verify_rms_m > 0.0 &&
+      std::sqrt(sum / static_cast<double>(result.pairs.size())) > options_.verify_rms_m)
+    return std::nullopt;
+  result.pose = current;
+  return result;
+}
+
 Pose2 TopologicalSlam::CorrectAsPaper(const std::vector<SplineCurve>& observed,
                                       const std::vector<Association>& associations,
                                       const Pose2& pose, SolverCounts* solver) const {
@@ -732,11 +813,21 @@ TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
     const double k = options_.correction_gain;
     pose_ = Pose2(predicted.translation() + k * (pose.translation() - predicted.translation()),
                   predicted.theta() + k * kernel::WrapAngle(pose.theta() - predicted.theta()));
-  } else if (report.localized) {
-    const CurvePoints points = PointsOf(observed, verified);
-    Fuse(predicted, pose,
-         PointInformation(PairsAt(points, pose), points.features, pose.theta(),
-                          options_.min_information));
+  } else {
+    std::optional<DenseResult> dense;
+    if (options_.dense_refinement && !local.empty())
+      dense = RefineDense(observed, local, pose, predicted, &report.solver);
+    if (dense) {
+      report.dense = true;
+      report.dense_points = static_cast<int>(dense->pairs.size());
+      Fuse(predicted, dense->pose,
+           PointInformation(dense->pairs, {}, dense->pose.theta(), options_.min_information));
+    } else if (report.localized) {
+      const CurvePoints points = PointsOf(observed, verified);
+      Fuse(predicted, pose,
+           PointInformation(PairsAt(points, pose), points.features, pose.theta(),
+                            options_.min_information));
+    }
   }
   report.heading_correction_rad = kernel::WrapAngle(pose_.theta() - predicted.theta());
   report.translation_correction = pose_.translation() - predicted.translation();
@@ -795,6 +886,11 @@ void TopologicalSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("verify_rms_m", &verify_rms_m, "... with an RMS distance under this (0: unchecked), m");
   v.Field("verify_improves", &verify_improves,
           "... and closer to the map than at the prediction (false: paper 003's test)");
+  v.Field("dense_refinement", &dense_refinement,
+          "point_to_curve: every observed curve's points refine the pose against the local map");
+  v.Field("dense_min_points", &dense_min_points, "... standing when this many points pair");
+  v.Field("dense_max_angle_rad", &dense_max_angle_rad,
+          "... with a map curve whose tangent is within this of theirs, rad");
   v.Field("map_update_distance_m", &map_update_distance_m,
           "map extended after this much motion, m");
   v.Field("map_update_angle_rad", &map_update_angle_rad, "... or this much turning, rad");

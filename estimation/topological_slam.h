@@ -119,6 +119,20 @@ struct TopologicalSlamOptions {
   // `complex` (seeds 1-10) averaged 0.158 m with it, 0.139 m without. false: the paper's test.
   bool verify_improves = false;
 
+  // Dense refinement (point_to_curve): after the association, the points of every observed curve
+  // (every point_spacing_m between its trimmed ends, not only the associated stretches) are
+  // paired with the nearest local map curve, within max_translation_correction_m in the first
+  // of kPointToCurveIterations rounds and verify_threshold_m in the others, where the two
+  // curves run alike (tangents within dense_max_angle_rad), and the pose is solved again from
+  // all of them. It stands, and is fused in place of the associated stretches' correction, when
+  // at least dense_min_points points pair, their RMS distance is at most verify_rms_m and the
+  // correction stays within the plausible bounds. The curvature association pairs a scan's curve
+  // with a map curve only when its features or its coarse test agree; a scan whose curves the
+  // association misses (clutter, a short view of a wall) is still measured against the map.
+  bool dense_refinement = true;
+  int dense_min_points = 10;
+  double dense_max_angle_rad = 0.5;
+
   // The map is extended when the robot has moved this far or turned this much since the last
   // extension (and at every exploration node), metres and radians.
   double map_update_distance_m = 0.5;
@@ -147,6 +161,8 @@ struct TopologicalUpdateReport {
   int associated_curves = 0;
   bool localized = false;          // a correction passed VERIFY_LOCALIZATION
   bool used_fallback = false;      // ... with individual curves, after the whole set failed
+  bool dense = false;              // the dense refinement stood (dense_refinement)
+  int dense_points = 0;            // ... from this many points
   bool refused_no_better = false;  // verified, but no closer to the map than the prediction
   int verified_curves = 0;
   double heading_correction_rad = 0.0;
@@ -234,6 +250,16 @@ class TopologicalSlam {
                        const std::vector<Association>& associations) const;
   // Each point paired with its map curve linearised at its projection from `pose`.
   std::vector<CurvePointPair> PairsAt(const CurvePoints& points, const kernel::Pose2& pose) const;
+  // The dense refinement from `start` (see dense_refinement): the refined pose and its pairs, or
+  // nullopt when it does not stand.
+  struct DenseResult {
+    kernel::Pose2 pose;
+    std::vector<CurvePointPair> pairs;
+  };
+  std::optional<DenseResult> RefineDense(const std::vector<kernel::SplineCurve>& observed,
+                                         const std::vector<int>& local, const kernel::Pose2& start,
+                                         const kernel::Pose2& predicted,
+                                         SolverCounts* solver) const;
   // The pose-only Kalman update of pose_ and covariance_ (see point_sigma_m).
   void Fuse(const kernel::Pose2& predicted, const kernel::Pose2& corrected,
             const PoseInformation& information);
