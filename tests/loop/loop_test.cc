@@ -470,8 +470,9 @@ TEST(StepTrace, RecordsEachStepsPredictionCorrectionAndValuesWithTheirErrors) {
     ASSERT_FALSE(s.values.empty());
     EXPECT_EQ(s.values[3].first, "localized");
     localized += s.values[3].second > 0;
-    // An update that did not localise leaves the prediction as it is.
-    if (s.values[3].second == 0) {
+    // An update that neither localised nor refined against the map leaves the prediction.
+    EXPECT_EQ(s.values[5].first, "dense");
+    if (s.values[3].second == 0 && s.values[5].second == 0) {
       EXPECT_NEAR(s.predicted.theta(), s.corrected.theta(), 1e-12);
     }
   }
