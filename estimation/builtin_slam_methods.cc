@@ -311,7 +311,8 @@ class GraphSlamMethod : public SlamMethod {
 class TopologicalGraphSlamMethod : public SlamMethod {
  public:
   TopologicalGraphSlamMethod(TopologicalGraphSlamOptions options, const SlamContext& context)
-      : slam_(context.start, WithTopologicalRegion(std::move(options), context.region)) {}
+      : slam_(context.start,
+              {WithRegion(std::move(options.topological), context.region), options.graph}) {}
   void Predict(const kernel::Pose2& u) override { slam_.Predict(u); }
   void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) override {
     tally_.Add(slam_.Update(scan, robot_T_laser));
@@ -349,12 +350,6 @@ class TopologicalGraphSlamMethod : public SlamMethod {
   }
 
  private:
-  static TopologicalGraphSlamOptions WithTopologicalRegion(
-      TopologicalGraphSlamOptions options, const kernel::LocalRegionOptions& region) {
-    options.topological.region = region;
-    return options;
-  }
-
   TopologicalGraphSlam slam_;
   TopologicalTally tally_;
 };

@@ -403,6 +403,20 @@ std::pair<double, double> TrimmedEnds(const CurveStretch& s, double trim) {
   return {s.start_m + trim, s.end_m - trim};
 }
 
+// `robot` (robot frame) paired with `map` linearised at its projection c, or nullopt when c lies
+// within end_trim_m of the curve's ends (the last span of a map curve bends with the noise of its
+// last points, and a point that projects onto the end lies beyond it: neither gives a direction
+// to trust) or the curve has no direction there.
+std::optional<CurvePointPair> PairOn(const CubicBSpline& map, const CubicBSpline::ClosestPoint& c,
+                                     const Eigen::Vector2d& robot, double end_trim_m,
+                                     double weight) {
+  const double arc = map.ArcLengthAt(c.t);
+  if (arc < end_trim_m || arc > map.Length() - end_trim_m) return std::nullopt;
+  const Eigen::Vector2d d = map.Derivative(c.t);
+  if (d.norm() < 1e-12) return std::nullopt;
+  return CurvePointPair{robot, c.point, Eigen::Vector2d(-d.y(), d.x()).normalized(), weight};
+}
+
 }  // namespace
 
 Pose2 TopologicalSlam::Correct(const std::vector<SplineCurve>& observed,
@@ -434,15 +448,10 @@ std::vector<CurvePointPair> TopologicalSlam::PairsAt(const CurvePoints& points,
   std::vector<CurvePointPair> pairs;
   pairs.reserve(points.samples.size());
   for (const CurvePoints::Sample& sample : points.samples) {
-    const CubicBSpline::ClosestPoint c = sample.map->Closest(pose * sample.robot);
-    // The last span of a map curve bends with the noise of its last points, and a point that
-    // projects onto the end lies beyond it: neither gives a direction to trust.
-    const double arc = sample.map->ArcLengthAt(c.t);
-    if (arc < options_.end_trim_m || arc > sample.map->Length() - options_.end_trim_m) continue;
-    const Eigen::Vector2d d = sample.map->Derivative(c.t);
-    if (d.norm() < 1e-12) continue;
-    pairs.push_back(
-        {sample.robot, c.point, Eigen::Vector2d(-d.y(), d.x()).normalized(), sample.weight});
+    const std::optional<CurvePointPair> pair =
+        PairOn(*sample.map, sample.map->Closest(pose * sample.robot), sample.robot,
+               options_.end_trim_m, sample.weight);
+    if (pair) pairs.push_back(*pair);
   }
   return pairs;
 }
@@ -494,9 +503,8 @@ std::optional<TopologicalSlam::DenseResult> TopologicalSlam::RefineDense(
       const Eigen::Vector2d world_tangent = current.Rotation() * tangent;
       const auto ix = static_cast<std::int64_t>(std::floor(world.x() / cell));
       const auto iy = static_cast<std::int64_t>(std::floor(world.y() / cell));
-      const CubicBSpline* best_map = nullptr;
-      CubicBSpline::ClosestPoint best{};
-      best.distance = gate;
+      std::optional<CurvePointPair> best;
+      double best_distance = gate;
       for (std::int64_t dx = -1; dx <= 1; ++dx) {
         for (std::int64_t dy = -1; dy <= 1; ++dy) {
           const auto it = cells_.find(CellKey(ix + dx, iy + dy));
@@ -505,19 +513,18 @@ std::optional<TopologicalSlam::DenseResult> TopologicalSlam::RefineDense(
             if (!std::binary_search(local.begin(), local.end(), m)) continue;
             const CubicBSpline& map = curves_[static_cast<std::size_t>(m)].spline;
             const CubicBSpline::ClosestPoint c = map.Closest(world);
-            if (c.distance >= best.distance) continue;
-            const Eigen::Vector2d d = map.Derivative(c.t);
-            if (d.norm() < 1e-12 || std::abs(d.normalized().dot(world_tangent)) < cos_max) continue;
-            const double arc = map.ArcLengthAt(c.t);
-            if (arc < options_.end_trim_m || arc > map.Length() - options_.end_trim_m) continue;
-            best = c;
-            best_map = &map;
+            if (c.distance >= best_distance) continue;
+            std::optional<CurvePointPair> pair = PairOn(map, c, robot, options_.end_trim_m, 1.0);
+            // The map curve's tangent is the pair's normal turned back by 90 deg.
+            if (!pair || std::abs(pair->map_normal.x() * world_tangent.y() -
+                                  pair->map_normal.y() * world_tangent.x()) < cos_max)
+              continue;
+            best = std::move(pair);
+            best_distance = c.distance;
           }
         }
       }
-      if (best_map == nullptr) continue;
-      const Eigen::Vector2d d = best_map->Derivative(best.t);
-      result.pairs.push_back({robot, best.point, Eigen::Vector2d(-d.y(), d.x()).normalized(), 1.0});
+      if (best) result.pairs.push_back(*best);
     }
     if (static_cast<int>(result.pairs.size()) < options_.dense_min_points) return std::nullopt;
     const Pose2 next = SolvePoseCorrection(result.pairs, {}, current, options_.min_information,
