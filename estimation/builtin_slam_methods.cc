@@ -292,6 +292,7 @@ class GraphSlamMethod : public SlamMethod {
     SlamStatistics s;
     s.association = "scan-to-submap registration, correlative loop closure";
     s.map = {{"keyframes", static_cast<long>(slam_.keyframes().size())},
+             {"keyframes_trimmed", slam_.trimmed_keyframes()},
              {"curves", static_cast<long>(slam_.num_map_curves())},
              {"control_points", static_cast<long>(slam_.num_map_control_points())}};
     s.associations = {{"registrations", slam_.registrations()},
@@ -345,6 +346,7 @@ class TopologicalGraphSlamMethod : public SlamMethod {
     tally_.Fill(slam_.topological(), &s);
     s.association = "curvature; correlative loop closure";
     s.map.emplace_back("keyframes", static_cast<long>(slam_.graph().keyframes().size()));
+    s.map.emplace_back("keyframes_trimmed", slam_.graph().trimmed_keyframes());
     AddGraphStatistics(slam_.graph(), &s);
     return s;
   }

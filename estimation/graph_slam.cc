@@ -248,6 +248,9 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   if (kf.in_map) {
     map_curves_ += kf.curves.size();
     for (const auto& c : kf.curves) map_control_points_ += c.spline.control_points().size();
+  } else {
+    // Rasterised; with their centimetre samples they were most of a keyframe's memory.
+    std::vector<kernel::SplineCurve>().swap(kf.curves);
   }
   const int k = graph_.AddNode(kf.pose);
   if (k > 0) {
@@ -267,6 +270,8 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
     if (node.keyframe < 0) node = {k, kf.pose.Between(node.pose)};
   keyframes_.push_back(std::move(kf));
   submap_dirty_ = true;
+  if (options_.trim_spacing_m > 0)
+    TrimKeyframe(k - std::max(options_.submap_keyframes, options_.loop.query_keyframes + 1));
   timer.reset();
   if (options_.loop.enabled) SearchLoopClosures(k);
 }
@@ -289,9 +294,29 @@ std::vector<std::vector<Eigen::Vector2d>> GraphSlam::WorldViews(int first, int l
   std::vector<std::vector<Eigen::Vector2d>> views;
   for (int i = std::max(first, 0); i <= last; ++i) {
     const Keyframe& kf = keyframes_[static_cast<std::size_t>(i)];
-    views.push_back(kf.pose * kf.seen);
+    if (!kf.trimmed) views.push_back(kf.pose * kf.seen);
   }
   return views;
+}
+
+void GraphSlam::TrimKeyframe(int j) {
+  if (j < 1) return;
+  Keyframe& kf = keyframes_[static_cast<std::size_t>(j)];
+  if (kf.in_map || kf.trimmed) return;
+  const bool covered =
+      std::any_of(keyframes_.begin(), keyframes_.begin() + j, [&](const Keyframe& o) {
+        return !o.trimmed &&
+               (o.pose.translation() - kf.pose.translation()).norm() < options_.trim_spacing_m &&
+               std::abs(o.pose.Between(kf.pose).theta()) < options_.trim_spacing_rad;
+      });
+  if (!covered) return;
+  // Swapped with empty vectors: assigning {} would keep their capacity.
+  std::vector<OrientedPoint>().swap(kf.points);
+  std::vector<OrientedPoint>().swap(kf.raster);
+  std::vector<kernel::SplineCurve>().swap(kf.curves);
+  std::vector<Eigen::Vector2d>().swap(kf.seen);
+  kf.trimmed = true;
+  ++trimmed_;
 }
 
 void GraphSlam::RebuildSubmap() {
@@ -316,6 +341,7 @@ void GraphSlam::SearchLoopClosures(int k) {
                                  options_.loop.max_radius_m);
   std::vector<std::pair<double, int>> near;
   for (int i = 0; i <= newest_candidate; ++i) {
+    if (keyframes_[static_cast<std::size_t>(i)].trimmed) continue;
     const double d =
         (keyframes_[static_cast<std::size_t>(i)].pose.translation() - kf.pose.translation()).norm();
     if (d <= radius) near.emplace_back(d, i);
@@ -579,6 +605,9 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Nested("pose_graph", "pose-graph optimisation", &pose_graph);
   v.Field("map_spacing_m", &map_spacing_m, "map curves from keyframes this far apart, m");
   v.Field("map_spacing_rad", &map_spacing_rad, "or turned this much from each other, rad");
+  v.Field("trim_spacing_m", &trim_spacing_m,
+          "an old keyframe this close to an earlier one keeps only its pose (0: never), m");
+  v.Field("trim_spacing_rad", &trim_spacing_rad, "and turned less than this from it, rad");
 }
 
 kernel::Status GraphSlamOptions::Validate() const {
@@ -604,8 +633,9 @@ kernel::Status GraphSlamOptions::Validate() const {
     return kernel::Status::Error("truncation_m > loop.resolution_m");
   if (optimize_every_keyframes < 0)
     return kernel::Status::Error("optimize_every_keyframes must be >= 0");
-  if (!(map_spacing_m >= 0) || !(map_spacing_rad >= 0))
-    return kernel::Status::Error("map spacing must be >= 0");
+  if (!(map_spacing_m >= 0) || !(map_spacing_rad >= 0) || !(trim_spacing_m >= 0) ||
+      !(trim_spacing_rad >= 0))
+    return kernel::Status::Error("map and trim spacings must be >= 0");
   return kernel::Status::Ok();
 }
 

@@ -152,6 +152,17 @@ struct GraphSlamOptions {
   double map_spacing_m = 1.0;
   double map_spacing_rad = 0.5;
 
+  // Keyframe trimming, so that memory follows the mapped area, not the path: a keyframe that has
+  // left the recent window (the submap's and the loop query's keyframes) drops its points, raster,
+  // curves and view, keeping its pose and edges, when an earlier keyframe that still holds them
+  // lies within trim_spacing_m and trim_spacing_rad of it: on a revisit the older keyframe
+  // describes the place as well, and loop closures are searched against it. Map keyframes are
+  // kept whole. 0.3 m is the keyframe spacing, so that a first pass along a path keeps its
+  // keyframes (of those made turning on the spot, the ones within 0.5 rad of an earlier one go);
+  // 0.5 rad keeps revisits from another direction, which see other walls. 0 disables.
+  double trim_spacing_m = 0.3;
+  double trim_spacing_rad = 0.5;
+
   void VisitFields(kernel::FieldVisitor& v);
   kernel::Status Validate() const;
 };
@@ -170,10 +181,11 @@ class GraphSlam {
     kernel::Pose2 pose;                       // world_T_robot, optimised
     std::vector<OrientedPoint> points;        // the scan's hits, robot frame, with normals
     std::vector<OrientedPoint> raster;        // curve samples (+ points), robot frame
-    std::vector<kernel::SplineCurve> curves;  // robot frame
+    std::vector<kernel::SplineCurve> curves;  // robot frame; map keyframes only
     std::vector<Eigen::Vector2d> seen;        // the scan's view: sensor, then beam ends
     double travelled_m = 0.0;                 // path length at this keyframe
     bool in_map = false;
+    bool trimmed = false;  // points, raster, curves and view dropped (trim_spacing_m)
   };
 
   GraphSlam(const kernel::Pose2& start, const GraphSlamOptions& options);
@@ -202,6 +214,7 @@ class GraphSlam {
   std::vector<MapSpline> MapSplines() const;
   std::size_t num_map_curves() const { return map_curves_; }
   std::size_t num_map_control_points() const { return map_control_points_; }
+  long trimmed_keyframes() const { return trimmed_; }
 
   long registrations() const { return registrations_; }
   long registration_fallbacks() const { return fallbacks_; }
@@ -231,6 +244,8 @@ class GraphSlam {
   std::vector<OrientedPoint> WorldRaster(int first, int last) const;
   std::vector<std::vector<Eigen::Vector2d>> WorldViews(int first, int last) const;
   void RebuildSubmap();
+  // Drops keyframe j's data when an earlier keyframe holding its own is near (trim_spacing_m).
+  void TrimKeyframe(int j);
   // Registers a scan at the predicted pose against the submap (see recovery_window_m).
   RegistrationResult RegisterScan(const std::vector<OrientedPoint>& points);
   // Searches the new keyframe k against earlier ones; closures found wait in pending_.
@@ -265,7 +280,7 @@ class GraphSlam {
   };
   std::vector<ScanAnchor> scans_;
   std::vector<PoseGraphEdge> pending_;  // closures found, not yet optimised
-  long registrations_ = 0, fallbacks_ = 0, recoveries_ = 0, recovered_ = 0;
+  long registrations_ = 0, fallbacks_ = 0, recoveries_ = 0, recovered_ = 0, trimmed_ = 0;
   LoopClosureCounts loops_;
   std::vector<PoseGraphSummary> optimizations_;
   Times times_;

@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 
 #include <cmath>
+#include <iostream>
 #include <random>
 
 #include "estimation/correlative_matcher.h"
@@ -255,6 +256,60 @@ TEST(PoseGraph, SyntheticLoopRecoversTruePoses) {
               std::max(0.05, 0.5 * drift))
         << "seed " << seed;
   }
+}
+
+// The graph SLAM over the `complex` route driven `laps` times round, its options' defaults.
+struct LapsRun {
+  std::size_t keyframes = 0, keyframes_with_data = 0;
+  double rmse_m = 0.0;
+};
+LapsRun DriveLaps(int laps, const GraphSlamOptions& options = {}) {
+  const sim::World world = *sim::BuiltinWorld("complex");
+  const sim::RayCaster caster(world);
+  sim::Simulator simulator(caster, {}, *world.start, 2);
+  std::vector<Eigen::Vector2d> route;
+  for (int lap = 0; lap < laps; ++lap)
+    route.insert(route.end(), world.route.begin(), world.route.end());
+  const sim::RouteRun run = sim::FollowRoute(&simulator, route, {});
+  EXPECT_TRUE(run.completed);
+  const Pose2& robot_T_laser = simulator.options().laser.robot_T_laser;
+  GraphSlam slam(run.frames[0].odometry_pose, options);
+  for (std::size_t i = 0; i < run.frames.size(); ++i) {
+    if (i > 0) slam.Predict(run.frames[i - 1].odometry_pose.Between(run.frames[i].odometry_pose));
+    slam.Update(run.frames[i].scan, robot_T_laser);
+  }
+  slam.Finish();
+  LapsRun r;
+  r.keyframes = slam.keyframes().size();
+  for (const auto& kf : slam.keyframes()) r.keyframes_with_data += !kf.trimmed;
+  const std::vector<Pose2> trajectory = slam.Trajectory();
+  for (std::size_t i = 0; i < trajectory.size(); ++i)
+    r.rmse_m += (trajectory[i].translation() - run.frames[i].true_pose.translation()).squaredNorm();
+  r.rmse_m = std::sqrt(r.rmse_m / static_cast<double>(trajectory.size()));
+  return r;
+}
+
+// Memory follows the mapped area, not the path: driven three times round the `complex` route,
+// the graph SLAM holds the points, curves and views of about as many keyframes as after one lap
+// (the revisits' keyframes are trimmed once they leave the recent window), while its pose graph
+// keeps all of them; and it stays as accurate as without trimming. Measured: 1 lap 181 of 196
+// keyframes with data (those made turning on the spot near an earlier one are trimmed); 3 laps
+// 211 of 596, RMSE 0.020 m (0.026 m untrimmed).
+TEST(GraphSlam, KeyframeDataIsBoundedByTheMappedArea) {
+  const LapsRun one = DriveLaps(1);
+  const LapsRun three = DriveLaps(3);
+  GraphSlamOptions untrimmed;
+  untrimmed.trim_spacing_m = 0.0;
+  const LapsRun three_untrimmed = DriveLaps(3, untrimmed);
+  EXPECT_GT(one.keyframes_with_data, 9 * one.keyframes / 10);
+  EXPECT_GT(three.keyframes, 5 * one.keyframes / 2);
+  EXPECT_LT(three.keyframes_with_data, 3 * one.keyframes_with_data / 2);
+  EXPECT_EQ(three_untrimmed.keyframes_with_data, three_untrimmed.keyframes);
+  EXPECT_LT(three.rmse_m, 0.1);
+  EXPECT_LT(three.rmse_m, three_untrimmed.rmse_m + 0.02);
+  std::cout << "keyframes with data: 1 lap " << one.keyframes_with_data << " of " << one.keyframes
+            << ", 3 laps " << three.keyframes_with_data << " of " << three.keyframes << "; RMSE "
+            << three.rmse_m << " m, untrimmed " << three_untrimmed.rmse_m << " m\n";
 }
 
 // Two parallel walls without features: every shift along the corridor fits as well, so the
