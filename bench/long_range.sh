@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Worst-case step and memory of every SLAM method on a long-range laser (issue 17, item 5):
-# simulates bench/worlds/long_corridors.yaml (two laps of ~108 m) with a 181-beam SICK at 1 deg
-# and an 80 m range, then runs each method over the log and prints its median and slowest step
+# simulates bench/worlds/long_corridors.yaml (once round and 28 m on, 215 m) with a 181-beam SICK
+# at 1 deg and an 80 m range, then runs each method over the log and prints its median and slowest step
 # and its peak memory. Usage: bench/long_range.sh [BUILD_DIR] [OUT_DIR]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
