@@ -60,7 +60,9 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
     if (!splines.empty()) {
       map["curves"] = splines.size();
       map["control_points"] = control_points;
-      map["mean_distance_to_obstacles_m"] = MeanDistanceToObstacles(sim::RayCaster(world), splines);
+      const sim::RayCaster caster(world);
+      map["mean_distance_to_obstacles_m"] = MeanDistanceToObstacles(caster, splines);
+      map["curves_per_obstacle"] = CurvesPerObstacle(caster, splines);
     }
     const nlohmann::json statistics =
         nlohmann::json::parse(StatisticsJson(slam->Statistics()).dump());

@@ -1,6 +1,8 @@
 #include "loop/scoring.h"
 
 #include <algorithm>
+#include <map>
+#include <set>
 
 namespace splam::loop {
 
@@ -41,6 +43,24 @@ double MeanDistanceToObstacles(const sim::RayCaster& caster,
     }
   }
   return n > 0 ? sum / static_cast<double>(n) : 0.0;
+}
+
+double CurvesPerObstacle(const sim::RayCaster& caster,
+                         const std::vector<estimation::MapSpline>& splines) {
+  constexpr double kNear = 0.5;  // m
+  std::set<int> obstacles;
+  for (const estimation::MapSpline& s : splines) {
+    std::map<int, int> votes;
+    for (const Eigen::Vector2d& p : s.spline.ResampleByArcLength(0.05))
+      ++votes[caster.Nearest(p, kNear).obstacle];
+    const auto best =
+        std::max_element(votes.begin(), votes.end(),
+                         [](const auto& a, const auto& b) { return a.second < b.second; });
+    if (best != votes.end() && best->first >= 0) obstacles.insert(best->first);
+  }
+  return obstacles.empty()
+             ? 0.0
+             : static_cast<double>(splines.size()) / static_cast<double>(obstacles.size());
 }
 
 }  // namespace splam::loop

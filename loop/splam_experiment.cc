@@ -49,6 +49,7 @@ struct Trial {
   double map_size = 0;         // control points (spline maps) or landmarks (line maps)
   double map_curves = 0;       // 0 for line maps
   double map_accuracy_m = -1;  // mean distance of the map curves to the obstacles; -1: no curves
+  double curves_per_obstacle = 0;  // loop::CurvesPerObstacle; 0 for line maps
   double ms_per_step = 0, wall_s = 0, coverage_percent = 0;
   std::string map;  // the method's description
 };
@@ -68,6 +69,7 @@ Trial TrialOf(const nlohmann::json& report, const ExploreOutcome& outcome) {
   t.map_size = static_cast<double>(outcome.slam_method()->MapSize());
   t.map_curves = static_cast<double>(outcome.slam_method()->MapCurves());
   t.map_accuracy_m = slam["map"].value("mean_distance_to_obstacles_m", -1.0);
+  t.curves_per_obstacle = slam["map"].value("curves_per_obstacle", 0.0);
   t.ms_per_step = slam["ms_per_step"]["median"];
   t.wall_s = outcome.wall_s;
   t.coverage_percent = 100.0 * outcome.coverage();
@@ -97,6 +99,7 @@ const std::vector<std::pair<std::string, double Trial::*>>& SummaryFields() {
       {"map_curves", &Trial::map_curves},
       {"map_size", &Trial::map_size},
       {"map_accuracy_m", &Trial::map_accuracy_m},
+      {"curves_per_obstacle", &Trial::curves_per_obstacle},
       {"ms_per_step_median", &Trial::ms_per_step},
       {"wall_s", &Trial::wall_s},
       {"coverage_percent", &Trial::coverage_percent}};
@@ -233,9 +236,9 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
       args.world_name, args.runs, args.seed, args.seed + static_cast<std::uint64_t>(args.runs) - 1);
   table +=
       "| strategy | explored | position RMSE (m) | max position error (m) | heading RMSE (deg) | "
-      "odometry RMSE (m) | odometry heading RMSE (deg) | map curves | map control points or "
-      "landmarks | map accuracy (m) | ms per step (median) | wall time (s) |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "odometry RMSE (m) | odometry heading RMSE (deg) | map curves | curves per obstacle | map "
+      "control points or landmarks | map accuracy (m) | ms per step (median) | wall time (s) |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   nlohmann::ordered_json summary;
   summary["experiment"] = "splam (paper 003 section 4.2, Figs. 19-22)";
   summary["world"] = args.world_name;
@@ -247,14 +250,16 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
     const auto text = [&v](double Trial::*field, int digits) {
       return MeanStdText(Values(v, field), digits);
     };
-    table += fmt::format(
-        "| {} | {}/{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", strategies[s].label,
-        explored, v.size(), text(&Trial::rmse_m, 3), text(&Trial::max_error_m, 3),
-        text(&Trial::rmse_heading_deg, 2), text(&Trial::odometry_rmse_m, 3),
-        text(&Trial::odometry_rmse_heading_deg, 2),
-        v.front().map_curves > 0 ? text(&Trial::map_curves, 1) : "-", text(&Trial::map_size, 0),
-        v.front().map_accuracy_m >= 0 ? text(&Trial::map_accuracy_m, 3) : "-",
-        text(&Trial::ms_per_step, 2), text(&Trial::wall_s, 1));
+    table +=
+        fmt::format("| {} | {}/{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+                    strategies[s].label, explored, v.size(), text(&Trial::rmse_m, 3),
+                    text(&Trial::max_error_m, 3), text(&Trial::rmse_heading_deg, 2),
+                    text(&Trial::odometry_rmse_m, 3), text(&Trial::odometry_rmse_heading_deg, 2),
+                    v.front().map_curves > 0 ? text(&Trial::map_curves, 1) : "-",
+                    v.front().map_curves > 0 ? text(&Trial::curves_per_obstacle, 2) : "-",
+                    text(&Trial::map_size, 0),
+                    v.front().map_accuracy_m >= 0 ? text(&Trial::map_accuracy_m, 3) : "-",
+                    text(&Trial::ms_per_step, 2), text(&Trial::wall_s, 1));
     nlohmann::ordered_json& j = summary["strategies"][strategies[s].label];
     j["explorer"] = strategies[s].explorer;
     j["method"] = strategies[s].method;

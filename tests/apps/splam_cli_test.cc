@@ -407,6 +407,8 @@ TEST(SplamCli, ExploreWithoutArgumentsRunsTheMainJob) {
   EXPECT_GT(map["curves"].get<int>(), 10);
   EXPECT_GT(map["control_points"].get<int>(), 100);
   EXPECT_LT(map["mean_distance_to_obstacles_m"].get<double>(), 0.2);
+  EXPECT_GE(map["curves_per_obstacle"].get<double>(), 1.0);
+  EXPECT_LT(map["curves_per_obstacle"].get<double>(), 3.0);
   const nlohmann::json& error = report["trajectory_error"];
   EXPECT_LT(error["estimate"]["rmse_position_m"].get<double>(),
             0.5 * error["odometry"]["rmse_position_m"].get<double>());

@@ -213,6 +213,28 @@ TEST(Scoring, MapDistanceToObstaclesMeasuresAnOffset) {
   EXPECT_EQ(MeanDistanceToObstacles(caster, {}), 0.0);
 }
 
+// One curve per wall scores 1; a wall built twice (a second copy 0.1 m off), or in two pieces,
+// 1.5; a curve far from every obstacle counts against the map without adding an obstacle.
+TEST(Scoring, CurvesPerObstacleCountsCopiesAndPieces) {
+  sim::World world;
+  world.obstacles.push_back(sim::Polyline{{{0, 0}, {10, 0}}, false});
+  world.obstacles.push_back(sim::Polyline{{{0, 4}, {10, 4}}, false});
+  const sim::RayCaster caster(world);
+  const auto along = [](double y, double x0, double x1) {
+    const double d = (x1 - x0) / 3;
+    return estimation::MapSpline{
+        0, *kernel::CubicBSpline::ClampedUniform({{x0, y}, {x0 + d, y}, {x0 + 2 * d, y}, {x1, y}}),
+        1};
+  };
+  EXPECT_EQ(CurvesPerObstacle(caster, {}), 0.0);
+  EXPECT_DOUBLE_EQ(CurvesPerObstacle(caster, {along(0.02, 1, 9), along(3.98, 1, 9)}), 1.0);
+  EXPECT_DOUBLE_EQ(
+      CurvesPerObstacle(caster, {along(0.0, 1, 9), along(0.1, 1, 9), along(4.0, 1, 9)}), 1.5);
+  EXPECT_DOUBLE_EQ(
+      CurvesPerObstacle(caster, {along(0.0, 1, 4), along(0.0, 5, 9), along(4.0, 1, 9)}), 1.5);
+  EXPECT_DOUBLE_EQ(CurvesPerObstacle(caster, {along(0.0, 1, 9), along(2.0, 1, 9)}), 2.0);
+}
+
 TEST(RunExploration, NamesWhatCannotStart) {
   const sim::World world = *sim::BuiltinWorld("complex");
   ExploreSetup setup;
