@@ -280,9 +280,9 @@ double GraphSlam::UsableRange(const kernel::Scan& scan) const {
   return options_.max_range_m > 0 ? options_.max_range_m : scan.max_range_m;
 }
 
-std::vector<OrientedPoint> GraphSlam::WorldRaster(int first, int last) const {
+std::vector<OrientedPoint> GraphSlam::WorldRaster(const std::vector<int>& keyframes) const {
   std::vector<OrientedPoint> raster;
-  for (int i = std::max(first, 0); i <= last; ++i) {
+  for (int i : keyframes) {
     const Keyframe& kf = keyframes_[static_cast<std::size_t>(i)];
     const std::vector<OrientedPoint> placed = Placed(kf.pose, kf.raster);
     raster.insert(raster.end(), placed.begin(), placed.end());
@@ -290,9 +290,10 @@ std::vector<OrientedPoint> GraphSlam::WorldRaster(int first, int last) const {
   return raster;
 }
 
-std::vector<std::vector<Eigen::Vector2d>> GraphSlam::WorldViews(int first, int last) const {
+std::vector<std::vector<Eigen::Vector2d>> GraphSlam::WorldViews(
+    const std::vector<int>& keyframes) const {
   std::vector<std::vector<Eigen::Vector2d>> views;
-  for (int i = std::max(first, 0); i <= last; ++i) {
+  for (int i : keyframes) {
     const Keyframe& kf = keyframes_[static_cast<std::size_t>(i)];
     if (!kf.trimmed) views.push_back(kf.pose * kf.seen);
   }
@@ -319,14 +320,30 @@ void GraphSlam::TrimKeyframe(int j) {
   ++trimmed_;
 }
 
+std::vector<int> GraphSlam::TargetKeyframes(int candidate, int newest) const {
+  std::vector<int> target{candidate};
+  const auto gather = [&](int from, int step) {
+    int n = 0;
+    for (int i = from; i >= 0 && i <= newest && n < options_.loop.target_keyframes; i += step) {
+      if (keyframes_[static_cast<std::size_t>(i)].trimmed) continue;
+      target.push_back(i);
+      ++n;
+    }
+  };
+  gather(candidate - 1, -1);
+  gather(candidate + 1, 1);
+  return target;
+}
+
 void GraphSlam::RebuildSubmap() {
   const ScopedTimer timer(&times_.submap_ms);
   const int last = static_cast<int>(keyframes_.size()) - 1;
-  const int first = last - options_.submap_keyframes + 1;
+  std::vector<int> recent;
+  for (int i = std::max(0, last - options_.submap_keyframes + 1); i <= last; ++i)
+    recent.push_back(i);
   submap_ = DistanceGrid::Build(
-      WorldRaster(first, last), options_.grid_resolution_m, options_.truncation_m,
-      options_.truncation_m,
-      options_.mask_unseen ? WorldViews(first, last) : std::vector<std::vector<Eigen::Vector2d>>{},
+      WorldRaster(recent), options_.grid_resolution_m, options_.truncation_m, options_.truncation_m,
+      options_.mask_unseen ? WorldViews(recent) : std::vector<std::vector<Eigen::Vector2d>>{},
       options_.signed_distance, options_.seen_margin_m);
   submap_scores_.reset();
   submap_dirty_ = false;
@@ -410,12 +427,11 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
     query.insert(query.end(), placed.begin(), placed.end());
   }
   query = Thinned(query, options_.loop.resolution_m);
-  const int first = candidate - options_.loop.target_keyframes;
-  const int last =
-      std::min(candidate + options_.loop.target_keyframes, k - options_.loop.min_gap_keyframes);
+  const std::vector<int> keyframes =
+      TargetKeyframes(candidate, k - options_.loop.min_gap_keyframes);
   const DistanceGrid target = DistanceGrid::Build(
-      WorldRaster(first, last), options_.loop.resolution_m, options_.truncation_m,
-      options_.truncation_m, WorldViews(first, last), false, options_.seen_margin_m);
+      WorldRaster(keyframes), options_.loop.resolution_m, options_.truncation_m,
+      options_.truncation_m, WorldViews(keyframes), false, options_.seen_margin_m);
   const LikelihoodPyramid pyramid(target, options_.loop.sigma_m, options_.loop.levels);
   const double window_rad =
       std::min(options_.loop.window_rad + options_.loop.window_rad_per_m * travelled,

@@ -240,9 +240,12 @@ class GraphSlam {
                    std::vector<OrientedPoint> points);
   // Beams longer than this are not used: max_range_m, or the laser's range when it is 0.
   double UsableRange(const kernel::Scan& scan) const;
-  // The raster of keyframes [first, last] in the world frame.
-  std::vector<OrientedPoint> WorldRaster(int first, int last) const;
-  std::vector<std::vector<Eigen::Vector2d>> WorldViews(int first, int last) const;
+  // The raster and the views of these keyframes in the world frame (trimmed ones add nothing).
+  std::vector<OrientedPoint> WorldRaster(const std::vector<int>& keyframes) const;
+  std::vector<std::vector<Eigen::Vector2d>> WorldViews(const std::vector<int>& keyframes) const;
+  // A loop target: the candidate and up to loop.target_keyframes keyframes holding data on
+  // either side of it, none newer than `newest`.
+  std::vector<int> TargetKeyframes(int candidate, int newest) const;
   void RebuildSubmap();
   // Drops keyframe j's data when an earlier keyframe holding its own is near (trim_spacing_m).
   void TrimKeyframe(int j);
