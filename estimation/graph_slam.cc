@@ -271,7 +271,8 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   keyframes_.push_back(std::move(kf));
   submap_dirty_ = true;
   if (options_.trim_spacing_m > 0)
-    TrimKeyframe(k - std::max(options_.submap_keyframes, options_.loop.query_keyframes + 1));
+    TrimKeyframe(k - std::max({options_.submap_keyframes, options_.loop.query_keyframes + 1,
+                               options_.loop.min_gap_keyframes + options_.loop.target_keyframes}));
   timer.reset();
   if (options_.loop.enabled) SearchLoopClosures(k);
 }

@@ -153,7 +153,8 @@ struct GraphSlamOptions {
   double map_spacing_rad = 0.5;
 
   // Keyframe trimming, so that memory follows the mapped area, not the path: a keyframe that has
-  // left the recent window (the submap's and the loop query's keyframes) drops its points, raster,
+  // left the recent window (the submap's, the loop query's and the youngest loop targets'
+  // keyframes: loop.min_gap_keyframes + loop.target_keyframes) drops its points, raster,
   // curves and view, keeping its pose and edges, when an earlier keyframe that still holds them
   // lies within trim_spacing_m and trim_spacing_rad of it: on a revisit the older keyframe
   // describes the place as well, and loop closures are searched against it. Map keyframes are
