@@ -97,6 +97,12 @@ std::vector<Eigen::Vector2d> ScanView(const kernel::Scan& scan, const kernel::Po
   return view;
 }
 
+// True when b lies closer than distance_m to a and is turned less than angle_rad from it.
+bool Within(const kernel::Pose2& a, const kernel::Pose2& b, double distance_m, double angle_rad) {
+  return (a.translation() - b.translation()).norm() < distance_m &&
+         std::abs(a.Between(b).theta()) < angle_rad;
+}
+
 Eigen::Matrix3d Diagonal(double sigma_m, double sigma_rad) {
   return Eigen::Vector3d(sigma_m * sigma_m, sigma_m * sigma_m, sigma_rad * sigma_rad).asDiagonal();
 }
@@ -240,9 +246,7 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   kf.points = std::move(points);
   kf.seen = ScanView(scan, robot_T_laser, UsableRange(scan), options_.seen_margin_m);
   kf.in_map = std::none_of(keyframes_.begin(), keyframes_.end(), [&](const Keyframe& o) {
-    return o.in_map &&
-           (o.pose.translation() - kf.pose.translation()).norm() < options_.map_spacing_m &&
-           std::abs(o.pose.Between(kf.pose).theta()) < options_.map_spacing_rad;
+    return o.in_map && Within(o.pose, kf.pose, options_.map_spacing_m, options_.map_spacing_rad);
   });
 
   if (kf.in_map) {
@@ -308,14 +312,13 @@ void GraphSlam::TrimKeyframe(int j) {
   const bool covered =
       std::any_of(keyframes_.begin(), keyframes_.begin() + j, [&](const Keyframe& o) {
         return !o.trimmed &&
-               (o.pose.translation() - kf.pose.translation()).norm() < options_.trim_spacing_m &&
-               std::abs(o.pose.Between(kf.pose).theta()) < options_.trim_spacing_rad;
+               Within(o.pose, kf.pose, options_.trim_spacing_m, options_.trim_spacing_rad);
       });
   if (!covered) return;
-  // Swapped with empty vectors: assigning {} would keep their capacity.
+  // Swapped with empty vectors: assigning {} would keep their capacity. A keyframe that is not a
+  // map keyframe holds no curves (AddKeyframe).
   std::vector<OrientedPoint>().swap(kf.points);
   std::vector<OrientedPoint>().swap(kf.raster);
-  std::vector<kernel::SplineCurve>().swap(kf.curves);
   std::vector<Eigen::Vector2d>().swap(kf.seen);
   kf.trimmed = true;
   ++trimmed_;

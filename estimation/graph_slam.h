@@ -154,8 +154,8 @@ struct GraphSlamOptions {
 
   // Keyframe trimming, so that memory follows the mapped area, not the path: a keyframe that has
   // left the recent window (the submap's, the loop query's and the youngest loop targets'
-  // keyframes: loop.min_gap_keyframes + loop.target_keyframes) drops its points, raster,
-  // curves and view, keeping its pose and edges, when an earlier keyframe that still holds them
+  // keyframes: loop.min_gap_keyframes + loop.target_keyframes) drops its points, raster and
+  // view, keeping its pose and edges, when an earlier keyframe that still holds them
   // lies within trim_spacing_m and trim_spacing_rad of it: on a revisit the older keyframe
   // describes the place as well, and loop closures are searched against it. Map keyframes are
   // kept whole. 0.3 m is the keyframe spacing, so that a first pass along a path keeps its
@@ -186,7 +186,7 @@ class GraphSlam {
     std::vector<Eigen::Vector2d> seen;        // the scan's view: sensor, then beam ends
     double travelled_m = 0.0;                 // path length at this keyframe
     bool in_map = false;
-    bool trimmed = false;  // points, raster, curves and view dropped (trim_spacing_m)
+    bool trimmed = false;  // points, raster and view dropped (trim_spacing_m)
   };
 
   GraphSlam(const kernel::Pose2& start, const GraphSlamOptions& options);
