@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <unordered_map>
 
 namespace splam::estimation {
@@ -107,6 +108,17 @@ Eigen::Matrix3d Diagonal(double sigma_m, double sigma_rad) {
   return Eigen::Vector3d(sigma_m * sigma_m, sigma_m * sigma_m, sigma_rad * sigma_rad).asDiagonal();
 }
 
+// A covariance of pose A's error (right perturbation, A * exp(xi)) as one of A * b_T_c's:
+// Ad(c_T_b) cov Ad(c_T_b)^T, with Ad(R, t) = [R, (t_y, -t_x)^T; 0, 1].
+Eigen::Matrix3d Propagated(const Eigen::Matrix3d& covariance, const kernel::Pose2& b_T_c) {
+  const kernel::Pose2 c_T_b = b_T_c.Inverse();
+  Eigen::Matrix3d adjoint = Eigen::Matrix3d::Identity();
+  adjoint.topLeftCorner<2, 2>() = c_T_b.Rotation();
+  adjoint(0, 2) = c_T_b.y();
+  adjoint(1, 2) = -c_T_b.x();
+  return adjoint * covariance * adjoint.transpose();
+}
+
 // Adds the wall time of its scope to a counter, ms.
 class ScopedTimer {
  public:
@@ -126,6 +138,40 @@ class ScopedTimer {
 };
 
 }  // namespace
+
+double ClosureDisagreementChi2(const kernel::Pose2& by_older,
+                               const Eigen::Matrix3d& older_covariance, const kernel::Pose2& chain,
+                               const Eigen::Matrix3d& chain_covariance,
+                               const kernel::Pose2& by_newer,
+                               const Eigen::Matrix3d& newer_covariance) {
+  const Eigen::Vector3d e = by_newer.Between(by_older * chain).ToVector();
+  const Eigen::Matrix3d covariance =
+      newer_covariance + Propagated(older_covariance, chain) + chain_covariance;
+  return e.dot(covariance.inverse() * e);
+}
+
+std::vector<int> LargestAgreeingSet(const std::vector<bool>& with_graph,
+                                    const std::function<bool(int, int)>& agree) {
+  const int n = static_cast<int>(with_graph.size());
+  const auto graph_agrees = [&](int i) { return with_graph[static_cast<std::size_t>(i)]; };
+  std::vector<int> best;
+  int best_size = 1;  // a set needs two members
+  for (int seed = -1; seed < n; ++seed) {
+    std::vector<int> set;
+    if (seed >= 0) set.push_back(seed);
+    for (int i = 0; i < n; ++i) {
+      if (i == seed || (seed < 0 && !graph_agrees(i))) continue;
+      if (std::all_of(set.begin(), set.end(), [&](int j) { return agree(i, j); })) set.push_back(i);
+    }
+    const int size =
+        static_cast<int>(set.size()) + (std::all_of(set.begin(), set.end(), graph_agrees) ? 1 : 0);
+    if (!set.empty() && size > best_size) {
+      best = std::move(set);
+      best_size = size;
+    }
+  }
+  return best;
+}
 
 GraphSlam::GraphSlam(const kernel::Pose2& start, const GraphSlamOptions& options)
     : options_(options), pose_(start) {}
@@ -257,28 +303,32 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
     std::vector<kernel::SplineCurve>().swap(kf.curves);
   }
   const int k = graph_.AddNode(kf.pose);
-  if (k > 0) {
-    const Keyframe& prev = keyframes_.back();
-    PoseGraphEdge edge;
-    edge.from = k - 1;
-    edge.to = k;
-    edge.measurement = prev.pose.Between(kf.pose);
-    const double d = kf.travelled_m - prev.travelled_m;
-    const double sigma_m = options_.edge_sigma_m + options_.edge_sigma_per_m * d;
-    const double sigma_rad =
-        options_.edge_sigma_rad + options_.edge_sigma_per_rad * std::abs(edge.measurement.theta());
-    edge.information = Diagonal(sigma_m, sigma_rad).inverse();
-    graph_.AddEdge(edge);
-  }
   for (NodeAnchor& node : nodes_)
     if (node.keyframe < 0) node = {k, kf.pose.Between(node.pose)};
   keyframes_.push_back(std::move(kf));
+  if (k > 0) {
+    PoseGraphEdge edge;
+    edge.from = k - 1;
+    edge.to = k;
+    edge.measurement = keyframes_[static_cast<std::size_t>(k - 1)].pose.Between(pose_);
+    edge.information = FrontEndCovariance(k).inverse();
+    graph_.AddEdge(edge);
+  }
   submap_dirty_ = true;
   if (options_.trim_spacing_m > 0)
     TrimKeyframe(k - std::max({options_.submap_keyframes, options_.loop.query_keyframes + 1,
                                options_.loop.min_gap_keyframes + options_.loop.target_keyframes}));
   timer.reset();
   if (options_.loop.enabled) SearchLoopClosures(k);
+}
+
+Eigen::Matrix3d GraphSlam::FrontEndCovariance(int to) const {
+  const Keyframe& prev = keyframes_[static_cast<std::size_t>(to - 1)];
+  const Keyframe& kf = keyframes_[static_cast<std::size_t>(to)];
+  const double d = kf.travelled_m - prev.travelled_m;
+  return Diagonal(options_.edge_sigma_m + options_.edge_sigma_per_m * d,
+                  options_.edge_sigma_rad +
+                      options_.edge_sigma_per_rad * std::abs(prev.pose.Between(kf.pose).theta()));
 }
 
 double GraphSlam::UsableRange(const kernel::Scan& scan) const {
@@ -379,20 +429,67 @@ void GraphSlam::SearchLoopClosures(int k) {
     if (std::optional<PoseGraphEdge> edge = MatchLoop(k, c, radius, since)) {
       pending_.push_back(*edge);
       closure_at_m_ = travelled_m_;
+      if (unflushed_since_ < 0) unflushed_since_ = k;
     }
   }
-  if (!pending_.empty() && k - pending_.front().to >= options_.optimize_every_keyframes)
-    FlushClosures();
+  if (unflushed_since_ >= 0 && k - unflushed_since_ >= options_.optimize_every_keyframes)
+    FlushClosures(false);
 }
 
-void GraphSlam::FlushClosures() {
+bool GraphSlam::Agree(const PoseGraphEdge& a, const PoseGraphEdge& b) const {
+  const PoseGraphEdge& older = a.to <= b.to ? a : b;
+  const PoseGraphEdge& newer = a.to <= b.to ? b : a;
+  if (newer.to - older.to > options_.loop.confirm_keyframes) return false;
+  const auto pose = [&](int i) { return keyframes_[static_cast<std::size_t>(i)].pose; };
+  Eigen::Matrix3d chain_covariance = Eigen::Matrix3d::Zero();
+  for (int i = older.to + 1; i <= newer.to; ++i)
+    chain_covariance += Propagated(FrontEndCovariance(i), pose(i).Between(pose(newer.to)));
+  return ClosureDisagreementChi2(pose(older.from) * older.measurement, older.information.inverse(),
+                                 pose(older.to).Between(pose(newer.to)), chain_covariance,
+                                 pose(newer.from) * newer.measurement,
+                                 newer.information.inverse()) <= options_.loop.max_chi2;
+}
+
+void GraphSlam::FlushClosures(bool final) {
+  unflushed_since_ = -1;
   if (pending_.empty()) return;
+  const int n = static_cast<int>(pending_.size());
+  std::vector<int> best;
+  if (options_.loop.confirm_keyframes > 0) {
+    std::vector<bool> with_graph;
+    for (const PoseGraphEdge& e : pending_)
+      with_graph.push_back(graph_.EdgeChi2(e) <= options_.loop.max_chi2);
+    best = LargestAgreeingSet(with_graph, [&](int i, int j) {
+      return Agree(pending_[static_cast<std::size_t>(i)], pending_[static_cast<std::size_t>(j)]);
+    });
+  } else {
+    best.resize(static_cast<std::size_t>(n));
+    std::iota(best.begin(), best.end(), 0);
+  }
+  std::vector<PoseGraphEdge> accepted, waiting;
+  const int newest = static_cast<int>(keyframes_.size()) - 1;
+  for (int i = 0; i < n; ++i) {
+    const PoseGraphEdge& e = pending_[static_cast<std::size_t>(i)];
+    const bool young = newest - e.to < options_.loop.confirm_keyframes;
+    // At the end of the data a young closure had no keyframes left to be confirmed by: it stands
+    // alone, as without confirmation, unless it disagrees with the set added.
+    const bool alone = final && young && std::all_of(best.begin(), best.end(), [&](int j) {
+                         return Agree(e, pending_[static_cast<std::size_t>(j)]);
+                       });
+    if (alone || std::find(best.begin(), best.end(), i) != best.end())
+      accepted.push_back(e);
+    else if (!final && young)
+      waiting.push_back(e);
+    else
+      ++loops_.rejected_unconfirmed;
+  }
+  pending_ = std::move(waiting);
+  if (accepted.empty()) return;
   std::vector<kernel::Pose2> before;
   for (int i = 0; i < graph_.num_nodes(); ++i) before.push_back(graph_.node(i));
   const kernel::Pose2 pose_before = pose_;
   const int first = static_cast<int>(graph_.edges().size());
-  for (const PoseGraphEdge& e : pending_) graph_.AddEdge(e);
-  pending_.clear();
+  for (const PoseGraphEdge& e : accepted) graph_.AddEdge(e);
   Optimize();
   // Agreement with the other edges: optimised together, a closure's residual stays small;
   // those that do not are removed and the graph optimised again from where it was.
@@ -414,7 +511,7 @@ void GraphSlam::FlushClosures() {
 }
 
 void GraphSlam::Finish() {
-  FlushClosures();
+  FlushClosures(true);
   if (loops_.accepted > 0) Optimize();
 }
 
@@ -567,7 +664,11 @@ void LoopClosureOptions::VisitFields(kernel::FieldVisitor& v) {
           "closure refused when a distinct pose scores this fraction of the best");
   v.Field("max_rms_m", &max_rms_m, "closure test: registration inlier RMS at most, m");
   v.Field("max_chi2", &max_chi2,
-          "closure test: whitened squared residual after optimisation at most");
+          "closure test: whitened squared residual after optimisation at most; also the bound of "
+          "a closure's agreement with the graph and with another closure");
+  v.Field("confirm_keyframes", &confirm_keyframes,
+          "a closure that moves the graph waits this many keyframes for another that agrees (0: "
+          "none needed)");
   v.Nested("registration", "fine registration of a closure", &registration);
   v.Field("sigma_floor_m", &sigma_floor_m, "closure edge sigma floor, m");
   v.Field("sigma_floor_rad", &sigma_floor_rad, "closure edge sigma floor, rad");
@@ -576,8 +677,9 @@ void LoopClosureOptions::VisitFields(kernel::FieldVisitor& v) {
 kernel::Status LoopClosureOptions::Validate() const {
   if (kernel::Status e = registration.Validate(); !e.ok()) return e;
   if (min_gap_keyframes < 1 || candidates < 1 || query_keyframes < 0 || target_keyframes < 0 ||
-      levels < 1 || levels > 8)
-    return kernel::Status::Error("min_gap_keyframes, candidates >= 1; levels in [1, 8]");
+      confirm_keyframes < 0 || levels < 1 || levels > 8)
+    return kernel::Status::Error(
+        "min_gap_keyframes, candidates >= 1; keyframe counts >= 0; levels in [1, 8]");
   if (!(radius_m > 0) || !(radius_per_m >= 0) || !(max_radius_m >= radius_m) ||
       !(max_window_m > 0) || !(window_rad >= 0) || !(window_rad_per_m >= 0) ||
       !(max_window_rad >= window_rad) || !(sigma_m > 0) || !(resolution_m > 0))
