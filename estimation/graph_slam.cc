@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <numeric>
 #include <unordered_map>
 
 namespace splam::estimation {
@@ -310,7 +309,8 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
     PoseGraphEdge edge;
     edge.from = k - 1;
     edge.to = k;
-    edge.measurement = keyframes_[static_cast<std::size_t>(k - 1)].pose.Between(pose_);
+    edge.measurement =
+        keyframes_[static_cast<std::size_t>(k - 1)].pose.Between(keyframes_.back().pose);
     edge.information = FrontEndCovariance(k).inverse();
     graph_.AddEdge(edge);
   }
@@ -453,8 +453,9 @@ bool GraphSlam::Agree(const PoseGraphEdge& a, const PoseGraphEdge& b) const {
 void GraphSlam::FlushClosures(bool final) {
   unflushed_since_ = -1;
   if (pending_.empty()) return;
-  const int n = static_cast<int>(pending_.size());
+  const std::size_t n = pending_.size();
   std::vector<int> best;
+  std::vector<bool> chosen(n, options_.loop.confirm_keyframes <= 0);
   if (options_.loop.confirm_keyframes > 0) {
     std::vector<bool> with_graph;
     for (const PoseGraphEdge& e : pending_)
@@ -462,21 +463,20 @@ void GraphSlam::FlushClosures(bool final) {
     best = LargestAgreeingSet(with_graph, [&](int i, int j) {
       return Agree(pending_[static_cast<std::size_t>(i)], pending_[static_cast<std::size_t>(j)]);
     });
-  } else {
-    best.resize(static_cast<std::size_t>(n));
-    std::iota(best.begin(), best.end(), 0);
+    for (int i : best) chosen[static_cast<std::size_t>(i)] = true;
   }
   std::vector<PoseGraphEdge> accepted, waiting;
   const int newest = static_cast<int>(keyframes_.size()) - 1;
-  for (int i = 0; i < n; ++i) {
-    const PoseGraphEdge& e = pending_[static_cast<std::size_t>(i)];
+  for (std::size_t i = 0; i < n; ++i) {
+    const PoseGraphEdge& e = pending_[i];
     const bool young = newest - e.to < options_.loop.confirm_keyframes;
     // At the end of the data a young closure had no keyframes left to be confirmed by: it stands
     // alone, as without confirmation, unless it disagrees with the set added.
-    const bool alone = final && young && std::all_of(best.begin(), best.end(), [&](int j) {
-                         return Agree(e, pending_[static_cast<std::size_t>(j)]);
-                       });
-    if (alone || std::find(best.begin(), best.end(), i) != best.end())
+    const auto agrees_with_set = [&] {
+      return std::all_of(best.begin(), best.end(),
+                         [&](int j) { return Agree(e, pending_[static_cast<std::size_t>(j)]); });
+    };
+    if (chosen[i] || (final && young && agrees_with_set()))
       accepted.push_back(e);
     else if (!final && young)
       waiting.push_back(e);
