@@ -228,19 +228,15 @@ RegistrationResult GraphSlam::RegisterScan(const std::vector<OrientedPoint>& poi
   const ScopedTimer timer(&times_.registration_ms);
   RegistrationResult r = RegisterPoints(points, submap_, pose_, options_.registration);
   if (r.accepted && options_.odometry_prior) {
-    // Likelihood-ratio test between the scan alone and the scan fused with the odometry's prior
-    // (its increment's covariance): when the fused pose explains the scan nearly as well as the
-    // scan's own optimum (their points' costs, counted once per cell, differ by at most the
-    // chi^2(3) gate), the odometry agrees and holds the directions the scan leaves loose (a
-    // corridor's axis, a smooth wall's length). Otherwise the odometry is the outlier (a slip, a
-    // glitch) and the scan's own result stands. The test is on costs, not on the two poses'
-    // difference against their covariances: (J^T J)^-1 is overconfident where the map's
-    // outlines are noisy, and such a test would refuse the odometry exactly there.
+    // The odometry increment (its covariance from the noise model) is either right, the prior of
+    // the fused registration, or an outlier (a slip, a glitch) and the scan alone stands
+    // (OdometryIsInlier). Where the scan leaves a direction loose (a corridor's axis, a smooth
+    // arc's length), the scan alone's optimum wanders along it at a cost a few units below the
+    // fused pose's, and the odometry holds it.
     const Eigen::Matrix3d odometry = options_.odometry.Covariance(since_update_);
     RegistrationResult fused =
         RegisterPoints(points, submap_, pose_, options_.registration, &odometry);
-    if (fused.accepted && fused.points_cost - r.points_cost <= options_.odometry_gate_chi2)
-      return fused;
+    if (OdometryIsInlier(fused, r, options_.odometry_outlier_probability)) return fused;
   }
   if (r.accepted || options_.recovery_window_m <= 0) return r;
   // The odometry can be off by more than the registration's basin (wheel slip, a bump): a
@@ -711,8 +707,8 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Nested("registration", "scan-to-submap registration", &registration);
   v.Field("odometry_prior", &odometry_prior, "the registration's prior is the odometry model");
   v.Nested("odometry", "odometry noise model of that prior", &odometry);
-  v.Field("odometry_gate_chi2", &odometry_gate_chi2,
-          "the odometry is fused when it raises the scan's cost by at most this chi^2");
+  v.Field("odometry_outlier_probability", &odometry_outlier_probability,
+          "prior probability that a scan's odometry increment is an outlier (a slip)");
   v.Field("recovery_window_m", &recovery_window_m,
           "a failed registration is searched again within this of the odometry (0: never), m");
   v.Field("recovery_window_rad", &recovery_window_rad, "and within this heading, rad");
@@ -746,6 +742,8 @@ kernel::Status GraphSlamOptions::Validate() const {
   if (submap_keyframes < 1 || !(grid_resolution_m > 0) || !(truncation_m > grid_resolution_m))
     return kernel::Status::Error(
         "submap_keyframes >= 1, grid_resolution_m > 0, truncation_m > grid_resolution_m");
+  if (!(odometry_outlier_probability > 0 && odometry_outlier_probability < 1))
+    return kernel::Status::Error("odometry_outlier_probability must be in (0, 1)");
   if (!(recovery_window_m >= 0) || !(recovery_window_rad >= 0) || !(recovery_step_rad > 0))
     return kernel::Status::Error("recovery windows >= 0 and recovery_step_rad > 0");
   if (!(edge_sigma_m > 0) || !(edge_sigma_rad > 0) || !(edge_sigma_per_m >= 0) ||

@@ -282,6 +282,15 @@ RegistrationResult RegisterPoints(const std::vector<OrientedPoint>& points,
     }
   }
   result.points_cost *= independent;
+  // Laplace's approximation of the evidence: the cost at the solution plus log det(I + S H),
+  // S the prior's covariance, H the points' Hessian; (S^-1 + H)^-1 is the covariance above.
+  double prior_half_cost = 0.0;
+  problem.EvaluateResidualBlock(prior_block, false, &prior_half_cost, nullptr, nullptr);
+  const Eigen::Matrix3d prior_information =
+      prior_sqrt_information.transpose() * prior_sqrt_information;
+  result.evidence_cost =
+      result.points_cost + 2.0 * prior_half_cost +
+      std::log((prior_information.inverse() * result.covariance.inverse()).determinant());
   // Of the whole scan: a scan mostly outside what the map saw is not trusted (the recovery
   // search or the odometry take over).
   result.inlier_fraction = static_cast<double>(inliers) / static_cast<double>(points.size());
@@ -296,6 +305,13 @@ RegistrationResult RegisterPoints(const std::vector<OrientedPoint>& points,
     result.reason = "the correction is larger than the odometry can be off";
   result.accepted = result.reason.empty();
   return result;
+}
+
+bool OdometryIsInlier(const RegistrationResult& fused, const RegistrationResult& alone,
+                      double outlier_probability) {
+  const double p = outlier_probability;
+  return fused.accepted &&
+         fused.evidence_cost - alone.evidence_cost <= 2.0 * std::log((1.0 - p) / p);
 }
 
 void RegistrationOptions::VisitFields(kernel::FieldVisitor& v) {

@@ -77,6 +77,12 @@ struct RegistrationResult {
   // units, so that two poses' costs differ by a chi^2 value, and no single point (a wall's
   // point that the map's scans saw free at 10 cm cells past a doorway's edge) outweighs the rest.
   double points_cost = 0.0;
+  // -2 log of the evidence p(scan | prior), up to a constant, by Laplace's approximation at the
+  // solution: points_cost + the prior's whitened squared residual + log det(I + S H), S the
+  // prior's covariance and H the points' Gauss-Newton Hessian (counted once per cell). The last
+  // term is the Occam factor: a wide prior pays for the poses it allowed and the scan ruled out.
+  // Two priors on the same scan compare by it (GraphSlam's odometry test).
+  double evidence_cost = 0.0;
   double rms_m = 0.0;            // RMS distance of the inliers to the map
   double inlier_fraction = 0.0;  // of all the points, those near the map
   int iterations = 0;
@@ -107,6 +113,15 @@ RegistrationResult RegisterPoints(const std::vector<Eigen::Vector2d>& points,
                                   const DistanceGrid& grid, const kernel::Pose2& prior,
                                   const RegistrationOptions& options,
                                   const Eigen::Matrix3d* prior_covariance = nullptr);
+
+// Whether an odometry increment, the prior of `fused`, is more probably right than an outlier
+// known only to the wide prior of `alone` (the same scan registered from the same prediction),
+// when an outlier has prior probability `outlier_probability`: the evidences differ by at most
+// 2 ln((1 - p) / p). A direction the scan leaves loose costs the wide prior its Occam factor,
+// and the odometry holds it; a slip moves the scan's well-defined optimum by more than the
+// odometry's covariance allows.
+bool OdometryIsInlier(const RegistrationResult& fused, const RegistrationResult& alone,
+                      double outlier_probability);
 
 }  // namespace splam::estimation
 

@@ -88,6 +88,43 @@ TEST_F(ComplexWorld, RegistrationRecoversKnownTransforms) {
   EXPECT_GE(within_covariance, 92);
 }
 
+// Property: the odometry test (OdometryIsInlier, an outlier probability of 1 %) keeps an
+// odometry increment drawn from its own noise model and refuses a slip of 0.1 m in any direction
+// and up to 1.7 deg. A scan 5 cm and 1.1 deg on from the one that made the map is registered
+// from the odometry's prediction, with its covariance and with the wide prior alone. Measured:
+// 200 of 200 kept (199 by a likelihood-ratio test on the points' costs at chi^2(3) 99 %, the
+// test before this one), 200 of 200 slips refused.
+TEST_F(ComplexWorld, PropertyOdometryTestKeepsTheOdometryAndRefusesASlip) {
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> normal;
+  const Pose2 increment(0.05, 0.0, 0.02);
+  const Eigen::Matrix3d odometry = OdometryNoiseModel{}.Covariance(increment);
+  const Eigen::Matrix3d odometry_sqrt = odometry.llt().matrixL();
+  int trials = 0, kept = 0, refused = 0;
+  while (trials < 200) {
+    const Pose2 a = FreePose(simulator_, &gen);
+    const Pose2 b = a * increment;
+    if (!simulator_.IsFree(b)) continue;
+    const std::vector<OrientedPoint> map_points = WorldPoints(a);
+    const std::vector<Eigen::Vector2d> scan = Points(b);
+    if (map_points.size() < 100 || scan.size() < 100) continue;
+    ++trials;
+    const DistanceGrid grid = DistanceGrid::Build(map_points, 0.1, 0.5, 0.5);
+    const auto inlier = [&](const Pose2& prediction) {
+      const RegistrationResult alone = RegisterPoints(scan, grid, prediction, {});
+      return OdometryIsInlier(RegisterPoints(scan, grid, prediction, {}, &odometry), alone, 0.01);
+    };
+    const Eigen::Vector3d e =
+        odometry_sqrt * Eigen::Vector3d(normal(gen), normal(gen), normal(gen));
+    const double phi = M_PI * u(gen);
+    kept += inlier(b * Pose2(e.x(), e.y(), e.z()));
+    refused += !inlier(b * Pose2(0.1 * std::cos(phi), 0.1 * std::sin(phi), 0.03 * u(gen)));
+  }
+  EXPECT_GE(kept, 196);
+  EXPECT_GE(refused, 196);
+}
+
 // The map saw, from a sensor at (0, 0.6), a wall (y = 0, with a door at 1 < x < 1.5 through which
 // it saw a wall at y = -1) and the near side of a round pillar of radius 0.15 at (0, 1.5), whose
 // far side lies within the seen margin behind its near side. A scan at the true pose sees the
