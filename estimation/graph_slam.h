@@ -136,8 +136,8 @@ struct GraphSlamOptions {
   // (RegistrationResult::evidence_cost) differ by more than 2 ln((1 - p) / p), p the prior
   // probability of an outlier. The odometry then holds the directions a scan leaves loose (a
   // corridor, a round pillar, a smooth wall). 1 %: 9.2 cost units. A likelihood-ratio test on
-  // the points' costs alone (chi^2(3) 99 %, up to commit 7508c85) took the scan alone's chance minima
-  // along smooth walls: `complex` explorations 0.064 against 0.052 m (docs/graph_slam.md).
+  // the points' costs alone (chi^2(3) 99 %, up to commit 7508c85) took the scan alone's chance
+  // minima along smooth walls: `complex` explorations 0.064 against 0.052 m (docs/graph_slam.md).
   bool odometry_prior = true;
   OdometryNoiseModel odometry;
   double odometry_outlier_probability = 0.01;
