@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <random>
 
 #include "estimation/correlative_matcher.h"
@@ -53,6 +54,19 @@ class ComplexWorld : public ::testing::Test {
     for (auto& p : points) p = {pose * p.point, pose.Rotation() * p.normal};
     return points;
   }
+  // The distance field of a scan at `a` (10 cm cells) and the points of a scan at `b`, when `b`
+  // is free and both scans hold at least 100 points.
+  struct MapAndScan {
+    DistanceGrid grid;
+    std::vector<Eigen::Vector2d> scan;
+  };
+  std::optional<MapAndScan> MapAt(const Pose2& a, const Pose2& b) {
+    if (!simulator_.IsFree(b)) return std::nullopt;
+    const std::vector<OrientedPoint> map_points = WorldPoints(a);
+    std::vector<Eigen::Vector2d> scan = Points(b);
+    if (map_points.size() < 100 || scan.size() < 100) return std::nullopt;
+    return MapAndScan{DistanceGrid::Build(map_points, 0.1, 0.5, 0.5), std::move(scan)};
+  }
   sim::World world_;
   sim::RayCaster caster_;
   sim::Simulator simulator_;
@@ -71,12 +85,10 @@ TEST_F(ComplexWorld, RegistrationRecoversKnownTransforms) {
   while (trials < 100) {
     const Pose2 a = FreePose(simulator_, &gen);
     const Pose2 b = a * Pose2(0.2 * u(gen), 0.2 * u(gen), 0.1 * u(gen));
-    if (!simulator_.IsFree(b)) continue;
-    const std::vector<OrientedPoint> map_points = WorldPoints(a);
-    const std::vector<Eigen::Vector2d> scan = Points(b);
-    if (map_points.size() < 100 || scan.size() < 100) continue;
+    const std::optional<MapAndScan> pair = MapAt(a, b);
+    if (!pair) continue;
     ++trials;
-    const DistanceGrid grid = DistanceGrid::Build(map_points, 0.1, 0.5, 0.5);
+    const auto& [grid, scan] = *pair;
     const Pose2 prior = b * Pose2(0.15 * u(gen), 0.15 * u(gen), 0.1 * u(gen));
     const RegistrationResult r = RegisterPoints(scan, grid, prior, RegistrationOptions{});
     const Pose2 error = b.Between(r.pose);
@@ -105,12 +117,10 @@ TEST_F(ComplexWorld, PropertyOdometryTestKeepsTheOdometryAndRefusesASlip) {
   while (trials < 200) {
     const Pose2 a = FreePose(simulator_, &gen);
     const Pose2 b = a * increment;
-    if (!simulator_.IsFree(b)) continue;
-    const std::vector<OrientedPoint> map_points = WorldPoints(a);
-    const std::vector<Eigen::Vector2d> scan = Points(b);
-    if (map_points.size() < 100 || scan.size() < 100) continue;
+    const std::optional<MapAndScan> pair = MapAt(a, b);
+    if (!pair) continue;
     ++trials;
-    const DistanceGrid grid = DistanceGrid::Build(map_points, 0.1, 0.5, 0.5);
+    const auto& [grid, scan] = *pair;
     const auto inlier = [&](const Pose2& prediction) {
       const RegistrationResult alone = RegisterPoints(scan, grid, prediction, {});
       return OdometryIsInlier(RegisterPoints(scan, grid, prediction, {}, &odometry), alone, 0.01);
