@@ -266,9 +266,10 @@ RegistrationResult RegisterPoints(const std::vector<OrientedPoint>& points,
                  static_cast<long long>(std::floor(cell.y())));
   }
   const double independent = static_cast<double>(cells.size()) / static_cast<double>(seen.size());
-  const Eigen::Matrix3d points_hessian = GaussNewtonHessian(&problem, points_block);
-  result.covariance =
-      (independent * points_hessian + GaussNewtonHessian(&problem, prior_block)).inverse();
+  const Eigen::Matrix3d prior_hessian = GaussNewtonHessian(&problem, prior_block);
+  const Eigen::Matrix3d information =
+      independent * GaussNewtonHessian(&problem, points_block) + prior_hessian;
+  result.covariance = information.inverse();
 
   int inliers = 0;
   double sum_sq = 0.0;
@@ -282,15 +283,13 @@ RegistrationResult RegisterPoints(const std::vector<OrientedPoint>& points,
     }
   }
   result.points_cost *= independent;
-  // Laplace's approximation of the evidence: the cost at the solution plus log det(I + S H),
-  // S the prior's covariance, H the points' Hessian; (S^-1 + H)^-1 is the covariance above.
+  // Laplace's approximation of the evidence: the cost at the solution plus
+  // log det(I + S H) = log det(S^-1 + H) - log det(S^-1), S the prior's covariance (its
+  // Hessian S^-1), H the points' Hessian.
   double prior_half_cost = 0.0;
   problem.EvaluateResidualBlock(prior_block, false, &prior_half_cost, nullptr, nullptr);
-  const Eigen::Matrix3d prior_information =
-      prior_sqrt_information.transpose() * prior_sqrt_information;
-  result.evidence_cost =
-      result.points_cost + 2.0 * prior_half_cost +
-      std::log((prior_information.inverse() * result.covariance.inverse()).determinant());
+  result.evidence_cost = result.points_cost + 2.0 * prior_half_cost +
+                         std::log(information.determinant() / prior_hessian.determinant());
   // Of the whole scan: a scan mostly outside what the map saw is not trusted (the recovery
   // search or the odometry take over).
   result.inlier_fraction = static_cast<double>(inliers) / static_cast<double>(points.size());
