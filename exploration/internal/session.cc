@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <utility>
 
 #include "exploration/perception.h"
@@ -119,9 +120,16 @@ MoveResult Session::Drive(const std::vector<Eigen::Vector2d>& waypoints) {
     const kernel::LocalSafeRegion here =
         SafeRegionAt(SafeRegionScan(perception, robot_->description()), estimate_,
                      robot_->description(), options_.lsr_radius_m);
+    // Only waypoints PathNear can reach inside `here` (within its radius plus the largest goal
+    // offset) are tried: a path stored across a long edge holds thousands of waypoints, and
+    // each PathNear costs thousands of clearance tests.
+    const double reach = here.radius() + kGoalOffsets[std::size(kGoalOffsets) - 1];
     std::optional<std::vector<Eigen::Vector2d>> path;
     std::size_t k = remaining.size();
-    while (!path && k-- > 0) path = PathNear(here, estimate_.translation(), remaining[k]);
+    while (!path && k-- > 0) {
+      if ((remaining[k] - here.center()).norm() <= reach)
+        path = PathNear(here, estimate_.translation(), remaining[k]);
+    }
     if (!path) break;
     ++run_.replanned_moves;
     path->insert(path->end(), remaining.begin() + static_cast<std::ptrdiff_t>(k) + 1,
