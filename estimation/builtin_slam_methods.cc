@@ -141,6 +141,7 @@ class TopologicalTally {
     localized_ += r.localized;
     fallbacks_ += r.used_fallback;
     dense_ += r.dense;
+    scan_matched_ += r.scan_matched;
     refused_ += r.refused_no_better;
     failed_ += r.associated_curves > 0 && !r.localized;
     created_ += r.added_curves;
@@ -164,23 +165,21 @@ class TopologicalTally {
             {"map_updated", r.map_updated},
             {"added_curves", r.added_curves},
             {"extended_curves", r.extended_curves},
-            {"map_curves", static_cast<double>(slam.num_curves())}};
+            {"map_curves", static_cast<double>(slam.num_curves())},
+            {"scan_matched", r.scan_matched}};
   }
   // The map and association counters, and the solves, into *s.
   void Fill(const TopologicalSlam& slam, SlamStatistics* s) const {
     s->association = "curvature";
     s->map = {{"curves", static_cast<long>(slam.num_curves())},
               {"control_points", static_cast<long>(slam.num_control_points())}};
-    s->associations = {{"observed_curves", observed_},
-                       {"associated_curves", associated_},
-                       {"verified_curves", verified_},
-                       {"localized_scans", localized_},
-                       {"fallback_to_single_curves", fallbacks_},
-                       {"dense_refinements", dense_},
-                       {"refused_no_better", refused_},
-                       {"failed_localizations", failed_},
-                       {"new_curves", created_},
-                       {"extensions", extended_}};
+    s->associations = {
+        {"observed_curves", observed_},    {"associated_curves", associated_},
+        {"verified_curves", verified_},    {"scan_matched_predictions", scan_matched_},
+        {"localized_scans", localized_},   {"fallback_to_single_curves", fallbacks_},
+        {"dense_refinements", dense_},     {"refused_no_better", refused_},
+        {"failed_localizations", failed_}, {"new_curves", created_},
+        {"extensions", extended_}};
     s->solver_runs += solver_.runs;
     s->solver_failures += solver_.failures;
   }
@@ -188,8 +187,8 @@ class TopologicalTally {
  private:
   TopologicalUpdateReport last_;
   long observed_ = 0, associated_ = 0, verified_ = 0;
-  long localized_ = 0, fallbacks_ = 0, dense_ = 0, refused_ = 0, failed_ = 0, created_ = 0,
-       extended_ = 0;
+  long localized_ = 0, fallbacks_ = 0, dense_ = 0, scan_matched_ = 0, refused_ = 0, failed_ = 0,
+       created_ = 0, extended_ = 0;
   SolverCounts solver_;
 };
 
@@ -389,6 +388,7 @@ void AddBuiltinSlamMethods(SlamRegistry* registry) {
       },
       [](const SensorNoise& noise, TopologicalSlamOptions* o) {
         o->odometry = OdometryNoiseModel().Scaled(noise.odometry_noise_scale);
+        o->scan_matching.odometry = o->odometry;
       }));
   registry->Add(MakeSlamMethodInfo<GraphSlamOptions>(
       "graph",
@@ -407,6 +407,7 @@ void AddBuiltinSlamMethods(SlamRegistry* registry) {
       },
       [](const SensorNoise& noise, TopologicalGraphSlamOptions* o) {
         o->topological.odometry = OdometryNoiseModel().Scaled(noise.odometry_noise_scale);
+        o->topological.scan_matching.odometry = o->topological.odometry;
         o->graph.odometry = o->topological.odometry;
       }));
 }

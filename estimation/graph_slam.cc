@@ -197,12 +197,14 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
   std::vector<OrientedPoint> points =
       OrientTowards(robot_T_laser * scan.HitPoints(), robot_T_laser.translation(),
                     options_.normal_max_gap_m, options_.line_tolerance_m);
+  registered_ = false;
   if (localised != nullptr) {
     pose_ = *localised;
   } else if (!keyframes_.empty()) {
     if (submap_dirty_) RebuildSubmap();
     const RegistrationResult r = RegisterScan(points);
     ++registrations_;
+    registered_ = r.accepted;
     if (r.accepted)
       pose_ = r.pose;
     else
@@ -227,16 +229,20 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
 RegistrationResult GraphSlam::RegisterScan(const std::vector<OrientedPoint>& points) {
   const ScopedTimer timer(&times_.registration_ms);
   RegistrationResult r = RegisterPoints(points, submap_, pose_, options_.registration);
-  if (r.accepted && options_.odometry_prior) {
+  if (options_.odometry_prior) {
     // The odometry increment (its covariance from the noise model) is either right, the prior of
     // the fused registration, or an outlier (a slip, a glitch) and the scan alone stands
     // (OdometryIsInlier). Where the scan leaves a direction loose (a corridor's axis, a smooth
     // arc's length), the scan alone's optimum wanders along it at a cost a few units below the
-    // fused pose's, and the odometry holds it.
+    // fused pose's, and the odometry holds it. When the scan alone fails its test, the fused
+    // pose still stands if it passes: a scan of one smooth wall slid 0.43 m along it, beyond
+    // max_correction_m, and the recovery search below then took the slid pose (it fits as well).
     const Eigen::Matrix3d odometry = options_.odometry.Covariance(since_update_);
     RegistrationResult fused =
         RegisterPoints(points, submap_, pose_, options_.registration, &odometry);
-    if (OdometryIsInlier(fused, r, options_.odometry_outlier_probability)) return fused;
+    if (r.accepted ? OdometryIsInlier(fused, r, options_.odometry_outlier_probability)
+                   : fused.accepted)
+      return fused;
   }
   if (r.accepted || options_.recovery_window_m <= 0) return r;
   // The odometry can be off by more than the registration's basin (wheel slip, a bump): a

@@ -251,6 +251,9 @@ class GraphSlam {
   std::size_t num_map_control_points() const { return map_control_points_; }
   long trimmed_keyframes() const { return trimmed_; }
 
+  // Whether the last scan's registration stood (Update; false after a fallback to odometry, and
+  // after UpdateAt).
+  bool registered() const { return registered_; }
   long registrations() const { return registrations_; }
   long registration_fallbacks() const { return fallbacks_; }
   // Registrations searched again after failing, and those recovered that way.
@@ -317,7 +320,8 @@ class GraphSlam {
   std::vector<NodeAnchor> nodes_;
   double travelled_m_ = 0.0;
   kernel::Pose2 since_update_;  // odometry since the last registered scan
-  double closure_at_m_ = 0.0;   // travelled when the last closure was accepted
+  bool registered_ = false;
+  double closure_at_m_ = 0.0;  // travelled when the last closure was accepted
   struct ScanAnchor {
     int keyframe;
     kernel::Pose2 offset;  // keyframe^-1 * scan pose

@@ -123,6 +123,12 @@ kernel::Status TopologicalSlamOptions::Validate() const {
   if (!(min_information >= 0.0)) return kernel::Status::Error("min_information must be >= 0");
   if (!(point_sigma_m > 0.0)) return kernel::Status::Error("point_sigma_m must be positive");
   if (kernel::Status e = odometry.Validate(); !e.ok()) return e;
+  if (prediction == TopologicalPrediction::kScanMatching) {
+    if (kernel::Status e = scan_matching.Validate(); !e.ok())
+      return kernel::Status::Error("scan_matching: " + e.message());
+    if (!(scan_matching_noise_scale > 0.0))
+      return kernel::Status::Error("scan_matching_noise_scale must be > 0");
+  }
   if (correction_rounds < 1) return kernel::Status::Error("correction_rounds must be >= 1");
   if (!(correction_gain > 0.0 && correction_gain <= 1.0))
     return kernel::Status::Error("correction_gain must be in (0, 1]");
@@ -175,14 +181,43 @@ TopologicalSlam::TopologicalSlam(const Pose2& initial_pose, const TopologicalSla
     : options_(options),
       health_(options.Validate().message()),
       association_(options.association),
-      pose_(initial_pose) {}
+      pose_(initial_pose) {
+  if (healthy() && options_.prediction == TopologicalPrediction::kScanMatching)
+    scan_matcher_ = std::make_unique<GraphSlam>(initial_pose, options_.scan_matching);
+}
+
+GraphSlamOptions TopologicalSlamOptions::ScanMatchingDefaults() {
+  GraphSlamOptions o;
+  o.loop.enabled = false;
+  return o;
+}
 
 void TopologicalSlam::Predict(const Pose2& odometry_increment) {
   if (!healthy()) return;
   MotionJacobians j;
   pose_ = MotionModel(pose_, odometry_increment, &j);
-  covariance_ = j.f_x * covariance_ * j.f_x.transpose() +
-                j.f_u * options_.odometry.Covariance(odometry_increment) * j.f_u.transpose();
+  const Eigen::Matrix3d q =
+      j.f_u * options_.odometry.Covariance(odometry_increment) * j.f_u.transpose();
+  covariance_ = j.f_x * covariance_ * j.f_x.transpose() + q;
+  if (!scan_matcher_) return;
+  const double s2 = options_.scan_matching_noise_scale * options_.scan_matching_noise_scale;
+  scan_matched_covariance_ = j.f_x * scan_matched_covariance_ * j.f_x.transpose() + s2 * q;
+  scan_matcher_->Predict(odometry_increment);
+  since_update_ = since_update_ * odometry_increment;
+}
+
+void TopologicalSlam::PredictByScanMatching(const kernel::Scan& scan, const Pose2& robot_T_laser,
+                                            TopologicalUpdateReport* report) {
+  // The front end's pose moves by the same odometry; its registration then corrects it. The
+  // prediction is the last update's pose times the front end's increment since then.
+  const Pose2 front_before = scan_matcher_->pose() * since_update_.Inverse();
+  const Pose2 before = pose_ * since_update_.Inverse();
+  scan_matcher_->Update(scan, robot_T_laser);
+  since_update_ = Pose2();
+  report->scan_matched = scan_matcher_->registered();
+  if (!report->scan_matched) return;  // the odometry's prediction and covariance stand
+  pose_ = before * front_before.Between(scan_matcher_->pose());
+  covariance_ = scan_matched_covariance_;
 }
 
 void TopologicalSlam::Fuse(const Pose2& predicted, const Pose2& corrected,
@@ -735,6 +770,7 @@ TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
     observed.push_back(kernel::Transformed(c, robot_T_laser));
   report.observed_curves = static_cast<int>(observed.size());
 
+  if (scan_matcher_) PredictByScanMatching(scan, robot_T_laser, &report);
   const Pose2 predicted = pose_;
   if (!region_ || (predicted.translation() - region_->center).norm() >
                       options_.region.alpha * options_.region.radius_m)
@@ -851,6 +887,7 @@ TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
     last_map_update_ = pose_;
     node_pending_ = false;
   }
+  scan_matched_covariance_ = covariance_;
   return report;
 }
 
@@ -862,6 +899,14 @@ void TopologicalSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("region_margin_m", &region_margin_m, "local region widened by this margin, m");
   // `region` is the explorer's r and alpha: set once, in the local_region section (see
   // SlamContext).
+  int prediction_source = static_cast<int>(prediction);
+  v.Choice("prediction", &prediction_source, {"scan_matching", "odometry"},
+           "odometry refined by scan-to-submap registration, or the odometry (paper 003)");
+  prediction = static_cast<TopologicalPrediction>(prediction_source);
+  v.Nested("scan_matching", "scan_matching: the graph SLAM's front end (loop closure off)",
+           &scan_matching);
+  v.Field("scan_matching_noise_scale", &scan_matching_noise_scale,
+          "scan_matching: the prediction's sigmas, as a fraction of the odometry model's");
   int method = static_cast<int>(correction);
   v.Choice("correction", &method, {"point_to_curve", "paper"},
            "heading and position from point-to-curve distances, or paper 003's chords then "
