@@ -22,21 +22,22 @@ namespace {
 struct Strategy {
   std::string figure, explorer, method, label;
   io::Rgb color;
-  std::string set;  // an option of the method's defaults changed, "key=value" (empty: none)
+  // Options of the method's defaults changed, "key=value" (empty: none).
+  std::vector<std::string> set;
 };
 
 const std::vector<Strategy>& Strategies() {
   static const std::vector<Strategy> strategies = {
-      {"fig19", "srt", "ekf-lines", "SRT + ekf-lines", {0.90, 0.45, 0.05}, ""},
-      {"fig20", "srt", "ekf-bspline", "SRT + ekf-bspline", {0.10, 0.60, 0.25}, ""},
-      {"fig21", "reg", "topological", "REG + topological", {0.10, 0.35, 0.85}, ""},
+      {"fig19", "srt", "ekf-lines", "SRT + ekf-lines", {0.90, 0.45, 0.05}, {}},
+      {"fig20", "srt", "ekf-bspline", "SRT + ekf-bspline", {0.10, 0.60, 0.25}, {}},
+      {"fig21", "reg", "topological", "REG + topological", {0.10, 0.35, 0.85}, {}},
       {"fig21-paper",
        "reg",
        "topological",
        "REG + topological (paper)",
        {0.35, 0.65, 0.95},
-       "correction=paper"},
-      {"graph", "reg", "graph", "REG + graph", {0.55, 0.15, 0.60}, ""},
+       {"prediction=odometry", "correction=paper"}},
+      {"graph", "reg", "graph", "REG + graph", {0.55, 0.15, 0.60}, {}},
   };
   return strategies;
 }
@@ -106,11 +107,11 @@ const std::vector<std::pair<std::string, double Trial::*>>& SummaryFields() {
   return fields;
 }
 
-// A trial's run directory: <out>/<explorer>-<method>[-<value of the changed option>]-seed<N>.
+// A trial's run directory: <out>/<explorer>-<method>[-<value of the last changed option>]-seed<N>.
 std::string TrialDir(const std::string& out, const Strategy& strategy, std::uint64_t seed) {
-  const std::string& set = strategy.set;
+  const std::vector<std::string>& set = strategy.set;
   return fmt::format("{}/{}-{}{}-seed{}", out, strategy.explorer, strategy.method,
-                     set.empty() ? "" : "-" + set.substr(set.find('=') + 1), seed);
+                     set.empty() ? "" : "-" + set.back().substr(set.back().find('=') + 1), seed);
 }
 
 // Copies a trial's map and error plots to <out>/<prefix>-map.svg/png and -errors.svg/png.
@@ -146,8 +147,8 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
       setup.seed = args.seed + static_cast<std::uint64_t>(i);
       std::shared_ptr<estimation::SlamOptions> options = DefaultSlamOptions(setup);
       const io::ConfigRoot root = [&options](kernel::FieldVisitor& v) { options->VisitFields(v); };
-      if (!strategies[s].set.empty()) {
-        if (const kernel::Status set = io::SetConfigValue(root, strategies[s].set); !set.ok()) {
+      for (const std::string& change : strategies[s].set) {
+        if (const kernel::Status set = io::SetConfigValue(root, change); !set.ok()) {
           fmt::print(stderr, "splam experiment: {}\n", set.message());
           return kExitBadInput;
         }
@@ -263,7 +264,7 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
     nlohmann::ordered_json& j = summary["strategies"][strategies[s].label];
     j["explorer"] = strategies[s].explorer;
     j["method"] = strategies[s].method;
-    if (!strategies[s].set.empty()) j["option"] = strategies[s].set;
+    if (!strategies[s].set.empty()) j["options"] = strategies[s].set;
     j["explored_and_healthy"] = explored;
     for (const auto& [key, field] : SummaryFields()) j[key] = Values(v, field);
   }
