@@ -47,7 +47,7 @@ enum class TopologicalPrediction {
 struct TopologicalSlamOptions {
   // The prediction. scan_matching, because the curves alone localise too few scans to hold the
   // odometry's drift: the association verifies a correction in 20 % of intel's scans, and
-  // 86 % of them pair no point with a map curve (the map is only extended after a
+  // 86 % of intel's scans pair no point with a map curve (the map is only extended after a
   // localisation). With the odometry's prediction the topological SLAM was worse than odometry
   // in rotation on both real logs (intel 41.9 against 39.2 deg, mit-csail 8.1 against 5.1 deg);
   // with scan matching it is better in both (README, "Real data").
@@ -291,11 +291,11 @@ class TopologicalSlam {
                                          const std::vector<int>& local, const kernel::Pose2& start,
                                          const kernel::Pose2& predicted,
                                          SolverCounts* solver) const;
-  // The pose-only Kalman update of pose_ and covariance_ (see point_sigma_m).
   // scan_matching: pose_ and covariance_ from the front end's registration of the scan, when it
   // stands.
   void PredictByScanMatching(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                              TopologicalUpdateReport* report);
+  // The pose-only Kalman update of pose_ and covariance_ (see point_sigma_m).
   void Fuse(const kernel::Pose2& predicted, const kernel::Pose2& corrected,
             const PoseInformation& information);
   kernel::Pose2 CorrectAsPaper(const std::vector<kernel::SplineCurve>& observed,
