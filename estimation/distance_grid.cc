@@ -120,11 +120,17 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
     return cv::Point(static_cast<int>(std::lround(std::clamp(q.x(), -1e6, 1e6))),
                      static_cast<int>(std::lround(std::clamp(q.y(), -1e6, 1e6))));
   };
+  // A polygon's vertex, unless it falls in the cell of the previous one: a dense laser's beams
+  // end a few per cell, and the fill (each edge drawn, then the scanlines between) is the same
+  // without the zero-length edges.
+  auto add_vertex = [](std::vector<cv::Point>* polygon, const cv::Point& v) {
+    if (polygon->empty() || polygon->back() != v) polygon->push_back(v);
+  };
   // Every view's whole polygon first, then the parts seen free, so that no view's margin covers
   // another's free space.
   for (const auto& polygon : seen) {
     std::vector<cv::Point> outer;
-    for (const auto& p : polygon) outer.push_back(cell(p));
+    for (const auto& p : polygon) add_vertex(&outer, cell(p));
     cv::fillPoly(known, std::vector<std::vector<cv::Point>>{outer}, cv::Scalar(1));
   }
   if (seen_margin_m <= 0) {
@@ -135,9 +141,9 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
       for (const auto& p : polygon) {
         const Eigen::Vector2d ray = p - polygon.front();
         const double length = ray.norm();
-        inner.push_back(cell(length <= seen_margin_m
-                                 ? polygon.front()
-                                 : Eigen::Vector2d(p - seen_margin_m / length * ray)));
+        add_vertex(&inner, cell(length <= seen_margin_m
+                                    ? polygon.front()
+                                    : Eigen::Vector2d(p - seen_margin_m / length * ray)));
       }
       cv::fillPoly(known, std::vector<std::vector<cv::Point>>{inner}, cv::Scalar(2));
     }
@@ -254,7 +260,9 @@ std::vector<OrientedPoint> OrientTowards(const std::vector<Eigen::Vector2d>& poi
       Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
       for (std::size_t j = first; j <= last; ++j)
         scatter += (points[j] - mean) * (points[j] - mean).transpose();
-      n = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter).eigenvectors().col(0);
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen;
+      eigen.computeDirect(scatter);  // closed form
+      n = eigen.eigenvectors().col(0);
     } else if (last > first) {
       const Eigen::Vector2d tangent = points[last] - points[first];
       n = Eigen::Vector2d(-tangent.y(), tangent.x());

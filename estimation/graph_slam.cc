@@ -318,8 +318,11 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   }
   submap_dirty_ = true;
   if (options_.trim_spacing_m > 0)
-    TrimKeyframe(k - std::max({options_.submap_keyframes, options_.loop.query_keyframes + 1,
-                               options_.loop.min_gap_keyframes + options_.loop.target_keyframes}));
+    TrimKeyframe(k -
+                 (options_.loop.enabled
+                      ? std::max({options_.submap_keyframes, options_.loop.query_keyframes + 1,
+                                  options_.loop.min_gap_keyframes + options_.loop.target_keyframes})
+                      : options_.submap_keyframes));
   timer.reset();
   if (options_.loop.enabled) SearchLoopClosures(k);
 }
@@ -361,7 +364,9 @@ void GraphSlam::TrimKeyframe(int j) {
   if (j < 1) return;
   Keyframe& kf = keyframes_[static_cast<std::size_t>(j)];
   if (kf.in_map || kf.trimmed) return;
+  // Without loop closure no search reads a keyframe that has left the submap.
   const bool covered =
+      !options_.loop.enabled ||
       std::any_of(keyframes_.begin(), keyframes_.begin() + j, [&](const Keyframe& o) {
         return !o.trimmed &&
                Within(o.pose, kf.pose, options_.trim_spacing_m, options_.trim_spacing_rad);

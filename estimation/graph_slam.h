@@ -175,7 +175,9 @@ struct GraphSlamOptions {
   // describes the place as well, and loop closures are searched against it. Map keyframes are
   // kept whole. 0.3 m is the keyframe spacing, so that a first pass along a path keeps its
   // keyframes (of those made turning on the spot, the ones within 0.5 rad of an earlier one go);
-  // 0.5 rad keeps revisits from another direction, which see other walls. 0 disables.
+  // 0.5 rad keeps revisits from another direction, which see other walls. Without loop closure
+  // (loop.enabled false: the topological SLAM's front end) every keyframe but the map's drops its
+  // data once it leaves the submap, so that memory follows the map alone. 0 disables.
   double trim_spacing_m = 0.3;
   double trim_spacing_rad = 0.5;
 

@@ -251,7 +251,7 @@ RegistrationResult RegisterPoints(const std::vector<OrientedPoint>& points,
                                    new PriorResidual(prior, prior_sqrt_information)),
                                nullptr, pose);
   const ceres::Solver::Summary summary =
-      SolveSilently(&problem, ceres::DENSE_QR, options.max_iterations);
+      SolveSilently(&problem, ceres::DENSE_NORMAL_CHOLESKY, options.max_iterations);
   result.iterations = static_cast<int>(summary.iterations.size());
   result.converged = summary.termination_type == ceres::CONVERGENCE;
   result.pose = kernel::Pose2(pose[0], pose[1], pose[2]);

@@ -64,7 +64,7 @@ struct FeatureResidual {
 
 void SolveQuietly(ceres::Problem* problem, SolverCounts* counts) {
   ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
+  options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   options.max_num_iterations = 20;
   options.logging_type = ceres::SILENT;
   options.num_threads = 1;

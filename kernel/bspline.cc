@@ -181,7 +181,8 @@ CubicBSpline::CubicBSpline(std::vector<Eigen::Vector2d> control_points, std::vec
     for (int j = 1; j <= kTableSteps; ++j) {
       const double a = static_cast<double>(j - 1) / kTableSteps,
                    b = static_cast<double>(j) / kTableSteps;
-      cumulative_.push_back({k, b, cumulative_.back().arc_length + PieceLength(pieces_[k], a, b)});
+      cumulative_.push_back({k, b, cumulative_.back().arc_length + PieceLength(pieces_[k], a, b),
+                             pieces_[k].Derivative(a).norm(), pieces_[k].Derivative(b).norm()});
     }
   }
   boxes_.reserve(pieces_.size());
@@ -222,8 +223,12 @@ double CubicBSpline::ArcLengthAt(double t) const {
 
 double CubicBSpline::ParameterAtArcLength(double s) const {
   s = std::clamp(s, 0.0, Length());
-  // The table entry at or before s, then Newton on the arc length within that sub-interval,
-  // safeguarded by bisection.
+  // The table step [lo, hi] holding s. Its parameter as a function of the arc length, u(s), has
+  // du/ds = 1 / |B'(u)| at both ends: the cubic Hermite interpolant of u(s) is the first guess
+  // (error O(h^4) for a step of arc length h), then Newton on the arc length, safeguarded by
+  // bisection. Newton's error after a step from an arc-length error f is about kappa f^2 / 2
+  // (kappa the curvature), so |f| < kNewtonStop ends the iteration with the step taken.
+  constexpr double kNewtonStop = 1e-7;  // m; below 1e-12 m after the step up to kappa = 100 / m
   const auto it =
       std::upper_bound(cumulative_.begin() + 1, cumulative_.end(), s,
                        [](double value, const TableEntry& e) { return value < e.arc_length; });
@@ -235,7 +240,16 @@ double CubicBSpline::ParameterAtArcLength(double s) const {
   double a = u_lo, b = hi.u;
   const double target = s - lo.arc_length;
   const double span = hi.arc_length - lo.arc_length;
-  double u = span > 0.0 ? u_lo + (b - a) * target / span : u_lo;
+  double u = u_lo;
+  if (span > 0.0) {
+    const double x = target / span, x2 = x * x, x3 = x2 * x;
+    u = u_lo + (b - a) * x;  // linear, where a speed is 0 (a cusp)
+    if (hi.speed_lo > 0.0 && hi.speed_hi > 0.0) {
+      u = (2 * x3 - 3 * x2 + 1) * u_lo + (x3 - 2 * x2 + x) * span / hi.speed_lo +
+          (-2 * x3 + 3 * x2) * b + (x3 - x2) * span / hi.speed_hi;
+      if (!(u >= a && u <= b)) u = u_lo + (b - a) * x;
+    }
+  }
   for (int it2 = 0; it2 < 30; ++it2) {
     const double f = PieceLength(piece, u_lo, u) - target;
     if (std::abs(f) < 1e-13) break;
@@ -245,9 +259,11 @@ double CubicBSpline::ParameterAtArcLength(double s) const {
       a = u;
     const double df = piece.Derivative(u).norm();
     double next = df > 0.0 ? u - f / df : 0.5 * (a + b);
-    if (!(next > a && next < b)) next = 0.5 * (a + b);
+    const bool newton = next > a && next < b;
+    if (!newton) next = 0.5 * (a + b);
     if (std::abs(next - u) < 1e-15) break;
     u = next;
+    if (newton && std::abs(f) < kNewtonStop) break;
   }
   return span_starts_[hi.piece] + u * (span_starts_[hi.piece + 1] - span_starts_[hi.piece]);
 }

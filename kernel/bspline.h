@@ -86,10 +86,13 @@ class CubicBSpline {
 
   // Arc-length table: at sub-interval boundaries of every piece, the piece, its local parameter
   // and the arc length from the curve's start.
+  // Arc length at parameter u of `piece`, and the speed |dB/du| of the piece at both ends of the
+  // table step that ends here (u - 1/kTableSteps and u).
   struct TableEntry {
     std::size_t piece;
     double u;
     double arc_length;
+    double speed_lo = 0.0, speed_hi = 0.0;
   };
 
   std::vector<Eigen::Vector2d> control_points_;
