@@ -124,8 +124,7 @@ kernel::Status TopologicalSlamOptions::Validate() const {
   if (!(point_sigma_m > 0.0)) return kernel::Status::Error("point_sigma_m must be positive");
   if (kernel::Status e = odometry.Validate(); !e.ok()) return e;
   if (prediction == TopologicalPrediction::kScanMatching) {
-    if (kernel::Status e = scan_matching.Validate(); !e.ok())
-      return kernel::Status::Error("scan_matching: " + e.message());
+    if (kernel::Status e = scan_matching.Validate(); !e.ok()) return e.Prefixed("scan_matching");
     if (!(scan_matching_noise_scale > 0.0))
       return kernel::Status::Error("scan_matching_noise_scale must be > 0");
   }

@@ -243,12 +243,13 @@ double CubicBSpline::ParameterAtArcLength(double s) const {
   double u = u_lo;
   if (span > 0.0) {
     const double x = target / span, x2 = x * x, x3 = x2 * x;
-    u = u_lo + (b - a) * x;  // linear, where a speed is 0 (a cusp)
-    if (hi.speed_lo > 0.0 && hi.speed_hi > 0.0) {
-      u = (2 * x3 - 3 * x2 + 1) * u_lo + (x3 - 2 * x2 + x) * span / hi.speed_lo +
-          (-2 * x3 + 3 * x2) * b + (x3 - x2) * span / hi.speed_hi;
-      if (!(u >= a && u <= b)) u = u_lo + (b - a) * x;
-    }
+    const double linear = u_lo + (b - a) * x;  // where a speed is 0 (a cusp)
+    const double hermite = hi.speed_lo > 0.0 && hi.speed_hi > 0.0
+                               ? (2 * x3 - 3 * x2 + 1) * u_lo +
+                                     (x3 - 2 * x2 + x) * span / hi.speed_lo +
+                                     (-2 * x3 + 3 * x2) * b + (x3 - x2) * span / hi.speed_hi
+                               : linear;
+    u = hermite >= a && hermite <= b ? hermite : linear;
   }
   for (int it2 = 0; it2 < 30; ++it2) {
     const double f = PieceLength(piece, u_lo, u) - target;
