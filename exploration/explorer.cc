@@ -14,6 +14,8 @@ kernel::Status ExplorerOptions::Validate() const {
   if (!(clearance_margin_m >= 0.0)) return kernel::Status::Error("clearance_margin_m must be >= 0");
   if (!(min_frontier_m >= 0.0)) return kernel::Status::Error("min_frontier_m must be >= 0");
   if (!(arc_sampling_rad > 0.0)) return kernel::Status::Error("arc_sampling_rad must be positive");
+  if (!(frontier_view_depth_m >= 0.0) || !(shadow_edge_m > 0.0))
+    return kernel::Status::Error("frontier_view_depth_m must be >= 0 and shadow_edge_m positive");
   if (srt_max_attempts < 1) return kernel::Status::Error("srt_max_attempts must be at least 1");
   if (!(reg_piece_factor > 0.0)) return kernel::Status::Error("reg_piece_factor must be positive");
   if (max_nodes < 1) return kernel::Status::Error("max_nodes must be at least 1");
@@ -28,6 +30,8 @@ std::string TerminationName(Termination termination) {
   switch (termination) {
     case Termination::kExplored:
       return "explored";
+    case Termination::kIncomplete:
+      return "incomplete";
     case Termination::kNodeLimit:
       return "node_limit";
     case Termination::kTimeLimit:
@@ -53,6 +57,13 @@ void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
           "legs keep radius + this from the LSR edge, m");
   v.Field("min_frontier_m", &min_frontier_m, "shorter free arcs are not frontiers, m");
   v.Field("arc_sampling_rad", &arc_sampling_rad, "spacing of classified arc points, rad");
+  v.Field("frontier_view_depth_m", &frontier_view_depth_m,
+          "another LSR covers a frontier point only if it saw this far beyond it (0: inside "
+          "suffices, as published), m");
+  v.Field("shadow_edge_m", &shadow_edge_m,
+          "LSR boundary edges longer than this are shadows, not obstacles, m");
+  v.Field("grid_paths", &grid_paths,
+          "paths inside an LSR searched on a 5 cm grid (false: two legs through a polar grid)");
   v.Field("srt_max_attempts", &srt_max_attempts, "SRT: RANDOM_DIR attempts before backtracking");
   v.Field("reg_piece_factor", &reg_piece_factor, "REG: FRONT_RAND piece length factor");
   v.Field("max_nodes", &max_nodes, "cap on graph nodes");

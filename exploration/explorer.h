@@ -33,6 +33,19 @@ struct ExplorerOptions {
   double min_frontier_m = 0.5;
   // Spacing of the arc points classified when a frontier part lies inside another LSR, rad.
   double arc_sampling_rad = kernel::DegToRad(1.0);
+  // When another LSR covers a frontier point (kernel::CoverOptions): it must have seen this far
+  // beyond the point, or up to an obstacle or its own free arc, not to a shadow edge longer than
+  // shadow_edge_m. 1 m is about two robot diameters: space a robot could enter. 0: the point
+  // lying inside the other LSR is enough (Oriolo et al., paper 003); in `office` a node that
+  // looked into a room through its door at a slant then covered the frontier through the door
+  // of the node that faced it, and REG never entered the room (README, Fig. 18). m.
+  double frontier_view_depth_m = 1.0;
+  double shadow_edge_m = 0.2;
+  // A path inside an LSR that no straight leg gives is searched on a 5 cm grid of the LSR
+  // (internal::LsrPlanner), through as many bends as it needs; false: the shortest two-leg path
+  // through a polar grid of waypoints (radii 0.4-2 m, every 10 deg), which missed narrow doors
+  // seen at a slant (README, Fig. 18). Neither is in the papers, whose robot drives straight.
+  bool grid_paths = true;
   // SRT: RANDOM_DIR + VALID_CONF attempts before backtracking to the parent.
   int srt_max_attempts = 30;
   // REG: FRONT_RAND takes at most factor * 2 r acos(alpha / 2) of arc length, the part of the
@@ -55,6 +68,7 @@ struct ExplorerOptions {
 
 enum class Termination {
   kExplored,      // nothing left to explore, back at the start
+  kIncomplete,    // the strategy ended, but frontiers it gave up are still open in its map
   kNodeLimit,     // max_nodes reached
   kTimeLimit,     // max_time_s reached
   kStuck,         // max_failed_moves moves in a row (or SRT returns from one node) failed
@@ -68,6 +82,15 @@ struct NodeRecord {
   kernel::Pose2 true_pose;        // ground truth (the estimate when the robot has none)
   kernel::Scan safe_region_scan;  // the full-circle scan that bounded the node's LSR
   int parent = -1;                // the node it was reached from, -1 for the start
+};
+
+// A frontier piece the explorer gave up, as its map shows it at the end of the run.
+struct GivenUpFrontier {
+  int node = -1;             // the node whose frontier it was
+  kernel::FrontierArc arc;   // on that node's LSR circle, world frame
+  Eigen::Vector2d midpoint;  // its middle, world frame
+  std::string reason;        // why it was given up
+  bool open = true;          // no LSR covers it at the end (CoverOptions)
 };
 
 struct ExplorationRun {
@@ -85,7 +108,10 @@ struct ExplorationRun {
   int moves = 0, failed_moves = 0, blocked_steps = 0;
   int replanned_moves = 0;        // blocked moves re-planned inside a freshly perceived LSR
   int unreachable_frontiers = 0;  // frontier pieces dropped: no clear leg towards them
-  double planning_wall_s = 0.0;   // wall time spent deciding (not driving or sensing), s
+  // Every frontier piece given up (REG: no clear leg towards it, or the move there failed; SRT:
+  // the arcs of a node left after srt_max_attempts draws), checked against the final map.
+  std::vector<GivenUpFrontier> given_up;
+  double planning_wall_s = 0.0;  // wall time spent deciding (not driving or sensing), s
 };
 
 // An exploration strategy. Run() drives the robot until the strategy terminates or a cap stops

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <set>
 
 #include "exploration/internal/session.h"
 #include "exploration/internal/steps.h"
@@ -32,7 +33,8 @@ class Reg {
   internal::Session session_;
   const ExplorerOptions& options_;  // the session's
   graph::ExplorationGraph& g_;
-  std::vector<Vertex> list_;  // the frontier-control list
+  std::vector<Vertex> list_;     // the frontier-control list
+  std::set<Vertex> approached_;  // nodes that retried a piece from another node (Approach)
 };
 
 ExplorationRun Reg::Run() {
@@ -52,7 +54,22 @@ ExplorationRun Reg::Run() {
       while (!frontiers.empty() && !destination) {
         piece = internal::FrontRand(session_, &frontiers, &session_.random(), max_piece);
         destination = internal::Displacement(session_, g_[current], *piece);
-        if (!destination) ++session_.run().unreachable_frontiers;
+        if (!destination && !approached_.contains(current)) {
+          // Retried from another node: the robot moves as near the piece as it can inside the
+          // LSR (a node beside a door sees the room through it at a slant, a node in front of it
+          // squarely), once per node.
+          std::vector<Eigen::Vector2d> nodes;
+          for (Vertex v = 0; v < boost::num_vertices(g_); ++v)
+            nodes.push_back(g_[v].configuration.translation());
+          const double mid = 0.5 * (piece->start_angle_rad + piece->end_angle_rad);
+          destination = session_.Approach(g_[current].lsr, g_[current].configuration.translation(),
+                                          g_[current].lsr.ArcPoint(mid), nodes);
+          if (destination) approached_.insert(current);
+        }
+        if (!destination) {
+          ++session_.run().unreachable_frontiers;
+          session_.GiveUp(current, *piece, "no clear leg from its node");
+        }
       }
       if (destination) {
         if (!frontiers.empty()) List(current);
@@ -77,6 +94,7 @@ ExplorationRun Reg::Run() {
           g_[previous].frontiers.push_back(rest);
       } else {
         ++session_.run().unreachable_frontiers;
+        session_.GiveUp(previous, *piece, "the move towards it failed");
       }
       if (!g_[previous].frontiers.empty()) List(previous);
       continue;
@@ -87,6 +105,9 @@ ExplorationRun Reg::Run() {
       return session_.Finish(Termination::kExplored, "no frontier left; returned to the start");
     }
     if (!path) {
+      for (const Vertex v : list_)
+        for (const kernel::FrontierArc& arc : g_[v].frontiers)
+          session_.GiveUp(v, arc, "its node is unreachable in the graph");
       return session_.Finish(Termination::kExplored,
                              std::to_string(list_.size()) +
                                  " listed nodes with frontiers are unreachable in the graph");

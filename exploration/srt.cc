@@ -39,6 +39,13 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
                                              : session.NodeAfterFailedMove(current);
       continue;
     }
+    // The node's free arcs are given up (SRT keeps them whole: the final check finds which
+    // other nodes' LSRs cover them).
+    g[current].given_up.clear();
+    for (const kernel::FrontierArc& arc : g[current].frontiers)
+      session.GiveUp(
+          current, arc,
+          "no valid configuration in " + std::to_string(options_.srt_max_attempts) + " draws");
     const int parent = session.run().nodes[current].parent;
     if (parent < 0) return session.Finish(Termination::kExplored, "back at the root, nothing left");
     // Backtrack along the tree edge; a failed move leaves the robot between the two nodes,

@@ -47,6 +47,7 @@ void MoveNodes(ExplorationGraph* graph, const std::vector<kernel::Pose2>& poses)
     node.configuration = poses[v];
     node.lsr = node.lsr.Transformed(corrections[v]);
     for (auto& arc : node.frontiers) arc = arc.Turned(corrections[v].theta());
+    for (auto& given_up : node.given_up) given_up.arc = given_up.arc.Turned(corrections[v].theta());
   }
   for (const auto e : boost::make_iterator_range(boost::edges(g))) {
     EdgeData& edge = g[e];

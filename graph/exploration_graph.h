@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <boost/graph/adjacency_list.hpp>
+#include <string>
 #include <vector>
 
 #include "kernel/local_safe_region.h"
@@ -12,10 +13,17 @@
 // the robot sensed, an edge per collision-free path between two of them.
 namespace splam::graph {
 
+// A frontier arc the explorer gave up at a node, and why.
+struct GivenUpArc {
+  kernel::FrontierArc arc;
+  std::string reason;
+};
+
 struct NodeData {
   kernel::Pose2 configuration;                 // world frame
   kernel::LocalSafeRegion lsr;                 // perceived at the configuration
   std::vector<kernel::FrontierArc> frontiers;  // free frontiers of the LSR not yet explored
+  std::vector<GivenUpArc> given_up;            // frontiers of the LSR given up
 };
 
 struct EdgeData {
@@ -38,9 +46,9 @@ Vertex AddNode(ExplorationGraph* graph, const kernel::Pose2& q);
 // distance when the path is empty.
 void AddEdge(ExplorationGraph* graph, Vertex a, Vertex b, std::vector<Eigen::Vector2d> path = {});
 // Moves the nodes to `poses` (one per vertex, in order; nothing when the sizes differ), as when a
-// pose graph revises where the nodes were: each node's configuration, LSR and frontiers by its
-// own rigid correction, and every point of a stored path by the blend of its two ends'
-// corrections in proportion to its arc length along the path, so the path joins the moved
+// pose graph revises where the nodes were: each node's configuration, LSR and frontiers (open and
+// given up) by its own rigid correction, and every point of a stored path by the blend of its two
+// ends' corrections in proportion to its arc length along the path, so the path joins the moved
 // nodes; edge lengths follow.
 void MoveNodes(ExplorationGraph* graph, const std::vector<kernel::Pose2>& poses);
 // True when a and b are joined by an edge.

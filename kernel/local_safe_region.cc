@@ -85,14 +85,48 @@ bool Overlaps(const LocalSafeRegion& a, const LocalSafeRegion& b) {
   return false;
 }
 
+bool SeesBeyond(const LocalSafeRegion& region, const Eigen::Vector2d& p, const Eigen::Vector2d& u,
+                const CoverOptions& cover) {
+  if (!region.Contains(p)) return false;
+  if (cover.view_depth_m <= 0.0) return true;
+  const std::vector<Eigen::Vector2d>& pts = region.boundary();
+  const std::size_t n = pts.size();
+  // The first boundary edge the ray p + t u crosses within the depth: p + t u = a + s (b - a).
+  double first_t = std::numeric_limits<double>::infinity();
+  std::size_t first_edge = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d& a = pts[i];
+    const Eigen::Vector2d e = pts[(i + 1) % n] - a;
+    const double denom = u.x() * e.y() - u.y() * e.x();  // cross(u, e)
+    if (std::abs(denom) < 1e-15) continue;               // parallel
+    const Eigen::Vector2d w = a - p;
+    const double t = (w.x() * e.y() - w.y() * e.x()) / denom;
+    const double s = (w.x() * u.y() - w.y() * u.x()) / denom;
+    if (t >= 0.0 && t <= cover.view_depth_m && s >= 0.0 && s <= 1.0 && t < first_t) {
+      first_t = t;
+      first_edge = i;
+    }
+  }
+  if (first_edge == n) return true;  // inside for the whole depth
+  const Eigen::Vector2d& a = pts[first_edge];
+  const Eigen::Vector2d& b = pts[(first_edge + 1) % n];
+  const double free_reach = region.radius() * (1.0 - 1e-9);
+  if ((a - region.center()).norm() >= free_reach && (b - region.center()).norm() >= free_reach)
+    return true;  // across the region's own free arc
+  const bool at_sensor = !region.full_circle() && (first_edge == 0 || first_edge == n - 1);
+  return !at_sensor && (b - a).norm() <= cover.shadow_edge_m;  // an obstacle, not a shadow
+}
+
 std::vector<FrontierArc> ArcPartsInside(const LocalSafeRegion& owner, const FrontierArc& arc,
-                                        const LocalSafeRegion& other, double spacing_rad) {
+                                        const LocalSafeRegion& other, double spacing_rad,
+                                        const CoverOptions& cover) {
   std::vector<FrontierArc> parts;
   const int steps = std::max(1, static_cast<int>(std::ceil(arc.AngularWidth() / spacing_rad)));
   bool inside = false;
   for (int k = 0; k <= steps; ++k) {
     const double angle = arc.start_angle_rad + arc.AngularWidth() * k / steps;
-    const bool in = other.Contains(owner.ArcPoint(angle));
+    const bool in = SeesBeyond(other, owner.ArcPoint(angle),
+                               Eigen::Vector2d(std::cos(angle), std::sin(angle)), cover);
     if (in && !inside) parts.push_back({angle, angle});
     if (in) parts.back().end_angle_rad = angle;
     inside = in;

@@ -76,11 +76,33 @@ class LocalSafeRegion {
 // CURR_INTERSECTION adds an edge then).
 bool Overlaps(const LocalSafeRegion& a, const LocalSafeRegion& b);
 
-// The parts of `arc` (a frontier arc of `owner`) that lie inside `other`, as angular intervals
-// of the arc, found by classifying points spacing_rad apart with the exact containment test
-// (exact at those points; a covered piece narrower than the spacing can be missed).
+// When another region covers a point of a frontier arc (ArcPartsInside).
+struct CoverOptions {
+  // 0: the point lies inside the other region (Oriolo et al. 2004, paper 003). Above 0, the other
+  // region must also have seen beyond it: the ray from the point away from the owner's centre
+  // stays inside the other region for view_depth_m, or leaves it before across an obstacle or
+  // across the other's own free arc (whose frontier then carries on), not across a shadow edge,
+  // m. A region that looked in through a door at a slant holds the frontier point in a narrow
+  // wedge between two shadow edges, and the room beyond is as unknown as before.
+  double view_depth_m = 0.0;
+  // A boundary edge longer than this whose two beam ends are not both free is a shadow edge: the
+  // sensor saw an obstacle at one end and past it at the other, not the space between (a door
+  // jamb's shadow, a wall at grazing incidence). So are the two edges at the sensor of a
+  // partial-circle region. m.
+  double shadow_edge_m = 0.2;
+};
+
+// Whether `region` saw beyond `p` in direction `u` (unit): p inside, and the ray p + t u, 0 < t <=
+// cover.view_depth_m, inside or leaving across an obstacle or a free arc (CoverOptions).
+bool SeesBeyond(const LocalSafeRegion& region, const Eigen::Vector2d& p, const Eigen::Vector2d& u,
+                const CoverOptions& cover);
+
+// The parts of `arc` (a frontier arc of `owner`) that `other` covers (CoverOptions), as angular
+// intervals of the arc, found by classifying points spacing_rad apart with the exact containment
+// test (exact at those points; a covered piece narrower than the spacing can be missed).
 std::vector<FrontierArc> ArcPartsInside(const LocalSafeRegion& owner, const FrontierArc& arc,
-                                        const LocalSafeRegion& other, double spacing_rad);
+                                        const LocalSafeRegion& other, double spacing_rad,
+                                        const CoverOptions& cover = {});
 
 // How far the segment a-b stays from the boundary of `region`: the smallest distance between the
 // segment and a boundary edge (0 when it crosses the boundary). The two edges that meet at the

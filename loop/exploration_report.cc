@@ -42,6 +42,18 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
   report["blocked_steps"] = run.blocked_steps;
   report["replanned_moves"] = run.replanned_moves;
   report["unreachable_frontiers"] = run.unreachable_frontiers;
+  // The frontiers given up, as the explorer's own map shows them at the end; open ones make
+  // the run `incomplete`.
+  nlohmann::json given_up = nlohmann::json::array();
+  for (const exploration::GivenUpFrontier& f : run.given_up)
+    given_up.push_back({{"node", f.node},
+                        {"x", f.midpoint.x()},
+                        {"y", f.midpoint.y()},
+                        {"start_angle_rad", f.arc.start_angle_rad},
+                        {"end_angle_rad", f.arc.end_angle_rad},
+                        {"reason", f.reason},
+                        {"open", f.open}});
+  report["given_up_frontiers"] = given_up;
   report["planning_wall_s"] = run.planning_wall_s;
   report["planning_ms_per_node"] = nodes > 0 ? 1e3 * run.planning_wall_s / nodes : 0.0;
   report["wall_s"] = outcome.wall_s;
@@ -190,6 +202,17 @@ std::string SaveExplorationPicture(const sim::World& world, const ExploreOutcome
         points.push_back(g[v].lsr.ArcPoint(arc.start_angle_rad + arc.AngularWidth() * k / n));
       figure.DrawPolyline(points, kFrontier, 3.0, "open frontiers");
     }
+  }
+  // Given-up frontiers still open at the end (the reason an `incomplete` run stopped short).
+  constexpr io::Rgb kGivenUp{0.85, 0.0, 0.0};
+  for (const exploration::GivenUpFrontier& f : run.given_up) {
+    if (!f.open) continue;
+    const kernel::LocalSafeRegion& lsr = g[static_cast<graph::Vertex>(f.node)].lsr;
+    std::vector<Eigen::Vector2d> points;
+    const int n = std::max(2, static_cast<int>(std::ceil(f.arc.AngularWidth() / 0.02)));
+    for (int k = 0; k <= n; ++k)
+      points.push_back(lsr.ArcPoint(f.arc.start_angle_rad + f.arc.AngularWidth() * k / n));
+    figure.DrawPolyline(points, kGivenUp, 4.0, "given-up frontiers, open");
   }
   if (!run.trace.empty())
     figure.DrawRobot(run.trace.back().truth, outcome.robot_radius_m, io::palette::kTrue);

@@ -5,6 +5,7 @@
 #include <iterator>
 #include <utility>
 
+#include "exploration/internal/lsr_planner.h"
 #include "exploration/perception.h"
 #include "graph/frontiers.h"
 
@@ -12,6 +13,8 @@ namespace splam::exploration::internal {
 namespace {
 
 constexpr double kPathSpacing = 0.1;  // m between the stored points of a driven path
+// How much closer to the LSR boundary than where it stands a leg from the robot may come, m.
+constexpr double kStartTolerance = 0.5 * LsrPlanner::kCellM;
 // The polar grid of PathInside's waypoints around the LSR's centre.
 constexpr double kWaypointRadii[] = {0.4, 0.8, 1.2, 1.6, 2.0};  // m
 constexpr int kWaypointDirections = 36;
@@ -34,7 +37,7 @@ bool Session::Start() {
     run_.message = "invalid explorer options: " + problem.message();
     return false;
   }
-  const double needed = robot_->description().radius_m + options_.clearance_margin_m;
+  const double needed = Needed();
   if (options_.alpha * options_.lsr_radius_m + needed >= options_.lsr_radius_m) {
     run_.termination = Termination::kInvalidInput;
     run_.message = "alpha * r leaves no room for the robot inside the LSR: alpha must be below " +
@@ -171,9 +174,52 @@ bool Session::CapReached() {
   return false;
 }
 
+void Session::GiveUp(graph::Vertex v, const kernel::FrontierArc& arc, const std::string& reason) {
+  run_.graph[v].given_up.push_back({arc, reason});
+}
+
+int Session::CheckGivenUp() {
+  const graph::ExplorationGraph& g = run_.graph;
+  run_.given_up.clear();
+  int open = 0;
+  for (graph::Vertex v = 0; v < boost::num_vertices(g); ++v) {
+    const kernel::LocalSafeRegion& owner = g[v].lsr;
+    for (const graph::GivenUpArc& given_up : g[v].given_up) {
+      std::vector<kernel::FrontierArc> left{given_up.arc};
+      for (graph::Vertex w = 0; w < boost::num_vertices(g) && !left.empty(); ++w) {
+        const kernel::LocalSafeRegion& other = g[w].lsr;
+        if (w == v || (other.center() - owner.center()).norm() > other.radius() + owner.radius())
+          continue;
+        std::vector<kernel::FrontierArc> rest;
+        for (const kernel::FrontierArc& arc : left)
+          for (const kernel::FrontierArc& part : UncoveredParts(owner, arc, other))
+            rest.push_back(part);
+        left = std::move(rest);
+      }
+      const double mid = 0.5 * (given_up.arc.start_angle_rad + given_up.arc.end_angle_rad);
+      if (left.empty())
+        run_.given_up.push_back(
+            {static_cast<int>(v), given_up.arc, owner.ArcPoint(mid), given_up.reason, false});
+      for (const kernel::FrontierArc& arc : left) {
+        const double m = 0.5 * (arc.start_angle_rad + arc.end_angle_rad);
+        run_.given_up.push_back(
+            {static_cast<int>(v), arc, owner.ArcPoint(m), given_up.reason, true});
+        ++open;
+      }
+    }
+  }
+  return open;
+}
+
 ExplorationRun Session::Finish(Termination termination, const std::string& message) {
   run_.termination = termination;
   run_.message = message;
+  const int open = CheckGivenUp();
+  if (termination == Termination::kExplored && open > 0) {
+    run_.termination = Termination::kIncomplete;
+    run_.message = message + "; but " + std::to_string(open) +
+                   " frontier pieces given up are still open in the map";
+  }
   run_.distance_m = 0.0;
   for (std::size_t k = 1; k < run_.trace.size(); ++k) {
     run_.distance_m +=
@@ -183,24 +229,34 @@ ExplorationRun Session::Finish(Termination termination, const std::string& messa
   return std::move(run_);
 }
 
+double Session::Needed() const {
+  return robot_->description().radius_m + options_.clearance_margin_m;
+}
+
 bool Session::LegIsClear(const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& a,
                          const Eigen::Vector2d& b, bool from_robot) const {
-  const double needed = robot_->description().radius_m + options_.clearance_margin_m;
+  const double needed = Needed();
   const double length = (b - a).norm();
-  if (!from_robot || length <= needed) return kernel::SegmentClearance(lsr, a, b) > needed;
+  if (!from_robot) return kernel::SegmentClearance(lsr, a, b) > needed;
   // The robot may stand closer to the boundary than `needed` (the sonar's part of the boundary
-  // is conservative); the leg must then not get any closer and must be fully clear after its
-  // first `needed` metres.
-  const double start = kernel::SegmentClearance(lsr, a, a);
+  // is conservative: 0.27 m from the laser behind the robot); the leg must then not get any
+  // closer and must be fully clear after its first `needed` metres. A leg shorter than that only
+  // must not get closer (it had to be fully clear until issue 18, which no leg from such a start
+  // is: the short first leg of a bent path through a door was refused).
+  // "Not closer" tolerates half a cell of LsrPlanner's grid, whose paths leave such a start
+  // sideways along the boundary.
+  const double floor = std::min(needed, kernel::SegmentClearance(lsr, a, a)) - kStartTolerance;
+  const double whole = kernel::SegmentClearance(lsr, a, b);
+  if (length <= needed) return whole > needed || whole >= floor;
   const Eigen::Vector2d away = a + (b - a) * (needed / length);
-  return kernel::SegmentClearance(lsr, a, b) >= std::min(needed, start) - 1e-9 &&
-         kernel::SegmentClearance(lsr, away, b) > needed;
+  return whole >= floor && kernel::SegmentClearance(lsr, away, b) > needed;
 }
 
 std::optional<std::vector<Eigen::Vector2d>> Session::PathInside(const kernel::LocalSafeRegion& lsr,
                                                                 const Eigen::Vector2d& from,
                                                                 const Eigen::Vector2d& to) const {
   if (LegIsClear(lsr, from, to)) return std::vector<Eigen::Vector2d>{to};
+  if (options_.grid_paths) return GridPath(lsr, from, to);
   std::vector<std::pair<double, Eigen::Vector2d>> candidates;
   for (double radius : kWaypointRadii) {
     for (int k = 0; k < kWaypointDirections; ++k) {
@@ -217,6 +273,63 @@ std::optional<std::vector<Eigen::Vector2d>> Session::PathInside(const kernel::Lo
       return std::vector<Eigen::Vector2d>{w, to};
   }
   return std::nullopt;
+}
+
+const LsrPlanner& Session::PlannerFor(const kernel::LocalSafeRegion& lsr,
+                                      const Eigen::Vector2d& from) const {
+  // Displacement asks for many goals from one start.
+  const bool same = planner_ && planner_lsr_center_ == lsr.center() &&
+                    planner_lsr_size_ == lsr.boundary().size() && planner_->from() == from &&
+                    !lsr.boundary().empty() && planner_lsr_first_ == lsr.boundary().front();
+  if (!same) {
+    planner_.emplace(lsr, from, Needed());
+    planner_lsr_center_ = lsr.center();
+    planner_lsr_size_ = lsr.boundary().size();
+    planner_lsr_first_ = lsr.boundary().empty() ? Eigen::Vector2d::Zero() : lsr.boundary().front();
+  }
+  return *planner_;
+}
+
+std::optional<std::vector<Eigen::Vector2d>> Session::Approach(
+    const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& from, const Eigen::Vector2d& target,
+    const std::vector<Eigen::Vector2d>& avoid) const {
+  constexpr double kMinTravel = 0.5;  // m: a new node where the robot sees differently
+  if (!options_.grid_paths) return std::nullopt;
+  const std::optional<Eigen::Vector2d> goal =
+      PlannerFor(lsr, from).NearestReachable(target, kMinTravel, avoid, kMinTravel);
+  if (!goal) return std::nullopt;
+  return PathInside(lsr, from, *goal);
+}
+
+std::optional<std::vector<Eigen::Vector2d>> Session::GridPath(const kernel::LocalSafeRegion& lsr,
+                                                              const Eigen::Vector2d& from,
+                                                              const Eigen::Vector2d& to) const {
+  std::optional<std::vector<Eigen::Vector2d>> cells = PlannerFor(lsr, from).CellPath(to);
+  if (!cells) return std::nullopt;
+  std::vector<Eigen::Vector2d>& points = *cells;
+  points.front() = from;
+  if (points.size() < 2) points.push_back(to);
+  points.back() = to;
+  // The fewest legs along the cells that pass the exact test: from each point the farthest
+  // cell (every 4th, then the next one) with a clear leg.
+  std::vector<Eigen::Vector2d> waypoints;
+  std::size_t i = 0;
+  while (i + 1 < points.size()) {
+    std::size_t reached = i;
+    for (std::size_t j = points.size() - 1; j > i; j = j > i + 4 ? j - 4 : j - 1) {
+      // A leg that begins near the start, where the robot may stand closer than `needed` to the
+      // boundary, must not get closer than its beginning, as the first leg.
+      const bool near_start = (points[i] - from).norm() <= Needed();
+      if (LegIsClear(lsr, points[i], points[j], near_start)) {
+        reached = j;
+        break;
+      }
+    }
+    if (reached == i) return std::nullopt;
+    waypoints.push_back(points[reached]);
+    i = reached;
+  }
+  return waypoints;
 }
 
 std::optional<std::vector<Eigen::Vector2d>> Session::PathNear(const kernel::LocalSafeRegion& lsr,
@@ -237,7 +350,9 @@ std::optional<std::vector<Eigen::Vector2d>> Session::PathNear(const kernel::Loca
 std::vector<kernel::FrontierArc> Session::UncoveredParts(
     const kernel::LocalSafeRegion& owner, const kernel::FrontierArc& arc,
     const kernel::LocalSafeRegion& other) const {
-  const auto covered = kernel::ArcPartsInside(owner, arc, other, options_.arc_sampling_rad);
+  const auto covered =
+      kernel::ArcPartsInside(owner, arc, other, options_.arc_sampling_rad,
+                             {options_.frontier_view_depth_m, options_.shadow_edge_m});
   return LongEnough(graph::Subtract(arc, covered, options_.arc_sampling_rad));
 }
 

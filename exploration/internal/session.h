@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "exploration/explorer.h"
+#include "exploration/internal/lsr_planner.h"
 #include "kernel/local_safe_region.h"
 #include "kernel/random.h"
 
@@ -41,11 +42,17 @@ class Session {
   void FollowRevisedNodes();
   // True when a cap is reached; the termination is then set.
   bool CapReached();
-  // Ends the run: fills distance and time and returns the record.
+  // Records that the explorer gave up frontier `arc` of node v (graph::NodeData::given_up).
+  void GiveUp(graph::Vertex v, const kernel::FrontierArc& arc, const std::string& reason);
+  // Ends the run: fills distance and time and returns the record. A strategy that ends as
+  // kExplored is checked against its own map first: the frontiers it gave up that no other node's
+  // LSR covers (UncoveredParts) are listed open in run.given_up, and the run is kIncomplete when
+  // there is one.
   ExplorationRun Finish(Termination termination, const std::string& message);
   // Ends the run with the termination already set (by Start() or CapReached()).
   ExplorationRun Finish() { return Finish(run_.termination, run_.message); }
-  // The parts of `arc` (a frontier of `owner`) outside `other`, long enough to stay frontiers.
+  // The parts of `arc` (a frontier of `owner`) that `other` does not cover (its view_depth and
+  // shadow_edge options), long enough to stay frontiers.
   std::vector<kernel::FrontierArc> UncoveredParts(const kernel::LocalSafeRegion& owner,
                                                   const kernel::FrontierArc& arc,
                                                   const kernel::LocalSafeRegion& other) const;
@@ -57,12 +64,20 @@ class Session {
   bool LegIsClear(const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& a,
                   const Eigen::Vector2d& b, bool from_robot = true) const;
   // A path for the robot's disc from `from` (where it stands) to `to` inside `lsr`, as waypoints
-  // after `from`: the straight leg when it is clear, else the shortest clear two-leg path
-  // through a waypoint of a polar grid around the LSR's centre (radii 0.4-2 m, every 10 deg),
-  // which takes the robot square through doors; nullopt when neither exists.
+  // after `from`: the straight leg when it is clear, else with options.grid_paths the grid
+  // planner's path (GridPath), else the shortest clear two-leg path through a waypoint of a
+  // polar grid around the LSR's centre (radii 0.4-2 m, every 10 deg); nullopt when none exists.
   std::optional<std::vector<Eigen::Vector2d>> PathInside(const kernel::LocalSafeRegion& lsr,
                                                          const Eigen::Vector2d& from,
                                                          const Eigen::Vector2d& to) const;
+  // A path inside `lsr` from `from` to the reachable point nearest to `target` that lies at least
+  // 0.5 m from `from` and from every point of `avoid` (LsrPlanner::NearestReachable); nullopt
+  // when there is none or options.grid_paths is off.
+  std::optional<std::vector<Eigen::Vector2d>> Approach(
+      const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& from,
+      const Eigen::Vector2d& target, const std::vector<Eigen::Vector2d>& avoid) const;
+  // The robot's radius plus the clearance margin: what a leg keeps from the LSR boundary, m.
+  double Needed() const;
   // PathInside to `to`, else to the first clear point 0.15, 0.3 or 0.45 m from it (every
   // 30 deg): a goal placed with an older estimate may lie too close to an obstacle now.
   std::optional<std::vector<Eigen::Vector2d>> PathNear(const kernel::LocalSafeRegion& lsr,
@@ -98,6 +113,14 @@ class Session {
   // Senses (odometry, laser, sonar); a localisation that needs scans updates the estimate with
   // the reading, which is then traced.
   Perception SenseHere();
+  // LsrPlanner's shortest path from `from` to `to`, shortened to the fewest legs that pass
+  // LegIsClear; nullopt when there is none.
+  std::optional<std::vector<Eigen::Vector2d>> GridPath(const kernel::LocalSafeRegion& lsr,
+                                                       const Eigen::Vector2d& from,
+                                                       const Eigen::Vector2d& to) const;
+  // Fills run_.given_up from the nodes' given-up arcs, each checked against every other node's
+  // LSR; returns how many are open.
+  int CheckGivenUp();
 
   ExplorerOptions options_;
   RobotInterface* robot_;
@@ -107,6 +130,13 @@ class Session {
   kernel::Pose2 estimate_;
   std::size_t drive_begin_ = 0;  // trace index where the last Drive() began
   int failures_in_a_row_ = 0;
+  // GridPath's planner for (lsr, from), built anew unless it was the last one asked for.
+  const LsrPlanner& PlannerFor(const kernel::LocalSafeRegion& lsr,
+                               const Eigen::Vector2d& from) const;
+  // GridPath's planner and the region it was built for.
+  mutable std::optional<LsrPlanner> planner_;
+  mutable Eigen::Vector2d planner_lsr_center_, planner_lsr_first_;
+  mutable std::size_t planner_lsr_size_ = 0;
 };
 
 }  // namespace splam::exploration::internal
