@@ -65,6 +65,8 @@ void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("grid_paths", &grid_paths,
           "paths inside an LSR searched on a 5 cm grid (false: two legs through a polar grid)");
   v.Field("srt_max_attempts", &srt_max_attempts, "SRT: RANDOM_DIR attempts before backtracking");
+  v.Field("srt_relaxed_valid_conf", &srt_relaxed_valid_conf,
+          "SRT: VALID_CONF relaxed for arcs no other LSR saw beyond (false: as published)");
   v.Field("reg_piece_factor", &reg_piece_factor, "REG: FRONT_RAND piece length factor");
   v.Field("max_nodes", &max_nodes, "cap on graph nodes");
   v.Field("max_time_s", &max_time_s, "cap on simulated exploration time, s");

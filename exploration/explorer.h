@@ -48,6 +48,12 @@ struct ExplorerOptions {
   bool grid_paths = true;
   // SRT: RANDOM_DIR + VALID_CONF attempts before backtracking to the parent.
   int srt_max_attempts = 30;
+  // SRT: when the draws run out while the node's free arcs still hold parts no other LSR saw
+  // beyond (frontier_view_depth_m), VALID_CONF is relaxed for them: the candidate may lie inside
+  // other LSRs and closer than alpha r, else the robot approaches the part (grid_paths). false:
+  // the published SRT (Oriolo et al. 2004), which in `office` left rooms seen only through their
+  // doors (README, Fig. 18).
+  bool srt_relaxed_valid_conf = true;
   // REG: FRONT_RAND takes at most factor * 2 r acos(alpha / 2) of arc length, the part of the
   // circle of radius r around the node that a disc of radius r alpha * r away covers.
   double reg_piece_factor = 1.0;

@@ -90,7 +90,7 @@ ExplorationRun Reg::Run() {
       internal::Session::PlanningTimer timer(&session_);
       if (move.reached) {
         for (const kernel::FrontierArc& rest :
-             session_.UncoveredParts(g_[previous].lsr, *piece, g_[current].lsr))
+             session_.UncoveredParts(g_[previous].lsr, *piece, {&g_[current].lsr}))
           g_[previous].frontiers.push_back(rest);
       } else {
         ++session_.run().unreachable_frontiers;

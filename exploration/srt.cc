@@ -1,6 +1,7 @@
 #include "exploration/srt.h"
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -9,6 +10,49 @@
 #include "exploration/internal/steps.h"
 
 namespace splam::exploration {
+namespace {
+
+// Relaxed VALID_CONF (ExplorerOptions::srt_relaxed_valid_conf): once the draws of SRT ran out at
+// node v, the parts of its free arcs that no other LSR saw beyond (Session::OpenParts) are drawn
+// from instead, the candidate may lie inside other LSRs, and closer (1, 2/3, 1/3 of alpha r);
+// failing that the robot approaches the widest open part as near as it can. Only while the open
+// width shrinks from one relaxed move to the next: a part that a new node cannot see beyond is
+// not tried forever. `last_open` holds the open width at v's previous relaxed move, rad.
+std::optional<std::vector<Eigen::Vector2d>> RelaxedMove(internal::Session* session, graph::Vertex v,
+                                                        double* last_open) {
+  const graph::ExplorationGraph& g = session->graph();
+  const graph::NodeData& node = g[v];
+  std::vector<kernel::FrontierArc> open;
+  double width = 0.0;
+  for (const kernel::FrontierArc& arc : node.frontiers)
+    for (const kernel::FrontierArc& part : session->OpenParts(v, arc)) {
+      open.push_back(part);
+      width += part.AngularWidth();
+    }
+  if (open.empty() || width >= *last_open - 1e-9) return std::nullopt;
+  *last_open = width;
+  const ExplorerOptions& options = session->options();
+  const double step = options.alpha * options.lsr_radius_m;
+  const Eigen::Vector2d here = node.configuration.translation();
+  for (int attempt = 0; attempt < options.srt_max_attempts; ++attempt) {
+    const double theta = internal::RandomDirection(open, &session->random());
+    for (const double fraction : {1.0, 2.0 / 3.0, 1.0 / 3.0}) {
+      const Eigen::Vector2d candidate =
+          node.lsr.center() + fraction * step * Eigen::Vector2d(std::cos(theta), std::sin(theta));
+      if (auto path = session->PathInside(node.lsr, here, candidate)) return path;
+    }
+  }
+  const kernel::FrontierArc* widest = &open.front();
+  for (const kernel::FrontierArc& part : open)
+    if (part.AngularWidth() > widest->AngularWidth()) widest = &part;
+  std::vector<Eigen::Vector2d> nodes;
+  for (graph::Vertex w = 0; w < boost::num_vertices(g); ++w)
+    nodes.push_back(g[w].configuration.translation());
+  const double mid = 0.5 * (widest->start_angle_rad + widest->end_angle_rad);
+  return session->Approach(node.lsr, here, node.lsr.ArcPoint(mid), nodes);
+}
+
+}  // namespace
 
 ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localization) {
   internal::Session session("srt", options_, robot, localization);
@@ -17,6 +61,7 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
   graph::Vertex current = session.AddNodeHere(-1);
   const double step = options_.alpha * options_.lsr_radius_m;
   std::map<graph::Vertex, int> failed_returns;  // failed backtracks from each node
+  std::map<graph::Vertex, double> last_open;    // RelaxedMove's open width at each node, rad
   while (!session.CapReached()) {
     std::optional<std::vector<Eigen::Vector2d>> path;  // to the new node's configuration
     {
@@ -32,6 +77,11 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
         const bool valid = internal::OutsideOtherLsrs(g, current, candidate);
         if (valid) path = session.PathInside(node.lsr, here, candidate);
         if (path) break;
+      }
+      if (!path && options_.srt_relaxed_valid_conf) {
+        const auto [it, added] =
+            last_open.try_emplace(current, std::numeric_limits<double>::infinity());
+        path = RelaxedMove(&session, current, &it->second);
       }
     }
     if (path) {

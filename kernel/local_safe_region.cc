@@ -18,6 +18,15 @@ using CgalKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using CgalPoint = CgalKernel::Point_2;
 
 constexpr double kMinReach = 0.01;  // fraction of the radius
+// A range step between two beams is a depth jump (an occlusion) when it is this many times the
+// steps on either side of it. Along a wall the steps grow smoothly, by a few per cent a beam even
+// at grazing incidence (r tan(theta) dtheta); at an occluder's edge they jump tenfold or more.
+constexpr double kJumpRatio = 3.0;
+
+// Range of boundary vertex k from the centre.
+double Range(const LocalSafeRegion& region, std::size_t k) {
+  return (region.boundary()[k] - region.center()).norm();
+}
 
 }  // namespace
 
@@ -85,13 +94,47 @@ bool Overlaps(const LocalSafeRegion& a, const LocalSafeRegion& b) {
   return false;
 }
 
-bool SeesBeyond(const LocalSafeRegion& region, const Eigen::Vector2d& p, const Eigen::Vector2d& u,
-                const CoverOptions& cover) {
-  if (!region.Contains(p)) return false;
-  if (cover.view_depth_m <= 0.0) return true;
+bool IsShadowEdge(const LocalSafeRegion& region, std::size_t i, double shadow_edge_m) {
   const std::vector<Eigen::Vector2d>& pts = region.boundary();
   const std::size_t n = pts.size();
-  // The first boundary edge the ray p + t u crosses within the depth: p + t u = a + s (b - a).
+  const bool partial = !region.full_circle();
+  if (partial && (i == 0 || i == n - 1)) return true;  // the edges at the sensor
+  const std::size_t j = (i + 1) % n;
+  if ((pts[j] - pts[i]).norm() <= shadow_edge_m) return false;
+  const double free_reach = region.radius() * (1.0 - 1e-9);
+  const double ri = Range(region, i), rj = Range(region, j);
+  if (ri >= free_reach && rj >= free_reach) return false;  // the free arc
+  // The steps before and after, between beams (not across the sensor vertex).
+  const auto step = [&](std::size_t a, std::size_t b) {
+    if (partial && (a == 0 || b == 0)) return 0.0;
+    return std::abs(Range(region, b) - Range(region, a));
+  };
+  const double before = step((i + n - 1) % n, i), after = step(j, (j + 1) % n);
+  return std::abs(rj - ri) > kJumpRatio * std::max(before, after);
+}
+
+std::vector<ShadowEdge> OcclusionEdges(const LocalSafeRegion& region, double shadow_edge_m,
+                                       double min_length_m) {
+  std::vector<ShadowEdge> edges;
+  const std::vector<Eigen::Vector2d>& pts = region.boundary();
+  const std::size_t n = pts.size();
+  const std::size_t first = region.full_circle() ? 0 : 1;
+  const std::size_t last = region.full_circle() ? n : n - 1;  // the sensor edges excluded
+  for (std::size_t i = first; i < last; ++i) {
+    const std::size_t j = (i + 1) % n;
+    if ((pts[j] - pts[i]).norm() < min_length_m || !IsShadowEdge(region, i, shadow_edge_m))
+      continue;
+    const bool i_nearer = Range(region, i) < Range(region, j);
+    edges.push_back({i_nearer ? pts[i] : pts[j], i_nearer ? pts[j] : pts[i]});
+  }
+  return edges;
+}
+
+RayExit FirstExit(const LocalSafeRegion& region, const Eigen::Vector2d& p, const Eigen::Vector2d& u,
+                  double t_from, double t_to, const CoverOptions& cover) {
+  const std::vector<Eigen::Vector2d>& pts = region.boundary();
+  const std::size_t n = pts.size();
+  // The first boundary edge crossed: p + t u = a + s (b - a), t_from < t <= t_to, 0 <= s <= 1.
   double first_t = std::numeric_limits<double>::infinity();
   std::size_t first_edge = n;
   for (std::size_t i = 0; i < n; ++i) {
@@ -102,31 +145,61 @@ bool SeesBeyond(const LocalSafeRegion& region, const Eigen::Vector2d& p, const E
     const Eigen::Vector2d w = a - p;
     const double t = (w.x() * e.y() - w.y() * e.x()) / denom;
     const double s = (w.x() * u.y() - w.y() * u.x()) / denom;
-    if (t >= 0.0 && t <= cover.view_depth_m && s >= 0.0 && s <= 1.0 && t < first_t) {
+    if (t > t_from && t <= t_to && s >= 0.0 && s <= 1.0 && t < first_t) {
       first_t = t;
       first_edge = i;
     }
   }
-  if (first_edge == n) return true;  // inside for the whole depth
+  if (first_edge == n) return {};
   const Eigen::Vector2d& a = pts[first_edge];
   const Eigen::Vector2d& b = pts[(first_edge + 1) % n];
   const double free_reach = region.radius() * (1.0 - 1e-9);
   if ((a - region.center()).norm() >= free_reach && (b - region.center()).norm() >= free_reach)
-    return true;  // across the region's own free arc
-  const bool at_sensor = !region.full_circle() && (first_edge == 0 || first_edge == n - 1);
-  return !at_sensor && (b - a).norm() <= cover.shadow_edge_m;  // an obstacle, not a shadow
+    return {RayExit::Kind::kFreeArc, first_t};
+  return {IsShadowEdge(region, first_edge, cover.shadow_edge_m) ? RayExit::Kind::kShadow
+                                                                : RayExit::Kind::kObstacle,
+          first_t};
+}
+
+bool SeesBeyond(const LocalSafeRegion& region, const Eigen::Vector2d& p, const Eigen::Vector2d& u,
+                const CoverOptions& cover) {
+  if (!region.Contains(p)) return false;
+  if (cover.view_depth_m <= 0.0) return true;
+  return FirstExit(region, p, u, 0.0, cover.view_depth_m, cover).kind != RayExit::Kind::kShadow;
+}
+
+bool UnionSeesBeyond(const std::vector<const LocalSafeRegion*>& regions, const Eigen::Vector2d& p,
+                     const Eigen::Vector2d& u, const CoverOptions& cover) {
+  // Walk along the ray: at each point, the region containing it that takes the ray farthest.
+  double t = 0.0;
+  while (true) {
+    const Eigen::Vector2d at = p + t * u;
+    bool inside = false;
+    RayExit farthest{RayExit::Kind::kShadow, t};
+    for (const LocalSafeRegion* region : regions) {
+      if (!region->Contains(at)) continue;
+      inside = true;
+      if (cover.view_depth_m <= 0.0) return true;
+      const RayExit exit = FirstExit(*region, p, u, t, cover.view_depth_m, cover);
+      if (exit.kind != RayExit::Kind::kShadow) return true;
+      if (exit.t > farthest.t) farthest = exit;
+    }
+    // 1e-9 m: a region must take the ray on measurably, so the walk ends.
+    if (!inside || farthest.t <= t + 1e-9) return false;
+    t = farthest.t;
+  }
 }
 
 std::vector<FrontierArc> ArcPartsInside(const LocalSafeRegion& owner, const FrontierArc& arc,
-                                        const LocalSafeRegion& other, double spacing_rad,
-                                        const CoverOptions& cover) {
+                                        const std::vector<const LocalSafeRegion*>& others,
+                                        double spacing_rad, const CoverOptions& cover) {
   std::vector<FrontierArc> parts;
   const int steps = std::max(1, static_cast<int>(std::ceil(arc.AngularWidth() / spacing_rad)));
   bool inside = false;
   for (int k = 0; k <= steps; ++k) {
     const double angle = arc.start_angle_rad + arc.AngularWidth() * k / steps;
-    const bool in = SeesBeyond(other, owner.ArcPoint(angle),
-                               Eigen::Vector2d(std::cos(angle), std::sin(angle)), cover);
+    const bool in = UnionSeesBeyond(others, owner.ArcPoint(angle),
+                                    Eigen::Vector2d(std::cos(angle), std::sin(angle)), cover);
     if (in && !inside) parts.push_back({angle, angle});
     if (in) parts.back().end_angle_rad = angle;
     inside = in;

@@ -85,24 +85,66 @@ struct CoverOptions {
   // m. A region that looked in through a door at a slant holds the frontier point in a narrow
   // wedge between two shadow edges, and the room beyond is as unknown as before.
   double view_depth_m = 0.0;
-  // A boundary edge longer than this whose two beam ends are not both free is a shadow edge: the
-  // sensor saw an obstacle at one end and past it at the other, not the space between (a door
-  // jamb's shadow, a wall at grazing incidence). So are the two edges at the sensor of a
-  // partial-circle region. m.
+  // A boundary edge longer than this between two beams whose range jumps (IsShadowEdge) is a
+  // shadow edge: the sensor saw an occluder at one end and past it at the other, not the space
+  // between (a door jamb's shadow). So are the two edges at the sensor of a partial-circle region.
+  // m.
   double shadow_edge_m = 0.2;
 };
+
+// Whether boundary edge i (from vertex i to i + 1) of `region` is a shadow: an edge at the sensor
+// of a partial-circle region, or longer than shadow_edge_m, not on the free arc, with a range step
+// over 3 times the steps of the edges on either side (a depth jump at an occluder; a wall at
+// grazing incidence has long edges too, but its range grows smoothly from beam to beam).
+bool IsShadowEdge(const LocalSafeRegion& region, std::size_t i, double shadow_edge_m);
+
+// A shadow edge between two beams: `near` on the occluder, `far` where the next beam ended. The
+// space behind it, within the radius, is hidden from the region's sensor.
+struct ShadowEdge {
+  Eigen::Vector2d near;
+  Eigen::Vector2d far;
+};
+// The shadow edges between beams (not those at the sensor) at least min_length_m long.
+std::vector<ShadowEdge> OcclusionEdges(const LocalSafeRegion& region, double shadow_edge_m,
+                                       double min_length_m);
+
+// Where the ray p + t u (u unit, t > t_from) first leaves `region` within t <= t_to, and across
+// what. p + t_from u is assumed inside the region.
+struct RayExit {
+  enum class Kind {
+    kNone,      // no crossing up to t_to: inside all the way
+    kObstacle,  // across an edge between two beams that both hit, no longer than a shadow edge
+    kFreeArc,   // across the region's own free arc (both ends at the LSR radius)
+    kShadow,    // across a shadow edge or an edge at the sensor: nothing was seen beyond
+  };
+  Kind kind = Kind::kNone;
+  double t = 0.0;  // the crossing, when kind != kNone
+};
+RayExit FirstExit(const LocalSafeRegion& region, const Eigen::Vector2d& p, const Eigen::Vector2d& u,
+                  double t_from, double t_to, const CoverOptions& cover);
 
 // Whether `region` saw beyond `p` in direction `u` (unit): p inside, and the ray p + t u, 0 < t <=
 // cover.view_depth_m, inside or leaving across an obstacle or a free arc (CoverOptions).
 bool SeesBeyond(const LocalSafeRegion& region, const Eigen::Vector2d& p, const Eigen::Vector2d& u,
                 const CoverOptions& cover);
 
-// The parts of `arc` (a frontier arc of `owner`) that `other` covers (CoverOptions), as angular
-// intervals of the arc, found by classifying points spacing_rad apart with the exact containment
-// test (exact at those points; a covered piece narrower than the spacing can be missed).
+// The same for the union of `regions`: the ray is followed from region to region, each taking it
+// on where another left it across a shadow edge (a room seen partly from each of two nodes).
+bool UnionSeesBeyond(const std::vector<const LocalSafeRegion*>& regions, const Eigen::Vector2d& p,
+                     const Eigen::Vector2d& u, const CoverOptions& cover);
+
+// The parts of `arc` (a frontier arc of `owner`) that the union of `others` covers (CoverOptions,
+// UnionSeesBeyond), as angular intervals of the arc, found by classifying points spacing_rad
+// apart with the exact containment test (exact at those points; a covered piece narrower than
+// the spacing can be missed).
 std::vector<FrontierArc> ArcPartsInside(const LocalSafeRegion& owner, const FrontierArc& arc,
-                                        const LocalSafeRegion& other, double spacing_rad,
-                                        const CoverOptions& cover = {});
+                                        const std::vector<const LocalSafeRegion*>& others,
+                                        double spacing_rad, const CoverOptions& cover = {});
+inline std::vector<FrontierArc> ArcPartsInside(const LocalSafeRegion& owner, const FrontierArc& arc,
+                                               const LocalSafeRegion& other, double spacing_rad,
+                                               const CoverOptions& cover = {}) {
+  return ArcPartsInside(owner, arc, {&other}, spacing_rad, cover);
+}
 
 // How far the segment a-b stays from the boundary of `region`: the smallest distance between the
 // segment and a boundary edge (0 when it crosses the boundary). The two edges that meet at the

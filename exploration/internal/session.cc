@@ -178,6 +178,20 @@ void Session::GiveUp(graph::Vertex v, const kernel::FrontierArc& arc, const std:
   run_.graph[v].given_up.push_back({arc, reason});
 }
 
+std::vector<kernel::FrontierArc> Session::OpenParts(graph::Vertex v,
+                                                    const kernel::FrontierArc& arc) const {
+  const graph::ExplorationGraph& g = run_.graph;
+  const kernel::LocalSafeRegion& owner = g[v].lsr;
+  std::vector<const kernel::LocalSafeRegion*> others;
+  for (graph::Vertex w = 0; w < boost::num_vertices(g); ++w) {
+    const kernel::LocalSafeRegion& other = g[w].lsr;
+    // The ray is followed view_depth beyond the owner's circle.
+    const double reach = other.radius() + owner.radius() + options_.frontier_view_depth_m;
+    if (w != v && (other.center() - owner.center()).norm() <= reach) others.push_back(&other);
+  }
+  return UncoveredParts(owner, arc, others);
+}
+
 int Session::CheckGivenUp() {
   const graph::ExplorationGraph& g = run_.graph;
   run_.given_up.clear();
@@ -185,17 +199,7 @@ int Session::CheckGivenUp() {
   for (graph::Vertex v = 0; v < boost::num_vertices(g); ++v) {
     const kernel::LocalSafeRegion& owner = g[v].lsr;
     for (const graph::GivenUpArc& given_up : g[v].given_up) {
-      std::vector<kernel::FrontierArc> left{given_up.arc};
-      for (graph::Vertex w = 0; w < boost::num_vertices(g) && !left.empty(); ++w) {
-        const kernel::LocalSafeRegion& other = g[w].lsr;
-        if (w == v || (other.center() - owner.center()).norm() > other.radius() + owner.radius())
-          continue;
-        std::vector<kernel::FrontierArc> rest;
-        for (const kernel::FrontierArc& arc : left)
-          for (const kernel::FrontierArc& part : UncoveredParts(owner, arc, other))
-            rest.push_back(part);
-        left = std::move(rest);
-      }
+      const std::vector<kernel::FrontierArc> left = OpenParts(v, given_up.arc);
       const double mid = 0.5 * (given_up.arc.start_angle_rad + given_up.arc.end_angle_rad);
       if (left.empty())
         run_.given_up.push_back(
@@ -325,6 +329,16 @@ std::optional<std::vector<Eigen::Vector2d>> Session::GridPath(const kernel::Loca
         break;
       }
     }
+    // The raster's clearances are a cell off at worst: where no leg passes the exact test (a
+    // door as wide as the robot needs, the way out from beside the sonar's blind spike), the next
+    // cell is taken if its leg keeps a cell less than the test asks.
+    if (reached == i) {
+      const double asked = (points[i] - from).norm() <= Needed()
+                               ? std::min(Needed(), kernel::SegmentClearance(lsr, from, from))
+                               : Needed();
+      if (kernel::SegmentClearance(lsr, points[i], points[i + 1]) >= asked - LsrPlanner::kCellM)
+        reached = i + 1;
+    }
     if (reached == i) return std::nullopt;
     waypoints.push_back(points[reached]);
     i = reached;
@@ -349,9 +363,9 @@ std::optional<std::vector<Eigen::Vector2d>> Session::PathNear(const kernel::Loca
 
 std::vector<kernel::FrontierArc> Session::UncoveredParts(
     const kernel::LocalSafeRegion& owner, const kernel::FrontierArc& arc,
-    const kernel::LocalSafeRegion& other) const {
+    const std::vector<const kernel::LocalSafeRegion*>& others) const {
   const auto covered =
-      kernel::ArcPartsInside(owner, arc, other, options_.arc_sampling_rad,
+      kernel::ArcPartsInside(owner, arc, others, options_.arc_sampling_rad,
                              {options_.frontier_view_depth_m, options_.shadow_edge_m});
   return LongEnough(graph::Subtract(arc, covered, options_.arc_sampling_rad));
 }

@@ -45,17 +45,20 @@ class Session {
   // Records that the explorer gave up frontier `arc` of node v (graph::NodeData::given_up).
   void GiveUp(graph::Vertex v, const kernel::FrontierArc& arc, const std::string& reason);
   // Ends the run: fills distance and time and returns the record. A strategy that ends as
-  // kExplored is checked against its own map first: the frontiers it gave up that no other node's
-  // LSR covers (UncoveredParts) are listed open in run.given_up, and the run is kIncomplete when
-  // there is one.
+  // kExplored is checked against its own map first: the parts of the frontiers it gave up that the
+  // union of the other nodes' LSRs does not cover (UncoveredParts) are listed open in
+  // run.given_up, and the run is kIncomplete when there is one.
   ExplorationRun Finish(Termination termination, const std::string& message);
   // Ends the run with the termination already set (by Start() or CapReached()).
   ExplorationRun Finish() { return Finish(run_.termination, run_.message); }
-  // The parts of `arc` (a frontier of `owner`) that `other` does not cover (its view_depth and
-  // shadow_edge options), long enough to stay frontiers.
-  std::vector<kernel::FrontierArc> UncoveredParts(const kernel::LocalSafeRegion& owner,
-                                                  const kernel::FrontierArc& arc,
-                                                  const kernel::LocalSafeRegion& other) const;
+  // The parts of `arc` (a frontier of node v) that the union of the other nodes' LSRs does not
+  // cover: what the explorer's map says is still unknown beyond it.
+  std::vector<kernel::FrontierArc> OpenParts(graph::Vertex v, const kernel::FrontierArc& arc) const;
+  // The parts of `arc` (a frontier of `owner`) that the union of `others` does not cover (the
+  // view_depth and shadow_edge options), long enough to stay frontiers.
+  std::vector<kernel::FrontierArc> UncoveredParts(
+      const kernel::LocalSafeRegion& owner, const kernel::FrontierArc& arc,
+      const std::vector<const kernel::LocalSafeRegion*>& others) const;
 
   // True when the disc of the robot, driven straight from a to b, keeps radius + margin from the
   // boundary of `lsr` (a must lie inside it). When the robot's disc is known free at a

@@ -19,7 +19,7 @@ void RemoveCovered(const Session& session, graph::NodeData* node,
                    const kernel::LocalSafeRegion& other) {
   std::vector<kernel::FrontierArc> kept;
   for (const kernel::FrontierArc& arc : node->frontiers) {
-    for (const kernel::FrontierArc& rest : session.UncoveredParts(node->lsr, arc, other))
+    for (const kernel::FrontierArc& rest : session.UncoveredParts(node->lsr, arc, {&other}))
       kept.push_back(rest);
   }
   node->frontiers = std::move(kept);

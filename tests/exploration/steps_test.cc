@@ -156,9 +156,9 @@ TEST(Verifies, ThePartOfAPieceANewNodeSeesIsCovered) {
   const kernel::FrontierArc piece{kPi / 2 - 0.5, kPi / 2 + 0.5};
   // The new node 2.4 m along the piece's midpoint covers all of it (its disc reaches
   // acos(0.4) = 1.16 rad either side).
-  EXPECT_TRUE(f.session.UncoveredParts(f.g[a].lsr, piece, f.g[b].lsr).empty());
+  EXPECT_TRUE(f.session.UncoveredParts(f.g[a].lsr, piece, {&f.g[b].lsr}).empty());
   const kernel::FrontierArc wide{kPi / 2 - 1.5, kPi / 2 + 1.5};
-  const auto rest = f.session.UncoveredParts(f.g[a].lsr, wide, f.g[b].lsr);
+  const auto rest = f.session.UncoveredParts(f.g[a].lsr, wide, {&f.g[b].lsr});
   ASSERT_EQ(rest.size(), 2u);  // both ends go back to the node
   EXPECT_NEAR(Width(rest), 3.0 - 2 * std::acos(0.4), 0.05);
 }
