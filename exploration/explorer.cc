@@ -62,6 +62,8 @@ void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
           "suffices, as published), m");
   v.Field("shadow_edge_m", &shadow_edge_m,
           "LSR boundary edges longer than this are shadows, not obstacles, m");
+  v.Field("shadow_frontiers", &shadow_frontiers,
+          "the space hidden behind an occluder is a frontier too (false: free arcs only)");
   v.Field("grid_paths", &grid_paths,
           "paths inside an LSR searched on a 5 cm grid (false: two legs through a polar grid)");
   v.Field("srt_max_attempts", &srt_max_attempts, "SRT: RANDOM_DIR attempts before backtracking");

@@ -41,6 +41,13 @@ struct ExplorerOptions {
   // of the node that faced it, and REG never entered the room (README, Fig. 18). m.
   double frontier_view_depth_m = 1.0;
   double shadow_edge_m = 0.2;
+  // The space an LSR's sensor could not see behind an occluder (an occlusion edge at least
+  // min_frontier_m long, kernel::OcclusionEdges) is a frontier too, until another LSR sees beyond
+  // the edge's middle (frontier_view_depth_m): REG, and SRT with srt_relaxed_valid_conf, move as
+  // near to it as the LSR lets them. The papers' frontiers are the free arcs only: the floor
+  // behind a table, and a room whose door a node saw edge-on (an arc under min_frontier_m), were
+  // never visited (README, Fig. 18).
+  bool shadow_frontiers = true;
   // A path inside an LSR that no straight leg gives is searched on a 5 cm grid of the LSR
   // (internal::LsrPlanner), through as many bends as it needs; false: the shortest two-leg path
   // through a polar grid of waypoints (radii 0.4-2 m, every 10 deg), which missed narrow doors
@@ -93,7 +100,8 @@ struct NodeRecord {
 // A frontier piece the explorer gave up, as its map shows it at the end of the run.
 struct GivenUpFrontier {
   int node = -1;             // the node whose frontier it was
-  kernel::FrontierArc arc;   // on that node's LSR circle, world frame
+  kernel::FrontierArc arc;   // on that node's LSR circle, world frame (free arcs)
+  int shadow_edge = -1;      // >= 0: the occlusion edge of the node's LSR (shadow frontiers)
   Eigen::Vector2d midpoint;  // its middle, world frame
   std::string reason;        // why it was given up
   bool open = true;          // no LSR covers it at the end (CoverOptions)

@@ -35,6 +35,29 @@ class Reg {
   graph::ExplorationGraph& g_;
   std::vector<Vertex> list_;     // the frontier-control list
   std::set<Vertex> approached_;  // nodes that retried a piece from another node (Approach)
+  bool sweeping_ = false;        // shadow frontiers are being explored (Sweep)
+
+  // Whether node v has frontiers left to explore: free arcs, or shadows while sweeping.
+  bool Pending(Vertex v) const {
+    return !g_[v].frontiers.empty() || (sweeping_ && !g_[v].shadows.empty());
+  }
+  // Once no free arc is left: each node keeps the shadows that the union of all the other LSRs
+  // does not see behind (Session::ShadowOpen), and the nodes with one are listed. Each shadow is
+  // approached once (popped when tried); new nodes bring their own, checked at the next sweep.
+  void Sweep() {
+    sweeping_ = true;
+    for (Vertex v = 0; v < boost::num_vertices(g_); ++v) {
+      std::erase_if(g_[v].shadows, [&](std::size_t edge) { return !session_.ShadowOpen(v, edge); });
+      if (!g_[v].shadows.empty()) List(v);
+    }
+  }
+
+  std::vector<Eigen::Vector2d> NodePositions() const {
+    std::vector<Eigen::Vector2d> nodes;
+    for (Vertex v = 0; v < boost::num_vertices(g_); ++v)
+      nodes.push_back(g_[v].configuration.translation());
+    return nodes;
+  }
 };
 
 ExplorationRun Reg::Run() {
@@ -44,6 +67,7 @@ ExplorationRun Reg::Run() {
   const double max_piece = options_.reg_piece_factor * 2.0 * std::acos(options_.alpha / 2.0);
   while (!session_.CapReached()) {
     std::optional<kernel::FrontierArc> piece;
+    std::optional<std::size_t> shadow;  // the occlusion edge approached instead of a piece
     std::optional<std::vector<Eigen::Vector2d>> destination;  // path to q_dest
     std::optional<graph::GraphPath> path;
     {
@@ -58,12 +82,9 @@ ExplorationRun Reg::Run() {
           // Retried from another node: the robot moves as near the piece as it can inside the
           // LSR (a node beside a door sees the room through it at a slant, a node in front of it
           // squarely), once per node.
-          std::vector<Eigen::Vector2d> nodes;
-          for (Vertex v = 0; v < boost::num_vertices(g_); ++v)
-            nodes.push_back(g_[v].configuration.translation());
           const double mid = 0.5 * (piece->start_angle_rad + piece->end_angle_rad);
           destination = session_.Approach(g_[current].lsr, g_[current].configuration.translation(),
-                                          g_[current].lsr.ArcPoint(mid), nodes);
+                                          g_[current].lsr.ArcPoint(mid), NodePositions());
           if (destination) approached_.insert(current);
         }
         if (!destination) {
@@ -71,11 +92,28 @@ ExplorationRun Reg::Run() {
           session_.GiveUp(current, *piece, "no clear leg from its node");
         }
       }
+      // The shadow frontiers, once no free arc is left anywhere (Sweep): the robot moves as near
+      // the hidden space as the LSR lets it (ExplorerOptions::shadow_frontiers).
+      std::vector<std::size_t>& shadows = g_[current].shadows;
+      shadow.reset();
+      while (!destination && sweeping_ && !shadows.empty()) {
+        shadow = shadows.back();
+        shadows.pop_back();
+        piece.reset();
+        destination = session_.Approach(g_[current].lsr, g_[current].configuration.translation(),
+                                        internal::Session::ShadowTarget(g_[current].lsr, *shadow),
+                                        NodePositions());
+        if (!destination) {
+          ++session_.run().unreachable_frontiers;
+          session_.GiveUpShadow(current, *shadow, "no reachable point nearer the hidden space");
+        }
+      }
       if (destination) {
-        if (!frontiers.empty()) List(current);
+        if (Pending(current)) List(current);
       } else {
         Unlist(current);
-        std::erase_if(list_, [&](Vertex v) { return g_[v].frontiers.empty(); });
+        std::erase_if(list_, [&](Vertex v) { return !Pending(v); });
+        if (list_.empty() && options_.shadow_frontiers) Sweep();
         path = graph::BidirectionalAStar(g_, current,
                                          list_.empty() ? std::vector<Vertex>{start} : list_);
       }
@@ -88,7 +126,14 @@ ExplorationRun Reg::Run() {
       // VERIFIES: what the new LSR does not cover of the piece goes back to the previous node
       // (all of it is dropped when the move failed: the way there is not clear).
       internal::Session::PlanningTimer timer(&session_);
-      if (move.reached) {
+      if (shadow) {
+        // The approach is the attempt: what the new LSR does not see behind the edge is given
+        // up, and the new node's own shadows carry on the search.
+        if (!move.reached || !session_.ShadowCovered(g_[previous].lsr, *shadow, {&g_[current].lsr}))
+          session_.GiveUpShadow(previous, *shadow,
+                                move.reached ? "not seen from the node that approached it"
+                                             : "the move towards it failed");
+      } else if (move.reached) {
         for (const kernel::FrontierArc& rest :
              session_.UncoveredParts(g_[previous].lsr, *piece, {&g_[current].lsr}))
           g_[previous].frontiers.push_back(rest);
@@ -96,7 +141,7 @@ ExplorationRun Reg::Run() {
         ++session_.run().unreachable_frontiers;
         session_.GiveUp(previous, *piece, "the move towards it failed");
       }
-      if (!g_[previous].frontiers.empty()) List(previous);
+      if (Pending(previous)) List(previous);
       continue;
     }
     if (list_.empty()) {
@@ -105,9 +150,12 @@ ExplorationRun Reg::Run() {
       return session_.Finish(Termination::kExplored, "no frontier left; returned to the start");
     }
     if (!path) {
-      for (const Vertex v : list_)
+      for (const Vertex v : list_) {
         for (const kernel::FrontierArc& arc : g_[v].frontiers)
           session_.GiveUp(v, arc, "its node is unreachable in the graph");
+        for (const std::size_t edge : g_[v].shadows)
+          session_.GiveUpShadow(v, edge, "its node is unreachable in the graph");
+      }
       return session_.Finish(Termination::kExplored,
                              std::to_string(list_.size()) +
                                  " listed nodes with frontiers are unreachable in the graph");

@@ -15,9 +15,11 @@ namespace {
 // Relaxed VALID_CONF (ExplorerOptions::srt_relaxed_valid_conf): once the draws of SRT ran out at
 // node v, the parts of its free arcs that no other LSR saw beyond (Session::OpenParts) are drawn
 // from instead, the candidate may lie inside other LSRs, and closer (1, 2/3, 1/3 of alpha r);
-// failing that the robot approaches the widest open part as near as it can. Only while the open
-// width shrinks from one relaxed move to the next: a part that a new node cannot see beyond is
-// not tried forever. `last_open` holds the open width at v's previous relaxed move, rad.
+// failing that the robot approaches the widest open part, or an open shadow frontier, as near as
+// it can. Only while what is open at v shrinks from one relaxed move to the next (the open width
+// in rad plus the number of open shadows; neither grows, as nodes are only added): a part that a
+// new node cannot see beyond is not tried forever. `last_open` holds that measure at v's previous
+// relaxed move.
 std::optional<std::vector<Eigen::Vector2d>> RelaxedMove(internal::Session* session, graph::Vertex v,
                                                         double* last_open) {
   const graph::ExplorationGraph& g = session->graph();
@@ -29,12 +31,16 @@ std::optional<std::vector<Eigen::Vector2d>> RelaxedMove(internal::Session* sessi
       open.push_back(part);
       width += part.AngularWidth();
     }
-  if (open.empty() || width >= *last_open - 1e-9) return std::nullopt;
-  *last_open = width;
+  std::vector<std::size_t> shadows_open;
+  for (const std::size_t edge : node.shadows)
+    if (session->ShadowOpen(v, edge)) shadows_open.push_back(edge);
+  const double measure = width + static_cast<double>(shadows_open.size());
+  if (measure == 0.0 || measure >= *last_open - 1e-9) return std::nullopt;
+  *last_open = measure;
   const ExplorerOptions& options = session->options();
   const double step = options.alpha * options.lsr_radius_m;
   const Eigen::Vector2d here = node.configuration.translation();
-  for (int attempt = 0; attempt < options.srt_max_attempts; ++attempt) {
+  for (int attempt = 0; attempt < options.srt_max_attempts && !open.empty(); ++attempt) {
     const double theta = internal::RandomDirection(open, &session->random());
     for (const double fraction : {1.0, 2.0 / 3.0, 1.0 / 3.0}) {
       const Eigen::Vector2d candidate =
@@ -42,14 +48,21 @@ std::optional<std::vector<Eigen::Vector2d>> RelaxedMove(internal::Session* sessi
       if (auto path = session->PathInside(node.lsr, here, candidate)) return path;
     }
   }
-  const kernel::FrontierArc* widest = &open.front();
-  for (const kernel::FrontierArc& part : open)
-    if (part.AngularWidth() > widest->AngularWidth()) widest = &part;
   std::vector<Eigen::Vector2d> nodes;
   for (graph::Vertex w = 0; w < boost::num_vertices(g); ++w)
     nodes.push_back(g[w].configuration.translation());
-  const double mid = 0.5 * (widest->start_angle_rad + widest->end_angle_rad);
-  return session->Approach(node.lsr, here, node.lsr.ArcPoint(mid), nodes);
+  if (!open.empty()) {
+    const kernel::FrontierArc* widest = &open.front();
+    for (const kernel::FrontierArc& part : open)
+      if (part.AngularWidth() > widest->AngularWidth()) widest = &part;
+    const double mid = 0.5 * (widest->start_angle_rad + widest->end_angle_rad);
+    if (auto path = session->Approach(node.lsr, here, node.lsr.ArcPoint(mid), nodes)) return path;
+  }
+  for (const std::size_t edge : shadows_open)
+    if (auto path = session->Approach(node.lsr, here,
+                                      internal::Session::ShadowTarget(node.lsr, edge), nodes))
+      return path;
+  return std::nullopt;
 }
 
 }  // namespace
@@ -92,10 +105,11 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
     // The node's free arcs are given up (SRT keeps them whole: the final check finds which
     // other nodes' LSRs cover them).
     g[current].given_up.clear();
+    const std::string reason =
+        "no valid configuration in " + std::to_string(options_.srt_max_attempts) + " draws";
     for (const kernel::FrontierArc& arc : g[current].frontiers)
-      session.GiveUp(
-          current, arc,
-          "no valid configuration in " + std::to_string(options_.srt_max_attempts) + " draws");
+      session.GiveUp(current, arc, reason);
+    for (const std::size_t edge : g[current].shadows) session.GiveUpShadow(current, edge, reason);
     const int parent = session.run().nodes[current].parent;
     if (parent < 0) return session.Finish(Termination::kExplored, "back at the root, nothing left");
     // Backtrack along the tree edge; a failed move leaves the robot between the two nodes,

@@ -13,17 +13,20 @@
 // the robot sensed, an edge per collision-free path between two of them.
 namespace splam::graph {
 
-// A frontier arc the explorer gave up at a node, and why.
+// A frontier the explorer gave up at a node, and why: a free arc, or (shadow_edge >= 0) the
+// space hidden behind that boundary edge of the node's LSR (kernel::OcclusionEdges).
 struct GivenUpArc {
   kernel::FrontierArc arc;
   std::string reason;
+  int shadow_edge = -1;
 };
 
 struct NodeData {
   kernel::Pose2 configuration;                 // world frame
   kernel::LocalSafeRegion lsr;                 // perceived at the configuration
   std::vector<kernel::FrontierArc> frontiers;  // free frontiers of the LSR not yet explored
-  std::vector<GivenUpArc> given_up;            // frontiers of the LSR given up
+  std::vector<std::size_t> shadows;  // occlusion edges of the LSR whose hidden side is unseen
+  std::vector<GivenUpArc> given_up;  // frontiers of the LSR given up
 };
 
 struct EdgeData {

@@ -113,21 +113,27 @@ bool IsShadowEdge(const LocalSafeRegion& region, std::size_t i, double shadow_ed
   return std::abs(rj - ri) > kJumpRatio * std::max(before, after);
 }
 
-std::vector<ShadowEdge> OcclusionEdges(const LocalSafeRegion& region, double shadow_edge_m,
-                                       double min_length_m) {
-  std::vector<ShadowEdge> edges;
+std::vector<std::size_t> OcclusionEdges(const LocalSafeRegion& region, double shadow_edge_m,
+                                        double min_length_m) {
+  std::vector<std::size_t> edges;
   const std::vector<Eigen::Vector2d>& pts = region.boundary();
   const std::size_t n = pts.size();
   const std::size_t first = region.full_circle() ? 0 : 1;
   const std::size_t last = region.full_circle() ? n : n - 1;  // the sensor edges excluded
   for (std::size_t i = first; i < last; ++i) {
-    const std::size_t j = (i + 1) % n;
-    if ((pts[j] - pts[i]).norm() < min_length_m || !IsShadowEdge(region, i, shadow_edge_m))
-      continue;
-    const bool i_nearer = Range(region, i) < Range(region, j);
-    edges.push_back({i_nearer ? pts[i] : pts[j], i_nearer ? pts[j] : pts[i]});
+    if ((pts[(i + 1) % n] - pts[i]).norm() >= min_length_m &&
+        IsShadowEdge(region, i, shadow_edge_m))
+      edges.push_back(i);
   }
   return edges;
+}
+
+EdgeSide EdgeMiddleAndNormal(const LocalSafeRegion& region, std::size_t i) {
+  const std::vector<Eigen::Vector2d>& pts = region.boundary();
+  const Eigen::Vector2d& a = pts[i];
+  const Eigen::Vector2d& b = pts[(i + 1) % pts.size()];
+  const Eigen::Vector2d e = (b - a).normalized();
+  return {0.5 * (a + b), Eigen::Vector2d(e.y(), -e.x())};  // counter-clockwise: outside is right
 }
 
 RayExit FirstExit(const LocalSafeRegion& region, const Eigen::Vector2d& p, const Eigen::Vector2d& u,

@@ -98,15 +98,18 @@ struct CoverOptions {
 // grazing incidence has long edges too, but its range grows smoothly from beam to beam).
 bool IsShadowEdge(const LocalSafeRegion& region, std::size_t i, double shadow_edge_m);
 
-// A shadow edge between two beams: `near` on the occluder, `far` where the next beam ended. The
-// space behind it, within the radius, is hidden from the region's sensor.
-struct ShadowEdge {
-  Eigen::Vector2d near;
-  Eigen::Vector2d far;
+// The shadow edges between beams (not those at the sensor) at least min_length_m long, by their
+// boundary index: the space behind each, within the radius, is hidden from the region's sensor
+// (behind a table, a door jamb seen at a slant).
+std::vector<std::size_t> OcclusionEdges(const LocalSafeRegion& region, double shadow_edge_m,
+                                        double min_length_m);
+// The middle of boundary edge i and the unit normal there pointing out of the region (to the
+// side an occlusion edge hides).
+struct EdgeSide {
+  Eigen::Vector2d middle;
+  Eigen::Vector2d outward;
 };
-// The shadow edges between beams (not those at the sensor) at least min_length_m long.
-std::vector<ShadowEdge> OcclusionEdges(const LocalSafeRegion& region, double shadow_edge_m,
-                                       double min_length_m);
+EdgeSide EdgeMiddleAndNormal(const LocalSafeRegion& region, std::size_t i);
 
 // Where the ray p + t u (u unit, t > t_from) first leaves `region` within t <= t_to, and across
 // what. p + t_from u is assumed inside the region.

@@ -47,6 +47,7 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
   nlohmann::json given_up = nlohmann::json::array();
   for (const exploration::GivenUpFrontier& f : run.given_up)
     given_up.push_back({{"node", f.node},
+                        {"kind", f.shadow_edge >= 0 ? "shadow" : "arc"},
                         {"x", f.midpoint.x()},
                         {"y", f.midpoint.y()},
                         {"start_angle_rad", f.arc.start_angle_rad},
@@ -98,6 +99,7 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
                        {"min_frontier_m", o.min_frontier_m},
                        {"frontier_view_depth_m", o.frontier_view_depth_m},
                        {"shadow_edge_m", o.shadow_edge_m},
+                       {"shadow_frontiers", o.shadow_frontiers},
                        {"grid_paths", o.grid_paths},
                        {"srt_max_attempts", o.srt_max_attempts},
                        {"srt_relaxed_valid_conf", o.srt_relaxed_valid_conf},
@@ -213,8 +215,12 @@ std::string SaveExplorationPicture(const sim::World& world, const ExploreOutcome
     if (!f.open) continue;
     const kernel::LocalSafeRegion& lsr = g[static_cast<graph::Vertex>(f.node)].lsr;
     std::vector<Eigen::Vector2d> points;
+    if (f.shadow_edge >= 0) {  // the occlusion edge
+      const auto edge = static_cast<std::size_t>(f.shadow_edge);
+      points = {lsr.boundary()[edge], lsr.boundary()[(edge + 1) % lsr.boundary().size()]};
+    }
     const int n = std::max(2, static_cast<int>(std::ceil(f.arc.AngularWidth() / 0.02)));
-    for (int k = 0; k <= n; ++k)
+    for (int k = 0; f.shadow_edge < 0 && k <= n; ++k)
       points.push_back(lsr.ArcPoint(f.arc.start_angle_rad + f.arc.AngularWidth() * k / n));
     figure.DrawPolyline(points, kGivenUp, 4.0, "given-up frontiers, open");
   }

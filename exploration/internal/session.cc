@@ -81,6 +81,9 @@ graph::Vertex Session::AddNodeHere(int parent) {
   node.lsr = SafeRegionAt(record.safe_region_scan, estimate_, robot_->description(),
                           options_.lsr_radius_m);
   node.frontiers = LongEnough(node.lsr.frontiers());
+  if (options_.shadow_frontiers)
+    node.shadows =
+        kernel::OcclusionEdges(node.lsr, options_.shadow_edge_m, options_.frontier_view_depth_m);
   localization_->AtNode(node.lsr);
   if (parent >= 0) {
     // The path driven since the last move began, thinned to kPathSpacing.
@@ -178,18 +181,50 @@ void Session::GiveUp(graph::Vertex v, const kernel::FrontierArc& arc, const std:
   run_.graph[v].given_up.push_back({arc, reason});
 }
 
-std::vector<kernel::FrontierArc> Session::OpenParts(graph::Vertex v,
-                                                    const kernel::FrontierArc& arc) const {
+void Session::GiveUpShadow(graph::Vertex v, std::size_t edge, const std::string& reason) {
+  run_.graph[v].given_up.push_back({{}, reason, static_cast<int>(edge)});
+}
+
+std::vector<const kernel::LocalSafeRegion*> Session::OthersNear(graph::Vertex v) const {
   const graph::ExplorationGraph& g = run_.graph;
   const kernel::LocalSafeRegion& owner = g[v].lsr;
   std::vector<const kernel::LocalSafeRegion*> others;
   for (graph::Vertex w = 0; w < boost::num_vertices(g); ++w) {
     const kernel::LocalSafeRegion& other = g[w].lsr;
-    // The ray is followed view_depth beyond the owner's circle.
     const double reach = other.radius() + owner.radius() + options_.frontier_view_depth_m;
     if (w != v && (other.center() - owner.center()).norm() <= reach) others.push_back(&other);
   }
-  return UncoveredParts(owner, arc, others);
+  return others;
+}
+
+bool Session::ShadowCovered(const kernel::LocalSafeRegion& owner, std::size_t edge,
+                            const std::vector<const kernel::LocalSafeRegion*>& others) const {
+  // Seen behind at a quarter, the middle or three quarters of the edge: the hidden space is not
+  // a slit then (near the occluder the ray from the middle often runs into the occluder's own
+  // flank, seen at grazing incidence).
+  const kernel::EdgeSide side = kernel::EdgeMiddleAndNormal(owner, edge);
+  const Eigen::Vector2d& a = owner.boundary()[edge];
+  const Eigen::Vector2d& b = owner.boundary()[(edge + 1) % owner.boundary().size()];
+  for (const double f : {0.5, 0.25, 0.75})
+    if (kernel::UnionSeesBeyond(others, a + f * (b - a), side.outward,
+                                {options_.frontier_view_depth_m, options_.shadow_edge_m}))
+      return true;
+  return false;
+}
+
+bool Session::ShadowOpen(graph::Vertex v, std::size_t edge) const {
+  return !ShadowCovered(run_.graph[v].lsr, edge, OthersNear(v));
+}
+
+Eigen::Vector2d Session::ShadowTarget(const kernel::LocalSafeRegion& lsr, std::size_t edge) {
+  constexpr double kInto = 0.5;  // m
+  const kernel::EdgeSide side = kernel::EdgeMiddleAndNormal(lsr, edge);
+  return side.middle + kInto * side.outward;
+}
+
+std::vector<kernel::FrontierArc> Session::OpenParts(graph::Vertex v,
+                                                    const kernel::FrontierArc& arc) const {
+  return UncoveredParts(run_.graph[v].lsr, arc, OthersNear(v));
 }
 
 int Session::CheckGivenUp() {
@@ -199,15 +234,27 @@ int Session::CheckGivenUp() {
   for (graph::Vertex v = 0; v < boost::num_vertices(g); ++v) {
     const kernel::LocalSafeRegion& owner = g[v].lsr;
     for (const graph::GivenUpArc& given_up : g[v].given_up) {
+      if (given_up.shadow_edge >= 0) {
+        const auto edge = static_cast<std::size_t>(given_up.shadow_edge);
+        const bool still_open = ShadowOpen(v, edge);
+        run_.given_up.push_back({static_cast<int>(v),
+                                 {},
+                                 given_up.shadow_edge,
+                                 kernel::EdgeMiddleAndNormal(owner, edge).middle,
+                                 given_up.reason,
+                                 still_open});
+        open += still_open;
+        continue;
+      }
       const std::vector<kernel::FrontierArc> left = OpenParts(v, given_up.arc);
       const double mid = 0.5 * (given_up.arc.start_angle_rad + given_up.arc.end_angle_rad);
       if (left.empty())
         run_.given_up.push_back(
-            {static_cast<int>(v), given_up.arc, owner.ArcPoint(mid), given_up.reason, false});
+            {static_cast<int>(v), given_up.arc, -1, owner.ArcPoint(mid), given_up.reason, false});
       for (const kernel::FrontierArc& arc : left) {
         const double m = 0.5 * (arc.start_angle_rad + arc.end_angle_rad);
         run_.given_up.push_back(
-            {static_cast<int>(v), arc, owner.ArcPoint(m), given_up.reason, true});
+            {static_cast<int>(v), arc, -1, owner.ArcPoint(m), given_up.reason, true});
         ++open;
       }
     }

@@ -44,6 +44,8 @@ class Session {
   bool CapReached();
   // Records that the explorer gave up frontier `arc` of node v (graph::NodeData::given_up).
   void GiveUp(graph::Vertex v, const kernel::FrontierArc& arc, const std::string& reason);
+  // The same for the shadow frontier behind occlusion edge `edge` of node v's LSR.
+  void GiveUpShadow(graph::Vertex v, std::size_t edge, const std::string& reason);
   // Ends the run: fills distance and time and returns the record. A strategy that ends as
   // kExplored is checked against its own map first: the parts of the frontiers it gave up that the
   // union of the other nodes' LSRs does not cover (UncoveredParts) are listed open in
@@ -54,6 +56,16 @@ class Session {
   // The parts of `arc` (a frontier of node v) that the union of the other nodes' LSRs does not
   // cover: what the explorer's map says is still unknown beyond it.
   std::vector<kernel::FrontierArc> OpenParts(graph::Vertex v, const kernel::FrontierArc& arc) const;
+  // Whether the space behind occlusion edge `edge` of `owner` is seen by the union of `others`:
+  // the ray out of `owner` from the edge's middle, or from a quarter of it either side
+  // (kernel::UnionSeesBeyond, the view_depth and shadow_edge options).
+  bool ShadowCovered(const kernel::LocalSafeRegion& owner, std::size_t edge,
+                     const std::vector<const kernel::LocalSafeRegion*>& others) const;
+  // Whether no other node's LSR sees behind occlusion edge `edge` of node v's LSR.
+  bool ShadowOpen(graph::Vertex v, std::size_t edge) const;
+  // A point 0.5 m into the space hidden behind occlusion edge `edge` of `lsr`: what the robot
+  // approaches (Approach) to see it.
+  static Eigen::Vector2d ShadowTarget(const kernel::LocalSafeRegion& lsr, std::size_t edge);
   // The parts of `arc` (a frontier of `owner`) that the union of `others` does not cover (the
   // view_depth and shadow_edge options), long enough to stay frontiers.
   std::vector<kernel::FrontierArc> UncoveredParts(
@@ -124,6 +136,8 @@ class Session {
   // Fills run_.given_up from the nodes' given-up arcs, each checked against every other node's
   // LSR; returns how many are open.
   int CheckGivenUp();
+  // The LSRs of the nodes other than v that can reach view_depth beyond v's circle.
+  std::vector<const kernel::LocalSafeRegion*> OthersNear(graph::Vertex v) const;
 
   ExplorerOptions options_;
   RobotInterface* robot_;

@@ -14,7 +14,7 @@ using graph::Vertex;
 constexpr double kPathFractions[] = {0.5, 0.35, 0.65, 0.2, 0.8};
 constexpr double kPathOffsets[] = {0.0, 0.3, -0.3, 0.6, -0.6, 0.9, -0.9};  // m
 
-// Removes from the node's frontiers the parts inside `other`.
+// Removes from the node's frontiers the parts `other` covers, and the shadows it sees behind.
 void RemoveCovered(const Session& session, graph::NodeData* node,
                    const kernel::LocalSafeRegion& other) {
   std::vector<kernel::FrontierArc> kept;
@@ -23,6 +23,8 @@ void RemoveCovered(const Session& session, graph::NodeData* node,
       kept.push_back(rest);
   }
   node->frontiers = std::move(kept);
+  std::erase_if(node->shadows,
+                [&](std::size_t edge) { return session.ShadowCovered(node->lsr, edge, {&other}); });
 }
 
 }  // namespace
