@@ -85,7 +85,8 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output directory (default runs/experiment-<name>)");
   cmd->add_option("--world", args->world,
-                  "splam: the world, a built-in name (corridor, office, complex), a YAML world "
+                  "splam: the world, a built-in name (corridor, office, office-long, office-doors, "
+                  "complex), a YAML world "
                   "file or a floor-plan image")
       ->capture_default_str();
   cmd->add_option("--resolution", args->resolution_m_per_px,

@@ -206,9 +206,9 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
   flag("explorer", cmd->add_option("--explorer", setup.explorer, "Exploration strategy"))
       ->check(CLI::IsMember({"srt", "reg"}))
       ->capture_default_str();
-  cmd->add_option(
-         "--world", args->world,
-         "Built-in world (corridor, office, complex), a YAML world file or a floor-plan image")
+  cmd->add_option("--world", args->world,
+                  "Built-in world (corridor, office, office-long, office-doors, complex), a YAML "
+                  "world file or a floor-plan image")
       ->capture_default_str();
   flag("seed", cmd->add_option("--seed", setup.seed,
                                "Seed of the simulator's noise and the explorer's random draws"))

@@ -208,9 +208,9 @@ void AddSimulateCommand(CLI::App* app, int* exit_code) {
                                       "Drive the simulated robot along a route; write a CARMEN log "
                                       "with ground truth, trajectories and "
                                       "pictures into --out.");
-  cmd->add_option(
-         "--world", args->world,
-         "Built-in world (corridor, office, complex), a YAML world file or a floor-plan image")
+  cmd->add_option("--world", args->world,
+                  "Built-in world (corridor, office, office-long, office-doors, complex), a YAML "
+                  "world file or a floor-plan image")
       ->capture_default_str();
   cmd->add_option("--route", args->route,
                   "'built-in' (the world's own route) or a route file: lines 'x y', the first may "

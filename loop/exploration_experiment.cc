@@ -51,7 +51,7 @@ int RunExplorationExperiment(const ExplorationExperimentArgs& args) {
   table += "|---|---|---|---|---|\n";
   nlohmann::json summary;
   bool all_explored = true;
-  for (const std::string world_name : {"office", "complex"}) {
+  for (const std::string world_name : {"office", "office-long", "office-doors", "complex"}) {
     const sim::World world = *sim::BuiltinWorld(world_name);
     std::vector<std::vector<ExploreOutcome>> outcomes(explorers.size());
     for (std::size_t e = 0; e < explorers.size(); ++e) {

@@ -105,6 +105,66 @@ World Office() {
   return w;
 }
 
+// The two walls of a straight wall from p to q with a door of `width` metres centred on it.
+std::vector<Polyline> WallWithDoor(const V& p, const V& q, double width) {
+  const V u = (q - p).normalized();
+  const V middle = 0.5 * (p + q);
+  return {Wall({p, middle - 0.5 * width * u}), Wall({middle + 0.5 * width * u, q})};
+}
+
+World OfficeLong() {
+  World w;
+  w.name = "office-long";
+  w.obstacles.push_back(Wall({{0, 0}, {30, 0}, {30, 12}, {0, 12}, {0, 0}}));  // outer walls
+  // A corridor y 5-7 along the whole floor. South: six 5 m rooms, each with a 1 m door.
+  for (int k = 0; k < 6; ++k) {
+    const double x = 5.0 * k;
+    for (const Polyline& p : WallWithDoor(V(x, 5), V(x + 5, 5), 1.0)) w.obstacles.push_back(p);
+    if (k > 0) w.obstacles.push_back(Wall({{x, 0}, {x, 5}}));
+  }
+  // North: five rooms (x 0-25) with 1 m doors off centre, then a dead-end corridor x 25-26.5
+  // running 5 m north, and a solid block beside it.
+  for (int k = 0; k < 5; ++k) {
+    const double x = 5.0 * k;
+    w.obstacles.push_back(Wall({{x, 7}, {x + 1.0 + 0.6 * k, 7}}));
+    w.obstacles.push_back(Wall({{x + 2.0 + 0.6 * k, 7}, {x + 5, 7}}));
+    if (k > 0) w.obstacles.push_back(Wall({{x, 7}, {x, 12}}));
+  }
+  w.obstacles.push_back(Wall({{25, 7}, {25, 12}}));
+  w.obstacles.push_back(Polygon({{26.5, 7}, {30, 7}, {30, 12}, {26.5, 12}}));
+  // Furniture.
+  w.obstacles.push_back(Rectangle(1.0, 1.0, 3.0, 1.8));
+  w.obstacles.push_back(Rectangle(11.5, 2.0, 13.5, 2.8));
+  w.obstacles.push_back(Rectangle(21.0, 0.3, 22.2, 1.5));
+  w.obstacles.push_back(Rectangle(27.0, 2.5, 28.6, 3.3));
+  w.obstacles.push_back(Rectangle(6.5, 10.0, 8.5, 10.8));
+  w.obstacles.push_back(Rectangle(16.0, 8.5, 17.2, 9.7));
+  w.start = kernel::Pose2(1.0, 6.0, 0.0);
+  w.route = {V(25.75, 6.0), V(25.75, 11.0), V(25.75, 6.0), V(28.5, 6.0), V(1.5, 6.0)};
+  return w;
+}
+
+World OfficeDoors() {
+  World w;
+  w.name = "office-doors";
+  w.obstacles.push_back(Wall({{0, 0}, {16, 0}, {16, 12}, {0, 12}, {0, 0}}));  // outer walls
+  // A hall in the middle and a room in each corner behind a wall at a different angle, with a
+  // door of a different width: 0.8 m at 45 deg (south-west), 0.9 m at 39 deg (south-east),
+  // 1.0 m at -45 deg (north-east), 1.2 m and 0.8 m in an L-shaped wall (north-west).
+  for (const Polyline& p : WallWithDoor(V(0, 5.5), V(5.5, 0), 0.8)) w.obstacles.push_back(p);
+  for (const Polyline& p : WallWithDoor(V(11, 0), V(16, 4), 0.9)) w.obstacles.push_back(p);
+  for (const Polyline& p : WallWithDoor(V(16, 7.5), V(11.5, 12), 1.0)) w.obstacles.push_back(p);
+  for (const Polyline& p : WallWithDoor(V(0, 8), V(4.5, 8), 1.2)) w.obstacles.push_back(p);
+  for (const Polyline& p : WallWithDoor(V(4.5, 8), V(4.5, 12), 0.8)) w.obstacles.push_back(p);
+  // Furniture: a table in the hall, a cabinet in the south-west room, a round table.
+  w.obstacles.push_back(Rectangle(7.0, 5.5, 9.0, 6.3));
+  w.obstacles.push_back(Rectangle(0.3, 0.3, 1.5, 1.0));
+  w.obstacles.push_back(kernel::Circle2{{13.0, 9.0}, 0.4});
+  w.start = kernel::Pose2(8.0, 4.0, 0.0);
+  w.route = {V(11.0, 4.5), V(11.0, 7.5), V(5.5, 7.0), V(5.0, 4.0), V(8.0, 4.0)};
+  return w;
+}
+
 World Complex() {
   World w;
   w.name = "complex";
@@ -143,11 +203,15 @@ World Complex() {
 
 }  // namespace
 
-std::vector<std::string> BuiltinWorldNames() { return {"corridor", "office", "complex"}; }
+std::vector<std::string> BuiltinWorldNames() {
+  return {"corridor", "office", "office-long", "office-doors", "complex"};
+}
 
 std::optional<World> BuiltinWorld(const std::string& name) {
   if (name == "corridor") return Corridor();
   if (name == "office") return Office();
+  if (name == "office-long") return OfficeLong();
+  if (name == "office-doors") return OfficeDoors();
   if (name == "complex") return Complex();
   return std::nullopt;
 }

@@ -3,11 +3,15 @@
 
 #include <cmath>
 
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
 #include "exploration/coverage.h"
 #include "exploration/explorer.h"
 #include "exploration/localization.h"
 #include "exploration/motion.h"
 #include "exploration/perception.h"
+#include "io/floor_plan.h"
 #include "kernel/angle.h"
 #include "kernel/random.h"
 #include "loop/simulated_robot.h"
@@ -110,9 +114,8 @@ struct Trial {
   double coverage = 0.0;
 };
 
-Trial Explore(const std::string& explorer, const std::string& world_name, std::uint64_t seed,
-              const ExplorerOptions& options = {}, bool odometry = false) {
-  const sim::World world = *sim::BuiltinWorld(world_name);
+Trial ExploreWorld(const std::string& explorer, const sim::World& world, std::uint64_t seed,
+                   const ExplorerOptions& options = {}, bool odometry = false) {
   const sim::RayCaster caster(world);
   sim::SimulatorOptions sim_options;
   sim_options.enable_sonar = true;
@@ -134,6 +137,106 @@ Trial Explore(const std::string& explorer, const std::string& world_name, std::u
         SafeRegionAt(node.safe_region_scan, node.true_pose, robot.description(), o.lsr_radius_m));
   trial.coverage = grid.CoveredFraction();
   return trial;
+}
+
+Trial Explore(const std::string& explorer, const std::string& world_name, std::uint64_t seed,
+              const ExplorerOptions& options = {}, bool odometry = false) {
+  return ExploreWorld(explorer, *sim::BuiltinWorld(world_name), seed, options, odometry);
+}
+
+// Whether a node of the run lies in the box [lo, hi].
+bool NodeIn(const ExplorationRun& run, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+  for (graph::Vertex v = 0; v < boost::num_vertices(run.graph); ++v) {
+    const Eigen::Vector2d p = run.graph[v].configuration.translation();
+    if ((p.array() >= lo.array()).all() && (p.array() <= hi.array()).all()) return true;
+  }
+  return false;
+}
+
+// Issue 18's causes, each on a small hand-made world. A corridor 1.8 m wide with a 4 m x 6.5 m room
+// south of it behind a 0.9 m door at x 5.6-6.5, deeper than the LSR radius; the robot starts at
+// the corridor's west end, so its first nodes see the door at a slant.
+sim::World CorridorAndRoom() {
+  sim::World w;
+  w.name = "corridor-and-room";
+  using V = Eigen::Vector2d;
+  w.obstacles.push_back(
+      sim::Polyline{{V(5.6, 0), V(0, 0), V(0, 1.8), V(9, 1.8), V(9, 0), V(6.5, 0)}, false});
+  w.obstacles.push_back(sim::Polyline{{V(4, 0), V(4, -6.5), V(8, -6.5), V(8, 0)}, false});
+  w.start = kernel::Pose2(0.8, 0.9, 0.0);
+  return w;
+}
+
+TEST(ExplorationCauses, ARoomSeenThroughItsDoorAtASlantIsEntered) {
+  for (const std::string explorer : {"reg", "srt"}) {
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+      const Trial t = ExploreWorld(explorer, CorridorAndRoom(), seed);
+      EXPECT_TRUE(NodeIn(t.run, {4.3, -6.2}, {7.7, -0.5}))
+          << explorer << " seed " << seed << ": " << boost::num_vertices(t.run.graph) << " nodes, "
+          << t.coverage << " covered, " << t.run.message;
+      EXPECT_GT(t.coverage, 0.98) << explorer << " seed " << seed;
+      EXPECT_EQ(t.run.termination, Termination::kExplored) << t.run.message;
+    }
+  }
+}
+
+TEST(ExplorationCauses, RoomsOfAFloorPlanImageAreExplored) {
+  // A 12 m x 8 m floor drawn at 5 cm per pixel, as a user would scan one: walls 10 cm thick, a
+  // corridor along y 3.5-5.2 m, two rooms south and two north behind 0.9 m doors, a desk.
+  const double px = 0.05;
+  cv::Mat image(160, 240, CV_8U, cv::Scalar(255));
+  const auto P = [&](double x, double y) {  // world metres to the pixel (y up)
+    return cv::Point(static_cast<int>(std::lround(x / px)),
+                     static_cast<int>(std::lround((8.0 - y) / px)) - 1);
+  };
+  const auto wall = [&](double x0, double y0, double x1, double y1) {
+    cv::rectangle(image, P(x0, y0), P(x1, y1), cv::Scalar(0), cv::FILLED);
+  };
+  wall(0, 0, 12, 0.1), wall(0, 7.9, 12, 8), wall(0, 0, 0.1, 8), wall(11.9, 0, 12, 8);
+  wall(0, 3.5, 2.0, 3.6), wall(2.9, 3.5, 8.0, 3.6), wall(8.9, 3.5, 12, 3.6);  // south doors
+  wall(0, 5.2, 3.5, 5.3), wall(4.4, 5.2, 9.0, 5.3), wall(9.9, 5.2, 12, 5.3);  // north doors
+  wall(6.0, 0, 6.1, 3.5), wall(6.5, 5.3, 6.6, 8);
+  wall(2.0, 1.0, 3.6, 1.8);  // a desk
+  const std::string path = ::testing::TempDir() + "/floor_plan_rooms.png";
+  ASSERT_TRUE(cv::imwrite(path, image));
+  kernel::Result<sim::World> world = io::ReadFloorPlan(path, io::FloorPlanOptions());
+  ASSERT_TRUE(world.ok()) << world.error;
+  world.value->start = kernel::Pose2(1.0, 4.35, 0.0);
+  // Measured: 3 of 4 seeds reach 98 % (seed 2: 89 %, incomplete, a given-up arc; README).
+  int complete = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const Trial t = ExploreWorld("reg", *world.value, seed);
+    complete += t.coverage > 0.98;
+    EXPECT_GT(t.coverage, 0.85) << "seed " << seed;
+    // A done that means done: `explored` only where the run did explore.
+    if (t.run.termination == Termination::kExplored) {
+      EXPECT_GT(t.coverage, 0.98) << "seed " << seed;
+    }
+    EXPECT_TRUE(NodeIn(t.run, {6.3, 0.3}, {11.7, 3.3})) << "seed " << seed;  // south-east room
+    EXPECT_TRUE(NodeIn(t.run, {0.3, 5.5}, {6.3, 7.7})) << "seed " << seed;   // north-west room
+  }
+  EXPECT_GE(complete, 3);
+}
+
+TEST(ExplorationCauses, TheFloorBehindATableIsSeen) {
+  // A 6 m x 5 m room with a 3 m table across it, 1.5 m from the south wall: from the start in the
+  // north nothing reaches r = 3 m beyond the table, so the floor behind it is no free arc, only a
+  // shadow (ExplorerOptions::shadow_frontiers).
+  sim::World w;
+  w.name = "room-with-table";
+  using V = Eigen::Vector2d;
+  w.obstacles.push_back(sim::Polyline{{V(0, 0), V(6, 0), V(6, 5), V(0, 5), V(0, 0)}, false});
+  w.obstacles.push_back(sim::Polyline{{V(1.5, 1.5), V(4.5, 1.5), V(4.5, 2.3), V(1.5, 2.3)}, true});
+  w.start = kernel::Pose2(3.0, 3.8, -kernel::kPi / 2);
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const Trial t = ExploreWorld("reg", w, seed);
+    EXPECT_GT(t.coverage, 0.98) << "seed " << seed;
+    EXPECT_TRUE(NodeIn(t.run, {0.3, 0.3}, {5.7, 1.5})) << "seed " << seed;
+    ExplorerOptions published;
+    published.shadow_frontiers = false;
+    const Trial p = ExploreWorld("reg", w, seed, published);
+    EXPECT_LT(p.coverage, t.coverage) << "seed " << seed;
+  }
 }
 
 TEST(Exploration, RegExploresComplexAndReturnsHome) {
@@ -165,9 +268,10 @@ TEST(Exploration, SrtBuildsATreeAndEndsAtTheRoot) {
 }
 
 TEST(Exploration, PublishedSrtKeepsValidConfAndReportsWhatItLeftOpen) {
-  ExplorerOptions options;
+  ExplorerOptions options;  // SRT as published: free arcs only, VALID_CONF never relaxed
   options.srt_relaxed_valid_conf = false;
-  const Trial t = Explore("srt", "complex", 1, options);
+  options.shadow_frontiers = false;
+  const Trial t = Explore("srt", "office", 2, options);
   // VALID_CONF: no node lies inside the LSR of another (up to the goal tolerance).
   const auto& g = t.run.graph;
   for (graph::Vertex a = 0; a < boost::num_vertices(g); ++a) {
@@ -183,14 +287,15 @@ TEST(Exploration, PublishedSrtKeepsValidConfAndReportsWhatItLeftOpen) {
       }
     }
   }
-  // Its draws ran out at a node whose free arc no LSR saw beyond (a strip along the west wall,
-  // 99.7 % covered): the run is incomplete and says where.
+  // Its draws ran out at nodes whose free arcs no LSR saw beyond (rooms seen through their doors
+  // only: 49 % covered): the run is incomplete and says where.
+  EXPECT_LT(t.coverage, 0.7);
   EXPECT_EQ(t.run.termination, Termination::kIncomplete) << t.run.message;
   int open = 0;
   for (const GivenUpFrontier& f : t.run.given_up) {
     if (!f.open) continue;
     ++open;
-    const kernel::Box2 bounds = sim::BuiltinWorld("complex")->Bounds();
+    const kernel::Box2 bounds = sim::BuiltinWorld("office")->Bounds();
     EXPECT_TRUE((f.midpoint.array() >= bounds.min.array()).all() &&
                 (f.midpoint.array() <= bounds.max.array()).all());
     EXPECT_NE(f.reason.find("draws"), std::string::npos);

@@ -29,7 +29,9 @@ TEST_P(BuiltinWorldTest, IsValidAndItsRouteIsDrivable) {
   EXPECT_EQ(blind, 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(All, BuiltinWorldTest, ::testing::Values("corridor", "office", "complex"));
+INSTANTIATE_TEST_SUITE_P(All, BuiltinWorldTest,
+                         ::testing::Values("corridor", "office", "office-long", "office-doors",
+                                           "complex"));
 
 TEST(BuiltinWorlds, ComplexIsAboutTwentyByFifteenMetresWithCurves) {
   const World w = *BuiltinWorld("complex");
