@@ -42,11 +42,11 @@ struct ExplorerOptions {
   double frontier_view_depth_m = 1.0;
   double shadow_edge_m = 0.2;
   // The space an LSR's sensor could not see behind an occluder (an occlusion edge at least
-  // min_frontier_m long, kernel::OcclusionEdges) is a frontier too, until another LSR sees beyond
-  // the edge's middle (frontier_view_depth_m): REG, and SRT with srt_relaxed_valid_conf, move as
-  // near to it as the LSR lets them. The papers' frontiers are the free arcs only: the floor
-  // behind a table, and a room whose door a node saw edge-on (an arc under min_frontier_m), were
-  // never visited (README, Fig. 18).
+  // frontier_view_depth_m long, kernel::OcclusionEdges) is a frontier too, until other LSRs see
+  // beyond it (Session::ShadowCovered): REG once no free arc is left, and SRT with
+  // srt_relaxed_valid_conf, move as near to it as the LSR lets them. The papers' frontiers are the
+  // free arcs only: the floor behind a table, and a room whose door a node saw edge-on (an arc
+  // under min_frontier_m), were never visited (README, Fig. 18).
   bool shadow_frontiers = true;
   // A path inside an LSR that no straight leg gives is searched on a 5 cm grid of the LSR
   // (internal::LsrPlanner), through as many bends as it needs; false: the shortest two-leg path

@@ -167,13 +167,6 @@ RayExit FirstExit(const LocalSafeRegion& region, const Eigen::Vector2d& p, const
           first_t};
 }
 
-bool SeesBeyond(const LocalSafeRegion& region, const Eigen::Vector2d& p, const Eigen::Vector2d& u,
-                const CoverOptions& cover) {
-  if (!region.Contains(p)) return false;
-  if (cover.view_depth_m <= 0.0) return true;
-  return FirstExit(region, p, u, 0.0, cover.view_depth_m, cover).kind != RayExit::Kind::kShadow;
-}
-
 bool UnionSeesBeyond(const std::vector<const LocalSafeRegion*>& regions, const Eigen::Vector2d& p,
                      const Eigen::Vector2d& u, const CoverOptions& cover) {
   // Walk along the ray: at each point, the region containing it that takes the ray farthest.

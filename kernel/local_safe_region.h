@@ -126,13 +126,10 @@ struct RayExit {
 RayExit FirstExit(const LocalSafeRegion& region, const Eigen::Vector2d& p, const Eigen::Vector2d& u,
                   double t_from, double t_to, const CoverOptions& cover);
 
-// Whether `region` saw beyond `p` in direction `u` (unit): p inside, and the ray p + t u, 0 < t <=
-// cover.view_depth_m, inside or leaving across an obstacle or a free arc (CoverOptions).
-bool SeesBeyond(const LocalSafeRegion& region, const Eigen::Vector2d& p, const Eigen::Vector2d& u,
-                const CoverOptions& cover);
-
-// The same for the union of `regions`: the ray is followed from region to region, each taking it
-// on where another left it across a shadow edge (a room seen partly from each of two nodes).
+// Whether the union of `regions` saw beyond `p` in direction `u` (unit): p inside one, and the
+// ray p + t u, 0 < t <= cover.view_depth_m, followed from region to region (each taking it on
+// where another left it across a shadow edge: a room seen partly from each of two nodes) stays
+// inside or leaves across an obstacle or a free arc (CoverOptions).
 bool UnionSeesBeyond(const std::vector<const LocalSafeRegion*>& regions, const Eigen::Vector2d& p,
                      const Eigen::Vector2d& u, const CoverOptions& cover);
 

@@ -163,6 +163,49 @@ Scan CorridorScan() {
   return scan;
 }
 
+TEST(LocalSafeRegion, WallsAtGrazingIncidenceAreNoShadowsAnOccludersEdgesAre) {
+  // Along the corridor's walls the range grows smoothly from beam to beam, up to 57 cm a beam
+  // near the axis: no shadow edge.
+  const LocalSafeRegion corridor = LocalSafeRegion::FromScan(CorridorScan(), Pose2(0, 0, 0), 3.0);
+  EXPECT_TRUE(OcclusionEdges(corridor, 0.2, 0.0).empty());
+  // A box 1 m ahead (beams within 10 deg of the axis) in open space: its two sides cast shadows.
+  Scan scan = UrgScan(Scan::kNoReturn);
+  for (std::size_t i = 0; i < scan.size(); ++i)
+    if (std::abs(scan.BeamAngle(i)) <= DegToRad(10.0)) scan.ranges_m[i] = 1.0;
+  const LocalSafeRegion box = LocalSafeRegion::FromScan(scan, Pose2(0, 0, 0), 3.0);
+  const std::vector<std::size_t> shadows = OcclusionEdges(box, 0.2, 1.0);
+  ASSERT_EQ(shadows.size(), 2u);
+  for (const std::size_t edge : shadows) {
+    const EdgeSide side = EdgeMiddleAndNormal(box, edge);
+    EXPECT_NEAR(side.middle.norm(), 2.0, 0.05);        // from the box's corner to r = 3
+    EXPECT_LT(std::abs(side.middle.y()), 0.4);         // beside the axis
+    EXPECT_LT(side.outward.y() * side.middle.y(), 0);  // pointing behind the box
+    EXPECT_TRUE(box.Contains(side.middle - 0.05 * side.outward));
+    EXPECT_FALSE(box.Contains(side.middle + 0.05 * side.outward));
+  }
+}
+
+TEST(LocalSafeRegion, TheUnionOfRegionsSeesBehindAShadow) {
+  Scan scan = UrgScan(Scan::kNoReturn);
+  for (std::size_t i = 0; i < scan.size(); ++i)
+    if (std::abs(scan.BeamAngle(i)) <= DegToRad(10.0)) scan.ranges_m[i] = 1.0;
+  const LocalSafeRegion box = LocalSafeRegion::FromScan(scan, Pose2(0, 0, 0), 3.0);
+  // From (2, 0.6) down into the box's shadow: the ray leaves across the shadow edge after 0.25 m.
+  const Eigen::Vector2d p(2.0, 0.6), down(0.0, -1.0);
+  ASSERT_TRUE(box.Contains(p));
+  EXPECT_FALSE(UnionSeesBeyond({&box}, p, down, {1.0, 0.2}));
+  EXPECT_TRUE(UnionSeesBeyond({&box}, p, down, {0.0, 0.2}));  // the papers' rule: inside is enough
+  // Towards the box the ray ends on it: seen.
+  EXPECT_TRUE(UnionSeesBeyond({&box}, {0.5, 0.0}, {1.0, 0.0}, {1.0, 0.2}));
+  // A second region below, looking north, sees into the shadow but not as far as p (3.1 m away):
+  // the ray carries on in it where the box's region left it.
+  const LocalSafeRegion below =
+      LocalSafeRegion::FromScan(UrgScan(Scan::kNoReturn), Pose2(2.0, -2.5, kPi / 2), 3.0);
+  ASSERT_FALSE(below.Contains(p));
+  EXPECT_TRUE(UnionSeesBeyond({&box, &below}, p, down, {1.0, 0.2}));
+  EXPECT_FALSE(UnionSeesBeyond({&below}, p, down, {1.0, 0.2}));
+}
+
 TEST(LocalSafeRegion, ClearanceOfASegmentFromTheWalls) {
   const LocalSafeRegion lsr = LocalSafeRegion::FromScan(CorridorScan(), Pose2(), 3.0);
   // Along the axis the walls are 1 m away; the boundary's chords cut in by less than 1 mm near
