@@ -51,13 +51,6 @@ class Reg {
       if (!g_[v].shadows.empty()) List(v);
     }
   }
-
-  std::vector<Eigen::Vector2d> NodePositions() const {
-    std::vector<Eigen::Vector2d> nodes;
-    for (Vertex v = 0; v < boost::num_vertices(g_); ++v)
-      nodes.push_back(g_[v].configuration.translation());
-    return nodes;
-  }
 };
 
 ExplorationRun Reg::Run() {
@@ -84,7 +77,7 @@ ExplorationRun Reg::Run() {
           // squarely), once per node.
           const double mid = 0.5 * (piece->start_angle_rad + piece->end_angle_rad);
           destination = session_.Approach(g_[current].lsr, g_[current].configuration.translation(),
-                                          g_[current].lsr.ArcPoint(mid), NodePositions());
+                                          g_[current].lsr.ArcPoint(mid), session_.NodePositions());
           if (destination) approached_.insert(current);
         }
         if (!destination) {
@@ -102,7 +95,7 @@ ExplorationRun Reg::Run() {
         piece.reset();
         destination = session_.Approach(g_[current].lsr, g_[current].configuration.translation(),
                                         internal::Session::ShadowTarget(g_[current].lsr, *shadow),
-                                        NodePositions());
+                                        session_.NodePositions());
         if (!destination) {
           ++session_.run().unreachable_frontiers;
           session_.GiveUpShadow(current, *shadow, "no reachable point nearer the hidden space");

@@ -48,9 +48,7 @@ std::optional<std::vector<Eigen::Vector2d>> RelaxedMove(internal::Session* sessi
       if (auto path = session->PathInside(node.lsr, here, candidate)) return path;
     }
   }
-  std::vector<Eigen::Vector2d> nodes;
-  for (graph::Vertex w = 0; w < boost::num_vertices(g); ++w)
-    nodes.push_back(g[w].configuration.translation());
+  const std::vector<Eigen::Vector2d> nodes = session->NodePositions();
   if (!open.empty()) {
     const kernel::FrontierArc* widest = &open.front();
     for (const kernel::FrontierArc& part : open)

@@ -280,6 +280,13 @@ ExplorationRun Session::Finish(Termination termination, const std::string& messa
   return std::move(run_);
 }
 
+std::vector<Eigen::Vector2d> Session::NodePositions() const {
+  std::vector<Eigen::Vector2d> nodes;
+  for (graph::Vertex v = 0; v < boost::num_vertices(run_.graph); ++v)
+    nodes.push_back(run_.graph[v].configuration.translation());
+  return nodes;
+}
+
 double Session::Needed() const {
   return robot_->description().radius_m + options_.clearance_margin_m;
 }

@@ -91,6 +91,8 @@ class Session {
   std::optional<std::vector<Eigen::Vector2d>> Approach(
       const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& from,
       const Eigen::Vector2d& target, const std::vector<Eigen::Vector2d>& avoid) const;
+  // The configurations of all the nodes (what Approach keeps away from).
+  std::vector<Eigen::Vector2d> NodePositions() const;
   // The robot's radius plus the clearance margin: what a leg keeps from the LSR boundary, m.
   double Needed() const;
   // PathInside to `to`, else to the first clear point 0.15, 0.3 or 0.45 m from it (every
