@@ -61,7 +61,7 @@ void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
           "another LSR covers a frontier point only if it saw this far beyond it (0: inside "
           "suffices, as published), m");
   v.Field("shadow_edge_m", &shadow_edge_m,
-          "LSR boundary edges longer than this are shadows, not obstacles, m");
+          "LSR boundary edges longer than this with a depth jump are shadows, not obstacles, m");
   v.Field("shadow_frontiers", &shadow_frontiers,
           "the space hidden behind an occluder is a frontier too (false: free arcs only)");
   v.Field("grid_paths", &grid_paths,

@@ -34,11 +34,12 @@ struct ExplorerOptions {
   // Spacing of the arc points classified when a frontier part lies inside another LSR, rad.
   double arc_sampling_rad = kernel::DegToRad(1.0);
   // When another LSR covers a frontier point (kernel::CoverOptions): it must have seen this far
-  // beyond the point, or up to an obstacle or its own free arc, not to a shadow edge longer than
-  // shadow_edge_m. 1 m is about two robot diameters: space a robot could enter. 0: the point
-  // lying inside the other LSR is enough (Oriolo et al., paper 003); in `office` a node that
-  // looked into a room through its door at a slant then covered the frontier through the door
-  // of the node that faced it, and REG never entered the room (README, Fig. 18). m.
+  // beyond the point, or up to an obstacle or its own free arc, not to a shadow edge (a depth
+  // jump over shadow_edge_m long, kernel::IsShadowEdge). 1 m is about two robot diameters: space a
+  // robot could enter. 0: the point lying inside the other LSR is enough (Oriolo et al., paper
+  // 003); in `office` a node that looked into a room through its door at a slant then covered the
+  // frontier through the door of the node that faced it, and REG never entered the room (README,
+  // Fig. 18). m.
   double frontier_view_depth_m = 1.0;
   double shadow_edge_m = 0.2;
   // The space an LSR's sensor could not see behind an occluder (an occlusion edge at least
@@ -122,8 +123,9 @@ struct ExplorationRun {
   int moves = 0, failed_moves = 0, blocked_steps = 0;
   int replanned_moves = 0;        // blocked moves re-planned inside a freshly perceived LSR
   int unreachable_frontiers = 0;  // frontier pieces dropped: no clear leg towards them
-  // Every frontier piece given up (REG: no clear leg towards it, or the move there failed; SRT:
-  // the arcs of a node left after srt_max_attempts draws), checked against the final map.
+  // Every frontier piece given up (REG: no clear leg towards it, the move there failed, its node
+  // unreachable, a shadow no approach saw behind; SRT: the arcs and shadows of a node left after
+  // its draws), checked against the union of the final LSRs.
   std::vector<GivenUpFrontier> given_up;
   double planning_wall_s = 0.0;  // wall time spent deciding (not driving or sensing), s
 };

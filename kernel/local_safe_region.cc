@@ -28,6 +28,13 @@ double Range(const LocalSafeRegion& region, std::size_t k) {
   return (region.boundary()[k] - region.center()).norm();
 }
 
+// Whether boundary edge i joins two beams that reached the radius: a piece of the free arc.
+bool OnFreeArc(const LocalSafeRegion& region, std::size_t i) {
+  const double free_reach = region.radius() * (1.0 - 1e-9);
+  return Range(region, i) >= free_reach &&
+         Range(region, (i + 1) % region.boundary().size()) >= free_reach;
+}
+
 }  // namespace
 
 LocalSafeRegion LocalSafeRegion::FromScan(const Scan& scan, const Pose2& world_T_laser,
@@ -100,10 +107,8 @@ bool IsShadowEdge(const LocalSafeRegion& region, std::size_t i, double shadow_ed
   const bool partial = !region.full_circle();
   if (partial && (i == 0 || i == n - 1)) return true;  // the edges at the sensor
   const std::size_t j = (i + 1) % n;
-  if ((pts[j] - pts[i]).norm() <= shadow_edge_m) return false;
-  const double free_reach = region.radius() * (1.0 - 1e-9);
+  if ((pts[j] - pts[i]).norm() <= shadow_edge_m || OnFreeArc(region, i)) return false;
   const double ri = Range(region, i), rj = Range(region, j);
-  if (ri >= free_reach && rj >= free_reach) return false;  // the free arc
   // The steps before and after, between beams (not across the sensor vertex).
   const auto step = [&](std::size_t a, std::size_t b) {
     if (partial && (a == 0 || b == 0)) return 0.0;
@@ -157,11 +162,7 @@ RayExit FirstExit(const LocalSafeRegion& region, const Eigen::Vector2d& p, const
     }
   }
   if (first_edge == n) return {};
-  const Eigen::Vector2d& a = pts[first_edge];
-  const Eigen::Vector2d& b = pts[(first_edge + 1) % n];
-  const double free_reach = region.radius() * (1.0 - 1e-9);
-  if ((a - region.center()).norm() >= free_reach && (b - region.center()).norm() >= free_reach)
-    return {RayExit::Kind::kFreeArc, first_t};
+  if (OnFreeArc(region, first_edge)) return {RayExit::Kind::kFreeArc, first_t};
   return {IsShadowEdge(region, first_edge, cover.shadow_edge_m) ? RayExit::Kind::kShadow
                                                                 : RayExit::Kind::kObstacle,
           first_t};

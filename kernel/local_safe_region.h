@@ -116,7 +116,7 @@ EdgeSide EdgeMiddleAndNormal(const LocalSafeRegion& region, std::size_t i);
 struct RayExit {
   enum class Kind {
     kNone,      // no crossing up to t_to: inside all the way
-    kObstacle,  // across an edge between two beams that both hit, no longer than a shadow edge
+    kObstacle,  // across an edge between two beams that is neither free arc nor shadow
     kFreeArc,   // across the region's own free arc (both ends at the LSR radius)
     kShadow,    // across a shadow edge or an edge at the sensor: nothing was seen beyond
   };

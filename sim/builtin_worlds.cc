@@ -105,11 +105,12 @@ World Office() {
   return w;
 }
 
-// The two walls of a straight wall from p to q with a door of `width` metres centred on it.
-std::vector<Polyline> WallWithDoor(const V& p, const V& q, double width) {
+// Adds a straight wall from p to q with a door of `width` metres centred on it: two walls.
+void AddWallWithDoor(World* w, const V& p, const V& q, double width) {
   const V u = (q - p).normalized();
   const V middle = 0.5 * (p + q);
-  return {Wall({p, middle - 0.5 * width * u}), Wall({middle + 0.5 * width * u, q})};
+  w->obstacles.push_back(Wall({p, middle - 0.5 * width * u}));
+  w->obstacles.push_back(Wall({middle + 0.5 * width * u, q}));
 }
 
 World OfficeLong() {
@@ -119,7 +120,7 @@ World OfficeLong() {
   // A corridor y 5-7 along the whole floor. South: six 5 m rooms, each with a 1 m door.
   for (int k = 0; k < 6; ++k) {
     const double x = 5.0 * k;
-    for (const Polyline& p : WallWithDoor(V(x, 5), V(x + 5, 5), 1.0)) w.obstacles.push_back(p);
+    AddWallWithDoor(&w, V(x, 5), V(x + 5, 5), 1.0);
     if (k > 0) w.obstacles.push_back(Wall({{x, 0}, {x, 5}}));
   }
   // North: five rooms (x 0-25) with 1 m doors off centre, then a dead-end corridor x 25-26.5
@@ -151,11 +152,11 @@ World OfficeDoors() {
   // A hall in the middle and a room in each corner behind a wall at a different angle, with a
   // door of a different width: 0.8 m at 45 deg (south-west), 0.9 m at 39 deg (south-east),
   // 1.0 m at -45 deg (north-east), 1.2 m and 0.8 m in an L-shaped wall (north-west).
-  for (const Polyline& p : WallWithDoor(V(0, 5.5), V(5.5, 0), 0.8)) w.obstacles.push_back(p);
-  for (const Polyline& p : WallWithDoor(V(11, 0), V(16, 4), 0.9)) w.obstacles.push_back(p);
-  for (const Polyline& p : WallWithDoor(V(16, 7.5), V(11.5, 12), 1.0)) w.obstacles.push_back(p);
-  for (const Polyline& p : WallWithDoor(V(0, 8), V(4.5, 8), 1.2)) w.obstacles.push_back(p);
-  for (const Polyline& p : WallWithDoor(V(4.5, 8), V(4.5, 12), 0.8)) w.obstacles.push_back(p);
+  AddWallWithDoor(&w, V(0, 5.5), V(5.5, 0), 0.8);
+  AddWallWithDoor(&w, V(11, 0), V(16, 4), 0.9);
+  AddWallWithDoor(&w, V(16, 7.5), V(11.5, 12), 1.0);
+  AddWallWithDoor(&w, V(0, 8), V(4.5, 8), 1.2);
+  AddWallWithDoor(&w, V(4.5, 8), V(4.5, 12), 0.8);
   // Furniture: a table in the hall, a cabinet in the south-west room, a round table.
   w.obstacles.push_back(Rectangle(7.0, 5.5, 9.0, 6.3));
   w.obstacles.push_back(Rectangle(0.3, 0.3, 1.5, 1.0));

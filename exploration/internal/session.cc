@@ -206,9 +206,7 @@ bool Session::ShadowCovered(const kernel::LocalSafeRegion& owner, std::size_t ed
   const Eigen::Vector2d& a = owner.boundary()[edge];
   const Eigen::Vector2d& b = owner.boundary()[(edge + 1) % owner.boundary().size()];
   for (const double f : {0.5, 0.25, 0.75})
-    if (kernel::UnionSeesBeyond(others, a + f * (b - a), side.outward,
-                                {options_.frontier_view_depth_m, options_.shadow_edge_m}))
-      return true;
+    if (kernel::UnionSeesBeyond(others, a + f * (b - a), side.outward, Cover())) return true;
   return false;
 }
 
@@ -419,8 +417,7 @@ std::vector<kernel::FrontierArc> Session::UncoveredParts(
     const kernel::LocalSafeRegion& owner, const kernel::FrontierArc& arc,
     const std::vector<const kernel::LocalSafeRegion*>& others) const {
   const auto covered =
-      kernel::ArcPartsInside(owner, arc, others, options_.arc_sampling_rad,
-                             {options_.frontier_view_depth_m, options_.shadow_edge_m});
+      kernel::ArcPartsInside(owner, arc, others, options_.arc_sampling_rad, Cover());
   return LongEnough(graph::Subtract(arc, covered, options_.arc_sampling_rad));
 }
 

@@ -93,6 +93,10 @@ class Session {
       const Eigen::Vector2d& target, const std::vector<Eigen::Vector2d>& avoid) const;
   // The configurations of all the nodes (what Approach keeps away from).
   std::vector<Eigen::Vector2d> NodePositions() const;
+  // When another LSR covers a frontier (the view_depth and shadow_edge options).
+  kernel::CoverOptions Cover() const {
+    return {options_.frontier_view_depth_m, options_.shadow_edge_m};
+  }
   // The robot's radius plus the clearance margin: what a leg keeps from the LSR boundary, m.
   double Needed() const;
   // PathInside to `to`, else to the first clear point 0.15, 0.3 or 0.45 m from it (every
@@ -135,8 +139,8 @@ class Session {
   std::optional<std::vector<Eigen::Vector2d>> GridPath(const kernel::LocalSafeRegion& lsr,
                                                        const Eigen::Vector2d& from,
                                                        const Eigen::Vector2d& to) const;
-  // Fills run_.given_up from the nodes' given-up arcs, each checked against every other node's
-  // LSR; returns how many are open.
+  // Fills run_.given_up from the nodes' given-up arcs and shadows, each checked against the union
+  // of the other nodes' LSRs (OpenParts, ShadowOpen); returns how many are open.
   int CheckGivenUp();
   // The LSRs of the nodes other than v that can reach view_depth beyond v's circle.
   std::vector<const kernel::LocalSafeRegion*> OthersNear(graph::Vertex v) const;
