@@ -16,6 +16,7 @@ kernel::Status ExplorerOptions::Validate() const {
   if (!(arc_sampling_rad > 0.0)) return kernel::Status::Error("arc_sampling_rad must be positive");
   if (!(frontier_view_depth_m >= 0.0) || !(shadow_edge_m > 0.0))
     return kernel::Status::Error("frontier_view_depth_m must be >= 0 and shadow_edge_m positive");
+  if (retry_nodes < 0) return kernel::Status::Error("retry_nodes must be >= 0");
   if (srt_max_attempts < 1) return kernel::Status::Error("srt_max_attempts must be at least 1");
   if (!(reg_piece_factor > 0.0)) return kernel::Status::Error("reg_piece_factor must be positive");
   if (max_nodes < 1) return kernel::Status::Error("max_nodes must be at least 1");
@@ -66,6 +67,10 @@ void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
           "the space hidden behind an occluder is a frontier too (false: free arcs only)");
   v.Field("grid_paths", &grid_paths,
           "paths inside an LSR searched on a 5 cm grid (false: two legs through a polar grid)");
+  v.Field("retry_nodes", &retry_nodes,
+          "open given-up frontiers are retried from up to this many other nodes (0: as published)");
+  v.Field("face_frontiers", &face_frontiers,
+          "after an approach the robot turns to face the frontier before sensing");
   v.Field("srt_max_attempts", &srt_max_attempts, "SRT: RANDOM_DIR attempts before backtracking");
   v.Field("srt_relaxed_valid_conf", &srt_relaxed_valid_conf,
           "SRT: VALID_CONF relaxed for arcs no other LSR saw beyond (false: as published)");

@@ -54,6 +54,18 @@ struct ExplorerOptions {
   // through a polar grid of waypoints (radii 0.4-2 m, every 10 deg), which missed narrow doors
   // seen at a slant (README, Fig. 18). Neither is in the papers, whose robot drives straight.
   bool grid_paths = true;
+  // A frontier given up at its node (no clear leg, no approach saw behind it) and still open in
+  // the explorer's map is retried from up to this many other nodes once nothing else is left: the
+  // robot drives to the node whose LSR reaches nearest to it and approaches it from there
+  // (Session::NextRetry; needs grid_paths). A node in a doorway perceives the corridor behind it
+  // with the sonars only, whose blind spikes between the cones close the way back (README,
+  // Fig. 18). 0: a given-up frontier stays given up, as published.
+  int retry_nodes = 2;
+  // After a move that approached a frontier (grid_paths), the robot turns in place to face it
+  // before it senses: its laser covers 240 deg, and the sonars that see the rest leave blind
+  // spikes between their cones (0.27 m), which in a doorway closed the way through the door or
+  // back into the corridor (README, Fig. 18). false: the robot senses as it arrived.
+  bool face_frontiers = true;
   // SRT: RANDOM_DIR + VALID_CONF attempts before backtracking to the parent.
   int srt_max_attempts = 30;
   // SRT: when the draws run out while the node's free arcs still hold parts no other LSR saw

@@ -87,6 +87,48 @@ ControlInput BestU(const kernel::Pose2& pose, const Eigen::Vector2d& leg_start,
   return best;
 }
 
+namespace {
+
+// Reads the robot after a step (with the laser when the localisation needs scans) and traces it.
+void Localize(RobotInterface* robot, Localization* localization, kernel::Pose2* estimate,
+              std::vector<TraceSample>* trace) {
+  const Perception perception =
+      localization->needs_scans() ? robot->Sense() : robot->ReadOdometry();
+  *estimate = localization->Update(perception);
+  trace->push_back({perception.time_s, *estimate, perception.odometry_pose,
+                    perception.true_pose.value_or(*estimate)});
+}
+
+}  // namespace
+
+bool TurnTowards(const Eigen::Vector2d& target, const MotionOptions& options, RobotInterface* robot,
+                 Localization* localization, kernel::Pose2* estimate,
+                 std::vector<TraceSample>* trace) {
+  const double dt = robot->description().time_step_s;
+  // A full turn at the slowest rate, and some: the loop ends even when the robot slips.
+  double slowest = std::numeric_limits<double>::infinity();
+  for (const double w : options.angular_speeds_radps)
+    if (w != 0.0) slowest = std::min(slowest, std::abs(w));
+  if (!std::isfinite(slowest)) return false;
+  const int max_steps = static_cast<int>(std::ceil(2.0 * 2.0 * kernel::kPi / (slowest * dt)));
+  for (int step = 0; step < max_steps; ++step) {
+    const Eigen::Vector2d to = target - estimate->translation();
+    const double error = kernel::WrapAngle(std::atan2(to.y(), to.x()) - estimate->theta());
+    // The rate whose step leaves the smallest error; none: facing it as well as a step can.
+    double best_w = 0.0, best_error = std::abs(error);
+    for (const double w : options.angular_speeds_radps) {
+      if (std::abs(error - w * dt) < best_error) {
+        best_error = std::abs(error - w * dt);
+        best_w = w;
+      }
+    }
+    if (best_w == 0.0) return true;
+    if (!robot->Step(0.0, best_w)) return false;
+    Localize(robot, localization, estimate, trace);
+  }
+  return false;
+}
+
 MoveResult MoveTo(const std::vector<Eigen::Vector2d>& waypoints, const Eigen::Vector2d& start,
                   const MotionOptions& options, RobotInterface* robot, Localization* localization,
                   kernel::Pose2* estimate, std::vector<TraceSample>* trace) {
@@ -103,13 +145,7 @@ MoveResult MoveTo(const std::vector<Eigen::Vector2d>& waypoints, const Eigen::Ve
       std::ceil((options.timeout_base_s + options.timeout_per_meter_s * length) / dt));
   Eigen::Vector2d leg_start = start;
   std::size_t next = 0;
-  const auto localize = [&] {
-    const Perception perception =
-        localization->needs_scans() ? robot->Sense() : robot->ReadOdometry();
-    *estimate = localization->Update(perception);
-    trace->push_back({perception.time_s, *estimate, perception.odometry_pose,
-                      perception.true_pose.value_or(*estimate)});
-  };
+  const auto localize = [&] { Localize(robot, localization, estimate, trace); };
   while (next < waypoints.size()) {
     const bool last = next + 1 == waypoints.size();
     const double tolerance = last ? options.goal_tolerance_m : options.waypoint_tolerance_m;

@@ -79,6 +79,13 @@ MoveResult MoveTo(const std::vector<Eigen::Vector2d>& waypoints, const Eigen::Ve
                   const MotionOptions& options, RobotInterface* robot, Localization* localization,
                   kernel::Pose2* estimate, std::vector<TraceSample>* trace);
 
+// Turns the robot in place until it faces `target` as well as one step of angular_speeds_radps
+// can, localising after every step and appending it to `trace`; false when a step was refused or
+// the turn did not converge.
+bool TurnTowards(const Eigen::Vector2d& target, const MotionOptions& options, RobotInterface* robot,
+                 Localization* localization, kernel::Pose2* estimate,
+                 std::vector<TraceSample>* trace);
+
 }  // namespace splam::exploration
 
 #endif  // SPLAM_EXPLORATION_MOTION_H_

@@ -63,6 +63,8 @@ ExplorationRun Reg::Run() {
     std::optional<std::size_t> shadow;  // the occlusion edge approached instead of a piece
     std::optional<std::vector<Eigen::Vector2d>> destination;  // path to q_dest
     std::optional<graph::GraphPath> path;
+    std::optional<internal::Session::Retry> retry;  // once nothing else is left (NextRetry)
+    std::optional<Eigen::Vector2d> face;            // what an approach came to see (Session::Drive)
     {
       internal::Session::PlanningTimer timer(&session_);
       internal::CurrIntersection(session_, &g_, current);
@@ -78,7 +80,10 @@ ExplorationRun Reg::Run() {
           const double mid = 0.5 * (piece->start_angle_rad + piece->end_angle_rad);
           destination = session_.Approach(g_[current].lsr, g_[current].configuration.translation(),
                                           g_[current].lsr.ArcPoint(mid), session_.NodePositions());
-          if (destination) approached_.insert(current);
+          if (destination) {
+            approached_.insert(current);
+            face = internal::Session::ArcSight(g_[current].lsr, *piece);
+          }
         }
         if (!destination) {
           ++session_.run().unreachable_frontiers;
@@ -93,6 +98,7 @@ ExplorationRun Reg::Run() {
         shadow = shadows.back();
         shadows.pop_back();
         piece.reset();
+        face = internal::Session::ShadowSight(g_[current].lsr, *shadow);
         destination = session_.Approach(g_[current].lsr, g_[current].configuration.translation(),
                                         internal::Session::ShadowTarget(g_[current].lsr, *shadow),
                                         session_.NodePositions());
@@ -107,12 +113,14 @@ ExplorationRun Reg::Run() {
         Unlist(current);
         std::erase_if(list_, [&](Vertex v) { return !Pending(v); });
         if (list_.empty() && options_.shadow_frontiers) Sweep();
-        path = graph::BidirectionalAStar(g_, current,
-                                         list_.empty() ? std::vector<Vertex>{start} : list_);
+        if (list_.empty()) retry = session_.NextRetry();
+        if (!retry)
+          path = graph::BidirectionalAStar(g_, current,
+                                           list_.empty() ? std::vector<Vertex>{start} : list_);
       }
     }
     if (destination) {
-      const MoveResult move = session_.Drive(*destination);
+      const MoveResult move = session_.Drive(*destination, face);
       const Vertex previous = current;
       current = move.reached ? session_.AddNodeHere(static_cast<int>(previous))
                              : session_.NodeAfterFailedMove(previous);
@@ -135,6 +143,11 @@ ExplorationRun Reg::Run() {
         session_.GiveUp(previous, *piece, "the move towards it failed");
       }
       if (Pending(previous)) List(previous);
+      continue;
+    }
+    if (retry) {
+      // A given-up frontier retried from another node.
+      current = session_.DriveRetry(current, *retry);
       continue;
     }
     if (list_.empty()) {

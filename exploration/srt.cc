@@ -109,7 +109,18 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
       session.GiveUp(current, arc, reason);
     for (const std::size_t edge : g[current].shadows) session.GiveUpShadow(current, edge, reason);
     const int parent = session.run().nodes[current].parent;
-    if (parent < 0) return session.Finish(Termination::kExplored, "back at the root, nothing left");
+    if (parent < 0) {
+      // Back at the root: the frontiers given up and still open are retried from other nodes
+      // (ExplorerOptions::retry_nodes), each a new subtree.
+      std::optional<internal::Session::Retry> retry;
+      {
+        internal::Session::PlanningTimer timer(&session);
+        retry = session.NextRetry();
+      }
+      if (!retry) return session.Finish(Termination::kExplored, "back at the root, nothing left");
+      current = session.DriveRetry(current, *retry);
+      continue;
+    }
     // Backtrack along the tree edge; a failed move leaves the robot between the two nodes,
     // where a new node (child of the one it left) is perceived.
     const graph::Vertex target = static_cast<graph::Vertex>(parent);

@@ -190,6 +190,33 @@ bool UnionSeesBeyond(const std::vector<const LocalSafeRegion*>& regions, const E
   }
 }
 
+bool UnionLineOfSight(const std::vector<const LocalSafeRegion*>& regions, const Eigen::Vector2d& p,
+                      const Eigen::Vector2d& q, double shadow_edge_m) {
+  const double length = (q - p).norm();
+  const Eigen::Vector2d u =
+      length > 0.0 ? Eigen::Vector2d((q - p) / length) : Eigen::Vector2d(1, 0);
+  CoverOptions cover;
+  cover.shadow_edge_m = shadow_edge_m;
+  // Walk along the segment: at each point, the region containing it that takes it farthest; the
+  // walk ends when that region stops at an obstacle.
+  double t = 0.0;
+  while (true) {
+    const Eigen::Vector2d at = p + t * u;
+    bool inside = false;
+    RayExit farthest{RayExit::Kind::kShadow, t};
+    for (const LocalSafeRegion* region : regions) {
+      if (!region->Contains(at)) continue;
+      inside = true;
+      const RayExit exit = FirstExit(*region, p, u, t, length, cover);
+      if (exit.kind == RayExit::Kind::kNone) return true;
+      if (exit.t > farthest.t) farthest = exit;
+    }
+    if (!inside || farthest.kind == RayExit::Kind::kObstacle || farthest.t <= t + 1e-9)
+      return false;
+    t = farthest.t;
+  }
+}
+
 std::vector<FrontierArc> ArcPartsInside(const LocalSafeRegion& owner, const FrontierArc& arc,
                                         const std::vector<const LocalSafeRegion*>& others,
                                         double spacing_rad, const CoverOptions& cover) {

@@ -133,6 +133,13 @@ RayExit FirstExit(const LocalSafeRegion& region, const Eigen::Vector2d& p, const
 bool UnionSeesBeyond(const std::vector<const LocalSafeRegion*>& regions, const Eigen::Vector2d& p,
                      const Eigen::Vector2d& u, const CoverOptions& cover);
 
+// Whether the segment p-q runs inside the union of `regions`: p lies inside one, and the walk
+// along the segment (as UnionSeesBeyond's) leaves each region across a shadow edge or a free arc
+// where another takes it on, up to q; false where it runs into an obstacle. What a robot at p
+// would see of q, as far as the regions know.
+bool UnionLineOfSight(const std::vector<const LocalSafeRegion*>& regions, const Eigen::Vector2d& p,
+                      const Eigen::Vector2d& q, double shadow_edge_m);
+
 // The parts of `arc` (a frontier arc of `owner`) that the union of `others` covers (CoverOptions,
 // UnionSeesBeyond), as angular intervals of the arc, found by classifying points spacing_rad
 // apart with the exact containment test (exact at those points; a covered piece narrower than

@@ -103,6 +103,8 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
                        {"grid_paths", o.grid_paths},
                        {"srt_max_attempts", o.srt_max_attempts},
                        {"srt_relaxed_valid_conf", o.srt_relaxed_valid_conf},
+                       {"retry_nodes", o.retry_nodes},
+                       {"face_frontiers", o.face_frontiers},
                        {"reg_piece_factor", o.reg_piece_factor},
                        {"max_nodes", o.max_nodes},
                        {"max_time_s", o.max_time_s},

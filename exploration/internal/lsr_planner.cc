@@ -79,6 +79,15 @@ Eigen::Vector2d LsrPlanner::Centre(int index) const {
   return origin_ + kCellM * Eigen::Vector2d(index % cols_ + 0.5, index / cols_ + 0.5);
 }
 
+bool LsrPlanner::Eligible(int i, double min_travel_m, const std::vector<Eigen::Vector2d>& avoid,
+                          double min_spacing_m) const {
+  if (parent_[static_cast<std::size_t>(i)] < 0) return false;
+  const Eigen::Vector2d c = Centre(i);
+  if ((c - from_).norm() < min_travel_m) return false;
+  return std::none_of(avoid.begin(), avoid.end(),
+                      [&](const Eigen::Vector2d& a) { return (c - a).norm() < min_spacing_m; });
+}
+
 std::optional<Eigen::Vector2d> LsrPlanner::NearestReachable(
     const Eigen::Vector2d& target, double min_travel_m, const std::vector<Eigen::Vector2d>& avoid,
     double min_spacing_m) const {
@@ -86,16 +95,27 @@ std::optional<Eigen::Vector2d> LsrPlanner::NearestReachable(
   double best_distance = std::numeric_limits<double>::infinity();
   for (int i = 0; i < static_cast<int>(parent_.size()); ++i) {
     if (parent_[static_cast<std::size_t>(i)] < 0) continue;
-    const Eigen::Vector2d c = Centre(i);
-    const double d = (c - target).norm();
-    if (d >= best_distance || (c - from_).norm() < min_travel_m) continue;
-    if (std::any_of(avoid.begin(), avoid.end(),
-                    [&](const Eigen::Vector2d& a) { return (c - a).norm() < min_spacing_m; }))
-      continue;
-    best = c;
+    const double d = (Centre(i) - target).norm();
+    if (d >= best_distance || !Eligible(i, min_travel_m, avoid, min_spacing_m)) continue;
+    best = Centre(i);
     best_distance = d;
   }
   return best;
+}
+
+std::optional<Eigen::Vector2d> LsrPlanner::NearestReachable(
+    const Eigen::Vector2d& target, double min_travel_m, const std::vector<Eigen::Vector2d>& avoid,
+    double min_spacing_m, int stride,
+    const std::function<bool(const Eigen::Vector2d&)>& accept) const {
+  std::vector<std::pair<double, int>> cells;
+  for (int row = 0; row < rows_; row += stride)
+    for (int col = 0; col < cols_; col += stride)
+      if (const int i = row * cols_ + col; Eligible(i, min_travel_m, avoid, min_spacing_m))
+        cells.emplace_back((Centre(i) - target).norm(), i);
+  std::sort(cells.begin(), cells.end());
+  for (const auto& [distance, i] : cells)
+    if (accept(Centre(i))) return Centre(i);
+  return std::nullopt;
 }
 
 std::optional<std::vector<Eigen::Vector2d>> LsrPlanner::CellPath(const Eigen::Vector2d& to) const {

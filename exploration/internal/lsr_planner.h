@@ -2,6 +2,7 @@
 #define SPLAM_EXPLORATION_INTERNAL_LSR_PLANNER_H_
 
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -34,6 +35,12 @@ class LsrPlanner {
                                                   double min_travel_m,
                                                   const std::vector<Eigen::Vector2d>& avoid,
                                                   double min_spacing_m) const;
+  // The same among the cells of every `stride`-th row and column that `accept` takes, tried
+  // nearest first (for a test too costly to run on every cell).
+  std::optional<Eigen::Vector2d> NearestReachable(
+      const Eigen::Vector2d& target, double min_travel_m, const std::vector<Eigen::Vector2d>& avoid,
+      double min_spacing_m, int stride,
+      const std::function<bool(const Eigen::Vector2d&)>& accept) const;
 
   const Eigen::Vector2d& from() const { return from_; }
 
@@ -41,6 +48,10 @@ class LsrPlanner {
   // Cell index of p, -1 outside the grid.
   int Index(const Eigen::Vector2d& p) const;
   Eigen::Vector2d Centre(int index) const;
+  // Whether cell i is reached, min_travel_m from the start and min_spacing_m from every point of
+  // `avoid`.
+  bool Eligible(int i, double min_travel_m, const std::vector<Eigen::Vector2d>& avoid,
+                double min_spacing_m) const;
 
   Eigen::Vector2d from_;
   Eigen::Vector2d origin_;  // the grid's lower-left corner

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <utility>
 
 #include "exploration/internal/lsr_planner.h"
 #include "exploration/perception.h"
+#include "graph/bidirectional_astar.h"
 #include "graph/frontiers.h"
 
 namespace splam::exploration::internal {
@@ -21,6 +23,11 @@ constexpr int kWaypointDirections = 36;
 // Where PathNear looks for a clear goal around one that is not.
 constexpr double kGoalOffsets[] = {0.15, 0.3, 0.45};  // m
 constexpr int kGoalOffsetDirections = 12;
+// How far an approach takes the robot at least, from where it starts and from every node: a new
+// node where it sees differently, m.
+constexpr double kMinTravel = 0.5;
+// The point of a frontier that an approach must see lies this far inside its owner's LSR, m.
+constexpr double kSightInside = 0.1;
 
 }  // namespace
 
@@ -111,7 +118,8 @@ graph::Vertex Session::NodeAfterFailedMove(graph::Vertex from) {
   return AddNodeHere(static_cast<int>(from));
 }
 
-MoveResult Session::Drive(const std::vector<Eigen::Vector2d>& waypoints) {
+MoveResult Session::Drive(const std::vector<Eigen::Vector2d>& waypoints,
+                          const std::optional<Eigen::Vector2d>& face) {
   constexpr int kReplans = 2;
   drive_begin_ = run_.trace.size();
   MoveResult result = MoveTo(waypoints, estimate_.translation(), options_.motion, robot_,
@@ -149,6 +157,8 @@ MoveResult Session::Drive(const std::vector<Eigen::Vector2d>& waypoints) {
   if (result.blocked) ++run_.blocked_steps;
   if (result.reached) {
     failures_in_a_row_ = 0;
+    if (face && options_.face_frontiers && InSight(estimate_.translation(), *face))
+      TurnTowards(*face, options_.motion, robot_, localization_, &estimate_, &run_.trace);
   } else {
     ++run_.failed_moves;
     ++failures_in_a_row_;
@@ -220,50 +230,131 @@ Eigen::Vector2d Session::ShadowTarget(const kernel::LocalSafeRegion& lsr, std::s
   return side.middle + kInto * side.outward;
 }
 
+Eigen::Vector2d Session::ArcSight(const kernel::LocalSafeRegion& lsr,
+                                  const kernel::FrontierArc& arc) {
+  const double mid = 0.5 * (arc.start_angle_rad + arc.end_angle_rad);
+  return lsr.center() +
+         (lsr.radius() - kSightInside) * Eigen::Vector2d(std::cos(mid), std::sin(mid));
+}
+
+Eigen::Vector2d Session::ShadowSight(const kernel::LocalSafeRegion& lsr, std::size_t edge) {
+  const kernel::EdgeSide side = kernel::EdgeMiddleAndNormal(lsr, edge);
+  return side.middle - kSightInside * side.outward;
+}
+
+bool Session::InSight(const Eigen::Vector2d& from, const Eigen::Vector2d& point) const {
+  const graph::ExplorationGraph& g = run_.graph;
+  std::vector<const kernel::LocalSafeRegion*> regions;
+  for (graph::Vertex v = 0; v < boost::num_vertices(g); ++v)
+    if ((g[v].lsr.center() - point).norm() <= g[v].lsr.radius() + (point - from).norm())
+      regions.push_back(&g[v].lsr);
+  return kernel::UnionLineOfSight(regions, from, point, options_.shadow_edge_m);
+}
+
 std::vector<kernel::FrontierArc> Session::OpenParts(graph::Vertex v,
                                                     const kernel::FrontierArc& arc) const {
   return UncoveredParts(run_.graph[v].lsr, arc, OthersNear(v));
 }
 
-int Session::CheckGivenUp() {
+std::vector<GivenUpFrontier> Session::GivenUpFrontiers() const {
   const graph::ExplorationGraph& g = run_.graph;
-  run_.given_up.clear();
-  int open = 0;
+  std::vector<GivenUpFrontier> list;
   for (graph::Vertex v = 0; v < boost::num_vertices(g); ++v) {
     const kernel::LocalSafeRegion& owner = g[v].lsr;
     for (const graph::GivenUpArc& given_up : g[v].given_up) {
       if (given_up.shadow_edge >= 0) {
         const auto edge = static_cast<std::size_t>(given_up.shadow_edge);
-        const bool still_open = ShadowOpen(v, edge);
-        run_.given_up.push_back({static_cast<int>(v),
-                                 {},
-                                 given_up.shadow_edge,
-                                 kernel::EdgeMiddleAndNormal(owner, edge).middle,
-                                 given_up.reason,
-                                 still_open});
-        open += still_open;
+        list.push_back({static_cast<int>(v),
+                        {},
+                        given_up.shadow_edge,
+                        kernel::EdgeMiddleAndNormal(owner, edge).middle,
+                        given_up.reason,
+                        ShadowOpen(v, edge)});
         continue;
       }
       const std::vector<kernel::FrontierArc> left = OpenParts(v, given_up.arc);
       const double mid = 0.5 * (given_up.arc.start_angle_rad + given_up.arc.end_angle_rad);
       if (left.empty())
-        run_.given_up.push_back(
+        list.push_back(
             {static_cast<int>(v), given_up.arc, -1, owner.ArcPoint(mid), given_up.reason, false});
       for (const kernel::FrontierArc& arc : left) {
         const double m = 0.5 * (arc.start_angle_rad + arc.end_angle_rad);
-        run_.given_up.push_back(
-            {static_cast<int>(v), arc, -1, owner.ArcPoint(m), given_up.reason, true});
-        ++open;
+        list.push_back({static_cast<int>(v), arc, -1, owner.ArcPoint(m), given_up.reason, true});
       }
     }
   }
-  return open;
+  return list;
+}
+
+std::optional<Session::Retry> Session::NextRetry() {
+  constexpr double kSameTarget = 0.5;  // m: targets this close are the same frontier
+  constexpr int kStride = 4;           // goals are tried on every 4th cell (20 cm)
+  if (!options_.grid_paths || options_.retry_nodes == 0) return std::nullopt;
+  const graph::ExplorationGraph& g = run_.graph;
+  const std::vector<Eigen::Vector2d> nodes = NodePositions();
+  std::optional<Retry> best;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (const GivenUpFrontier& frontier : GivenUpFrontiers()) {
+    if (!frontier.open) continue;
+    const auto owner = static_cast<graph::Vertex>(frontier.node);
+    const kernel::LocalSafeRegion& lsr = g[owner].lsr;
+    const Eigen::Vector2d target =
+        frontier.shadow_edge >= 0 ? ShadowSight(lsr, static_cast<std::size_t>(frontier.shadow_edge))
+                                  : ArcSight(lsr, frontier.arc);
+    std::vector<graph::Vertex> tried{owner};
+    for (const auto& [t, v] : retries_)
+      if ((t - target).norm() < kSameTarget) tried.push_back(v);
+    if (static_cast<int>(tried.size()) > options_.retry_nodes) continue;
+    std::vector<const kernel::LocalSafeRegion*> regions;
+    std::vector<std::pair<double, graph::Vertex>> candidates;
+    for (graph::Vertex v = 0; v < nodes.size(); ++v) {
+      const double d = (nodes[v] - target).norm();
+      if (d > 2.0 * options_.lsr_radius_m) continue;
+      regions.push_back(&g[v].lsr);
+      if (std::find(tried.begin(), tried.end(), v) == tried.end()) candidates.emplace_back(d, v);
+    }
+    std::sort(candidates.begin(), candidates.end());
+    // A goal must come nearer to the target than its owner, and see it.
+    const double owner_distance = (nodes[owner] - target).norm();
+    for (const auto& [d, v] : candidates) {
+      const double bound = std::min(best_distance, owner_distance);
+      if (d - options_.lsr_radius_m >= bound) break;  // no point of v's LSR is nearer
+      const std::optional<Eigen::Vector2d> goal =
+          PlannerFor(g[v].lsr, nodes[v])
+              .NearestReachable(
+                  target, kMinTravel, nodes, kMinTravel, kStride, [&](const Eigen::Vector2d& c) {
+                    return (c - target).norm() < bound &&
+                           kernel::UnionLineOfSight(regions, c, target, options_.shadow_edge_m);
+                  });
+      if (!goal) continue;
+      if (auto path = PathInside(g[v].lsr, nodes[v], *goal)) {
+        best = Retry{v, std::move(*path), target};
+        best_distance = (*goal - target).norm();
+      }
+    }
+  }
+  if (best) retries_.emplace_back(best->target, best->node);
+  return best;
+}
+
+graph::Vertex Session::DriveRetry(graph::Vertex current, const Retry& retry) {
+  if (current != retry.node) {
+    const std::optional<graph::GraphPath> path =
+        graph::BidirectionalAStar(run_.graph, current, {retry.node});
+    if (!path) return current;
+    if (!Drive(graph::Waypoints(run_.graph, path->vertices)).reached)
+      return NodeAfterFailedMove(current);
+  }
+  return Drive(retry.approach, retry.target).reached ? AddNodeHere(static_cast<int>(retry.node))
+                                                     : NodeAfterFailedMove(retry.node);
 }
 
 ExplorationRun Session::Finish(Termination termination, const std::string& message) {
   run_.termination = termination;
   run_.message = message;
-  const int open = CheckGivenUp();
+  run_.given_up = GivenUpFrontiers();
+  const auto open = std::count_if(run_.given_up.begin(), run_.given_up.end(),
+                                  [](const GivenUpFrontier& f) { return f.open; });
   if (termination == Termination::kExplored && open > 0) {
     run_.termination = Termination::kIncomplete;
     run_.message = message + "; but " + std::to_string(open) +
@@ -349,7 +440,6 @@ const LsrPlanner& Session::PlannerFor(const kernel::LocalSafeRegion& lsr,
 std::optional<std::vector<Eigen::Vector2d>> Session::Approach(
     const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& from, const Eigen::Vector2d& target,
     const std::vector<Eigen::Vector2d>& avoid) const {
-  constexpr double kMinTravel = 0.5;  // m: a new node where the robot sees differently
   if (!options_.grid_paths) return std::nullopt;
   const std::optional<Eigen::Vector2d> goal =
       PlannerFor(lsr, from).NearestReachable(target, kMinTravel, avoid, kMinTravel);

@@ -35,7 +35,11 @@ class Session {
   // (the waypoints came from an older estimate), it senses and re-plans inside the LSR it
   // perceives there (PathNear) to the farthest remaining waypoint it can reach, then follows
   // the rest; at most twice per move.
-  MoveResult Drive(const std::vector<Eigen::Vector2d>& waypoints);
+  // With `face` (and options.face_frontiers), a robot that reached the last waypoint and has that
+  // point in sight (InSight) turns in place to face it (TurnTowards): what an approach came to
+  // see. Facing a point behind a wall would only turn the laser from the free space to the wall.
+  MoveResult Drive(const std::vector<Eigen::Vector2d>& waypoints,
+                   const std::optional<Eigen::Vector2d>& face = std::nullopt);
   // Moves the nodes where the localisation now puts them (Localization::NodePoses, nothing when
   // it does not revise the past; graph::MoveNodes). Called after every move and sensing, so
   // that planning uses the optimised graph.
@@ -66,6 +70,14 @@ class Session {
   // A point 0.5 m into the space hidden behind occlusion edge `edge` of `lsr`: what the robot
   // approaches (Approach) to see it.
   static Eigen::Vector2d ShadowTarget(const kernel::LocalSafeRegion& lsr, std::size_t edge);
+  // The point of a frontier that an approach must see (NextRetry) and turns to (Drive): 0.1 m
+  // inside the LSR on the middle of free arc `arc`, or of occlusion edge `edge`.
+  static Eigen::Vector2d ArcSight(const kernel::LocalSafeRegion& lsr,
+                                  const kernel::FrontierArc& arc);
+  static Eigen::Vector2d ShadowSight(const kernel::LocalSafeRegion& lsr, std::size_t edge);
+  // Whether the segment from `from` to `point` runs inside the union of the nodes' LSRs
+  // (kernel::UnionLineOfSight).
+  bool InSight(const Eigen::Vector2d& from, const Eigen::Vector2d& point) const;
   // The parts of `arc` (a frontier of `owner`) that the union of `others` does not cover (the
   // view_depth and shadow_edge options), long enough to stay frontiers.
   std::vector<kernel::FrontierArc> UncoveredParts(
@@ -91,6 +103,24 @@ class Session {
   std::optional<std::vector<Eigen::Vector2d>> Approach(
       const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& from,
       const Eigen::Vector2d& target, const std::vector<Eigen::Vector2d>& avoid) const;
+  // A given-up frontier retried from another node (ExplorerOptions::retry_nodes): the robot drives
+  // to `node` along the graph, then `approach` inside its LSR, as near to `target` (the
+  // frontier's middle, or ShadowTarget) as it gets.
+  struct Retry {
+    graph::Vertex node;
+    std::vector<Eigen::Vector2d> approach;
+    Eigen::Vector2d target;
+  };
+  // The next retry, recorded as made: among the frontiers given up and still open (the final
+  // check's), retried from fewer than retry_nodes other nodes, the node (neither the owner nor
+  // one tried for it) with the reachable point nearest to the target (0.1 m inside the owner's
+  // LSR, on the arc's middle or the shadow edge's) that is nearer than the owner and sees it
+  // through the union of the LSRs (kernel::UnionLineOfSight); nullopt when there is none.
+  std::optional<Retry> NextRetry();
+  // Carries a retry out from node `current`: along the graph (graph::BidirectionalAStar) to the
+  // retry's node, then its approach, facing the target; returns the node where the robot is then
+  // (a new one, child of the retry's node, when the approach was driven).
+  graph::Vertex DriveRetry(graph::Vertex current, const Retry& retry);
   // The configurations of all the nodes (what Approach keeps away from).
   std::vector<Eigen::Vector2d> NodePositions() const;
   // When another LSR covers a frontier (the view_depth and shadow_edge options).
@@ -139,9 +169,9 @@ class Session {
   std::optional<std::vector<Eigen::Vector2d>> GridPath(const kernel::LocalSafeRegion& lsr,
                                                        const Eigen::Vector2d& from,
                                                        const Eigen::Vector2d& to) const;
-  // Fills run_.given_up from the nodes' given-up arcs and shadows, each checked against the union
-  // of the other nodes' LSRs (OpenParts, ShadowOpen); returns how many are open.
-  int CheckGivenUp();
+  // The nodes' given-up arcs and shadows, each checked against the union of the other nodes' LSRs
+  // (OpenParts, ShadowOpen).
+  std::vector<GivenUpFrontier> GivenUpFrontiers() const;
   // The LSRs of the nodes other than v that can reach view_depth beyond v's circle.
   std::vector<const kernel::LocalSafeRegion*> OthersNear(graph::Vertex v) const;
 
@@ -153,6 +183,7 @@ class Session {
   kernel::Pose2 estimate_;
   std::size_t drive_begin_ = 0;  // trace index where the last Drive() began
   int failures_in_a_row_ = 0;
+  std::vector<std::pair<Eigen::Vector2d, graph::Vertex>> retries_;  // NextRetry's (target, node)
   // GridPath's planner for (lsr, from), built anew unless it was the last one asked for.
   const LsrPlanner& PlannerFor(const kernel::LocalSafeRegion& lsr,
                                const Eigen::Vector2d& from) const;

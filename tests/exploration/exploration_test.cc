@@ -268,9 +268,10 @@ TEST(Exploration, SrtBuildsATreeAndEndsAtTheRoot) {
 }
 
 TEST(Exploration, PublishedSrtKeepsValidConfAndReportsWhatItLeftOpen) {
-  ExplorerOptions options;  // SRT as published: free arcs only, VALID_CONF never relaxed
-  options.srt_relaxed_valid_conf = false;
+  ExplorerOptions options;  // SRT as published: free arcs only, VALID_CONF never relaxed, no
+  options.srt_relaxed_valid_conf = false;  // retries
   options.shadow_frontiers = false;
+  options.retry_nodes = 0;
   const Trial t = Explore("srt", "office", 2, options);
   // VALID_CONF: no node lies inside the LSR of another (up to the goal tolerance).
   const auto& g = t.run.graph;
