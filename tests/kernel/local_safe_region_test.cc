@@ -206,6 +206,23 @@ TEST(LocalSafeRegion, TheUnionOfRegionsSeesBehindAShadow) {
   EXPECT_FALSE(UnionSeesBeyond({&below}, p, down, {1.0, 0.2}));
 }
 
+TEST(LocalSafeRegion, LineOfSightRunsThroughTheUnionNotThroughWalls) {
+  // Two corridors 2 m wide along x, one at y = 0 and one at y = 3, with a wall between them
+  // (y = 1 and y = 2), and a region at x = 2.5 on the first corridor's axis that carries it on.
+  const LocalSafeRegion south = LocalSafeRegion::FromScan(CorridorScan(), Pose2(0, 0, 0), 3.0);
+  const LocalSafeRegion north = LocalSafeRegion::FromScan(CorridorScan(), Pose2(0, 3, 0), 3.0);
+  const LocalSafeRegion east = LocalSafeRegion::FromScan(CorridorScan(), Pose2(2.5, 0, 0), 3.0);
+  // Along the corridor: inside one region, then carried on across its free arc by the next.
+  EXPECT_TRUE(UnionLineOfSight({&south}, {0, 0}, {2.5, 0.5}, 0.2));
+  EXPECT_FALSE(UnionLineOfSight({&south}, {0, 0}, {4.5, 0.2}, 0.2));  // beyond r: unknown
+  EXPECT_TRUE(UnionLineOfSight({&south, &east}, {0, 0}, {4.5, 0.2}, 0.2));
+  // From one corridor to the other: through the wall, however the regions are listed.
+  EXPECT_FALSE(UnionLineOfSight({&south, &north}, {0, 0.5}, {0.5, 2.5}, 0.2));
+  EXPECT_FALSE(UnionLineOfSight({&north, &south, &east}, {0.5, 2.5}, {0, 0.5}, 0.2));
+  // From outside every region nothing is in sight.
+  EXPECT_FALSE(UnionLineOfSight({&south}, {0, 1.5}, {0, 0}, 0.2));
+}
+
 TEST(LocalSafeRegion, ClearanceOfASegmentFromTheWalls) {
   const LocalSafeRegion lsr = LocalSafeRegion::FromScan(CorridorScan(), Pose2(), 3.0);
   // Along the axis the walls are 1 m away; the boundary's chords cut in by less than 1 mm near
