@@ -61,10 +61,11 @@ struct ExplorerOptions {
   // with the sonars only, whose blind spikes between the cones close the way back (README,
   // Fig. 18). 0: a given-up frontier stays given up, as published.
   int retry_nodes = 2;
-  // After a move that approached a frontier (grid_paths), the robot turns in place to face it
-  // before it senses: its laser covers 240 deg, and the sonars that see the rest leave blind
-  // spikes between their cones (0.27 m), which in a doorway closed the way through the door or
-  // back into the corridor (README, Fig. 18). false: the robot senses as it arrived.
+  // After REG's approaches and every retry (grid_paths), the robot turns in place to face the
+  // frontier before it senses, when the frontier is in sight (Session::InSight): its laser
+  // covers 240 deg, and the sonars that see the rest leave blind spikes between their cones
+  // (0.27 m), which in a doorway closed the way through the door or back into the corridor
+  // (README, Fig. 18). false: the robot senses as it arrived.
   bool face_frontiers = true;
   // SRT: RANDOM_DIR + VALID_CONF attempts before backtracking to the parent.
   int srt_max_attempts = 30;
