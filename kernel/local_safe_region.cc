@@ -168,9 +168,17 @@ RayExit FirstExit(const LocalSafeRegion& region, const Eigen::Vector2d& p, const
           first_t};
 }
 
-bool UnionSeesBeyond(const std::vector<const LocalSafeRegion*>& regions, const Eigen::Vector2d& p,
-                     const Eigen::Vector2d& u, const CoverOptions& cover) {
-  // Walk along the ray: at each point, the region containing it that takes the ray farthest.
+namespace {
+
+// Walks the ray p + t u, 0 < t <= t_to, through the union of `regions`: at each point every
+// region containing it tells where the ray leaves it (FirstExit). True as soon as one exit is
+// `done`; else the walk carries on from the farthest exit when `passes` lets it across, and is
+// false outside every region or where no region takes the ray on measurably (1e-9 m, so that the
+// walk ends).
+template <typename Done, typename Passes>
+bool WalkUnion(const std::vector<const LocalSafeRegion*>& regions, const Eigen::Vector2d& p,
+               const Eigen::Vector2d& u, double t_to, const CoverOptions& cover, Done done,
+               Passes passes) {
   double t = 0.0;
   while (true) {
     const Eigen::Vector2d at = p + t * u;
@@ -179,15 +187,26 @@ bool UnionSeesBeyond(const std::vector<const LocalSafeRegion*>& regions, const E
     for (const LocalSafeRegion* region : regions) {
       if (!region->Contains(at)) continue;
       inside = true;
-      if (cover.view_depth_m <= 0.0) return true;
-      const RayExit exit = FirstExit(*region, p, u, t, cover.view_depth_m, cover);
-      if (exit.kind != RayExit::Kind::kShadow) return true;
+      const RayExit exit = FirstExit(*region, p, u, t, t_to, cover);
+      if (done(exit.kind)) return true;
       if (exit.t > farthest.t) farthest = exit;
     }
-    // 1e-9 m: a region must take the ray on measurably, so the walk ends.
-    if (!inside || farthest.t <= t + 1e-9) return false;
+    if (!inside || !passes(farthest.kind) || farthest.t <= t + 1e-9) return false;
     t = farthest.t;
   }
+}
+
+}  // namespace
+
+bool UnionSeesBeyond(const std::vector<const LocalSafeRegion*>& regions, const Eigen::Vector2d& p,
+                     const Eigen::Vector2d& u, const CoverOptions& cover) {
+  // Seen: the ray stays inside a region up to view_depth (with 0, lying inside one is enough),
+  // or leaves it across an obstacle or a free arc; across a shadow edge another region must
+  // take it on.
+  return WalkUnion(
+      regions, p, u, std::max(cover.view_depth_m, 0.0), cover,
+      [](RayExit::Kind kind) { return kind != RayExit::Kind::kShadow; },
+      [](RayExit::Kind) { return true; });
 }
 
 bool UnionLineOfSight(const std::vector<const LocalSafeRegion*>& regions, const Eigen::Vector2d& p,
@@ -197,24 +216,10 @@ bool UnionLineOfSight(const std::vector<const LocalSafeRegion*>& regions, const 
       length > 0.0 ? Eigen::Vector2d((q - p) / length) : Eigen::Vector2d(1, 0);
   CoverOptions cover;
   cover.shadow_edge_m = shadow_edge_m;
-  // Walk along the segment: at each point, the region containing it that takes it farthest; the
-  // walk ends when that region stops at an obstacle.
-  double t = 0.0;
-  while (true) {
-    const Eigen::Vector2d at = p + t * u;
-    bool inside = false;
-    RayExit farthest{RayExit::Kind::kShadow, t};
-    for (const LocalSafeRegion* region : regions) {
-      if (!region->Contains(at)) continue;
-      inside = true;
-      const RayExit exit = FirstExit(*region, p, u, t, length, cover);
-      if (exit.kind == RayExit::Kind::kNone) return true;
-      if (exit.t > farthest.t) farthest = exit;
-    }
-    if (!inside || farthest.kind == RayExit::Kind::kObstacle || farthest.t <= t + 1e-9)
-      return false;
-    t = farthest.t;
-  }
+  // In sight: some region holds the rest of the segment; the walk ends at an obstacle.
+  return WalkUnion(
+      regions, p, u, length, cover, [](RayExit::Kind kind) { return kind == RayExit::Kind::kNone; },
+      [](RayExit::Kind kind) { return kind != RayExit::Kind::kObstacle; });
 }
 
 std::vector<FrontierArc> ArcPartsInside(const LocalSafeRegion& owner, const FrontierArc& arc,
