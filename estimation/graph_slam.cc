@@ -202,9 +202,11 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
     pose_ = *localised;
   } else if (!keyframes_.empty()) {
     if (submap_dirty_) RebuildSubmap();
+    const long recovered_before = recovered_;
     const RegistrationResult r = RegisterScan(points);
     ++registrations_;
     registered_ = r.accepted;
+    recovered_since_keyframe_ |= r.accepted && recovered_ > recovered_before;
     if (r.accepted)
       pose_ = r.pose;
     else
@@ -270,6 +272,8 @@ RegistrationResult GraphSlam::RegisterScan(const std::vector<OrientedPoint>& poi
 void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                             std::vector<OrientedPoint> points) {
   force_keyframe_ = false;
+  const bool robust_edge = options_.robust_recovery_edges && recovered_since_keyframe_;
+  recovered_since_keyframe_ = false;
   std::optional<ScopedTimer> timer(&times_.keyframe_ms);
   Keyframe kf;
   kf.pose = pose_;
@@ -314,6 +318,7 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
     edge.measurement =
         keyframes_[static_cast<std::size_t>(k - 1)].pose.Between(keyframes_.back().pose);
     edge.information = FrontEndCovariance(k).inverse();
+    edge.robust = robust_edge;
     graph_.AddEdge(edge);
   }
   submap_dirty_ = true;
@@ -724,6 +729,8 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
           "a failed registration is searched again within this of the odometry (0: never), m");
   v.Field("recovery_window_rad", &recovery_window_rad, "and within this heading, rad");
   v.Field("recovery_step_rad", &recovery_step_rad, "heading step of that search, rad");
+  v.Field("robust_recovery_edges", &robust_recovery_edges,
+          "the keyframe edge across a recovered scan gets the closures' robust loss");
   v.Field("edge_sigma_m", &edge_sigma_m, "keyframe edge sigma: base, m");
   v.Field("edge_sigma_per_m", &edge_sigma_per_m, "keyframe edge sigma: per metre travelled");
   v.Field("edge_sigma_rad", &edge_sigma_rad, "keyframe edge heading sigma: base, rad");

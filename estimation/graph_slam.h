@@ -147,6 +147,11 @@ struct GraphSlamOptions {
   double recovery_window_m = 0.5;
   double recovery_window_rad = 1.2;
   double recovery_step_rad = 0.01;
+  // The front-end edge into the next keyframe after a recovery gets the loop closures' robust
+  // loss: a search over a window can take the wrong basin (a 16 deg turn where the robot drove
+  // straight, exploring `complex`, seed 1), and closures that later find the robot elsewhere then
+  // break that one edge instead of bending the whole graph around it (the map was 0.47 m off).
+  bool robust_recovery_edges = true;
 
   // Front-end edge between consecutive keyframes: sigma = base + per_m * distance travelled
   // (+ per_rad * turn for the heading).
@@ -313,6 +318,7 @@ class GraphSlam {
   std::unique_ptr<LikelihoodPyramid> submap_scores_;  // of submap_
   bool submap_dirty_ = true;
   bool force_keyframe_ = false;
+  bool recovered_since_keyframe_ = false;  // a recovery search placed a scan since the last one
   // A marked node: keyframe_T_node of its keyframe, or (keyframe -1, until the next keyframe is
   // made) its pose in the world.
   struct NodeAnchor {

@@ -376,6 +376,23 @@ double PoseGraph::EdgeChi2(const PoseGraphEdge& e) const {
   return residual[0] * residual[0] + residual[1] * residual[1] + residual[2] * residual[2];
 }
 
+namespace {
+
+// Adds the edges' residuals over `poses` to `problem`, loop closures with `loop_loss`, and fixes
+// the first pose (the gauge).
+void AddPoseGraph(const std::vector<PoseGraphEdge>& edges, std::vector<Eigen::Vector3d>* poses,
+                  ceres::LossFunction* loop_loss, ceres::Problem* problem) {
+  for (const PoseGraphEdge& e : edges)
+    problem->AddResidualBlock(
+        new ceres::AutoDiffCostFunction<RelativePoseResidual, 3, 3, 3>(
+            new RelativePoseResidual(e.measurement, SqrtInformation(e.information))),
+        e.loop || e.robust ? loop_loss : nullptr, (*poses)[static_cast<std::size_t>(e.from)].data(),
+        (*poses)[static_cast<std::size_t>(e.to)].data());
+  problem->SetParameterBlockConstant(poses->front().data());
+}
+
+}  // namespace
+
 PoseGraphSummary PoseGraph::Optimize(const PoseGraphOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   PoseGraphSummary s;
@@ -386,15 +403,8 @@ PoseGraphSummary PoseGraph::Optimize(const PoseGraphOptions& options) {
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
   ceres::CauchyLoss loop_loss(options.loop_loss_scale);
-  for (const PoseGraphEdge& e : edges_) {
-    s.loop_edges += e.loop;
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<RelativePoseResidual, 3, 3, 3>(
-            new RelativePoseResidual(e.measurement, SqrtInformation(e.information))),
-        e.loop ? &loop_loss : nullptr, poses_[static_cast<std::size_t>(e.from)].data(),
-        poses_[static_cast<std::size_t>(e.to)].data());
-  }
-  problem.SetParameterBlockConstant(poses_.front().data());
+  for (const PoseGraphEdge& e : edges_) s.loop_edges += e.loop;
+  AddPoseGraph(edges_, &poses_, &loop_loss, &problem);
   const ceres::Solver::Summary summary =
       SolveSilently(&problem, ceres::SPARSE_NORMAL_CHOLESKY, options.max_iterations);
   for (auto& p : poses_) p.z() = WrapAngle(p.z());
