@@ -11,6 +11,12 @@ namespace splam::io {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Beyond these a value is not a robot's: coordinates of 1000 km, headings of 1600 turns (logs may
+// keep the odometry's heading unwrapped), ranges of 10 km. Larger ones overflowed the map's
+// arithmetic (a DXF export crashed at 1e238).
+constexpr double kMaxCoordinateM = 1e6;
+constexpr double kMaxHeadingRad = 1e4;
+constexpr double kMaxRangeM = 1e4;
 
 // Reads the tokens of one message in order; the first failure records what was expected.
 class Cursor {
@@ -44,10 +50,40 @@ class Cursor {
     *out = static_cast<int>(*value);
     return true;
   }
+  // A number of magnitude at most `limit`.
+  bool Bounded(double* out, const char* what, double limit, const char* unit) {
+    if (!Finite(out, what)) return false;
+    if (std::abs(*out) > limit)
+      return Fail(std::string(what) + " " + FormatDouble(*out) + " is beyond +-" +
+                  FormatDouble(limit) + " " + unit);
+    return true;
+  }
   bool Pose(kernel::Pose2* out, const char* what) {
     double x = 0, y = 0, th = 0;
-    if (!Finite(&x, what) || !Finite(&y, what) || !Finite(&th, what)) return false;
+    if (!Bounded(&x, what, kMaxCoordinateM, "m") || !Bounded(&y, what, kMaxCoordinateM, "m") ||
+        !Bounded(&th, what, kMaxHeadingRad, "rad"))
+      return false;
     *out = kernel::Pose2(x, y, th);
+    return true;
+  }
+  // The beams' geometry: a positive step, a maximum range in (0, 10 km], and beams within one
+  // turn (an angular resolution written in degrees, 0.36 for 0.36 deg, wrapped the scan 360
+  // times and made the curve fits run out of memory).
+  bool ScanGeometry(const kernel::Scan& s) {
+    if (!(s.max_range_m > 0.0 && s.max_range_m <= kMaxRangeM))
+      return Fail("maximum range " + FormatDouble(s.max_range_m) + " m is not in (0, 1e4]");
+    if (!(std::abs(s.start_angle_rad) <= 2.0 * kernel::kPi))
+      return Fail("start angle " + FormatDouble(s.start_angle_rad) +
+                  " rad is not in [-2 pi, 2 pi]");
+    if (s.size() > 1 && !(s.angular_step_rad > 0.0))
+      return Fail("angular resolution " + FormatDouble(s.angular_step_rad) +
+                  " rad is not positive");
+    const double span =
+        s.angular_step_rad * static_cast<double>(std::max<std::size_t>(s.size(), 1) - 1);
+    if (span > 2.0 * kernel::kPi + 1e-9)
+      return Fail(std::to_string(s.size()) + " beams " + FormatDouble(s.angular_step_rad) +
+                  " rad apart span " + FormatDouble(span * 180.0 / kernel::kPi) +
+                  " deg, more than a full turn (a resolution in degrees instead of radians?)");
     return true;
   }
   bool Stamp(LogStamp* out) {
@@ -63,15 +99,15 @@ class Cursor {
     return true;
   }
   const std::string& error() const { return error_; }
+  bool Fail(std::string message) {
+    if (error_.empty()) error_ = std::move(message);
+    return false;
+  }
 
  private:
   bool Available(const char* what) {
     if (next_ < tokens_.size()) return true;
     return Fail(std::string("line ends early: missing ") + what);
-  }
-  bool Fail(std::string message) {
-    if (error_.empty()) error_ = std::move(message);
-    return false;
   }
 
   std::vector<std::string_view> tokens_;
@@ -120,7 +156,7 @@ bool ParseFlaser(Cursor* c, const CarmenReadOptions& o, CarmenReadStats* stats, 
                                                        : kernel::kPi / std::max(n - 1, 1);
   s.min_range_m = o.flaser_min_range_m;
   s.max_range_m = o.flaser_max_range_m;
-  return ReadRanges(c, n, s.max_range_m, stats, &s.ranges_m) &&
+  return ReadRanges(c, n, s.max_range_m, stats, &s.ranges_m) && c->ScanGeometry(s) &&
          c->Pose(&m->laser_pose, "laser pose") && c->Pose(&m->robot_pose, "odometry pose") &&
          c->Stamp(&m->stamp) && c->End();
 }
@@ -131,7 +167,8 @@ bool ParseRobotLaser(Cursor* c, CarmenReadStats* stats, LaserMessage* m) {
   double fov = 0.0, laser_type = 0.0, remission_mode = 0.0;
   int n = 0, num_remissions = 0;
   if (!c->Finite(&laser_type, "laser_type") || !c->Finite(&s.start_angle_rad, "start_angle") ||
-      !c->Finite(&fov, "field_of_view") || !c->Finite(&s.angular_step_rad, "angular_resolution") ||
+      !c->Bounded(&fov, "field_of_view", 2.0 * kernel::kPi + 1e-9, "rad") ||
+      !c->Finite(&s.angular_step_rad, "angular_resolution") ||
       !c->Finite(&s.max_range_m, "maximum_range") || !c->Finite(&m->accuracy_m, "accuracy") ||
       !c->Finite(&remission_mode, "remission_mode") || !c->Count(&n, "number of readings")) {
     return false;
@@ -139,7 +176,8 @@ bool ParseRobotLaser(Cursor* c, CarmenReadStats* stats, LaserMessage* m) {
   m->laser_type = static_cast<int>(laser_type);
   m->remission_mode = static_cast<int>(remission_mode);
   s.min_range_m = 0.0;
-  if (!ReadRanges(c, n, s.max_range_m, stats, &s.ranges_m) ||
+  if (!(fov >= 0.0)) return c->Fail("field of view " + FormatDouble(fov) + " rad is negative");
+  if (!ReadRanges(c, n, s.max_range_m, stats, &s.ranges_m) || !c->ScanGeometry(s) ||
       !c->Count(&num_remissions, "number of remissions")) {
     return false;
   }
@@ -157,7 +195,7 @@ bool ParseRobotLaser(Cursor* c, CarmenReadStats* stats, LaserMessage* m) {
 bool ParseSonar(Cursor* c, CarmenReadStats* stats, SonarMessage* m) {
   int n = 0, num_poses = 0;
   if (!c->Finite(&m->cone_angle_rad, "cone_angle") || !c->Count(&n, "number of sonars") ||
-      !ReadRanges(c, n, std::numeric_limits<double>::max(), stats, &m->ranges_m) ||
+      !ReadRanges(c, n, kMaxRangeM, stats, &m->ranges_m) ||
       !c->Count(&num_poses, "number of sonar poses")) {
     return false;
   }

@@ -272,6 +272,7 @@ double CubicBSpline::ParameterAtArcLength(double s) const {
 std::vector<Eigen::Vector2d> CubicBSpline::ResampleByArcLength(double epsilon_m) const {
   assert(epsilon_m > 0.0);
   const double length = Length();
+  if (!(length / epsilon_m <= kMaxSamples)) return {};
   const std::size_t n = static_cast<std::size_t>(std::floor(length / epsilon_m + 1e-9)) + 1;
   std::vector<Eigen::Vector2d> points;
   points.reserve(n);

@@ -58,7 +58,10 @@ class CubicBSpline {
   // The parameter at arc length s from the start (s clamped to [0, Length()]).
   double ParameterAtArcLength(double s) const;
   // Points at arc lengths 0, epsilon, 2 epsilon, ... up to Length() (the last point is the
-  // curve's end only when Length() is a multiple of epsilon). epsilon > 0.
+  // curve's end only when Length() is a multiple of epsilon). epsilon > 0. Empty when the length
+  // is not finite or would need more than kMaxSamples points: no allocation is sized by a
+  // diverged curve.
+  static constexpr double kMaxSamples = 1e7;
   std::vector<Eigen::Vector2d> ResampleByArcLength(double epsilon_m) const;
 
   struct ClosestPoint {

@@ -16,6 +16,15 @@ std::optional<SplineCurve> ExtractCurve(const std::vector<Eigen::Vector2d>& poin
                                         std::string* error) {
   std::optional<CubicBSpline> spline = FitCubicBSpline(points, options.fit, error);
   if (!spline) return std::nullopt;
+  double polyline_m = 0.0;
+  for (std::size_t i = 1; i < points.size(); ++i) polyline_m += (points[i] - points[i - 1]).norm();
+  if (!(spline->Length() <= kMaxLengthRatio * polyline_m)) {
+    if (error != nullptr)
+      *error = "the fit is " + std::to_string(spline->Length()) + " m long, more than " +
+               std::to_string(kMaxLengthRatio) + " times its points' path of " +
+               std::to_string(polyline_m) + " m";
+    return std::nullopt;
+  }
   SplineCurve curve = DescribeCurve(std::move(*spline), options);
   curve.points = points;
   return curve;

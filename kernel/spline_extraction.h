@@ -45,7 +45,10 @@ struct SplineCurve {
 };
 
 // The curve of one ordered run of points (any frame); nullopt, with *error, when the points do
-// not make a curve (fewer than 4, all equal, not finite).
+// not make a curve (fewer than 4, all equal, not finite) or the fit is more than
+// kMaxLengthRatio times longer than the polyline through them (a fit that diverged, e.g. on the
+// points of a scan whose beams wrap past a full turn: its samples once asked for 26 GB).
+inline constexpr double kMaxLengthRatio = 10.0;
 std::optional<SplineCurve> ExtractCurve(const std::vector<Eigen::Vector2d>& points,
                                         const SplineExtractionOptions& options = {},
                                         std::string* error = nullptr);

@@ -23,7 +23,7 @@ LogStamp RandomStamp(Random* r) {
 kernel::Scan RandomScan(Random* r, double max_range) {
   kernel::Scan s;
   s.start_angle_rad = r->Uniform(-2.5, 0);
-  s.angular_step_rad = r->Uniform(0.001, 0.02);
+  s.angular_step_rad = r->Uniform(0.001, 0.008);  // 701 beams within one turn
   s.max_range_m = max_range;
   s.ranges_m.resize(1 + r->Index(700));
   for (double& v : s.ranges_m) {
@@ -106,7 +106,7 @@ TEST(CarmenLog, PropertyWriteThenReadIsExact) {
   Random random(31);
   CarmenReadOptions options;
   options.flaser_start_angle_rad = -1.5;
-  options.flaser_angular_step_rad = 0.01;
+  options.flaser_angular_step_rad = 0.008;
   options.flaser_max_range_m = 50.0;
   for (int trial = 0; trial < 20; ++trial) {
     const CarmenLog log = RandomLog(&random, options);
@@ -234,7 +234,37 @@ INSTANTIATE_TEST_SUITE_P(
         BadLine{"ROBOTLASER1 0 -1.5 3 0.01 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h",
                 "line ends early"},
         BadLine{"TRUEPOS 1 2 3 4 5 6 7 h", "line ends early"},
-        BadLine{"SONAR 0.5 2 1 1 2 0 0 0 1 h 1", "expected a number for sonar pose"}));
+        BadLine{"SONAR 0.5 2 1 1 2 0 0 0 1 h 1", "expected a number for sonar pose"},
+        // Physically meaningless values (issue 19): refused at the reader.
+        BadLine{"ODOM 1e300 2 0.5 0 0 0 1.0 h 1.0", "pose 1e+300 is beyond +-1e+06 m"},
+        BadLine{"ODOM 1 2 1e300 0 0 0 1.0 h 1.0", "is beyond +-10000 rad"},
+        BadLine{"FLASER 2 1 2 1e300 0 0 0 0 0 1 h 1", "laser pose 1e+300"},
+        BadLine{"ROBOTLASER1 0 -1.5 3 0 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
+                "angular resolution 0 rad is not positive"},
+        BadLine{"ROBOTLASER1 0 -1.5 3 0.01 0 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
+                "maximum range 0 m"},
+        BadLine{"ROBOTLASER1 0 1e300 3 0.01 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
+                "start angle 1e+300"},
+        BadLine{"ROBOTLASER1 0 -1.5 -3 0.01 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
+                "field of view -3 rad is negative"},
+        BadLine{"ROBOTLASER1 0 -1.5 3 7 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
+                "more than a full turn"}));
+
+// A FLASER step given in the options that wraps the scan (--flaser-step-deg 10 on intel's 180
+// beams: 1790 deg) is refused at the first scan, naming its line.
+TEST(CarmenLog, FlaserStepThatWrapsTheScanIsRefused) {
+  CarmenReadOptions options;
+  options.flaser_angular_step_rad = 10.0 * kernel::kPi / 180.0;
+  std::string ranges;
+  for (int i = 0; i < 180; ++i) ranges += " 1";
+  const CarmenReadResult r =
+      ParseCarmenLog("# c\nFLASER 180" + ranges + " 0 0 0 0 0 0 1 h 1\n", "w.clf", options);
+  ASSERT_FALSE(r.log.ok());
+  EXPECT_EQ(r.log.error.rfind("w.clf:2: FLASER: 180 beams", 0), 0u) << r.log.error;
+  options.flaser_angular_step_rad = 1.0 * kernel::kPi / 180.0;
+  EXPECT_TRUE(ParseCarmenLog("# c\nFLASER 180" + ranges + " 0 0 0 0 0 0 1 h 1\n", "w.clf", options)
+                  .log.ok());
+}
 
 TEST(CarmenLog, MissingFileIsAnError) {
   const CarmenReadResult r = ReadCarmenLog("/nonexistent/log.clf");

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "kernel/angle.h"
 
 namespace splam::kernel {
@@ -31,6 +33,44 @@ TEST(ExtractCurve, DegenerateInputIsAnError) {
   EXPECT_FALSE(ExtractCurve({{0, 0}, {0, 0}, {0, 0}, {0, 0}}, {}, &error));
   EXPECT_FALSE(error.empty());
   EXPECT_TRUE(ExtractCurves(Scan()).empty());
+}
+
+// Issue 19: scans whose beams wrap past a full turn (a resolution in degrees read as radians)
+// crashed with a 26 GB allocation or hung. Every curve extracted from them is bounded by its
+// points' path, whatever the beams' order.
+TEST(ExtractCurves, PropertyScansThatWrapGiveBoundedCurves) {
+  std::mt19937 gen(19);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 40; ++trial) {
+    Scan scan;
+    scan.start_angle_rad = -kPi;
+    scan.angular_step_rad = 0.05 + 6.0 * unit(gen);
+    scan.max_range_m = 30.0;
+    const int n = 100 + static_cast<int>(600 * unit(gen));
+    for (int i = 0; i < n; ++i) scan.ranges_m.push_back(0.5 + 10.0 * unit(gen));
+    for (const SplineCurve& c : ExtractCurves(scan)) {
+      double path = 0.0;
+      for (std::size_t i = 1; i < c.points.size(); ++i)
+        path += (c.points[i] - c.points[i - 1]).norm();
+      EXPECT_LE(c.spline.Length(), kMaxLengthRatio * path) << trial;
+      EXPECT_LE(static_cast<double>(c.samples.size()),
+                kMaxLengthRatio * path / SplineExtractionOptions().epsilon_m + 1.0)
+          << trial;
+    }
+  }
+}
+
+// A curve whose length overflows (control points at 1e300) samples to nothing instead of asking
+// for an allocation sized by it.
+TEST(CubicBSpline, ResamplingAnOverflowingCurveAllocatesNothing) {
+  const std::optional<CubicBSpline> huge =
+      CubicBSpline::ClampedUniform({{0, 0}, {1e300, 0}, {-1e300, 1e300}, {1e300, -1e300}});
+  ASSERT_TRUE(huge);
+  EXPECT_TRUE(huge->ResampleByArcLength(0.01).empty());
+  const std::optional<CubicBSpline> fine =
+      CubicBSpline::ClampedUniform({{0, 0}, {1, 0}, {2, 0}, {3, 0}});
+  ASSERT_TRUE(fine);
+  EXPECT_EQ(fine->ResampleByArcLength(0.01).size(), 301u);
 }
 
 TEST(SplineExtractionOptions, Validate) {
