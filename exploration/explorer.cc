@@ -71,6 +71,9 @@ void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
           "open given-up frontiers are retried from up to this many other nodes (0: as published)");
   v.Field("face_frontiers", &face_frontiers,
           "after an approach the robot turns to face the frontier before sensing");
+  v.Field("look_before_giving_up", &look_before_giving_up,
+          "REG: a node with no clear leg to a piece turns to face it and senses again first "
+          "(false: as published)");
   v.Field("srt_max_attempts", &srt_max_attempts, "SRT: RANDOM_DIR attempts before backtracking");
   v.Field("srt_relaxed_valid_conf", &srt_relaxed_valid_conf,
           "SRT: VALID_CONF relaxed for arcs no other LSR saw beyond (false: as published)");

@@ -67,6 +67,15 @@ struct ExplorerOptions {
   // (0.27 m), which in a doorway closed the way through the door or back into the corridor
   // (README, Fig. 18). false: the robot senses as it arrived.
   bool face_frontiers = true;
+  // REG: a node with no clear leg towards a frontier piece turns in place to face the piece and
+  // senses again (a new node at the same place, Session::LookTowards) before it approaches the
+  // piece or gives it up; once per place. A robot that stopped in a doorway facing along the wall
+  // sees the room through the door in a wedge whose apex the edge of its laser's 240 deg cuts: too
+  // narrow near the robot for its disc, so no path led in (REG + ekf-lines in `office`, seed 5).
+  // Off by default: on, it drove the floor-plan test's seed 1 into a room facing away from its
+  // far half, which the sonars' first echoes closed, and that run ended `explored` at 88 %
+  // (README, Fig. 18). false: the robot plans with what it sensed on arrival, as published.
+  bool look_before_giving_up = false;
   // SRT: RANDOM_DIR + VALID_CONF attempts before backtracking to the parent.
   int srt_max_attempts = 30;
   // SRT: when the draws run out while the node's free arcs still hold parts no other LSR saw

@@ -35,6 +35,7 @@ class Reg {
   graph::ExplorationGraph& g_;
   std::vector<Vertex> list_;     // the frontier-control list
   std::set<Vertex> approached_;  // nodes that retried a piece from another node (Approach)
+  std::set<Vertex> looked_;      // nodes that turned to face a piece, and the nodes that did so
   bool sweeping_ = false;        // shadow frontiers are being explored (Sweep)
 
   // Whether node v has frontiers left to explore: free arcs, or shadows while sweeping.
@@ -65,14 +66,23 @@ ExplorationRun Reg::Run() {
     std::optional<graph::GraphPath> path;
     std::optional<internal::Session::Retry> retry;  // once nothing else is left (NextRetry)
     std::optional<Eigen::Vector2d> face;            // what an approach came to see (Session::Drive)
+    std::optional<Eigen::Vector2d> look;            // turn in place to face this and sense again
     {
       internal::Session::PlanningTimer timer(&session_);
       internal::CurrIntersection(session_, &g_, current);
       // FRONTIERS / FRONT_RAND, until a piece with a clear leg is found.
       std::vector<kernel::FrontierArc>& frontiers = g_[current].frontiers;
-      while (!frontiers.empty() && !destination) {
+      while (!frontiers.empty() && !destination && !look) {
         piece = internal::FrontRand(session_, &frontiers, &session_.random(), max_piece);
         destination = internal::Displacement(session_, g_[current], *piece);
+        if (!destination && options_.look_before_giving_up && !looked_.contains(current)) {
+          // Before anything else the robot looks at the piece from where it stands: the piece
+          // goes back to the node, and what the new LSR covers of it leaves (CurrIntersection).
+          looked_.insert(current);
+          frontiers.push_back(*piece);
+          look = internal::Session::ArcSight(g_[current].lsr, *piece);
+          break;
+        }
         if (!destination && !approached_.contains(current)) {
           // Retried from another node: the robot moves as near the piece as it can inside the
           // LSR (a node beside a door sees the room through it at a slant, a node in front of it
@@ -94,7 +104,7 @@ ExplorationRun Reg::Run() {
       // the hidden space as the LSR lets it (ExplorerOptions::shadow_frontiers).
       std::vector<std::size_t>& shadows = g_[current].shadows;
       shadow.reset();
-      while (!destination && sweeping_ && !shadows.empty()) {
+      while (!destination && !look && sweeping_ && !shadows.empty()) {
         shadow = shadows.back();
         shadows.pop_back();
         piece.reset();
@@ -107,7 +117,7 @@ ExplorationRun Reg::Run() {
           session_.GiveUpShadow(current, *shadow, "no reachable point nearer the hidden space");
         }
       }
-      if (destination) {
+      if (destination || look) {
         if (Pending(current)) List(current);
       } else {
         Unlist(current);
@@ -143,6 +153,11 @@ ExplorationRun Reg::Run() {
         session_.GiveUp(previous, *piece, "the move towards it failed");
       }
       if (Pending(previous)) List(previous);
+      continue;
+    }
+    if (look) {
+      current = session_.LookTowards(current, *look);
+      looked_.insert(current);
       continue;
     }
     if (retry) {

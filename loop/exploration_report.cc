@@ -105,6 +105,7 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
                        {"srt_relaxed_valid_conf", o.srt_relaxed_valid_conf},
                        {"retry_nodes", o.retry_nodes},
                        {"face_frontiers", o.face_frontiers},
+                       {"look_before_giving_up", o.look_before_giving_up},
                        {"reg_piece_factor", o.reg_piece_factor},
                        {"max_nodes", o.max_nodes},
                        {"max_time_s", o.max_time_s},

@@ -349,6 +349,12 @@ graph::Vertex Session::DriveRetry(graph::Vertex current, const Retry& retry) {
                                                      : NodeAfterFailedMove(retry.node);
 }
 
+graph::Vertex Session::LookTowards(graph::Vertex from, const Eigen::Vector2d& point) {
+  drive_begin_ = run_.trace.size();
+  TurnTowards(point, options_.motion, robot_, localization_, &estimate_, &run_.trace);
+  return AddNodeHere(static_cast<int>(from));
+}
+
 ExplorationRun Session::Finish(Termination termination, const std::string& message) {
   run_.termination = termination;
   run_.message = message;

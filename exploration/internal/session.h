@@ -121,6 +121,9 @@ class Session {
   // retry's node, then its approach, facing the target; returns the node where the robot is then
   // (a new one, child of the retry's node, when the approach was driven).
   graph::Vertex DriveRetry(graph::Vertex current, const Retry& retry);
+  // Turns in place to face `point` (TurnTowards) and senses: a new node, child of `from`, at the
+  // same place, whose LSR has the laser towards the point.
+  graph::Vertex LookTowards(graph::Vertex from, const Eigen::Vector2d& point);
   // The configurations of all the nodes (what Approach keeps away from).
   std::vector<Eigen::Vector2d> NodePositions() const;
   // When another LSR covers a frontier (the view_depth and shadow_edge options).

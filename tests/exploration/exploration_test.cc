@@ -252,15 +252,51 @@ TEST(ExplorationCauses, ACorridorBehindANodeInADoorwayIsRetriedFromAnotherNode) 
   ExplorerOptions published;
   published.retry_nodes = 0;
   published.face_frontiers = false;
+  published.look_before_giving_up = false;
+  ExplorerOptions retries = published;
+  retries.retry_nodes = 2;
+  retries.face_frontiers = true;
+  ExplorerOptions looks = published;
+  looks.look_before_giving_up = true;
   for (const std::uint64_t seed : {1, 9}) {
     const Trial before = Explore("reg", "office-long", seed, published);
     EXPECT_LT(before.coverage, 0.6) << "seed " << seed;
     EXPECT_EQ(before.run.termination, Termination::kIncomplete) << before.run.message;
+    // Either fix alone: retries with facing, or the look before the corridor is given up.
+    EXPECT_GT(Explore("reg", "office-long", seed, retries).coverage, 0.98) << "seed " << seed;
+    EXPECT_GT(Explore("reg", "office-long", seed, looks).coverage, 0.98) << "seed " << seed;
     const Trial t = Explore("reg", "office-long", seed);
     EXPECT_GT(t.coverage, 0.98) << "seed " << seed;
     EXPECT_EQ(t.run.termination, Termination::kExplored) << t.run.message;
     EXPECT_TRUE(NodeIn(t.run, {20.3, 7.3}, {24.7, 11.7})) << "seed " << seed;  // a far room
   }
+}
+
+TEST(ExplorationCauses, PropertyARobotInADoorwayLooksBeforeItGivesUp) {
+  // office, REG with ekf-lines, seed 5 (91.2 %): a node stopped in a doorway 0.15 m north of the
+  // wall, facing south-west. Its laser's 240 deg end at -35 deg, so it saw the room through the
+  // door in a wedge whose apex, at the robot, was too narrow for its disc: no path led in, and
+  // the room was given up. The same kind of start here, in the 0.9 m door of CorridorAndRoom at
+  // 42 poses (2 x 3 positions, 7 headings): turning to face a piece that no leg reaches and
+  // sensing again (look_before_giving_up, off by default) opens the wedge. Measured without it: 5
+  // of the 42 end incomplete at 53-87 %, two without entering the room.
+  sim::World w = CorridorAndRoom();
+  ExplorerOptions with;
+  with.look_before_giving_up = true;
+  int incomplete_without = 0;
+  for (const double x : {5.95, 6.05}) {
+    for (const double y : {0.1, 0.25, 0.4}) {
+      for (const double heading : {-2.7, 3.14, 2.0, 1.57, 0.5, 0.0, -0.4}) {
+        w.start = kernel::Pose2(x, y, heading);
+        incomplete_without += ExploreWorld("reg", w, 1).run.termination != Termination::kExplored;
+        const Trial t = ExploreWorld("reg", w, 1, with);
+        EXPECT_EQ(t.run.termination, Termination::kExplored) << t.run.message;
+        EXPECT_GT(t.coverage, 0.98) << x << " " << y << " " << heading;
+        EXPECT_TRUE(NodeIn(t.run, {4.3, -6.2}, {7.7, -0.5})) << x << " " << y << " " << heading;
+      }
+    }
+  }
+  EXPECT_GE(incomplete_without, 3);
 }
 
 TEST(ExplorationCauses, TheFloorBehindATableIsSeen) {
