@@ -3,6 +3,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <string>
+
 #include "loop/exit_status.h"
 
 namespace splam::apps {
@@ -20,6 +22,17 @@ void AddConfigCommand(CLI::App* app, int* exit_code);
 using loop::kExitBadInput;
 using loop::kExitIncomplete;
 using loop::kExitOk;
+
+// Number checks for options. CLI::PositiveNumber, NonNegativeNumber and Range let NaN through
+// (every comparison with it is false), and CLI11 reads "-1" as 2^64 - 1 for an unsigned option.
+// A finite number above 0.
+CLI::Validator FinitePositive();
+// A finite number at least 0.
+CLI::Validator FiniteNonNegative();
+// A finite number in [lo, hi].
+CLI::Validator FiniteRange(double lo, double hi);
+// A seed: an integer from 0 to 2^64 - 1 written without a sign.
+CLI::Validator Seed();
 
 }  // namespace splam::apps
 

@@ -4,6 +4,7 @@
 
 #include "apps/commands.h"
 #include "apps/run_config.h"
+#include "io/floor_plan.h"
 
 namespace splam::apps {
 namespace {

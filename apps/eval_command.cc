@@ -6,6 +6,7 @@
 
 #include "apps/commands.h"
 #include "estimation/metrics.h"
+#include "io/floor_plan.h"
 #include "io/relations.h"
 #include "io/run_picture.h"
 #include "io/trajectory.h"

@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include "apps/commands.h"
+#include "io/floor_plan.h"
 #include "io/world_file.h"
 #include "loop/bspline_experiment.h"
 #include "loop/corridor_experiment.h"
@@ -71,17 +72,18 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       ->check(CLI::IsMember({"corridor-lines", "complex-bspline", "exploration", "splam"}))
       ->capture_default_str();
   cmd->add_option("--runs", args->runs, "Seeded runs (default: 20 corridor-lines, 10 the others)")
-      ->check(CLI::PositiveNumber);
+      ->check(FinitePositive());
   cmd->add_option("--max-scans", args->max_scans,
                   "complex-bspline: stop each route after this many scans (0 = the whole route)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(FiniteNonNegative());
   cmd->add_option("--steps", args->steps, "Steps (scans) of the straight run")
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->capture_default_str();
   cmd->add_option("--speed", args->speed_mps, "Forward speed, m/s (0.1 s per step)")
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Seed of the first run; run i uses seed + i")
+      ->check(Seed())
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output directory (default runs/experiment-<name>)");
   cmd->add_option("--world", args->world,
@@ -91,27 +93,28 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--resolution", args->resolution_m_per_px,
                   "splam: metres per pixel of a floor-plan image")
-      ->check(CLI::PositiveNumber)
+      ->check(
+          FiniteRange(io::FloorPlanOptions::kMinResolutionM, io::FloorPlanOptions::kMaxResolutionM))
       ->capture_default_str();
   cmd->add_option("--odometry-noise", args->odometry_noise_scale,
                   "complex-bspline: scale of the odometry noise (simulated and modelled)")
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->capture_default_str();
   cmd->add_option("--max-correspondence", args->max_correspondence_distance_m,
                   "complex-bspline: largest distance (m) between a beam's predicted hit and the "
                   "map point its association paired it with; large values switch the test off")
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->capture_default_str();
   cmd->add_flag("!--no-corners", args->corners, "Use lines only, no corner landmarks");
   cmd->add_option("--line-floor-scale", args->line_floor_scale,
                   "Scale of the line noise floors (1 mm, 0.5 mrad)")
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->capture_default_str();
   cmd->add_option("--corner-floor", args->corner_floor_m, "Corner measurement noise floor, m")
       ->capture_default_str();
   cmd->add_option("--odometry-floor", args->odometry_floor,
                   "Odometry noise floors per step (m and rad)")
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->capture_default_str();
   cmd->callback([args, exit_code] {
     if (args->name == "splam") {

@@ -10,6 +10,7 @@
 #include "apps/commands.h"
 #include "apps/run_config.h"
 #include "io/config.h"
+#include "io/floor_plan.h"
 #include "io/text.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
@@ -212,6 +213,7 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   flag("seed", cmd->add_option("--seed", setup.seed,
                                "Seed of the simulator's noise and the explorer's random draws"))
+      ->check(Seed())
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output directory (default runs/explore-<explorer>-<world>)");
   flag(
@@ -230,22 +232,22 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
   flag("odometry-noise",
        cmd->add_option("--odometry-noise", setup.odometry_noise_scale,
                        "Scale of the default odometry noise (0 = perfect odometry)"))
-      ->check(CLI::NonNegativeNumber)
+      ->check(FiniteNonNegative())
       ->capture_default_str();
   flag("lsr-radius", cmd->add_option("--lsr-radius", setup.region.radius_m,
                                      "LSR radius r, m (also the topological SLAM's region)"))
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->capture_default_str();
   flag("alpha", cmd->add_option("--alpha", setup.region.alpha,
                                 "Step alpha * r to a new node, 0 < alpha < 1"))
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(FiniteRange(0.0, 1.0))
       ->capture_default_str();
   flag("max-nodes", cmd->add_option("--max-nodes", o.max_nodes, "Cap on graph nodes"))
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->capture_default_str();
   flag("max-time",
        cmd->add_option("--max-time", o.max_time_s, "Cap on simulated exploration time, s"))
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->capture_default_str();
   flag(
       "no-sonar",
@@ -253,7 +255,8 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
                     "LSRs from the laser only (240 deg), without the sonar ring behind the robot"));
   cmd->add_option("--resolution", args->resolution_m_per_px,
                   "Metres per pixel of a floor-plan image world")
-      ->check(CLI::PositiveNumber)
+      ->check(
+          FiniteRange(io::FloorPlanOptions::kMinResolutionM, io::FloorPlanOptions::kMaxResolutionM))
       ->capture_default_str();
   cmd->add_flag("--trace", args->trace,
                 "With a SLAM localisation, also write steps.csv: every step's predicted and "

@@ -3,6 +3,7 @@
 
 #include "apps/commands.h"
 #include "io/carmen.h"
+#include "io/floor_plan.h"
 #include "io/run_picture.h"
 #include "io/simulation_log.h"
 #include "io/world_file.h"
@@ -94,22 +95,23 @@ void AddRenderCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--out", args->out, "Output picture(s), .svg or .png")->capture_default_str();
   cmd->add_option("--title", args->title, "Title above the picture");
   cmd->add_option("--scan-every", args->scan_every, "Draw the points of every N-th scan")
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->capture_default_str();
   cmd->add_option("--resolution", args->resolution_m_per_px,
                   "Metres per pixel of a floor-plan image world")
-      ->check(CLI::PositiveNumber)
+      ->check(
+          FiniteRange(io::FloorPlanOptions::kMinResolutionM, io::FloorPlanOptions::kMaxResolutionM))
       ->capture_default_str();
   cmd->add_option("--pixels-per-meter", args->pixels_per_meter, "Picture scale")
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->capture_default_str();
   cmd->add_option("--flaser-step-deg", args->flaser_step_deg,
                   "FLASER beam spacing in degrees (0: 180/n for even n, 180/(n-1) for odd n)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(FiniteNonNegative())
       ->capture_default_str();
   cmd->add_option("--flaser-max-range", args->flaser_max_range_m,
                   "FLASER readings at or above this are no-returns")
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->capture_default_str();
   cmd->callback([args, exit_code] { *exit_code = RunRender(*args); });
 }

@@ -7,6 +7,7 @@
 
 #include "apps/commands.h"
 #include "io/config.h"
+#include "io/floor_plan.h"
 #include "io/run_picture.h"
 #include "io/simulation_log.h"
 #include "io/world_file.h"
@@ -217,6 +218,7 @@ void AddSimulateCommand(CLI::App* app, int* exit_code) {
                   "be 'x y theta'")
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Seed of all noise; the same seed gives the same files")
+      ->check(Seed())
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output directory (default runs/simulate-<world>)");
   std::vector<std::pair<std::string, CLI::Option*>> flags;
@@ -233,16 +235,17 @@ void AddSimulateCommand(CLI::App* app, int* exit_code) {
   flags.emplace_back("odometry-noise",
                      cmd->add_option("--odometry-noise", args->odometry_noise_scale,
                                      "Scale of the default odometry noise (0 = perfect odometry)"));
-  flags.back().second->check(CLI::NonNegativeNumber)->capture_default_str();
+  flags.back().second->check(FiniteNonNegative())->capture_default_str();
   cmd->add_option("--resolution", args->resolution_m_per_px,
                   "Metres per pixel of a floor-plan image world")
-      ->check(CLI::PositiveNumber)
+      ->check(
+          FiniteRange(io::FloorPlanOptions::kMinResolutionM, io::FloorPlanOptions::kMaxResolutionM))
       ->capture_default_str();
   flags.emplace_back("max-steps",
                      cmd->add_option("--max-steps", args->max_steps, "Cap on 0.1 s time steps"));
-  flags.back().second->check(CLI::PositiveNumber)->capture_default_str();
+  flags.back().second->check(FinitePositive())->capture_default_str();
   cmd->add_option("--scan-every", args->scan_every, "Draw the points of every N-th scan")
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->capture_default_str();
   cmd->callback([args, exit_code, flags] {
     args->given.clear();

@@ -13,6 +13,7 @@
 #include "estimation/metrics.h"
 #include "io/carmen.h"
 #include "io/config.h"
+#include "io/floor_plan.h"
 #include "io/plot.h"
 #include "io/run_picture.h"
 #include "io/simulation_log.h"
@@ -283,34 +284,34 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--max-curve-range", args->max_curve_range_m,
                   "B-spline methods: beams longer than this (metres) are not used for curves; 0 = "
                   "the laser's maximum range")
-      ->check(CLI::NonNegativeNumber);
+      ->check(FiniteNonNegative());
   cmd->add_option("--out", args->out, "Output directory (default runs/slam-<log>)");
   cmd->add_option("--world", args->world,
                   "World to draw under the map (default: world.yaml beside the log, if any)");
   cmd->add_option("--max-scans", args->max_scans, "Process only the first N scans (0 = all)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(FiniteNonNegative());
   cmd->add_flag("--trace", args->trace,
                 "Also write steps.csv: every step's predicted and corrected pose, their errors "
                 "against the truth when the log has it, and what the method's update did");
   cmd->add_option("--flaser-step-deg", args->flaser_step_deg,
                   "FLASER beam spacing in degrees (0: 180/n or 180/(n-1))")
-      ->check(CLI::NonNegativeNumber);
+      ->check(FiniteNonNegative());
   cmd->add_option("--flaser-max-range", args->flaser_max_range_m,
                   "FLASER readings at or above this are no-returns")
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->capture_default_str();
   cmd->add_option("--range-sigma", args->noise.range_sigma_m,
                   "Laser range noise, metres (constant part); default from the log's laser type: "
                   "3 mm for a Hokuyo URG, 1 cm for SICK and FLASER logs")
-      ->check(CLI::NonNegativeNumber);
+      ->check(FiniteNonNegative());
   cmd->add_option(
          "--range-sigma-fraction", args->noise.range_sigma_fraction,
          "Laser range noise, fraction of the range; default 0.01 for a Hokuyo URG, 0 otherwise")
-      ->check(CLI::NonNegativeNumber);
+      ->check(FiniteNonNegative());
   cmd->add_option("--odometry-noise", args->noise.odometry_noise_scale,
                   "Scale of the default odometry noise model (3 % of distance and rotation); "
                   "default 1 for simulated logs and 3 for real FLASER logs")
-      ->check(CLI::NonNegativeNumber);
+      ->check(FiniteNonNegative());
   cmd->callback([args, exit_code, method] {
     args->method_given = method->count() > 0;
     *exit_code = RunSlam(*args);

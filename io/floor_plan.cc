@@ -8,9 +8,8 @@
 namespace splam::io {
 
 kernel::Status FloorPlanOptions::Validate() const {
-  if (!(resolution_m_per_px > 0.0) || !std::isfinite(resolution_m_per_px)) {
-    return kernel::Status::Error(
-        "floor-plan resolution must be a positive number of metres per pixel");
+  if (!(resolution_m_per_px >= kMinResolutionM && resolution_m_per_px <= kMaxResolutionM)) {
+    return kernel::Status::Error("floor-plan resolution must be within [1e-4, 10] m per pixel");
   }
   if (dark_threshold < 1 || dark_threshold > 255)
     return kernel::Status::Error("dark threshold must be in 1..255");

@@ -11,8 +11,13 @@
 namespace splam::io {
 
 struct FloorPlanOptions {
-  double resolution_m_per_px = 0.05;  // size of one pixel
-  int dark_threshold = 128;           // grey level (0-255) below which a pixel is an obstacle
+  // The size of one pixel, m, within [kMinResolutionM, kMaxResolutionM]: 0.1 mm to 10 m per pixel
+  // spans every floor plan; 1e-9 made walls thinner than the ray caster's tolerance, 1e300
+  // overflowed the world's arithmetic.
+  static constexpr double kMinResolutionM = 1e-4;
+  static constexpr double kMaxResolutionM = 10.0;
+  double resolution_m_per_px = 0.05;
+  int dark_threshold = 128;  // grey level (0-255) below which a pixel is an obstacle
   // World coordinates of the bottom-left corner of the image (x to the right, y up).
   Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();
   // Douglas-Peucker tolerance when turning outlines into polygons, pixels.

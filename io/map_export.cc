@@ -51,8 +51,35 @@ std::string WriteLineMapText(const std::string& path, const std::vector<estimati
 
 namespace {
 
-// The minimal complete AutoCAD 2000 file of the dxflib documentation with these layers.
+// Beyond this a coordinate is no map's: dxflib's number formatting overflowed its buffer at about
+// 1e238 (the process aborted, leaving a truncated file), m.
+constexpr double kMaxDxfCoordinateM = 1e6;
+
+// The first coordinate of the layers that is not finite or beyond kMaxDxfCoordinateM; "" if none.
+std::string OutOfRange(const std::vector<DxfLayer>& layers) {
+  const auto bad = [](const Eigen::Vector2d& p) {
+    return !p.allFinite() || p.cwiseAbs().maxCoeff() > kMaxDxfCoordinateM;
+  };
+  const auto describe = [](const Eigen::Vector2d& p) {
+    return "coordinate (" + FormatDouble(p.x()) + ", " + FormatDouble(p.y()) +
+           ") is not within +-1e6 m; the map is not written";
+  };
+  for (const DxfLayer& layer : layers) {
+    for (const auto& [a, b] : layer.segments) {
+      if (bad(a)) return describe(a);
+      if (bad(b)) return describe(b);
+    }
+    for (const Eigen::Vector2d& p : layer.points)
+      if (bad(p)) return describe(p);
+  }
+  return "";
+}
+
+// The minimal complete AutoCAD 2000 file of the dxflib documentation with these layers. Nothing is
+// written when a coordinate is out of range (OutOfRange).
 std::string WriteDxf(const std::string& path, const std::vector<DxfLayer>& layers) {
+  if (const std::string problem = OutOfRange(layers); !problem.empty())
+    return FileError(path, 0, problem);
   // Header, tables (viewport, line types, layers, style, view, UCS, application id, dimension
   // style, block records), model and paper space blocks, entities and objects.
   DL_Dxf dxf;
@@ -76,7 +103,9 @@ std::string WriteDxf(const std::string& path, const std::vector<DxfLayer>& layer
   }
   dw->tableEnd();
   dw->tableStyle(1);
-  dxf.writeStyle(*dw, DL_StyleData("standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
+  // "Standard": dxflib keeps the handle of the style of that name, which the dimension style
+  // refers to (any other name left it uninitialised, and map.dxf differed between identical runs).
+  dxf.writeStyle(*dw, DL_StyleData("Standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
   dw->tableEnd();
   dxf.writeView(*dw);
   dxf.writeUcs(*dw);

@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libcgal-dev libceres-dev libboost-dev libboost-graph-dev
   libopencv-dev libcairo2-dev fonts-dejavu-core
   libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev libdxflib-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev valgrind
 )
 
 missing=()

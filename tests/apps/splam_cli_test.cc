@@ -266,6 +266,28 @@ TEST(SplamCli, ComplexBSplineExperimentComparesBothAssociations) {
     EXPECT_TRUE(fs::exists(dir / file)) << file;
 }
 
+// Issue 19: option values that are not numbers a run can use. CLI11's PositiveNumber and
+// NonNegativeNumber let NaN through, and an unsigned seed read "-1" as 2^64 - 1.
+TEST(SplamCli, OptionValuesMustBeFiniteAndInRange) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"simulate --seed -1", "--seed: must be an integer from 0"},
+      {"explore --seed -3", "--seed: must be an integer from 0"},
+      {"experiment exploration --seed x1", "--seed: must be an integer from 0"},
+      {"slam --range-sigma nan x.clf", "--range-sigma: must be a finite number at least 0"},
+      {"slam --odometry-noise nan x.clf", "--odometry-noise: must be a finite number at least 0"},
+      {"slam --flaser-step-deg nan x.clf", "--flaser-step-deg: must be a finite number at least 0"},
+      {"slam --flaser-max-range inf x.clf", "--flaser-max-range: must be a finite number above 0"},
+      {"simulate --resolution 1e-9", "--resolution: must be a finite number in [0.0001, 10]"},
+      {"simulate --resolution 1e300", "--resolution: must be a finite number in [0.0001, 10]"},
+      {"explore --alpha nan", "--alpha: must be a finite number in [0, 1]"},
+      {"explore --odometry-noise inf", "--odometry-noise: must be a finite number at least 0"}};
+  for (const auto& [args, message] : cases) {
+    const Output r = Splam(args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_NE(r.text.find(message), std::string::npos) << args << ": " << r.text;
+  }
+}
+
 TEST(SplamCli, SlamAndEvalRejectBadInput) {
   const fs::path dir = Temp("slam_bad");
   fs::create_directories(dir);

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+
 #include "io/plot.h"
 #include "io/relations.h"
 #include "io/text.h"
@@ -63,6 +67,34 @@ TEST(MapExport, DxfReadsBackWithDxflib) {
   EXPECT_NE(text.find("AC1015"), std::string::npos);  // AutoCAD 2000
   EXPECT_NE(WriteLineMapDxf("/nonexistent/dir/m.dxf", lines, corners), "");
   EXPECT_FALSE(ReadDxf("/nonexistent.dxf").ok());
+}
+
+// Issue 19: a map coordinate of 1e300 crashed dxflib's number formatting (SIGABRT, a truncated
+// map.dxf). It is refused, naming the file, and nothing is written.
+TEST(MapExport, DxfRefusesCoordinatesBeyondAMillionMetres) {
+  const std::string path = ::testing::TempDir() + "/map_export_huge.dxf";
+  std::remove(path.c_str());
+  for (const double huge : {1e300, 2e6, std::numeric_limits<double>::quiet_NaN()}) {
+    auto lines = SomeLines();
+    lines[2].end.y() = huge;
+    const std::string error = WriteLineMapDxf(path, lines, {});
+    EXPECT_EQ(error.rfind(path + ": ", 0), 0u) << huge << " " << error;
+    EXPECT_NE(error.find("not within +-1e6 m"), std::string::npos) << error;
+    EXPECT_FALSE(std::filesystem::exists(path));
+  }
+}
+
+// Issue 19: the same map gives the same bytes. The dimension style's text-style handle was read
+// uninitialised (valgrind); the CTest test DxfIsValgrindClean runs this one under valgrind.
+TEST(MapExport, DxfIsDeterministic) {
+  const std::string a = ::testing::TempDir() + "/map_export_a.dxf";
+  const std::string b = ::testing::TempDir() + "/map_export_b.dxf";
+  ASSERT_EQ(WriteLineMapDxf(a, SomeLines(), {}), "");
+  ASSERT_EQ(WriteLineMapDxf(b, SomeLines(), {}), "");
+  std::string text_a, text_b;
+  ASSERT_EQ(ReadTextFile(a, &text_a), "");
+  ASSERT_EQ(ReadTextFile(b, &text_b), "");
+  EXPECT_EQ(text_a, text_b);
 }
 
 TEST(Relations, ParsesTheBenchmarkFormatAndNamesBadLines) {

@@ -1,0 +1,49 @@
+#include <cmath>
+#include <string>
+
+#include "apps/commands.h"
+
+namespace splam::apps {
+namespace {
+
+// A validator of one number: `accept` decides, `need` says what was needed.
+CLI::Validator NumberCheck(const std::string& need, double lo, double hi, bool lo_open) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value > hi ||
+            (lo_open ? value <= lo : value < lo))
+          return "must be " + need + ", not '" + text + "'";
+        return "";
+      },
+      need);
+}
+
+}  // namespace
+
+CLI::Validator FinitePositive() {
+  return NumberCheck("a finite number above 0", 0.0, HUGE_VAL, true);
+}
+
+CLI::Validator FiniteNonNegative() {
+  return NumberCheck("a finite number at least 0", 0.0, HUGE_VAL, false);
+}
+
+CLI::Validator FiniteRange(double lo, double hi) {
+  return NumberCheck(
+      "a finite number in [" + CLI::detail::to_string(lo) + ", " + CLI::detail::to_string(hi) + "]",
+      lo, hi, false);
+}
+
+CLI::Validator Seed() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const bool digits =
+            !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        if (!digits) return "must be an integer from 0 to 18446744073709551615, not '" + text + "'";
+        return "";
+      },
+      "SEED");
+}
+
+}  // namespace splam::apps
