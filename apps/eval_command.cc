@@ -1,7 +1,10 @@
 // splam eval: score trajectories against ground truth and with the relations metric.
 #include <fmt/core.h>
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
@@ -20,6 +23,25 @@ struct EvalArgs {
   std::string estimate, truth, odometry, relations, out;
   std::string label = "estimate";
 };
+
+// Why a trajectory could not be scored: "" when `used` items (poses matched, relations with both
+// times) are more than 0 and every figure is finite. A metric over nothing is no zero, and a
+// figure that overflowed is no number (it was written as null).
+std::string NotScored(std::size_t used, const std::string& item, const std::string& against,
+                      const std::string& label, std::initializer_list<double> figures) {
+  if (used == 0)
+    return label + ": no " + item + " of " + against + " matches a time of the trajectory";
+  for (const double f : figures)
+    if (!std::isfinite(f)) return label + ": the error against " + against + " is not finite";
+  return "";
+}
+
+// The exit status after a trajectory that could not be scored (NotScored): reported, and the
+// run is not whole.
+int Worst(int status, const std::string& problem) {
+  fmt::print(stderr, "splam eval: {}\n", problem);
+  return std::max(status, kExitBadInput);
+}
 
 nlohmann::ordered_json RelationsJson(const estimation::RelationsError& r) {
   return {
@@ -67,6 +89,7 @@ int RunEval(EvalArgs args) {
     runs.emplace_back(label, std::move(*t.value));
   }
   nlohmann::ordered_json report;
+  int status = kExitOk;
   if (!args.truth.empty()) {
     io::Result<kernel::Trajectory> truth = io::ReadTrajectory(args.truth);
     if (!truth.ok()) {
@@ -79,6 +102,13 @@ int RunEval(EvalArgs args) {
     std::vector<std::tuple<std::string, io::Rgb, kernel::Trajectory>> plotted;
     for (const auto& [label, trajectory] : runs) {
       const estimation::TrajectoryError e = estimation::CompareToTruth(*truth.value, trajectory);
+      if (const std::string problem = NotScored(e.matched, "pose", args.truth, label,
+                                                {e.rmse_position_m, e.rmse_heading_rad});
+          !problem.empty()) {
+        report["truth"][label] = {{"error", problem}};
+        status = Worst(status, problem);
+        continue;
+      }
       report["truth"][label] = {{"matched_poses", e.matched},
                                 {"rmse_position_m", e.rmse_position_m},
                                 {"max_position_m", e.max_position_m},
@@ -113,6 +143,14 @@ int RunEval(EvalArgs args) {
     for (const auto& [label, trajectory] : runs) {
       const estimation::RelationsError r =
           estimation::EvaluateRelations(*relations.value, trajectory);
+      if (const std::string problem =
+              NotScored(r.used, "relation", args.relations, label,
+                        {r.translation_mean, r.translation_std, r.rotation_mean, r.rotation_std});
+          !problem.empty()) {
+        report["relations"][label] = {{"error", problem}};
+        status = Worst(status, problem);
+        continue;
+      }
       report["relations"][label] = RelationsJson(r);
       fmt::print("  {:<10} {:>10.4f} +- {:<9.4f} {:>10.3f} +- {:<9.3f} {:>6}\n", label,
                  r.translation_mean, r.translation_std, kernel::RadToDeg(r.rotation_mean),
@@ -125,7 +163,7 @@ int RunEval(EvalArgs args) {
     fmt::print("wrote {}/eval.json{}\n", args.out,
                args.truth.empty() ? "" : " and eval_errors.{svg,png}");
   }
-  return kExitOk;
+  return status;
 }
 
 }  // namespace

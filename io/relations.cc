@@ -23,6 +23,7 @@ Result<std::vector<estimation::Relation>> ParseRelations(const std::string& text
         return std::string();
       });
   if (!error.empty()) return R::Fail(error);
+  if (relations.empty()) return R::Fail(FileError(name, 0, "no relations"));
   return R::Ok(std::move(relations));
 }
 

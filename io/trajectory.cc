@@ -1,6 +1,7 @@
 #include "io/trajectory.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -9,6 +10,8 @@
 namespace splam::io {
 
 std::string ReadTextFile(const std::string& path, std::string* text) {
+  // A directory opens as an empty stream: it read as an empty file.
+  if (std::filesystem::is_directory(path)) return FileError(path, 0, "is a directory, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) return FileError(path, 0, "cannot open for reading");
   std::ostringstream buffer;
@@ -40,6 +43,7 @@ Result<Trajectory> ParseTrajectory(const std::string& text, const std::string& n
     return std::string();
   });
   if (!error.empty()) return Result<Trajectory>::Fail(error);
+  if (trajectory.empty()) return Result<Trajectory>::Fail(FileError(name, 0, "no poses"));
   return Result<Trajectory>::Ok(std::move(trajectory));
 }
 

@@ -288,6 +288,41 @@ TEST(SplamCli, OptionValuesMustBeFiniteAndInRange) {
   }
 }
 
+// Issue 19: eval gave "0.0000 +- 0.0000, used 0" and exit 0 for an empty or non-matching
+// relations file, a directory, an empty estimate; a huge estimate wrote null. A metric over
+// nothing, or one that is not finite, is an error (exit 2, the reason in eval.json).
+TEST(SplamCli, EvalScoresNothingFromNothing) {
+  const fs::path dir = Temp("eval_nothing");
+  fs::create_directories(dir);
+  const auto write = [&](const std::string& name, const std::string& text) {
+    EXPECT_EQ(io::WriteTextFile((dir / name).string(), text), "");
+    return (dir / name).string();
+  };
+  const std::string estimate = write("t.txt", "0 0 0 0\n1 1 0 0\n");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--estimate " + estimate + " --relations " + write("far.rel", "5 6 1 0 0 0 0 0\n"),
+       "no relation of " + (dir / "far.rel").string() + " matches a time"},
+      {"--estimate " + estimate + " --relations " + write("empty.rel", "# none\n"),
+       "empty.rel: no relations"},
+      {"--estimate " + estimate + " --relations " + dir.string(), "is a directory, not a file"},
+      {"--estimate " + write("e.txt", "") + " --relations " + (dir / "far.rel").string(),
+       "e.txt: no poses"},
+      {"--estimate " + write("h.txt", "0 1e300 0 0\n1 -1e300 0 0\n") + " --relations " +
+           write("r.rel", "0 1 1 0 0 0 0 0\n") + " --out " + (dir / "o").string(),
+       "is not finite"},
+      {"--estimate " + estimate + " --truth " + write("late.txt", "50 0 0 0\n"),
+       "no pose of " + (dir / "late.txt").string() + " matches a time"}};
+  for (const auto& [args, message] : cases) {
+    const Output r = Splam("eval " + args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_NE(r.text.find(message), std::string::npos) << args << ": " << r.text;
+    EXPECT_EQ(r.text.find("used 0"), std::string::npos) << r.text;
+  }
+  const std::string json = Slurp(dir / "o" / "eval.json");
+  EXPECT_EQ(json.find("null"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"error\""), std::string::npos) << json;
+}
+
 TEST(SplamCli, SlamAndEvalRejectBadInput) {
   const fs::path dir = Temp("slam_bad");
   fs::create_directories(dir);
