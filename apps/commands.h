@@ -31,6 +31,8 @@ CLI::Validator FinitePositive();
 CLI::Validator FiniteNonNegative();
 // A finite number in [lo, hi].
 CLI::Validator FiniteRange(double lo, double hi);
+// A floor-plan image's metres per pixel, within io::FloorPlanOptions' range.
+CLI::Validator FloorPlanResolution();
 // A seed: an integer from 0 to 2^64 - 1 written without a sign.
 CLI::Validator Seed();
 

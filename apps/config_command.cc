@@ -4,7 +4,6 @@
 
 #include "apps/commands.h"
 #include "apps/run_config.h"
-#include "io/floor_plan.h"
 
 namespace splam::apps {
 namespace {

@@ -9,7 +9,6 @@
 
 #include "apps/commands.h"
 #include "estimation/metrics.h"
-#include "io/floor_plan.h"
 #include "io/relations.h"
 #include "io/run_picture.h"
 #include "io/trajectory.h"
@@ -36,9 +35,9 @@ std::string NotScored(std::size_t used, const std::string& item, const std::stri
   return "";
 }
 
-// The exit status after a trajectory that could not be scored (NotScored): reported, and the
-// run is not whole.
-int Worst(int status, const std::string& problem) {
+// Reports a trajectory that could not be scored (NotScored); returns the exit status after it: the
+// input scored nothing.
+int ReportNotScored(int status, const std::string& problem) {
   fmt::print(stderr, "splam eval: {}\n", problem);
   return std::max(status, kExitBadInput);
 }
@@ -106,7 +105,7 @@ int RunEval(EvalArgs args) {
                                                 {e.rmse_position_m, e.rmse_heading_rad});
           !problem.empty()) {
         report["truth"][label] = {{"error", problem}};
-        status = Worst(status, problem);
+        status = ReportNotScored(status, problem);
         continue;
       }
       report["truth"][label] = {{"matched_poses", e.matched},
@@ -148,7 +147,7 @@ int RunEval(EvalArgs args) {
                         {r.translation_mean, r.translation_std, r.rotation_mean, r.rotation_std});
           !problem.empty()) {
         report["relations"][label] = {{"error", problem}};
-        status = Worst(status, problem);
+        status = ReportNotScored(status, problem);
         continue;
       }
       report["relations"][label] = RelationsJson(r);

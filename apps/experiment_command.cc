@@ -8,7 +8,6 @@
 #include <fmt/core.h>
 
 #include "apps/commands.h"
-#include "io/floor_plan.h"
 #include "io/world_file.h"
 #include "loop/bspline_experiment.h"
 #include "loop/corridor_experiment.h"
@@ -93,8 +92,7 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--resolution", args->resolution_m_per_px,
                   "splam: metres per pixel of a floor-plan image")
-      ->check(
-          FiniteRange(io::FloorPlanOptions::kMinResolutionM, io::FloorPlanOptions::kMaxResolutionM))
+      ->check(FloorPlanResolution())
       ->capture_default_str();
   cmd->add_option("--odometry-noise", args->odometry_noise_scale,
                   "complex-bspline: scale of the odometry noise (simulated and modelled)")

@@ -10,7 +10,6 @@
 #include "apps/commands.h"
 #include "apps/run_config.h"
 #include "io/config.h"
-#include "io/floor_plan.h"
 #include "io/text.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
@@ -255,8 +254,7 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
                     "LSRs from the laser only (240 deg), without the sonar ring behind the robot"));
   cmd->add_option("--resolution", args->resolution_m_per_px,
                   "Metres per pixel of a floor-plan image world")
-      ->check(
-          FiniteRange(io::FloorPlanOptions::kMinResolutionM, io::FloorPlanOptions::kMaxResolutionM))
+      ->check(FloorPlanResolution())
       ->capture_default_str();
   cmd->add_flag("--trace", args->trace,
                 "With a SLAM localisation, also write steps.csv: every step's predicted and "

@@ -3,7 +3,6 @@
 
 #include "apps/commands.h"
 #include "io/carmen.h"
-#include "io/floor_plan.h"
 #include "io/run_picture.h"
 #include "io/simulation_log.h"
 #include "io/world_file.h"
@@ -99,8 +98,7 @@ void AddRenderCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--resolution", args->resolution_m_per_px,
                   "Metres per pixel of a floor-plan image world")
-      ->check(
-          FiniteRange(io::FloorPlanOptions::kMinResolutionM, io::FloorPlanOptions::kMaxResolutionM))
+      ->check(FloorPlanResolution())
       ->capture_default_str();
   cmd->add_option("--pixels-per-meter", args->pixels_per_meter, "Picture scale")
       ->check(FinitePositive())

@@ -7,7 +7,6 @@
 
 #include "apps/commands.h"
 #include "io/config.h"
-#include "io/floor_plan.h"
 #include "io/run_picture.h"
 #include "io/simulation_log.h"
 #include "io/world_file.h"
@@ -238,8 +237,7 @@ void AddSimulateCommand(CLI::App* app, int* exit_code) {
   flags.back().second->check(FiniteNonNegative())->capture_default_str();
   cmd->add_option("--resolution", args->resolution_m_per_px,
                   "Metres per pixel of a floor-plan image world")
-      ->check(
-          FiniteRange(io::FloorPlanOptions::kMinResolutionM, io::FloorPlanOptions::kMaxResolutionM))
+      ->check(FloorPlanResolution())
       ->capture_default_str();
   flags.emplace_back("max-steps",
                      cmd->add_option("--max-steps", args->max_steps, "Cap on 0.1 s time steps"));

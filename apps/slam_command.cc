@@ -13,7 +13,6 @@
 #include "estimation/metrics.h"
 #include "io/carmen.h"
 #include "io/config.h"
-#include "io/floor_plan.h"
 #include "io/plot.h"
 #include "io/run_picture.h"
 #include "io/simulation_log.h"

@@ -2,11 +2,12 @@
 #include <string>
 
 #include "apps/commands.h"
+#include "io/floor_plan.h"
 
 namespace splam::apps {
 namespace {
 
-// A validator of one number: `accept` decides, `need` says what was needed.
+// A validator of one number in [lo, hi] (lo excluded when lo_open); `need` says what was needed.
 CLI::Validator NumberCheck(const std::string& need, double lo, double hi, bool lo_open) {
   return CLI::Validator(
       [=](std::string& text) -> std::string {
@@ -33,6 +34,10 @@ CLI::Validator FiniteRange(double lo, double hi) {
   return NumberCheck(
       "a finite number in [" + CLI::detail::to_string(lo) + ", " + CLI::detail::to_string(hi) + "]",
       lo, hi, false);
+}
+
+CLI::Validator FloorPlanResolution() {
+  return FiniteRange(io::FloorPlanOptions::kMinResolutionM, io::FloorPlanOptions::kMaxResolutionM);
 }
 
 CLI::Validator Seed() {

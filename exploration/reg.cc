@@ -35,8 +35,9 @@ class Reg {
   graph::ExplorationGraph& g_;
   std::vector<Vertex> list_;     // the frontier-control list
   std::set<Vertex> approached_;  // nodes that retried a piece from another node (Approach)
-  std::set<Vertex> looked_;      // nodes that turned to face a piece, and the nodes that did so
-  bool sweeping_ = false;        // shadow frontiers are being explored (Sweep)
+  std::set<Vertex>
+      looked_;  // nodes that turned to face a piece (LookTowards), and the nodes added by it
+  bool sweeping_ = false;  // shadow frontiers are being explored (Sweep)
 
   // Whether node v has frontiers left to explore: free arcs, or shadows while sweeping.
   bool Pending(Vertex v) const {

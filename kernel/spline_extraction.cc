@@ -1,5 +1,7 @@
 #include "kernel/spline_extraction.h"
 
+#include "kernel/shapes.h"
+
 namespace splam::kernel {
 
 Status SplineExtractionOptions::Validate() const {
@@ -16,8 +18,7 @@ std::optional<SplineCurve> ExtractCurve(const std::vector<Eigen::Vector2d>& poin
                                         std::string* error) {
   std::optional<CubicBSpline> spline = FitCubicBSpline(points, options.fit, error);
   if (!spline) return std::nullopt;
-  double polyline_m = 0.0;
-  for (std::size_t i = 1; i < points.size(); ++i) polyline_m += (points[i] - points[i - 1]).norm();
+  const double polyline_m = PolylineLength(points);
   if (!(spline->Length() <= kMaxLengthRatio * polyline_m)) {
     if (error != nullptr)
       *error = "the fit is " + std::to_string(spline->Length()) + " m long, more than " +

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "kernel/angle.h"
+#include "kernel/shapes.h"
 
 namespace splam::kernel {
 namespace {
@@ -49,9 +50,7 @@ TEST(ExtractCurves, PropertyScansThatWrapGiveBoundedCurves) {
     const int n = 100 + static_cast<int>(600 * unit(gen));
     for (int i = 0; i < n; ++i) scan.ranges_m.push_back(0.5 + 10.0 * unit(gen));
     for (const SplineCurve& c : ExtractCurves(scan)) {
-      double path = 0.0;
-      for (std::size_t i = 1; i < c.points.size(); ++i)
-        path += (c.points[i] - c.points[i - 1]).norm();
+      const double path = PolylineLength(c.points);
       EXPECT_LE(c.spline.Length(), kMaxLengthRatio * path) << trial;
       EXPECT_LE(static_cast<double>(c.samples.size()),
                 kMaxLengthRatio * path / SplineExtractionOptions().epsilon_m + 1.0)
