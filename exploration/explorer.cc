@@ -74,6 +74,9 @@ void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("look_before_giving_up", &look_before_giving_up,
           "REG: a node with no clear leg to a piece turns to face it and senses again first "
           "(false: as published)");
+  v.Field("unseen_frontiers", &unseen_frontiers,
+          "LSR boundary bounded by the sonars only, with nothing seen beyond by a laser, is a "
+          "frontier to look at (false: it counts as seen)");
   v.Field("srt_max_attempts", &srt_max_attempts, "SRT: RANDOM_DIR attempts before backtracking");
   v.Field("srt_relaxed_valid_conf", &srt_relaxed_valid_conf,
           "SRT: VALID_CONF relaxed for arcs no other LSR saw beyond (false: as published)");

@@ -76,6 +76,14 @@ struct ExplorerOptions {
   // far half, which the sonars' first echoes closed, and that run ended `explored` at 88 %
   // (README, Fig. 18). false: the robot plans with what it sensed on arrival, as published.
   bool look_before_giving_up = false;
+  // A stretch of an LSR's boundary that only the sonars bounded (the 120 deg behind the laser)
+  // and beyond which no node's laser saw, nor a laser hit within frontier_view_depth_m, is a
+  // frontier too (Session::UnseenStretches): once nothing else is left the robot looks at it,
+  // turning in place at the nearest node that sees it (Session::NextRetry), and the done check
+  // counts it open. A sonar echo may come from anywhere in its 30 deg cone: the first echoes off a
+  // desk corner closed half a room the laser never looked at, and the run said `explored` at 88 %
+  // (README, Fig. 18). false: a sonar boundary counts as a seen obstacle.
+  bool unseen_frontiers = true;
   // SRT: RANDOM_DIR + VALID_CONF attempts before backtracking to the parent.
   int srt_max_attempts = 30;
   // SRT: when the draws run out while the node's free arcs still hold parts no other LSR saw
@@ -118,13 +126,18 @@ struct NodeRecord {
   kernel::Pose2 true_pose;        // ground truth (the estimate when the robot has none)
   kernel::Scan safe_region_scan;  // the full-circle scan that bounded the node's LSR
   int parent = -1;                // the node it was reached from, -1 for the start
+  // The first laser_beams beams of safe_region_scan are the laser's; the rest the sonars'.
+  std::size_t laser_beams = 0;
 };
 
 // A frontier piece the explorer gave up, as its map shows it at the end of the run.
 struct GivenUpFrontier {
-  int node = -1;             // the node whose frontier it was
-  kernel::FrontierArc arc;   // on that node's LSR circle, world frame (free arcs)
-  int shadow_edge = -1;      // >= 0: the occlusion edge of the node's LSR (shadow frontiers)
+  int node = -1;            // the node whose frontier it was
+  kernel::FrontierArc arc;  // on that node's LSR circle, world frame (free arcs)
+  int shadow_edge = -1;     // >= 0: the occlusion edge of the node's LSR (shadow frontiers)
+  // Not empty: a stretch of the node's LSR boundary that only its sonars saw and no node's laser
+  // saw beyond (Session::UnseenStretches), world frame.
+  std::vector<Eigen::Vector2d> unseen;
   Eigen::Vector2d midpoint;  // its middle, world frame
   std::string reason;        // why it was given up
   bool open = true;          // no LSR covers it at the end (CoverOptions)

@@ -47,7 +47,9 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
   nlohmann::json given_up = nlohmann::json::array();
   for (const exploration::GivenUpFrontier& f : run.given_up)
     given_up.push_back({{"node", f.node},
-                        {"kind", f.shadow_edge >= 0 ? "shadow" : "arc"},
+                        {"kind", !f.unseen.empty()    ? "unseen"
+                                 : f.shadow_edge >= 0 ? "shadow"
+                                                      : "arc"},
                         {"x", f.midpoint.x()},
                         {"y", f.midpoint.y()},
                         {"start_angle_rad", f.arc.start_angle_rad},
@@ -104,6 +106,7 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
                        {"srt_max_attempts", o.srt_max_attempts},
                        {"srt_relaxed_valid_conf", o.srt_relaxed_valid_conf},
                        {"retry_nodes", o.retry_nodes},
+                       {"unseen_frontiers", o.unseen_frontiers},
                        {"face_frontiers", o.face_frontiers},
                        {"look_before_giving_up", o.look_before_giving_up},
                        {"reg_piece_factor", o.reg_piece_factor},
@@ -217,13 +220,13 @@ std::string SaveExplorationPicture(const sim::World& world, const ExploreOutcome
   for (const exploration::GivenUpFrontier& f : run.given_up) {
     if (!f.open) continue;
     const kernel::LocalSafeRegion& lsr = g[static_cast<graph::Vertex>(f.node)].lsr;
-    std::vector<Eigen::Vector2d> points;
+    std::vector<Eigen::Vector2d> points = f.unseen;
     if (f.shadow_edge >= 0) {  // the occlusion edge
       const auto edge = static_cast<std::size_t>(f.shadow_edge);
       points = {lsr.boundary()[edge], lsr.boundary()[(edge + 1) % lsr.boundary().size()]};
     }
     const int n = std::max(2, static_cast<int>(std::ceil(f.arc.AngularWidth() / 0.02)));
-    for (int k = 0; f.shadow_edge < 0 && k <= n; ++k)
+    for (int k = 0; f.shadow_edge < 0 && f.unseen.empty() && k <= n; ++k)
       points.push_back(lsr.ArcPoint(f.arc.start_angle_rad + f.arc.AngularWidth() * k / n));
     figure.DrawPolyline(points, kGivenUp, 4.0, "given-up frontiers, open");
   }

@@ -2,14 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 #include <limits>
+#include <sstream>
+#include <unordered_set>
 #include <utility>
 
 #include "exploration/internal/lsr_planner.h"
 #include "exploration/perception.h"
 #include "graph/bidirectional_astar.h"
 #include "graph/frontiers.h"
+#include "kernel/shapes.h"
 
 namespace splam::exploration::internal {
 namespace {
@@ -29,6 +33,30 @@ constexpr double kMinTravel = 0.5;
 // The point of a frontier that an approach must see lies this far inside its owner's LSR, m.
 constexpr double kSightInside = 0.1;
 
+// Laser hit points on a grid of kCell squares: an obstacle a laser saw bounds the space behind
+// a sonar boundary in front of it (Session::UnseenStretches).
+class LaserHits {
+ public:
+  void Add(const Eigen::Vector2d& p) { cells_.insert(Key(p)); }
+  // Whether a hit lies in a cell next to the ray p + t u, 0 <= t <= length (u unit).
+  bool AlongRay(const Eigen::Vector2d& p, const Eigen::Vector2d& u, double length) const {
+    for (double t = 0.0; t <= length; t += 0.5 * kCell) {
+      for (const double dx : {-kCell, 0.0, kCell})
+        for (const double dy : {-kCell, 0.0, kCell})
+          if (cells_.contains(Key(p + t * u + Eigen::Vector2d(dx, dy)))) return true;
+    }
+    return false;
+  }
+
+ private:
+  static constexpr double kCell = 0.1;  // m
+  static std::int64_t Key(const Eigen::Vector2d& p) {
+    return (static_cast<std::int64_t>(std::floor(p.x() / kCell)) << 32) ^
+           (static_cast<std::int64_t>(std::floor(p.y() / kCell)) & 0xffffffff);
+  }
+  std::unordered_set<std::int64_t> cells_;
+};
+
 }  // namespace
 
 Session::Session(const std::string& explorer, const ExplorerOptions& options, RobotInterface* robot,
@@ -45,6 +73,16 @@ bool Session::Start() {
     return false;
   }
   const double needed = Needed();
+  if (needed >= options_.lsr_radius_m) {
+    std::ostringstream message;
+    message << "the LSR radius r = " << options_.lsr_radius_m
+            << " m leaves no room for the robot: it must exceed the robot's radius plus the "
+               "clearance margin, "
+            << needed << " m";
+    run_.termination = Termination::kInvalidInput;
+    run_.message = message.str();
+    return false;
+  }
   if (options_.alpha * options_.lsr_radius_m + needed >= options_.lsr_radius_m) {
     run_.termination = Termination::kInvalidInput;
     run_.message = "alpha * r leaves no room for the robot inside the LSR: alpha must be below " +
@@ -82,6 +120,7 @@ graph::Vertex Session::AddNodeHere(int parent) {
   record.time_s = perception.time_s;
   record.true_pose = perception.true_pose.value_or(estimate_);
   record.safe_region_scan = SafeRegionScan(perception, robot_->description());
+  record.laser_beams = perception.scan.size();
   record.parent = parent;
   const graph::Vertex v = graph::AddNode(&run_.graph, estimate_);
   graph::NodeData& node = run_.graph[v];
@@ -242,6 +281,13 @@ Eigen::Vector2d Session::ShadowSight(const kernel::LocalSafeRegion& lsr, std::si
   return side.middle - kSightInside * side.outward;
 }
 
+Eigen::Vector2d Session::UnseenSight(const kernel::LocalSafeRegion& lsr,
+                                     const Eigen::Vector2d& point) {
+  const Eigen::Vector2d offset = point - lsr.center();
+  const double norm = offset.norm();
+  return norm > 2.0 * kSightInside ? Eigen::Vector2d(point - kSightInside / norm * offset) : point;
+}
+
 bool Session::InSight(const Eigen::Vector2d& from, const Eigen::Vector2d& point) const {
   const graph::ExplorationGraph& g = run_.graph;
   std::vector<const kernel::LocalSafeRegion*> regions;
@@ -267,6 +313,7 @@ std::vector<GivenUpFrontier> Session::GivenUpFrontiers() const {
         list.push_back({static_cast<int>(v),
                         {},
                         given_up.shadow_edge,
+                        {},
                         kernel::EdgeMiddleAndNormal(owner, edge).middle,
                         given_up.reason,
                         ShadowOpen(v, edge)});
@@ -275,13 +322,82 @@ std::vector<GivenUpFrontier> Session::GivenUpFrontiers() const {
       const std::vector<kernel::FrontierArc> left = OpenParts(v, given_up.arc);
       const double mid = 0.5 * (given_up.arc.start_angle_rad + given_up.arc.end_angle_rad);
       if (left.empty())
-        list.push_back(
-            {static_cast<int>(v), given_up.arc, -1, owner.ArcPoint(mid), given_up.reason, false});
+        list.push_back({static_cast<int>(v),
+                        given_up.arc,
+                        -1,
+                        {},
+                        owner.ArcPoint(mid),
+                        given_up.reason,
+                        false});
       for (const kernel::FrontierArc& arc : left) {
         const double m = 0.5 * (arc.start_angle_rad + arc.end_angle_rad);
-        list.push_back({static_cast<int>(v), arc, -1, owner.ArcPoint(m), given_up.reason, true});
+        list.push_back(
+            {static_cast<int>(v), arc, -1, {}, owner.ArcPoint(m), given_up.reason, true});
       }
     }
+  }
+  std::vector<GivenUpFrontier> unseen =
+      options_.unseen_frontiers ? UnseenStretches() : std::vector<GivenUpFrontier>();
+  list.insert(list.end(), std::make_move_iterator(unseen.begin()),
+              std::make_move_iterator(unseen.end()));
+  return list;
+}
+
+std::vector<GivenUpFrontier> Session::UnseenStretches() const {
+  constexpr double kInside = 0.05;  // m: a boundary point is tested this far inside it
+  const graph::ExplorationGraph& g = run_.graph;
+  // What each node's laser alone saw, where the node is now: its region and its hits.
+  std::vector<kernel::LocalSafeRegion> laser_lsrs;
+  LaserHits hits;
+  for (graph::Vertex v = 0; v < run_.nodes.size(); ++v) {
+    kernel::Scan laser = run_.nodes[v].safe_region_scan;
+    laser.ranges_m.resize(run_.nodes[v].laser_beams);
+    const kernel::Pose2 world_T_laser = g[v].configuration * robot_->description().robot_T_laser;
+    laser_lsrs.push_back(
+        kernel::LocalSafeRegion::FromScan(laser, world_T_laser, options_.lsr_radius_m));
+    for (const Eigen::Vector2d& hit : laser.HitPoints()) hits.Add(world_T_laser * hit);
+  }
+  std::vector<GivenUpFrontier> list;
+  for (graph::Vertex v = 0; v < run_.nodes.size(); ++v) {
+    const NodeRecord& record = run_.nodes[v];
+    const kernel::LocalSafeRegion& lsr = g[v].lsr;
+    const std::vector<Eigen::Vector2d>& boundary = lsr.boundary();
+    if (!lsr.full_circle() || boundary.size() != record.safe_region_scan.size()) continue;
+    std::vector<const kernel::LocalSafeRegion*> near;
+    for (const kernel::LocalSafeRegion& other : laser_lsrs) {
+      if ((other.center() - lsr.center()).norm() <=
+          2.0 * options_.lsr_radius_m + options_.frontier_view_depth_m)
+        near.push_back(&other);
+    }
+    std::vector<Eigen::Vector2d> stretch;
+    const auto close = [&] {
+      if (kernel::PolylineLength(stretch) >= options_.min_frontier_m) {
+        GivenUpFrontier f;
+        f.node = static_cast<int>(v);
+        f.midpoint = stretch[stretch.size() / 2];
+        f.reason = "bounded by the sonars only; no laser saw beyond";
+        f.unseen = stretch;
+        list.push_back(std::move(f));
+      }
+      stretch.clear();
+    };
+    for (std::size_t i = record.laser_beams; i < boundary.size(); ++i) {
+      const double range = record.safe_region_scan.ranges_m[i];
+      const Eigen::Vector2d offset = boundary[i] - lsr.center();
+      bool seen = !std::isnan(range) && range >= options_.lsr_radius_m;  // a free arc
+      if (!seen && offset.norm() > 1e-9) {
+        const Eigen::Vector2d u = offset.normalized();
+        const Eigen::Vector2d inside = boundary[i] - std::min(kInside, 0.5 * offset.norm()) * u;
+        seen = hits.AlongRay(boundary[i], u, options_.frontier_view_depth_m) ||
+               kernel::UnionSeesBeyond(near, inside, u, Cover());
+      }
+      if (seen) {
+        close();
+      } else {
+        stretch.push_back(boundary[i]);
+      }
+    }
+    close();
   }
   return list;
 }
@@ -298,6 +414,33 @@ std::optional<Session::Retry> Session::NextRetry() {
     if (!frontier.open) continue;
     const auto owner = static_cast<graph::Vertex>(frontier.node);
     const kernel::LocalSafeRegion& lsr = g[owner].lsr;
+    if (!frontier.unseen.empty()) {
+      // Looked at from the nearest node that sees its deepest point (the owner too: it never
+      // tried), turning in place there.
+      const Eigen::Vector2d deepest = *std::max_element(
+          frontier.unseen.begin(), frontier.unseen.end(),
+          [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+            return (a - lsr.center()).squaredNorm() < (b - lsr.center()).squaredNorm();
+          });
+      const Eigen::Vector2d target = UnseenSight(lsr, deepest);
+      std::vector<graph::Vertex> tried;
+      for (const auto& [t, v] : retries_)
+        if ((t - target).norm() < kSameTarget) tried.push_back(v);
+      if (static_cast<int>(tried.size()) >= options_.retry_nodes) continue;
+      std::vector<const kernel::LocalSafeRegion*> regions;
+      for (graph::Vertex v = 0; v < nodes.size(); ++v)
+        if ((nodes[v] - target).norm() <= 2.0 * options_.lsr_radius_m) regions.push_back(&g[v].lsr);
+      for (graph::Vertex v = 0; v < nodes.size(); ++v) {
+        const double d = (nodes[v] - target).norm();
+        if (d >= std::min(best_distance, options_.lsr_radius_m) ||
+            std::find(tried.begin(), tried.end(), v) != tried.end() ||
+            !kernel::UnionLineOfSight(regions, nodes[v], target, options_.shadow_edge_m))
+          continue;
+        best = Retry{v, {}, target};
+        best_distance = d;
+      }
+      continue;
+    }
     const Eigen::Vector2d target =
         frontier.shadow_edge >= 0 ? ShadowSight(lsr, static_cast<std::size_t>(frontier.shadow_edge))
                                   : ArcSight(lsr, frontier.arc);
@@ -345,6 +488,7 @@ graph::Vertex Session::DriveRetry(graph::Vertex current, const Retry& retry) {
     if (!Drive(graph::Waypoints(run_.graph, path->vertices)).reached)
       return NodeAfterFailedMove(current);
   }
+  if (retry.approach.empty()) return LookTowards(retry.node, retry.target);
   return Drive(retry.approach, retry.target).reached ? AddNodeHere(static_cast<int>(retry.node))
                                                      : NodeAfterFailedMove(retry.node);
 }

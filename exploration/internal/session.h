@@ -75,6 +75,9 @@ class Session {
   static Eigen::Vector2d ArcSight(const kernel::LocalSafeRegion& lsr,
                                   const kernel::FrontierArc& arc);
   static Eigen::Vector2d ShadowSight(const kernel::LocalSafeRegion& lsr, std::size_t edge);
+  // The same for a point of an unseen stretch (UnseenStretches) of `lsr`.
+  static Eigen::Vector2d UnseenSight(const kernel::LocalSafeRegion& lsr,
+                                     const Eigen::Vector2d& point);
   // Whether the segment from `from` to `point` runs inside the union of the nodes' LSRs
   // (kernel::UnionLineOfSight).
   bool InSight(const Eigen::Vector2d& from, const Eigen::Vector2d& point) const;
@@ -173,8 +176,14 @@ class Session {
                                                        const Eigen::Vector2d& from,
                                                        const Eigen::Vector2d& to) const;
   // The nodes' given-up arcs and shadows, each checked against the union of the other nodes' LSRs
-  // (OpenParts, ShadowOpen).
+  // (OpenParts, ShadowOpen), and the unseen stretches (UnseenStretches).
   std::vector<GivenUpFrontier> GivenUpFrontiers() const;
+  // The stretches of the nodes' LSR boundaries that only the sonars bounded (beams past the
+  // laser's) and beyond which no node's laser saw (kernel::UnionSeesBeyond over the laser-only
+  // LSRs) nor hit an obstacle within frontier_view_depth_m, at least min_frontier_m long: a
+  // sonar echo may come from anywhere in its cone, so such a boundary is no obstacle and what
+  // lies behind it is unknown (ExplorerOptions::unseen_frontiers).
+  std::vector<GivenUpFrontier> UnseenStretches() const;
   // The LSRs of the nodes other than v that can reach view_depth beyond v's circle.
   std::vector<const kernel::LocalSafeRegion*> OthersNear(graph::Vertex v) const;
 
