@@ -55,6 +55,11 @@ int RunRender(const RenderArgs& args) {
       return kExitBadInput;
     }
     const io::CarmenLog& log = *read.log.value;
+    if (log.messages.empty()) {
+      fmt::print(stderr, "splam render: {}: no laser, odometry or true pose message to draw\n",
+                 args.log);
+      return kExitBadInput;
+    }
     picture.truth = io::TrueTrajectory(log);
     picture.odometry = io::OdometryTrajectory(log);
     picture.scan_points = io::ScanPointsInWorld(log, args.scan_every);

@@ -1,6 +1,8 @@
 #include "io/carmen.h"
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -27,8 +29,8 @@ class Cursor {
     if (!Available(what)) return false;
     const auto value = ParseDouble(tokens_[next_]);
     if (!value)
-      return Fail(std::string("expected a number for ") + what + ", found '" +
-                  std::string(tokens_[next_]) + "'");
+      return Fail(std::string("expected a number for ") + what + ", found " +
+                  Quoted(tokens_[next_]));
     ++next_;
     *out = *value;
     return true;
@@ -43,8 +45,8 @@ class Cursor {
     if (!Available(what)) return false;
     const auto value = ParseInteger(tokens_[next_]);
     if (!value || *value < 0 || *value > max) {
-      return Fail(std::string("expected a count for ") + what + ", found '" +
-                  std::string(tokens_[next_]) + "'");
+      return Fail(std::string("expected a count for ") + what + ", found " +
+                  Quoted(tokens_[next_]));
     }
     ++next_;
     *out = static_cast<int>(*value);
@@ -231,6 +233,15 @@ void Append(std::string* out, const LogStamp& s) {
   Append(out, s.logger_timestamp_s);
 }
 
+// A CARMEN message type is a name (FLASER, ROBOTLASER1, PARAM, ...): a letter, then letters,
+// digits and underscores. Anything else starting a line is not a message (binary junk).
+bool IsMessageType(std::string_view token) {
+  const auto letter = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
+  if (token.empty() || !letter(token.front())) return false;
+  return std::all_of(token.begin(), token.end(),
+                     [&](char c) { return letter(c) || (c >= '0' && c <= '9') || c == '_'; });
+}
+
 }  // namespace
 
 std::vector<const LaserMessage*> CarmenLog::Lasers() const {
@@ -248,7 +259,8 @@ CarmenReadResult ParseCarmenLog(const std::string& text, const std::string& name
   CarmenReadResult result;
   CarmenLog log;
   CarmenReadStats& stats = result.stats;
-  std::size_t pos = 0;
+  constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+  std::size_t pos = std::string_view(text).starts_with(kByteOrderMark) ? kByteOrderMark.size() : 0;
   int line_number = 0;
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
@@ -294,16 +306,18 @@ CarmenReadResult ParseCarmenLog(const std::string& text, const std::string& name
       SonarMessage m;
       ok = ParseSonar(&cursor, &stats, &m);
       if (ok) log.messages.push_back(std::move(m));
-    } else {
+    } else if (IsMessageType(type)) {
       ++stats.skipped_messages[std::string(type)];
+    } else {
+      ok = cursor.Fail("not a CARMEN message: it starts with " + Quoted(type));
     }
     if (!ok) {
       if (options.skip_malformed_lines) {
         ++stats.malformed_lines;
         continue;
       }
-      result.log = Result<CarmenLog>::Fail(
-          FileError(name, line_number, std::string(type) + ": " + cursor.error()));
+      const std::string what = IsMessageType(type) ? std::string(type) + ": " : "";
+      result.log = Result<CarmenLog>::Fail(FileError(name, line_number, what + cursor.error()));
       return result;
     }
   }
@@ -313,9 +327,12 @@ CarmenReadResult ParseCarmenLog(const std::string& text, const std::string& name
 
 CarmenReadResult ReadCarmenLog(const std::string& path, const CarmenReadOptions& options) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  if (!in || std::filesystem::is_directory(path)) {
     CarmenReadResult result;
-    result.log = Result<CarmenLog>::Fail(FileError(path, 0, "cannot open the log for reading"));
+    result.log = Result<CarmenLog>::Fail(FileError(path, 0,
+                                                   std::filesystem::is_directory(path)
+                                                       ? "is a directory, not a log"
+                                                       : "cannot open the log for reading"));
     return result;
   }
   std::ostringstream buffer;

@@ -42,7 +42,8 @@ std::optional<long> ParseInteger(std::string_view token) {
 std::string ForEachDataLine(
     const std::string& text,
     const std::function<std::string(int, const std::vector<std::string_view>&)>& visit) {
-  std::size_t pos = 0;
+  constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+  std::size_t pos = std::string_view(text).starts_with(kByteOrderMark) ? kByteOrderMark.size() : 0;
   int line_number = 0;
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
@@ -63,11 +64,27 @@ std::string ParseFiniteNumbers(const std::vector<std::string_view>& tokens,
   for (std::string_view token : tokens) {
     const std::optional<double> value = ParseDouble(token);
     if (!value || !std::isfinite(*value)) {
-      return "'" + std::string(token) + "' is not a finite number";
+      return Quoted(token) + " is not a finite number";
     }
     values->push_back(*value);
   }
   return "";
+}
+
+std::string Quoted(std::string_view token) {
+  constexpr std::size_t kMaxShown = 40;
+  std::string quoted = "'";
+  for (const char c : token.substr(0, kMaxShown)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      constexpr char kHex[] = "0123456789abcdef";
+      quoted += {'\\', 'x', kHex[byte >> 4], kHex[byte & 0xf]};
+    } else {
+      quoted += c;
+    }
+  }
+  if (token.size() > kMaxShown) quoted += "...";
+  return quoted + "'";
 }
 
 std::string FormatDouble(double value) {

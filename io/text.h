@@ -15,7 +15,7 @@ std::vector<std::string_view> SplitTokens(std::string_view line);
 std::optional<double> ParseDouble(std::string_view token);
 std::optional<long> ParseInteger(std::string_view token);
 // Calls visit(line_number, tokens) for every line of `text` that is neither blank nor a '#'
-// comment, counting lines from 1. Stops at the first non-empty message `visit` returns and
+// comment, counting lines from 1 (a leading UTF-8 byte order mark is skipped). Stops at the first non-empty message `visit` returns and
 // returns it; empty when every line was accepted.
 std::string ForEachDataLine(
     const std::string& text,
@@ -24,6 +24,9 @@ std::string ForEachDataLine(
 // "'token' is not a finite number".
 std::string ParseFiniteNumbers(const std::vector<std::string_view>& tokens,
                                std::vector<double>* values);
+// `token` in single quotes for an error message: control bytes (a NUL, an escape) written as
+// \xNN, and cut to its first 40 bytes with "..." (binary junk must not reach the terminal).
+std::string Quoted(std::string_view token);
 // Shortest text that reads back as exactly the same double ("inf", "-inf", "nan" for the rest).
 std::string FormatDouble(double value);
 

@@ -168,6 +168,15 @@ TEST(SplamCli, RenderDrawsWorldsAndLogs) {
   EXPECT_GT(fs::file_size(dir / "r.png"), 1000u);
   EXPECT_GT(fs::file_size(dir / "r.svg"), 1000u);
   EXPECT_EQ(Splam("render").status, 2);
+  // Issue 19: an empty log, a directory or binary junk drew a blank picture with exit 0.
+  ASSERT_EQ(io::WriteTextFile((dir / "empty.clf").string(), ""), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "junk.clf").string(), std::string("\x7f\x01\x02\0x", 5)), "");
+  for (const std::string log : {"empty.clf", "junk.clf", "."}) {
+    const Output bad =
+        Splam("render --log " + (dir / log).string() + " --out " + (dir / "bad.png").string());
+    EXPECT_EQ(bad.status, 2) << log << ": " << bad.text;
+    EXPECT_FALSE(fs::exists(dir / "bad.png")) << log;
+  }
 }
 
 TEST(SplamCli, SlamWithLinesOnASimulatedOfficeBeatsOdometry) {
@@ -280,7 +289,9 @@ TEST(SplamCli, OptionValuesMustBeFiniteAndInRange) {
       {"simulate --resolution 1e-9", "--resolution: must be a finite number in [0.0001, 10]"},
       {"simulate --resolution 1e300", "--resolution: must be a finite number in [0.0001, 10]"},
       {"explore --alpha nan", "--alpha: must be a finite number in [0, 1]"},
-      {"explore --odometry-noise inf", "--odometry-noise: must be a finite number at least 0"}};
+      {"explore --odometry-noise inf", "--odometry-noise: must be a finite number at least 0"},
+      // Said "alpha must be below -30.700000".
+      {"explore --lsr-radius 0.01", "the LSR radius r = 0.01 m leaves no room for the robot"}};
   for (const auto& [args, message] : cases) {
     const Output r = Splam(args);
     EXPECT_EQ(r.status, 2) << args;

@@ -248,7 +248,25 @@ INSTANTIATE_TEST_SUITE_P(
         BadLine{"ROBOTLASER1 0 -1.5 -3 0.01 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
                 "field of view -3 rad is negative"},
         BadLine{"ROBOTLASER1 0 -1.5 3 7 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
-                "more than a full turn"}));
+                "more than a full turn"},
+        // Binary junk was skipped as an unknown message type, uncounted (issue 19); control
+        // bytes are escaped in the message.
+        BadLine{"\x7f\x01"
+                "ELF\x02 1 2",
+                "not a CARMEN message: it starts with '\\x7f\\x01ELF\\x02'"},
+        BadLine{"1.5 2 3", "not a CARMEN message: it starts with '1.5'"}));
+
+TEST(CarmenLog, AByteOrderMarkIsSkipped) {
+  const CarmenReadResult r = ParseCarmenLog("\xEF\xBB\xBFODOM 1 2 0.5 0 0 0 1.0 h 1.0\n", "b.clf");
+  ASSERT_TRUE(r.log.ok()) << r.log.error;
+  EXPECT_EQ(r.log.value->Odometry().size(), 1u);
+}
+
+TEST(CarmenLog, ADirectoryIsNotALog) {
+  const CarmenReadResult r = ReadCarmenLog(::testing::TempDir());
+  ASSERT_FALSE(r.log.ok());
+  EXPECT_NE(r.log.error.find("is a directory, not a log"), std::string::npos) << r.log.error;
+}
 
 // A FLASER step given in the options that wraps the scan (--flaser-step-deg 10 on intel's 180
 // beams: 1790 deg) is refused at the first scan, naming its line.

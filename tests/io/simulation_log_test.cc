@@ -65,9 +65,23 @@ TEST(Route, StartPoseOrFirstWaypoint) {
   EXPECT_EQ(points.value->waypoints.size(), 1u);
 }
 
+TEST(Route, AByteOrderMarkIsSkipped) {
+  // Issue 19: a route saved by an editor with a UTF-8 BOM was refused ("'\xEF\xBB\xBF0' is
+  // not a finite number") while logs and YAML with one were read.
+  const Result<Route> r = ParseRoute(
+      "\xEF\xBB\xBF"
+      "0 0\n1 1\n",
+      "r.txt");
+  ASSERT_TRUE(r.ok()) << r.error;
+  EXPECT_EQ(r.value->waypoints.size(), 1u);
+}
+
 TEST(Route, BadRoutesNameFileAndLine) {
   EXPECT_EQ(ParseRoute("0 0\n1 1 1\n", "r.txt").error, "r.txt:2: expected a waypoint 'x y'");
   EXPECT_EQ(ParseRoute("0 x\n", "r.txt").error, "r.txt:1: 'x' is not a finite number");
+  // Control bytes are escaped, not echoed to the terminal.
+  EXPECT_EQ(ParseRoute(std::string("0 x\0\x1b\n", 6), "r.txt").error,
+            "r.txt:1: 'x\\x00\\x1b' is not a finite number");
   EXPECT_EQ(ParseRoute("1 2 3\n", "r.txt").error, "r.txt: the route has no waypoint");
   EXPECT_NE(ParseRoute("1 2\n", "r.txt").error.find("at least two waypoints"), std::string::npos);
   EXPECT_FALSE(ReadRoute("/nonexistent").ok());

@@ -15,6 +15,12 @@ TEST(SplitTokens, SplitsOnSpacesTabsAndCarriageReturns) {
   EXPECT_TRUE(SplitTokens("   ").empty());
 }
 
+TEST(Quoted, EscapesControlBytesAndCutsLongTokens) {
+  EXPECT_EQ(Quoted("abc"), "'abc'");
+  EXPECT_EQ(Quoted(std::string_view("a\0b\x7f", 4)), "'a\\x00b\\x7f'");
+  EXPECT_EQ(Quoted(std::string(100, 'z')), "'" + std::string(40, 'z') + "...'");
+}
+
 TEST(ParseDouble, AcceptsNumbersAndSpecialValuesOnly) {
   EXPECT_EQ(ParseDouble("1.5"), 1.5);
   EXPECT_EQ(ParseDouble("+2"), 2.0);
