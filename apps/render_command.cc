@@ -2,6 +2,7 @@
 #include <fmt/core.h>
 
 #include "apps/commands.h"
+#include "apps/log_input.h"
 #include "io/carmen.h"
 #include "io/run_picture.h"
 #include "io/simulation_log.h"
@@ -20,8 +21,7 @@ struct RenderArgs {
   int scan_every = 10;
   double resolution_m_per_px = 0.05;
   double pixels_per_meter = 40.0;
-  double flaser_step_deg = 0.0;
-  double flaser_max_range_m = 81.8;
+  LogInput input;
 };
 
 int RunRender(const RenderArgs& args) {
@@ -46,10 +46,7 @@ int RunRender(const RenderArgs& args) {
     if (picture.title.empty()) picture.title = world->name;
   }
   if (!args.log.empty()) {
-    io::CarmenReadOptions options;
-    options.flaser_angular_step_rad = kernel::DegToRad(args.flaser_step_deg);
-    options.flaser_max_range_m = args.flaser_max_range_m;
-    const io::CarmenReadResult read = io::ReadCarmenLog(args.log, options);
+    const io::CarmenReadResult read = ReadLogInput(args.log, args.input);
     if (!read.log.ok()) {
       fmt::print(stderr, "splam render: {}\n", read.log.error);
       return kExitBadInput;
@@ -93,7 +90,7 @@ void AddRenderCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--world", args->world,
                   "Built-in world name, YAML world file or floor-plan image");
   cmd->add_option("--log", args->log,
-                  "CARMEN log: ground truth (TRUEPOS), odometry and scan points");
+                  "CARMEN log or ROS bag: ground truth, odometry and scan points");
   cmd->add_option("--trajectory", args->trajectories,
                   "Trajectory file(s) 'time x y theta' to draw as estimates");
   cmd->add_option("--out", args->out, "Output picture(s), .svg or .png")->capture_default_str();
@@ -108,14 +105,7 @@ void AddRenderCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--pixels-per-meter", args->pixels_per_meter, "Picture scale")
       ->check(FinitePositive())
       ->capture_default_str();
-  cmd->add_option("--flaser-step-deg", args->flaser_step_deg,
-                  "FLASER beam spacing in degrees (0: 180/n for even n, 180/(n-1) for odd n)")
-      ->check(FiniteNonNegative())
-      ->capture_default_str();
-  cmd->add_option("--flaser-max-range", args->flaser_max_range_m,
-                  "FLASER readings at or above this are no-returns")
-      ->check(FinitePositive())
-      ->capture_default_str();
+  AddLogInputOptions(cmd, &args->input);
   cmd->callback([args, exit_code] { *exit_code = RunRender(*args); });
 }
 

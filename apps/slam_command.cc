@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "apps/log_input.h"
 #include "apps/run_config.h"
 #include "estimation/chi_square.h"
 #include "estimation/metrics.h"
@@ -37,8 +38,7 @@ struct SlamArgs {
   std::string world;
   int max_scans = 0;
   bool trace = false;
-  double flaser_step_deg = 0.0;
-  double flaser_max_range_m = 81.8;
+  LogInput input;
   // The sensors' noise; negative: chosen from the log's laser type (loop::SensorNoiseOf).
   loop::SensorNoiseOverrides noise;
   bool method_given = false;
@@ -164,10 +164,7 @@ io::Result<std::optional<sim::World>> WorldToDraw(const SlamArgs& args) {
 }
 
 int RunSlam(const SlamArgs& args) {
-  io::CarmenReadOptions read_options;
-  read_options.flaser_angular_step_rad = kernel::DegToRad(args.flaser_step_deg);
-  read_options.flaser_max_range_m = args.flaser_max_range_m;
-  const io::CarmenReadResult read = io::ReadCarmenLog(args.log, read_options);
+  const io::CarmenReadResult read = ReadLogInput(args.log, args.input);
   if (!read.log.ok()) {
     fmt::print(stderr, "splam slam: {}\n", read.log.error);
     return kExitBadInput;
@@ -279,7 +276,8 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--association", args->association,
                   "ekf-bspline data association: pedraza (end points) or curvature (paper 000)")
       ->check(CLI::IsMember({"pedraza", "curvature"}));
-  cmd->add_option("log", args->log, "CARMEN log (simulated or real)")->required();
+  cmd->add_option("log", args->log, "CARMEN log or ROS 1 bag (.bag), simulated or real")
+      ->required();
   cmd->add_option("--max-curve-range", args->max_curve_range_m,
                   "B-spline methods: beams longer than this (metres) are not used for curves; 0 = "
                   "the laser's maximum range")
@@ -292,13 +290,7 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
   cmd->add_flag("--trace", args->trace,
                 "Also write steps.csv: every step's predicted and corrected pose, their errors "
                 "against the truth when the log has it, and what the method's update did");
-  cmd->add_option("--flaser-step-deg", args->flaser_step_deg,
-                  "FLASER beam spacing in degrees (0: 180/n or 180/(n-1))")
-      ->check(FiniteNonNegative());
-  cmd->add_option("--flaser-max-range", args->flaser_max_range_m,
-                  "FLASER readings at or above this are no-returns")
-      ->check(FinitePositive())
-      ->capture_default_str();
+  AddLogInputOptions(cmd, &args->input);
   cmd->add_option("--range-sigma", args->noise.range_sigma_m,
                   "Laser range noise, metres (constant part); default from the log's laser type: "
                   "3 mm for a Hokuyo URG, 1 cm for SICK and FLASER logs")

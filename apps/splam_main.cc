@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   splam::apps::AddExperimentCommand(&app, &exit_code);
   splam::apps::AddExploreCommand(&app, &exit_code);
   splam::apps::AddConfigCommand(&app, &exit_code);
+  splam::apps::AddConvertCommand(&app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -7,18 +7,16 @@
 #include <limits>
 #include <sstream>
 
+#include "io/internal/plausible.h"
 #include "io/text.h"
 
 namespace splam::io {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-// Beyond these a value is not a robot's: coordinates of 1000 km, headings of 1600 turns (logs may
-// keep the odometry's heading unwrapped), ranges of 10 km. Larger ones overflowed the map's
-// arithmetic (a DXF export crashed at 1e238).
-constexpr double kMaxCoordinateM = 1e6;
-constexpr double kMaxHeadingRad = 1e4;
-constexpr double kMaxRangeM = 1e4;
+using internal::kMaxCoordinateM;
+using internal::kMaxHeadingRad;
+using internal::kMaxRangeM;
 
 // Reads the tokens of one message in order; the first failure records what was expected.
 class Cursor {
@@ -68,24 +66,9 @@ class Cursor {
     *out = kernel::Pose2(x, y, th);
     return true;
   }
-  // The beams' geometry: a positive step, a maximum range in (0, 10 km], and beams within one
-  // turn (an angular resolution written in degrees, 0.36 for 0.36 deg, wrapped the scan 360
-  // times and made the curve fits run out of memory).
   bool ScanGeometry(const kernel::Scan& s) {
-    if (!(s.max_range_m > 0.0 && s.max_range_m <= kMaxRangeM))
-      return Fail("maximum range " + FormatDouble(s.max_range_m) + " m is not in (0, 1e4]");
-    if (!(std::abs(s.start_angle_rad) <= 2.0 * kernel::kPi))
-      return Fail("start angle " + FormatDouble(s.start_angle_rad) +
-                  " rad is not in [-2 pi, 2 pi]");
-    if (s.size() > 1 && !(s.angular_step_rad > 0.0))
-      return Fail("angular resolution " + FormatDouble(s.angular_step_rad) +
-                  " rad is not positive");
-    const double span =
-        s.angular_step_rad * static_cast<double>(std::max<std::size_t>(s.size(), 1) - 1);
-    if (span > 2.0 * kernel::kPi + 1e-9)
-      return Fail(std::to_string(s.size()) + " beams " + FormatDouble(s.angular_step_rad) +
-                  " rad apart span " + FormatDouble(span * 180.0 / kernel::kPi) +
-                  " deg, more than a full turn (a resolution in degrees instead of radians?)");
+    if (std::string problem = internal::ScanGeometryProblem(s); !problem.empty())
+      return Fail(problem);
     return true;
   }
   bool Stamp(LogStamp* out) {

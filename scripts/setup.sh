@@ -9,6 +9,8 @@ packages=(
   libopencv-dev libcairo2-dev fonts-dejavu-core
   libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev libdxflib-dev
   libgtest-dev libgmock-dev libbenchmark-dev valgrind
+  librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev python3
+  python3-ament-package
 )
 
 missing=()

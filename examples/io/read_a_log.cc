@@ -1,5 +1,5 @@
-// Tutorial: read a CARMEN log, look at its contents, and draw the raw odometry with the scans.
-// Usage: example_io [picture.png] [log.clf]
+// Tutorial: read a CARMEN log, look at its contents, draw the raw odometry with the scans, and
+// write it as a ROS 1 bag. Usage: example_io [picture.png] [log.clf or log.bag]
 // Without a log it reads ../shared/datasets/intel.clf (or $SPLAM_DATA/intel.clf) when present,
 // else it simulates a short log of its own first.
 #include <cstdio>
@@ -9,6 +9,7 @@
 
 #include "io/carmen.h"
 #include "io/render.h"
+#include "io/ros_bag.h"
 #include "io/simulation_log.h"
 #include "sim/builtin_worlds.h"
 
@@ -46,8 +47,14 @@ int main(int argc, char** argv) {
 
   // 1. Read. FLASER lines carry no beam geometry: CarmenReadOptions says how to assume it (the
   //    defaults fit the Freiburg logs). Errors come back as "file:line: message", never a crash.
+  //    A ROS 1 bag is read into the same CarmenLog (RosBagOptions chooses topics and frames).
   io::CarmenReadOptions options;
-  const io::CarmenReadResult read = io::ReadCarmenLog(log_path, options);
+  io::CarmenReadResult read;
+  if (io::IsRosBagPath(log_path)) {
+    read.log = io::ReadRosBag(log_path).log;
+  } else {
+    read = io::ReadCarmenLog(log_path, options);
+  }
   if (!read.log.ok()) {
     std::fprintf(stderr, "%s\n", read.log.error.c_str());
     return 2;
@@ -91,5 +98,16 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::printf("wrote %s\n", picture.c_str());
+
+  // 4. The same log as a ROS 1 bag: /scan, /odom, /tf_static and /ground_truth.
+  const std::string bag =
+      (std::filesystem::path(picture).parent_path() / "example_io.bag").string();
+  io::RosBagWriteStats written;
+  if (const std::string error = io::WriteRosBag(log, bag, {}, &written); !error.empty()) {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return 2;
+  }
+  std::printf("wrote %s: %d scans, %d odometry poses\n", bag.c_str(), written.scans,
+              written.odometry);
   return 0;
 }

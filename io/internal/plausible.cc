@@ -1,0 +1,37 @@
+#include "io/internal/plausible.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "io/text.h"
+#include "kernel/angle.h"
+
+namespace splam::io::internal {
+
+std::string ScanGeometryProblem(const kernel::Scan& s) {
+  if (!(s.max_range_m > 0.0 && s.max_range_m <= kMaxRangeM))
+    return "maximum range " + FormatDouble(s.max_range_m) + " m is not in (0, 1e4]";
+  if (!(std::abs(s.start_angle_rad) <= 2.0 * kernel::kPi))
+    return "start angle " + FormatDouble(s.start_angle_rad) + " rad is not in [-2 pi, 2 pi]";
+  if (s.size() > 1 && !(s.angular_step_rad > 0.0))
+    return "angular resolution " + FormatDouble(s.angular_step_rad) + " rad is not positive";
+  const double span =
+      s.angular_step_rad * static_cast<double>(std::max<std::size_t>(s.size(), 1) - 1);
+  if (span > 2.0 * kernel::kPi + 1e-9)
+    return std::to_string(s.size()) + " beams " + FormatDouble(s.angular_step_rad) +
+           " rad apart span " + FormatDouble(span * 180.0 / kernel::kPi) +
+           " deg, more than a full turn (a resolution in degrees instead of radians?)";
+  return "";
+}
+
+std::string PoseProblem(const kernel::Pose2& pose, const std::string& what) {
+  for (const double c : {pose.x(), pose.y()}) {
+    if (!(std::abs(c) <= kMaxCoordinateM))
+      return what + " " + FormatDouble(c) + " is not finite or beyond +-1e+06 m";
+  }
+  if (!(std::abs(pose.theta()) <= kMaxHeadingRad))
+    return what + " heading " + FormatDouble(pose.theta()) + " is not finite or beyond +-1e4 rad";
+  return "";
+}
+
+}  // namespace splam::io::internal

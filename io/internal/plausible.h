@@ -1,0 +1,28 @@
+#ifndef SPLAM_IO_INTERNAL_PLAUSIBLE_H_
+#define SPLAM_IO_INTERNAL_PLAUSIBLE_H_
+
+#include <string>
+
+#include "kernel/pose2.h"
+#include "kernel/scan.h"
+
+// What the readers accept as a robot's: beyond these a value is not physical (coordinates of
+// 1000 km, headings of 1600 turns, ranges of 10 km) and larger ones overflowed the map's
+// arithmetic (a DXF export crashed at 1e238).
+namespace splam::io::internal {
+
+inline constexpr double kMaxCoordinateM = 1e6;
+inline constexpr double kMaxHeadingRad = 1e4;
+inline constexpr double kMaxRangeM = 1e4;
+
+// Empty when the beams' geometry is plausible: a maximum range in (0, 10 km], a start angle in
+// [-2 pi, 2 pi], a positive step and beams within one turn (an angular resolution written in
+// degrees, 0.36 for 0.36 deg, wrapped the scan 360 times and made the curve fits run out of
+// memory); else what is wrong.
+std::string ScanGeometryProblem(const kernel::Scan& scan);
+// Empty when the pose's coordinates and heading are finite and within the bounds above.
+std::string PoseProblem(const kernel::Pose2& pose, const std::string& what);
+
+}  // namespace splam::io::internal
+
+#endif  // SPLAM_IO_INTERNAL_PLAUSIBLE_H_

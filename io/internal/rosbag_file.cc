@@ -1,0 +1,153 @@
+#include "io/internal/rosbag_file.h"
+
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/LaserScan.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace splam::io::internal {
+namespace {
+
+double Yaw(const geometry_msgs::Quaternion& q) {
+  return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+}
+geometry_msgs::Quaternion Quaternion(double yaw) {
+  geometry_msgs::Quaternion q;
+  q.z = std::sin(0.5 * yaw);
+  q.w = std::cos(0.5 * yaw);
+  return q;
+}
+ros::Time Time(double time_s) {
+  ros::Time t;
+  t.fromSec(time_s);
+  return t;
+}
+// rosbag refuses record times before ros::TIME_MIN (1 ns); the header keeps the stamp.
+ros::Time RecordTime(double time_s) { return std::max(Time(time_s), ros::TIME_MIN); }
+
+RosPose FromOdometry(const nav_msgs::Odometry& o) {
+  RosPose p;
+  p.time_s = o.header.stamp.toSec();
+  p.parent = o.header.frame_id;
+  p.child = o.child_frame_id;
+  p.x = o.pose.pose.position.x;
+  p.y = o.pose.pose.position.y;
+  p.yaw = Yaw(o.pose.pose.orientation);
+  p.tv_mps = o.twist.twist.linear.x;
+  p.rv_radps = o.twist.twist.angular.z;
+  return p;
+}
+nav_msgs::Odometry ToOdometry(const RosPose& p) {
+  nav_msgs::Odometry o;
+  o.header.stamp = Time(p.time_s);
+  o.header.frame_id = p.parent;
+  o.child_frame_id = p.child;
+  o.pose.pose.position.x = p.x;
+  o.pose.pose.position.y = p.y;
+  o.pose.pose.orientation = Quaternion(p.yaw);
+  o.twist.twist.linear.x = p.tv_mps;
+  o.twist.twist.angular.z = p.rv_radps;
+  return o;
+}
+void AddTransforms(const tf2_msgs::TFMessage& tf, std::vector<RosPose>* out) {
+  for (const geometry_msgs::TransformStamped& t : tf.transforms) {
+    RosPose p;
+    p.time_s = t.header.stamp.toSec();
+    p.parent = t.header.frame_id;
+    p.child = t.child_frame_id;
+    p.x = t.transform.translation.x;
+    p.y = t.transform.translation.y;
+    p.yaw = Yaw(t.transform.rotation);
+    out->push_back(p);
+  }
+}
+
+}  // namespace
+
+RosBagTopics ListTopics(const std::string& path) {
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  RosBagTopics topics;
+  rosbag::View all(bag);
+  for (const rosbag::ConnectionInfo* c : all.getConnections()) topics.types[c->topic] = c->datatype;
+  for (const auto& entry : topics.types)
+    topics.counts[entry.first] =
+        static_cast<int>(rosbag::View(bag, rosbag::TopicQuery(entry.first)).size());
+  return topics;
+}
+
+RosBagMessages ReadMessages(const std::string& path, const std::string& scan_topic,
+                            const std::string& odom_topic, const std::string& truth_topic,
+                            bool read_tf) {
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  RosBagMessages out;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
+    const std::string& topic = m.getTopic();
+    if (!scan_topic.empty() && topic == scan_topic) {
+      const auto s = m.instantiate<sensor_msgs::LaserScan>();
+      if (!s) continue;
+      RosScan scan;
+      scan.time_s = s->header.stamp.toSec();
+      scan.frame = s->header.frame_id;
+      scan.angle_min = s->angle_min;
+      scan.angle_increment = s->angle_increment;
+      scan.range_min = s->range_min;
+      scan.range_max = s->range_max;
+      scan.ranges = s->ranges;
+      out.scans.push_back(std::move(scan));
+    } else if (!odom_topic.empty() && topic == odom_topic) {
+      if (const auto o = m.instantiate<nav_msgs::Odometry>())
+        out.odometry.push_back(FromOdometry(*o));
+    } else if (!truth_topic.empty() && topic == truth_topic) {
+      if (const auto o = m.instantiate<nav_msgs::Odometry>()) out.truth.push_back(FromOdometry(*o));
+    } else if (topic == "/tf_static" || (read_tf && topic == "/tf")) {
+      if (const auto tf = m.instantiate<tf2_msgs::TFMessage>())
+        AddTransforms(*tf, topic == "/tf" ? &out.tf : &out.tf_static);
+    }
+  }
+  return out;
+}
+
+void WriteMessages(const std::string& path, const std::string& scan_topic,
+                   const std::string& odom_topic, const std::string& truth_topic,
+                   const RosBagMessages& messages) {
+  rosbag::Bag bag(path, rosbag::bagmode::Write);
+  const auto write_transform = [&](const char* topic, const RosPose& p) {
+    tf2_msgs::TFMessage tf;
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = Time(p.time_s);
+    t.header.frame_id = p.parent;
+    t.child_frame_id = p.child;
+    t.transform.translation.x = p.x;
+    t.transform.translation.y = p.y;
+    t.transform.rotation = Quaternion(p.yaw);
+    tf.transforms.push_back(t);
+    bag.write(topic, RecordTime(p.time_s), tf);
+  };
+  for (const RosPose& p : messages.tf_static) write_transform("/tf_static", p);
+  for (const RosPose& p : messages.tf) write_transform("/tf", p);
+  for (const RosScan& scan : messages.scans) {
+    sensor_msgs::LaserScan s;
+    s.header.stamp = Time(scan.time_s);
+    s.header.frame_id = scan.frame;
+    s.angle_min = static_cast<float>(scan.angle_min);
+    s.angle_increment = static_cast<float>(scan.angle_increment);
+    s.angle_max = static_cast<float>(
+        scan.angle_min + scan.angle_increment *
+                             static_cast<double>(std::max<std::size_t>(scan.ranges.size(), 1) - 1));
+    s.range_min = static_cast<float>(scan.range_min);
+    s.range_max = static_cast<float>(scan.range_max);
+    s.ranges = scan.ranges;
+    bag.write(scan_topic, RecordTime(scan.time_s), s);
+  }
+  for (const RosPose& p : messages.odometry)
+    bag.write(odom_topic, RecordTime(p.time_s), ToOdometry(p));
+  for (const RosPose& p : messages.truth)
+    bag.write(truth_topic, RecordTime(p.time_s), ToOdometry(p));
+  bag.close();
+}
+
+}  // namespace splam::io::internal

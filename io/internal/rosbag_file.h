@@ -1,0 +1,54 @@
+#ifndef SPLAM_IO_INTERNAL_ROSBAG_FILE_H_
+#define SPLAM_IO_INTERNAL_ROSBAG_FILE_H_
+
+#include <map>
+#include <string>
+#include <vector>
+
+// The messages of a ROS 1 bag that io::ReadRosBag and io::WriteRosBag use, in plain structs.
+// rosbag_file.cc is the only file that includes ROS headers, and it is compiled as C++17: ROS 1's
+// generated message headers use std::allocator<void>::rebind, which C++20 removed. So this
+// header includes nothing of splam's.
+namespace splam::io::internal {
+
+struct RosPose {                        // nav_msgs/Odometry, or a geometry_msgs/TransformStamped
+  double time_s = 0.0;                  // header.stamp
+  std::string parent, child;            // header.frame_id, child_frame_id
+  double x = 0.0, y = 0.0, yaw = 0.0;   // yaw of the quaternion
+  double tv_mps = 0.0, rv_radps = 0.0;  // twist.linear.x, twist.angular.z (Odometry)
+};
+
+struct RosScan {  // sensor_msgs/LaserScan
+  double time_s = 0.0;
+  std::string frame;
+  double angle_min = 0.0, angle_increment = 0.0, range_min = 0.0, range_max = 0.0;
+  std::vector<float> ranges;
+};
+
+struct RosBagTopics {
+  std::map<std::string, std::string> types;  // topic -> message type
+  std::map<std::string, int> counts;         // topic -> messages
+};
+// Throws std::exception (rosbag's) when the file is not a readable bag.
+RosBagTopics ListTopics(const std::string& path);
+
+struct RosBagMessages {
+  std::vector<RosScan> scans;
+  std::vector<RosPose> odometry, truth;
+  std::vector<RosPose> tf, tf_static;  // every transform of /tf and /tf_static
+};
+// The messages of the named topics, in the bag's time order (an empty topic name: none);
+// /tf only with read_tf. Throws std::exception on a message that does not decode.
+RosBagMessages ReadMessages(const std::string& path, const std::string& scan_topic,
+                            const std::string& odom_topic, const std::string& truth_topic,
+                            bool read_tf);
+
+// Writes a bag: each scan on scan_topic, each odometry pose on odom_topic and each truth pose on
+// truth_topic (nav_msgs/Odometry), the transforms on /tf and /tf_static. Throws std::exception.
+void WriteMessages(const std::string& path, const std::string& scan_topic,
+                   const std::string& odom_topic, const std::string& truth_topic,
+                   const RosBagMessages& messages);
+
+}  // namespace splam::io::internal
+
+#endif  // SPLAM_IO_INTERNAL_ROSBAG_FILE_H_

@@ -1,0 +1,328 @@
+#include "io/ros_bag.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <utility>
+
+#include "io/internal/plausible.h"
+#include "io/internal/rosbag_file.h"
+#include "io/text.h"
+#include "kernel/angle.h"
+
+namespace splam::io {
+namespace {
+
+constexpr char kLaserScanType[] = "sensor_msgs/LaserScan";
+constexpr char kOdometryType[] = "nav_msgs/Odometry";
+constexpr char kLaserFrame[] = "laser";
+constexpr char kMapFrame[] = "map";
+
+// tf frame ids may carry a leading '/' (tf1 style).
+std::string Frame(const std::string& id) {
+  return !id.empty() && id.front() == '/' ? id.substr(1) : id;
+}
+
+struct OdometrySample {
+  double time_s = 0.0;
+  kernel::Pose2 pose;
+  double tv_mps = 0.0, rv_radps = 0.0;
+};
+
+// The odometry at time t, linear between the samples around it (the heading along the shorter
+// arc); exactly a sample at its own time; nullopt outside their span.
+std::optional<OdometrySample> Interpolate(const std::vector<OdometrySample>& samples, double t) {
+  const auto after =
+      std::lower_bound(samples.begin(), samples.end(), t,
+                       [](const OdometrySample& s, double time) { return s.time_s < time; });
+  if (after == samples.end()) return std::nullopt;
+  if (after->time_s == t) return *after;
+  if (after == samples.begin()) return std::nullopt;
+  const OdometrySample& a = *(after - 1);
+  const OdometrySample& b = *after;
+  const double f = (t - a.time_s) / (b.time_s - a.time_s);
+  OdometrySample s = a;
+  s.time_s = t;
+  s.pose = kernel::Pose2(a.pose.x() + f * (b.pose.x() - a.pose.x()),
+                         a.pose.y() + f * (b.pose.y() - a.pose.y()),
+                         a.pose.theta() + f * kernel::WrapAngle(b.pose.theta() - a.pose.theta()));
+  return s;
+}
+
+LogStamp Stamp(double time_s) { return {time_s, "bag", time_s}; }
+
+// "/scan (sensor_msgs/LaserScan, 300 messages), ..."
+std::string TopicList(const std::map<std::string, std::string>& types,
+                      const std::map<std::string, int>& counts) {
+  std::string list;
+  for (const auto& [topic, type] : types) {
+    if (!list.empty()) list += ", ";
+    list += topic + " (" + type + ", " + std::to_string(counts.at(topic)) + " messages)";
+  }
+  return list.empty() ? "none" : list;
+}
+
+// The topic of `type` named by `wanted`, else the only one of that type (not in `excluded`);
+// an error names the candidates.
+Result<std::string> ChooseTopic(const std::map<std::string, std::string>& types,
+                                const std::map<std::string, int>& counts, const std::string& type,
+                                const std::string& wanted, const std::string& option,
+                                const std::string& excluded = "") {
+  using R = Result<std::string>;
+  if (!wanted.empty()) {
+    const auto it = types.find(wanted);
+    if (it == types.end())
+      return R::Fail("no topic " + wanted + "; the bag's topics: " + TopicList(types, counts));
+    if (it->second != type)
+      return R::Fail("topic " + wanted + " holds " + it->second + ", not " + type);
+    return R::Ok(wanted);
+  }
+  std::vector<std::string> candidates;
+  for (const auto& [topic, t] : types)
+    if (t == type && topic != excluded) candidates.push_back(topic);
+  if (candidates.size() == 1) return R::Ok(candidates.front());
+  return R::Fail((candidates.empty() ? "no " + type + " topic" : "several " + type + " topics") +
+                 " (choose one with " + option +
+                 "); the bag's topics: " + TopicList(types, counts));
+}
+
+// base_frame -> frame through the static transforms (child -> (parent, parent_T_child)).
+Result<kernel::Pose2> Mounting(
+    const std::map<std::string, std::pair<std::string, kernel::Pose2>>& static_transforms,
+    const std::string& base_frame, const std::string& frame) {
+  kernel::Pose2 base_T_frame;
+  std::string current = frame;
+  for (int depth = 0; current != base_frame; ++depth) {
+    const auto it = static_transforms.find(current);
+    if (it == static_transforms.end() || depth > 64)
+      return Result<kernel::Pose2>::Fail(
+          "no transform from " + base_frame + " to the scans' frame " + frame +
+          " in /tf_static (give the laser's mounting with --laser-pose X,Y,THETA)");
+    base_T_frame = it->second.second * base_T_frame;
+    current = it->second.first;
+  }
+  return Result<kernel::Pose2>::Ok(base_T_frame);
+}
+
+// The scan of a LaserScan message in kernel::Scan's conventions (REP 117), beams in increasing
+// angle.
+kernel::Scan ScanOf(const internal::RosScan& m) {
+  kernel::Scan scan;
+  scan.timestamp_s = m.time_s;
+  scan.start_angle_rad = m.angle_min;
+  scan.angular_step_rad = m.angle_increment;
+  scan.min_range_m = m.range_min;
+  scan.max_range_m = m.range_max;
+  for (const float r : m.ranges) {
+    const double range = r;
+    if (std::isnan(range) || range < scan.min_range_m) {
+      scan.ranges_m.push_back(std::numeric_limits<double>::quiet_NaN());  // invalid, too close
+    } else if (range >= scan.max_range_m) {
+      scan.ranges_m.push_back(kernel::Scan::kNoReturn);  // +inf or beyond the range: no return
+    } else {
+      scan.ranges_m.push_back(range);
+    }
+  }
+  if (scan.angular_step_rad < 0.0 && scan.size() > 1) {  // a laser mounted upside down
+    scan.start_angle_rad += scan.angular_step_rad * static_cast<double>(scan.size() - 1);
+    scan.angular_step_rad = -scan.angular_step_rad;
+    std::reverse(scan.ranges_m.begin(), scan.ranges_m.end());
+  }
+  return scan;
+}
+
+}  // namespace
+
+bool IsRosBagPath(const std::string& path) { return path.ends_with(".bag"); }
+
+RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& options) {
+  RosBagReadResult result;
+  RosBagReadStats& stats = result.stats;
+  const auto fail = [&](const std::string& message) {
+    result.log = Result<CarmenLog>::Fail(FileError(path, 0, message));
+    return result;
+  };
+  if (std::filesystem::is_directory(path)) return fail("is a directory, not a bag");
+  internal::RosBagTopics topics;
+  internal::RosBagMessages bag;
+  std::string scan_topic;
+  std::optional<std::string> odom_topic;
+  bool has_truth = false;
+  try {
+    topics = internal::ListTopics(path);
+    stats.topics = topics.counts;
+    const Result<std::string> chosen_scan = ChooseTopic(topics.types, topics.counts, kLaserScanType,
+                                                        options.scan_topic, "--scan-topic");
+    if (!chosen_scan.ok()) return fail(chosen_scan.error);
+    scan_topic = *chosen_scan.value;
+    const auto truth = topics.types.find(options.truth_topic);
+    has_truth = truth != topics.types.end() && truth->second == kOdometryType &&
+                options.odom_topic != options.truth_topic;
+    // Odometry from the named or only Odometry topic; else from /tf.
+    const bool has_tf = topics.types.contains("/tf");
+    const Result<std::string> chosen_odom =
+        ChooseTopic(topics.types, topics.counts, kOdometryType, options.odom_topic, "--odom-topic",
+                    options.truth_topic);
+    if (chosen_odom.ok()) {
+      odom_topic = *chosen_odom.value;
+    } else if (!options.odom_topic.empty() || !has_tf) {
+      return fail(chosen_odom.error + (has_tf ? "" : "; and no /tf to read it from"));
+    }
+    bag = internal::ReadMessages(path, scan_topic, odom_topic.value_or(""),
+                                 has_truth ? options.truth_topic : "", !odom_topic);
+  } catch (const std::exception& e) {
+    return fail(std::string("not a readable ROS bag: ") + e.what());
+  }
+
+  // Odometry, in time order.
+  std::vector<OdometrySample> odometry;
+  for (const internal::RosPose& p : bag.odometry)
+    odometry.push_back({p.time_s, kernel::Pose2(p.x, p.y, p.yaw), p.tv_mps, p.rv_radps});
+  for (const internal::RosPose& p : bag.tf) {
+    if (Frame(p.parent) == options.odom_frame && Frame(p.child) == options.base_frame)
+      odometry.push_back({p.time_s, kernel::Pose2(p.x, p.y, p.yaw), 0.0, 0.0});
+  }
+  std::stable_sort(
+      odometry.begin(), odometry.end(),
+      [](const OdometrySample& a, const OdometrySample& b) { return a.time_s < b.time_s; });
+  if (odometry.empty()) {
+    return fail("no odometry: " + (odom_topic ? "no message on " + *odom_topic
+                                              : "no " + options.odom_frame + " -> " +
+                                                    options.base_frame + " transform in /tf"));
+  }
+  for (const OdometrySample& s : odometry) {
+    if (std::string problem = internal::PoseProblem(s.pose, "odometry pose"); !problem.empty())
+      return fail(problem);
+  }
+  std::map<std::string, std::pair<std::string, kernel::Pose2>> static_transforms;
+  for (const internal::RosPose& p : bag.tf_static)
+    static_transforms[Frame(p.child)] = {Frame(p.parent), kernel::Pose2(p.x, p.y, p.yaw)};
+
+  // The scans, at the odometry interpolated to their time.
+  std::vector<std::pair<double, LogMessage>> messages;
+  std::optional<kernel::Pose2> base_T_laser = options.base_T_laser;
+  for (std::size_t i = 0; i < bag.scans.size(); ++i) {
+    const internal::RosScan& s = bag.scans[i];
+    LaserMessage laser;
+    laser.scan = ScanOf(s);
+    if (std::string problem = internal::ScanGeometryProblem(laser.scan); !problem.empty())
+      return fail("scan " + std::to_string(i + 1) + " on " + scan_topic + ": " + problem);
+    if (!base_T_laser) {
+      const std::string frame = Frame(s.frame);
+      const Result<kernel::Pose2> mounting =
+          frame == options.base_frame || frame.empty()
+              ? Result<kernel::Pose2>::Ok(kernel::Pose2())
+              : Mounting(static_transforms, options.base_frame, frame);
+      if (!mounting.ok()) return fail(mounting.error);
+      base_T_laser = *mounting.value;
+    }
+    const std::optional<OdometrySample> at = Interpolate(odometry, s.time_s);
+    if (!at) {
+      ++stats.scans_outside_odometry;
+      continue;
+    }
+    laser.robot_pose = at->pose;
+    laser.laser_pose = at->pose * *base_T_laser;
+    laser.tv_mps = at->tv_mps;
+    laser.rv_radps = at->rv_radps;
+    laser.stamp = Stamp(s.time_s);
+    messages.emplace_back(s.time_s, std::move(laser));
+    ++stats.scans;
+  }
+  for (const OdometrySample& s : odometry) {
+    messages.emplace_back(s.time_s,
+                          OdometryMessage{s.pose, s.tv_mps, s.rv_radps, 0.0, Stamp(s.time_s)});
+    ++stats.odometry;
+  }
+  for (const internal::RosPose& p : bag.truth) {
+    const kernel::Pose2 pose(p.x, p.y, p.yaw);
+    if (std::string problem = internal::PoseProblem(pose, "true pose"); !problem.empty())
+      return fail(problem);
+    const std::optional<OdometrySample> at = Interpolate(odometry, p.time_s);
+    messages.emplace_back(p.time_s, TruePoseMessage{pose, at ? at->pose : pose, Stamp(p.time_s)});
+    ++stats.true_poses;
+  }
+  // In time order; at one time odometry first, then the truth, then the scan (as the simulator
+  // writes them).
+  const auto rank = [](const LogMessage& m) {
+    return std::holds_alternative<OdometryMessage>(m)   ? 0
+           : std::holds_alternative<TruePoseMessage>(m) ? 1
+                                                        : 2;
+  };
+  std::stable_sort(messages.begin(), messages.end(), [&](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first < b.first : rank(a.second) < rank(b.second);
+  });
+  CarmenLog log;
+  log.comments.push_back(" converted from the ROS bag " + path + " (scans " + scan_topic +
+                         ", odometry " + odom_topic.value_or("/tf") + ")");
+  for (auto& [t, message] : messages) log.messages.push_back(std::move(message));
+  result.log = Result<CarmenLog>::Ok(std::move(log));
+  return result;
+}
+
+std::string WriteRosBag(const CarmenLog& log, const std::string& path, const RosBagOptions& options,
+                        RosBagWriteStats* stats) {
+  RosBagWriteStats counts;
+  internal::RosBagMessages bag;
+  const auto pose = [&](double t, const std::string& parent, const kernel::Pose2& p, double tv,
+                        double rv) {
+    return internal::RosPose{t, parent, options.base_frame, p.x(), p.y(), p.theta(), tv, rv};
+  };
+  for (const LogMessage& message : log.messages) {
+    const double t = std::visit([](const auto& m) { return m.stamp.ipc_timestamp_s; }, message);
+    if (!(t >= 0.0 && t < 4e9))
+      return FileError(path, 0,
+                       "timestamp " + FormatDouble(t) + " s is outside ROS time [0, 4e9) s");
+    if (const auto* o = std::get_if<OdometryMessage>(&message)) {
+      bag.odometry.push_back(pose(t, options.odom_frame, o->pose, o->tv_mps, o->rv_radps));
+    } else if (const auto* l = std::get_if<LaserMessage>(&message)) {
+      if (bag.tf_static.empty()) {  // the mounting of the first scan
+        internal::RosPose mounting =
+            pose(t, options.base_frame, l->robot_pose.Between(l->laser_pose), 0.0, 0.0);
+        mounting.child = kLaserFrame;
+        bag.tf_static.push_back(mounting);
+      }
+      // Its odometric pose joins the odometry stream.
+      bag.odometry.push_back(pose(t, options.odom_frame, l->robot_pose, l->tv_mps, l->rv_radps));
+      const kernel::Scan& scan = l->scan;
+      internal::RosScan s{t,
+                          kLaserFrame,
+                          scan.start_angle_rad,
+                          scan.angular_step_rad,
+                          scan.min_range_m,
+                          scan.max_range_m,
+                          {}};
+      for (const double r : scan.ranges_m) s.ranges.push_back(static_cast<float>(r));
+      bag.scans.push_back(std::move(s));
+      ++counts.scans;
+    } else if (const auto* p = std::get_if<TruePoseMessage>(&message)) {
+      bag.truth.push_back(pose(t, kMapFrame, p->true_pose, 0.0, 0.0));
+      ++counts.true_poses;
+    } else {
+      ++counts.sonar_skipped;
+    }
+  }
+  // One odometry pose per time, in time order.
+  const auto earlier = [](const internal::RosPose& a, const internal::RosPose& b) {
+    return a.time_s < b.time_s;
+  };
+  std::stable_sort(bag.odometry.begin(), bag.odometry.end(), earlier);
+  bag.odometry.erase(std::unique(bag.odometry.begin(), bag.odometry.end(),
+                                 [](const internal::RosPose& a, const internal::RosPose& b) {
+                                   return a.time_s == b.time_s;
+                                 }),
+                     bag.odometry.end());
+  counts.odometry = static_cast<int>(bag.odometry.size());
+  try {
+    internal::WriteMessages(path, options.scan_topic.empty() ? "/scan" : options.scan_topic,
+                            options.odom_topic.empty() ? "/odom" : options.odom_topic,
+                            options.truth_topic, bag);
+  } catch (const std::exception& e) {
+    return FileError(path, 0, std::string("cannot write the bag: ") + e.what());
+  }
+  if (stats) *stats = counts;
+  return "";
+}
+
+}  // namespace splam::io

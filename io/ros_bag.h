@@ -1,0 +1,68 @@
+#ifndef SPLAM_IO_ROS_BAG_H_
+#define SPLAM_IO_ROS_BAG_H_
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/carmen.h"
+#include "io/result.h"
+#include "kernel/pose2.h"
+
+namespace splam::io {
+
+// ROS 1 bags (rosbag format 2.0, read and written with Debian's rosbag_storage). A bag is read
+// into the same in-memory log as a CARMEN file, so that every command taking a log takes a bag:
+//   - scans: sensor_msgs/LaserScan; beam geometry, range limits and timestamps (header.stamp)
+//     from each message. REP 117: +inf (or a range at or above range_max) is no return, NaN or
+//     a range below range_min an invalid reading;
+//   - odometry: nav_msgs/Odometry, or the odom_frame -> base_frame transforms of /tf
+//     (tf2_msgs/TFMessage); the robot's pose at a scan is interpolated between the two odometry
+//     poses around it (scans outside the odometry's time span are dropped and counted);
+//   - the laser mounting base_frame -> the scan's frame_id: an option, else /tf_static (chains
+//     of transforms are followed), else identity when the scan's frame is the base frame;
+//   - ground truth (simulated runs): nav_msgs/Odometry on truth_topic, read as TRUEPOS.
+// Writing does the reverse: /scan, /odom (every ODOM message and the odometric pose of every
+// scan), /tf_static (the mounting of the first scan) and /ground_truth for TRUEPOS. Sonar
+// messages have no ROS counterpart here and are counted, not written.
+struct RosBagOptions {
+  std::string scan_topic;  // empty: the bag's only sensor_msgs/LaserScan topic
+  // Empty: the only nav_msgs/Odometry topic other than truth_topic, else /tf.
+  std::string odom_topic;
+  std::string truth_topic = "/ground_truth";
+  std::string odom_frame = "odom";       // /tf odometry: the transform odom_frame -> base_frame
+  std::string base_frame = "base_link";  // the robot's frame
+  // base_frame -> laser; nullopt: from /tf_static.
+  std::optional<kernel::Pose2> base_T_laser;
+};
+
+struct RosBagReadStats {
+  int scans = 0, odometry = 0, true_poses = 0;
+  int scans_outside_odometry = 0;     // dropped: before the first or after the last odometry
+  std::map<std::string, int> topics;  // every topic with its message count
+};
+
+struct RosBagReadResult {
+  Result<CarmenLog> log;
+  RosBagReadStats stats;
+};
+
+// Fails with "path: what is wrong" (no such topic, several candidates: the topics are listed,
+// no odometry, no mounting, a message that does not decode).
+RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& options = {});
+
+struct RosBagWriteStats {
+  int scans = 0, odometry = 0, true_poses = 0;
+  int sonar_skipped = 0;
+};
+// Empty on success, else why the bag could not be written.
+std::string WriteRosBag(const CarmenLog& log, const std::string& path,
+                        const RosBagOptions& options = {}, RosBagWriteStats* stats = nullptr);
+
+// True when `path` names a bag (it ends in ".bag").
+bool IsRosBagPath(const std::string& path);
+
+}  // namespace splam::io
+
+#endif  // SPLAM_IO_ROS_BAG_H_

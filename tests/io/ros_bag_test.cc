@@ -1,0 +1,181 @@
+#include "io/ros_bag.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "io/internal/rosbag_file.h"
+#include "io/text.h"
+#include "io/trajectory.h"
+#include "kernel/angle.h"
+#include "kernel/random.h"
+
+namespace splam::io {
+namespace {
+
+std::string TempBag(const std::string& name) { return ::testing::TempDir() + "/" + name + ".bag"; }
+
+// A short log as the simulator writes one: at every step ODOM, TRUEPOS and a scan taken by a
+// laser 0.1 m ahead of the robot, with a no-return and an invalid beam.
+CarmenLog ShortLog(int steps) {
+  kernel::Random random(7);
+  CarmenLog log;
+  const kernel::Pose2 robot_T_laser(0.1, 0.0, 0.0);
+  for (int i = 0; i < steps; ++i) {
+    const double t = 10.0 + 0.1 * i;
+    const kernel::Pose2 odometry(0.05 * i, 0.01 * i, 0.03 * i);
+    log.messages.push_back(OdometryMessage{odometry, 0.5, 0.3, 0.0, {t, "sim", t}});
+    log.messages.push_back(
+        TruePoseMessage{kernel::Pose2(0.05 * i + 0.01, 0.0, 0.02 * i), odometry, {t, "sim", t}});
+    LaserMessage laser;
+    laser.scan.timestamp_s = t;
+    laser.scan.start_angle_rad = -kernel::kPi / 2;
+    laser.scan.angular_step_rad = kernel::kPi / 180;
+    laser.scan.max_range_m = 8.0;
+    for (int b = 0; b < 181; ++b) laser.scan.ranges_m.push_back(0.5 + 7.0 * random.Uniform());
+    laser.scan.ranges_m[3] = kernel::Scan::kNoReturn;
+    laser.scan.ranges_m[4] = std::numeric_limits<double>::quiet_NaN();
+    laser.robot_pose = odometry;
+    laser.laser_pose = odometry * robot_T_laser;
+    laser.stamp = {t, "sim", t};
+    log.messages.push_back(laser);
+  }
+  return log;
+}
+
+TEST(RosBag, WriteThenReadGivesTheSameScansPosesAndMounting) {
+  const CarmenLog log = ShortLog(20);
+  const std::string path = TempBag("round_trip");
+  RosBagWriteStats written;
+  ASSERT_EQ(WriteRosBag(log, path, {}, &written), "");
+  EXPECT_EQ(written.scans, 20);
+  EXPECT_EQ(written.odometry, 20);  // ODOM and the scans' poses share their times
+  EXPECT_EQ(written.true_poses, 20);
+  const RosBagReadResult read = ReadRosBag(path);
+  ASSERT_TRUE(read.log.ok()) << read.log.error;
+  EXPECT_EQ(read.stats.topics.at("/scan"), 20);
+  EXPECT_EQ(read.stats.topics.at("/tf_static"), 1);
+  const auto in = log.Lasers();
+  const auto out = read.log.value->Lasers();
+  ASSERT_EQ(out.size(), in.size());
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    EXPECT_EQ(out[i]->scan.timestamp_s, in[i]->scan.timestamp_s);
+    EXPECT_NEAR(out[i]->scan.start_angle_rad, in[i]->scan.start_angle_rad, 1e-7);  // float32
+    EXPECT_NEAR(out[i]->scan.angular_step_rad, in[i]->scan.angular_step_rad, 1e-9);
+    EXPECT_EQ(out[i]->scan.max_range_m, 8.0);
+    ASSERT_EQ(out[i]->scan.size(), 181u);
+    for (std::size_t b = 0; b < 181; ++b) {
+      if (b == 3) {
+        EXPECT_TRUE(out[i]->scan.IsNoReturn(b));
+      } else if (b == 4) {
+        EXPECT_TRUE(std::isnan(out[i]->scan.ranges_m[b]));
+      } else {
+        EXPECT_EQ(out[i]->scan.ranges_m[b], static_cast<float>(in[i]->scan.ranges_m[b]));
+      }
+    }
+    EXPECT_LT((out[i]->robot_pose.ToVector() - in[i]->robot_pose.ToVector()).norm(), 1e-12);
+    EXPECT_LT((out[i]->laser_pose.ToVector() - in[i]->laser_pose.ToVector()).norm(), 1e-12);
+  }
+  const auto truth = read.log.value->TruePoses();
+  ASSERT_EQ(truth.size(), 20u);
+  EXPECT_NEAR(truth[5]->true_pose.x(), 0.26, 1e-12);
+  EXPECT_NEAR(truth[5]->odometry_pose.theta(), 0.15, 1e-12);
+}
+
+// A bag as a robot records one: odometry only in /tf (odom -> base_link), the laser mounted
+// through a chain in /tf_static (base_link -> mount -> laser), scans before the odometry starts.
+TEST(RosBag, OdometryFromTfAndTheMountingThroughAChainOfStaticTransforms) {
+  internal::RosBagMessages bag;
+  for (int i = 0; i < 10; ++i) {
+    const double t = 5.0 + i;
+    bag.tf.push_back({t, "odom", "base_link", 1.0 * i, 0.0, 0.0, 0.0, 0.0});
+    bag.tf.push_back({t, "odom", "other", 9.0, 9.0, 0.0, 0.0, 0.0});  // not the robot
+    bag.scans.push_back({t - 0.5, "laser", -1.0, 0.01, 0.05, 30.0, std::vector<float>(201, 2.0f)});
+  }
+  bag.tf_static.push_back({0.0, "base_link", "mount", 0.2, 0.0, 0.0, 0.0, 0.0});
+  bag.tf_static.push_back({0.0, "mount", "laser", 0.0, 0.1, kernel::kPi / 2, 0.0, 0.0});
+  const std::string path = TempBag("tf");
+  internal::WriteMessages(path, "/base_scan", "/odom", "/ground_truth", bag);
+  const RosBagReadResult read = ReadRosBag(path);
+  ASSERT_TRUE(read.log.ok()) << read.log.error;
+  // The first scan (t 4.5) comes before the odometry: dropped and counted.
+  EXPECT_EQ(read.stats.scans_outside_odometry, 1);
+  const auto lasers = read.log.value->Lasers();
+  ASSERT_EQ(lasers.size(), 9u);
+  // t 5.5: halfway between x 0 and x 1.
+  EXPECT_NEAR(lasers[0]->robot_pose.x(), 0.5, 1e-12);
+  const kernel::Pose2 mounting = lasers[0]->robot_pose.Between(lasers[0]->laser_pose);
+  EXPECT_NEAR(mounting.x(), 0.2, 1e-6);
+  EXPECT_NEAR(mounting.y(), 0.1, 1e-6);
+  EXPECT_NEAR(mounting.theta(), kernel::kPi / 2, 1e-6);
+  EXPECT_EQ(read.log.value->Odometry().size(), 10u);
+  // Below range_min is invalid (REP 117).
+  EXPECT_EQ(lasers[0]->scan.min_range_m, static_cast<float>(0.05));
+}
+
+TEST(RosBag, TopicsAndMountingThatCannotBeChosenAreNamed) {
+  internal::RosBagMessages bag;
+  bag.scans.push_back({1.0, "laser", -1.0, 0.01, 0.05, 30.0, std::vector<float>(201, 2.0f)});
+  bag.odometry.push_back({1.0, "odom", "base_link", 0.0, 0.0, 0.0, 0.0, 0.0});
+  const std::string path = TempBag("no_mounting");
+  internal::WriteMessages(path, "/scan", "/odom", "/ground_truth", bag);
+  // The scans' frame "laser" is not the base frame, and nothing says where it is mounted.
+  RosBagReadResult read = ReadRosBag(path);
+  ASSERT_FALSE(read.log.ok());
+  EXPECT_NE(read.log.error.find("no transform from base_link to the scans' frame laser"),
+            std::string::npos)
+      << read.log.error;
+  RosBagOptions options;
+  options.base_T_laser = kernel::Pose2(0.1, 0.0, 0.0);
+  EXPECT_TRUE(ReadRosBag(path, options).log.ok());
+  // A topic that is not there, or of another type, is named with the bag's topics.
+  options.scan_topic = "/laser";
+  read = ReadRosBag(path, options);
+  ASSERT_FALSE(read.log.ok());
+  EXPECT_NE(read.log.error.find("no topic /laser; the bag's topics: /odom (nav_msgs/Odometry, 1 "
+                                "messages), /scan (sensor_msgs/LaserScan, 1 messages)"),
+            std::string::npos)
+      << read.log.error;
+  options.scan_topic = "/odom";
+  EXPECT_NE(ReadRosBag(path, options).log.error.find("holds nav_msgs/Odometry"), std::string::npos);
+  // No odometry and no /tf.
+  internal::RosBagMessages scans_only;
+  scans_only.scans = bag.scans;
+  const std::string lonely = TempBag("scans_only");
+  internal::WriteMessages(lonely, "/scan", "/odom", "/ground_truth", scans_only);
+  read = ReadRosBag(lonely);
+  ASSERT_FALSE(read.log.ok());
+  EXPECT_NE(read.log.error.find("no nav_msgs/Odometry topic (choose one with --odom-topic)"),
+            std::string::npos)
+      << read.log.error;
+  EXPECT_NE(read.log.error.find("and no /tf to read it from"), std::string::npos);
+}
+
+TEST(RosBag, WhatIsNotABagIsRefused) {
+  const std::string junk = ::testing::TempDir() + "/junk.bag";
+  ASSERT_EQ(WriteTextFile(junk, "#ROSBAG V2.0\nnot really\n"), "");
+  RosBagReadResult read = ReadRosBag(junk);
+  ASSERT_FALSE(read.log.ok());
+  EXPECT_EQ(read.log.error.rfind(junk + ": not a readable ROS bag", 0), 0u) << read.log.error;
+  read = ReadRosBag("/nonexistent.bag");
+  EXPECT_FALSE(read.log.ok());
+  read = ReadRosBag(::testing::TempDir());
+  EXPECT_NE(read.log.error.find("is a directory, not a bag"), std::string::npos);
+  // A scan whose beams wrap the circle (a resolution in degrees) is refused at the reader.
+  internal::RosBagMessages bag;
+  bag.scans.push_back({1.0, "base_link", -1.0, 0.36, 0.05, 30.0, std::vector<float>(181, 2.0f)});
+  bag.odometry.push_back({1.0, "odom", "base_link", 0.0, 0.0, 0.0, 0.0, 0.0});
+  const std::string wrapping = TempBag("wrapping");
+  internal::WriteMessages(wrapping, "/scan", "/odom", "/ground_truth", bag);
+  read = ReadRosBag(wrapping);
+  ASSERT_FALSE(read.log.ok());
+  EXPECT_NE(read.log.error.find("scan 1 on /scan: 181 beams"), std::string::npos) << read.log.error;
+  // Negative times have no ROS time.
+  CarmenLog log = ShortLog(2);
+  std::get<OdometryMessage>(log.messages[0]).stamp.ipc_timestamp_s = -1.0;
+  EXPECT_NE(WriteRosBag(log, TempBag("negative")).find("outside ROS time"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace splam::io
