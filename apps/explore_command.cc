@@ -26,6 +26,7 @@ struct ExploreArgs {
   std::string world = "complex";
   std::string out;
   double resolution_m_per_px = 0.05;
+  std::vector<double> start;  // x, y, theta: overrides the world's start pose
   bool trace = false;
 };
 
@@ -110,6 +111,23 @@ int RunExplore(const ExploreArgs& args) {
   io::Result<sim::World> world = io::LoadValidWorld(args.world, floor_plan);
   if (!world.ok()) {
     fmt::print(stderr, "splam explore: {}\n", world.error);
+    return kExitBadInput;
+  }
+  if (args.start.size() == 3)
+    world.value->start = kernel::Pose2(args.start[0], args.start[1], args.start[2]);
+  if (!world.value->start) {
+    fmt::print(stderr,
+               "splam explore: world '{}' has no start pose: give one with --start X,Y,THETA\n",
+               args.world);
+    return kExitBadInput;
+  }
+  if (const kernel::Status problem = world.value->Validate(); !problem.ok()) {
+    fmt::print(stderr, "splam explore: --start: {}\n", problem.message());
+    return kExitBadInput;
+  }
+  if (std::string problem = io::StartProblem(args.world, floor_plan, *world.value->start);
+      !problem.empty()) {
+    fmt::print(stderr, "splam explore: {}\n", problem);
     return kExitBadInput;
   }
   ExploreConfig config;
@@ -256,6 +274,12 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
                   "Metres per pixel of a floor-plan image world")
       ->check(FloorPlanResolution())
       ->capture_default_str();
+  cmd->add_option("--start", args->start,
+                  "Start pose X,Y,THETA (m, m, rad), e.g. for a floor-plan image, which has none; "
+                  "default: the world's")
+      ->delimiter(',')
+      ->expected(3)
+      ->check(CLI::Number);
   cmd->add_flag("--trace", args->trace,
                 "With a SLAM localisation, also write steps.csv: every step's predicted and "
                 "corrected pose, their errors against the truth and what the method's update did");

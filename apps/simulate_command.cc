@@ -113,6 +113,11 @@ int RunSimulate(const SimulateArgs& args) {
     return kExitBadInput;
   }
 
+  if (std::string problem = io::StartProblem(args.world, floor_plan, route.start);
+      !problem.empty()) {
+    fmt::print(stderr, "splam simulate: {}\n", problem);
+    return kExitBadInput;
+  }
   const sim::RayCaster caster(*world.value);
   sim::Simulator simulator(caster, options, route.start, args.seed);
   if (!simulator.IsFree(route.start)) {

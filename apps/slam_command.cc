@@ -1,7 +1,9 @@
 // splam slam: run a SLAM method over a CARMEN log (simulated or real).
 #include <fmt/core.h>
+
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -129,7 +131,9 @@ void WriteSlamFiles(const std::string& log, const std::string& out, const std::s
   }
 }
 
-void PrintSlamSummary(const std::string& label, const estimation::SlamMethod& slam,
+// Prints the run's figures; false when an error against the truth is not finite (an estimate
+// that diverged): never "RMSE inf m" with a successful exit.
+bool PrintSlamSummary(const std::string& label, const estimation::SlamMethod& slam,
                       const loop::ReplayResult& run, const nlohmann::ordered_json& summary) {
   fmt::print(
       "{} scans ({:.0f} s of data) in {:.1f} s: {:.1f}x real time, {:.2f} ms per scan (median "
@@ -142,12 +146,18 @@ void PrintSlamSummary(const std::string& label, const estimation::SlamMethod& sl
   if (!run.truth.empty()) {
     const auto e = estimation::CompareToTruth(run.truth, run.estimate);
     const auto o = estimation::CompareToTruth(run.truth, run.odometry);
+    if (!std::isfinite(e.rmse_position_m) || !std::isfinite(e.rmse_heading_rad)) {
+      fmt::print(stderr, "splam slam: the {} estimate's error against the truth is not finite\n",
+                 label);
+      return false;
+    }
     fmt::print(
         "position RMSE: {} {:.3f} m, odometry {:.3f} m; heading RMSE: {:.2f} deg, {:.2f} "
         "deg\n",
         label, e.rmse_position_m, o.rmse_position_m, kernel::RadToDeg(e.rmse_heading_rad),
         kernel::RadToDeg(o.rmse_heading_rad));
   }
+  return true;
 }
 
 // The world to draw under the map: --world, or world.yaml beside a simulated log; none for a
@@ -246,13 +256,13 @@ int RunSlam(const SlamArgs& args) {
       return kExitBadInput;
     }
   }
-  PrintSlamSummary(label, slam, run, summary);
+  const bool finite = PrintSlamSummary(label, slam, run, summary);
   fmt::print(
       "wrote {}/{{config.yaml, trajectory.txt, odometry.txt, map.txt, map.dxf, map.svg, map.png, "
       "summary.json{}{}}}\n",
       out, run.truth.empty() ? "" : ", truth.txt, errors.svg, errors.png",
       args.trace ? ", steps.csv" : "");
-  if (!slam.healthy()) return kExitIncomplete;
+  if (!slam.healthy() || !finite) return kExitIncomplete;
   return kExitOk;
 }
 

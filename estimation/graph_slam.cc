@@ -431,7 +431,8 @@ void GraphSlam::SearchLoopClosures(int k) {
   }
   std::sort(near.begin(), near.end());
   std::vector<int> chosen;
-  for (const auto& [d, i] : near) {
+  for (const auto& candidate : near) {
+    const int i = candidate.second;
     if (static_cast<int>(chosen.size()) >= options_.loop.candidates) break;
     if (std::all_of(chosen.begin(), chosen.end(),
                     [&](int c) { return std::abs(c - i) >= options_.loop.min_gap_keyframes; }))

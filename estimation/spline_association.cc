@@ -45,8 +45,9 @@ std::optional<CurveMatch> EndPointMatch(const SplineCurve& observed, const Splin
   const double sign = m2 >= m1 ? 1.0 : -1.0;
   const double length = std::min(o2 - o1, std::abs(m2 - m1));  // trim to equal lengths
   if (!(length >= epsilon)) return std::nullopt;
+  const double from = o1, to = m1;  // lambdas cannot capture structured bindings in Clang 14
   return Correspond(
-      observed, map, o1, o1 + length, [&](double s) { return m1 + sign * (s - o1); }, epsilon);
+      observed, map, o1, o1 + length, [&](double s) { return to + sign * (s - from); }, epsilon);
 }
 
 }  // namespace

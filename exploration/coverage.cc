@@ -29,6 +29,7 @@ CoverageGrid::CoverageGrid(const kernel::Box2& bounds, double cell_m, const Eige
     stack.pop_back();
     reachable_mask_[static_cast<std::size_t>(iy) * nx_ + ix] = 1;
     ++reachable_;
+    reaches_border_ = reaches_border_ || ix == 0 || iy == 0 || ix == nx_ - 1 || iy == ny_ - 1;
     const int neighbours[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
     for (const auto& d : neighbours) {
       const int jx = ix + d[0], jy = iy + d[1];

@@ -25,6 +25,9 @@ class CoverageGrid {
   // is inside plus those its boundary crosses, a band of at most one cell).
   void Cover(const kernel::LocalSafeRegion& region);
   int reachable_cells() const { return reachable_; }
+  // True when the reachable free space touches the grid's outer cells: nothing encloses the
+  // start within the bounds (a start outside the walls, or a world with an opening).
+  bool reaches_border() const { return reaches_border_; }
   // Covered reachable cells over reachable cells (0 when nothing is reachable).
   double CoveredFraction() const;
   double cell_m() const { return cell_; }
@@ -37,6 +40,7 @@ class CoverageGrid {
   std::vector<char> covered_;
   int reachable_ = 0;
   int covered_reachable_ = 0;
+  bool reaches_border_ = false;
 };
 
 }  // namespace splam::exploration

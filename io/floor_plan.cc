@@ -19,8 +19,11 @@ kernel::Status FloorPlanOptions::Validate() const {
   return kernel::Status::Ok();
 }
 
-Result<sim::World> ReadFloorPlan(const std::string& path, const FloorPlanOptions& options) {
-  using R = Result<sim::World>;
+namespace {
+
+// The image in grey levels; an error names the file.
+Result<cv::Mat> ReadGrey(const std::string& path, const FloorPlanOptions& options) {
+  using R = Result<cv::Mat>;
   if (kernel::Status problem = options.Validate(); !problem.ok())
     return R::Fail(FileError(path, 0, problem.message()));
   if (!std::filesystem::is_regular_file(path))
@@ -33,6 +36,30 @@ Result<sim::World> ReadFloorPlan(const std::string& path, const FloorPlanOptions
   }
   if (grey.empty())
     return R::Fail(FileError(path, 0, "cannot decode image (not a PNG/JPEG/... file?)"));
+  return R::Ok(std::move(grey));
+}
+
+}  // namespace
+
+Result<bool> FloorPlanIsDarkAt(const std::string& path, const FloorPlanOptions& options,
+                               const Eigen::Vector2d& point) {
+  Result<cv::Mat> grey = ReadGrey(path, options);
+  if (!grey.ok()) return Result<bool>::Fail(grey.error);
+  const cv::Mat& image = *grey.value;
+  // Pixel (column, row) covers x in origin + [column, column + 1) * res, rows counted from the top.
+  const Eigen::Vector2d pixel = (point - options.origin_m) / options.resolution_m_per_px;
+  const double column = std::floor(pixel.x()), row = image.rows - 1 - std::floor(pixel.y());
+  if (!(column >= 0 && column < image.cols && row >= 0 && row < image.rows))
+    return Result<bool>::Ok(false);
+  return Result<bool>::Ok(image.at<unsigned char>(static_cast<int>(row), static_cast<int>(column)) <
+                          options.dark_threshold);
+}
+
+Result<sim::World> ReadFloorPlan(const std::string& path, const FloorPlanOptions& options) {
+  using R = Result<sim::World>;
+  Result<cv::Mat> read = ReadGrey(path, options);
+  if (!read.ok()) return R::Fail(read.error);
+  const cv::Mat& grey = *read.value;
 
   cv::Mat dark;
   cv::threshold(grey, dark, options.dark_threshold - 1, 255, cv::THRESH_BINARY_INV);

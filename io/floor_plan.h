@@ -31,6 +31,11 @@ struct FloorPlanOptions {
 // as thick as drawn. The loops are walls, not solids: a room inside a ring of dark pixels is free
 // space. Fails on unreadable images and images without dark pixels.
 Result<sim::World> ReadFloorPlan(const std::string& path, const FloorPlanOptions& options);
+// Whether `point` (world frame) falls on a dark pixel of the floor plan at `path`: inside a wall
+// or a solid region, where the outlines alone cannot tell it from a room. False outside the
+// image. Fails like ReadFloorPlan.
+Result<bool> FloorPlanIsDarkAt(const std::string& path, const FloorPlanOptions& options,
+                               const Eigen::Vector2d& point);
 
 }  // namespace splam::io
 

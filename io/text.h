@@ -15,8 +15,8 @@ std::vector<std::string_view> SplitTokens(std::string_view line);
 std::optional<double> ParseDouble(std::string_view token);
 std::optional<long> ParseInteger(std::string_view token);
 // Calls visit(line_number, tokens) for every line of `text` that is neither blank nor a '#'
-// comment, counting lines from 1 (a leading UTF-8 byte order mark is skipped). Stops at the first non-empty message `visit` returns and
-// returns it; empty when every line was accepted.
+// comment, counting lines from 1 (a leading UTF-8 byte order mark is skipped). Stops at the first
+// non-empty message `visit` returns and returns it; empty when every line was accepted.
 std::string ForEachDataLine(
     const std::string& text,
     const std::function<std::string(int, const std::vector<std::string_view>&)>& visit);

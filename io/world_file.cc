@@ -117,6 +117,10 @@ bool HasExtension(const std::string& path, std::initializer_list<const char*> ex
   return std::any_of(extensions.begin(), extensions.end(), [&](const char* e) { return ext == e; });
 }
 
+bool IsImagePath(const std::string& path) {
+  return HasExtension(path, {".png", ".jpg", ".jpeg", ".pgm", ".bmp", ".tif", ".tiff"});
+}
+
 }  // namespace
 
 Result<sim::World> ParseWorld(const std::string& yaml, const std::string& name,
@@ -199,9 +203,7 @@ std::string WriteWorldFile(const std::string& path, const sim::World& world) {
 Result<sim::World> LoadWorld(const std::string& name_or_path, const FloorPlanOptions& floor_plan) {
   if (auto builtin = sim::BuiltinWorld(name_or_path))
     return Result<sim::World>::Ok(std::move(*builtin));
-  if (HasExtension(name_or_path, {".png", ".jpg", ".jpeg", ".pgm", ".bmp", ".tif", ".tiff"})) {
-    return ReadFloorPlan(name_or_path, floor_plan);
-  }
+  if (IsImagePath(name_or_path)) return ReadFloorPlan(name_or_path, floor_plan);
   if (!std::filesystem::exists(name_or_path)) {
     std::string names;
     for (const std::string& n : sim::BuiltinWorldNames()) names += (names.empty() ? "" : ", ") + n;
@@ -218,6 +220,17 @@ Result<sim::World> LoadValidWorld(const std::string& name_or_path,
   if (const kernel::Status problem = world.value->Validate(); !problem.ok())
     return Result<sim::World>::Fail(name_or_path + ": " + problem.message());
   return world;
+}
+
+std::string StartProblem(const std::string& name_or_path, const FloorPlanOptions& floor_plan,
+                         const kernel::Pose2& start) {
+  if (sim::BuiltinWorld(name_or_path) || !IsImagePath(name_or_path)) return "";
+  const Result<bool> dark = FloorPlanIsDarkAt(name_or_path, floor_plan, start.translation());
+  if (!dark.ok()) return dark.error;
+  if (!*dark.value) return "";
+  return FileError(name_or_path, 0,
+                   "the start pose (" + FormatDouble(start.x()) + ", " + FormatDouble(start.y()) +
+                       ") lies on a dark pixel: inside a wall or a solid region");
 }
 
 }  // namespace splam::io

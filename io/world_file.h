@@ -41,6 +41,11 @@ Result<sim::World> LoadWorld(const std::string& name_or_path,
 // reported as "name_or_path: problem".
 Result<sim::World> LoadValidWorld(const std::string& name_or_path,
                                   const FloorPlanOptions& floor_plan = {});
+// Empty when a run can start at `start` in the world `name_or_path` names, as far as its source
+// tells beyond the obstacles: for a floor-plan image, not on a dark pixel (inside a wall or a
+// solid region, which the outlines alone take for free space); else why not.
+std::string StartProblem(const std::string& name_or_path, const FloorPlanOptions& floor_plan,
+                         const kernel::Pose2& start);
 
 }  // namespace splam::io
 

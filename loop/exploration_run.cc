@@ -26,19 +26,23 @@ std::shared_ptr<exploration::Localization> MakeLocalization(const ExploreSetup& 
   return slam;
 }
 
-// The explored fraction after every node: the LSRs at the nodes' true poses over the free
-// space reachable from the start.
-void EvaluateCoverage(const sim::World& world, const sim::RayCaster& caster,
-                      const exploration::RobotDescription& robot, double lsr_radius_m,
-                      ExploreOutcome* outcome) {
+// The free space reachable from the world's start (ExploreOutcome::reachable_area_m2), on a grid
+// over the obstacles' bounds and 0.5 m beyond.
+exploration::CoverageGrid ReachableSpace(const sim::World& world, const sim::RayCaster& caster) {
   const double half_diagonal = kCoverageCell * std::sqrt(0.5);
   kernel::Box2 bounds = world.Bounds();
   bounds.min -= Eigen::Vector2d::Constant(0.5);
   bounds.max += Eigen::Vector2d::Constant(0.5);
-  exploration::CoverageGrid grid(
+  return exploration::CoverageGrid(
       bounds, kCoverageCell, world.start->translation(), [&](const Eigen::Vector2d& c) {
         return !caster.IsInsideObstacle(c) && caster.Nearest(c, half_diagonal).obstacle < 0;
       });
+}
+
+// The explored fraction after every node: the LSRs at the nodes' true poses over the free
+// space reachable from the start.
+void EvaluateCoverage(exploration::CoverageGrid grid, const exploration::RobotDescription& robot,
+                      double lsr_radius_m, ExploreOutcome* outcome) {
   outcome->reachable_area_m2 = grid.reachable_cells() * kCoverageCell * kCoverageCell;
   for (const exploration::NodeRecord& node : outcome->run.nodes) {
     grid.Cover(
@@ -129,6 +133,19 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
     outcome.error = "the start pose of '" + world.name + "' collides with an obstacle";
     return outcome;
   }
+  // An exploration ends when nothing is left to explore: the start must be enclosed.
+  exploration::CoverageGrid reachable = ReachableSpace(world, caster);
+  if (reachable.reachable_cells() == 0) {
+    outcome.error = "the start pose of '" + world.name +
+                    "' lies outside the world (beyond its obstacles' bounds) or in no free space";
+    return outcome;
+  }
+  if (reachable.reaches_border()) {
+    outcome.error = "the free space around the start pose of '" + world.name +
+                    "' is not enclosed by walls (it reaches the border of the world's bounds): "
+                    "nothing would end the exploration";
+    return outcome;
+  }
   SimulatedRobot robot(&simulator);
   outcome.robot_radius_m = robot.description().radius_m;
   outcome.run = explorer->Run(&robot, localization.get());
@@ -144,7 +161,7 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
     outcome.error = outcome.run.message;
     return outcome;
   }
-  EvaluateCoverage(world, caster, robot.description(), options.lsr_radius_m, &outcome);
+  EvaluateCoverage(std::move(reachable), robot.description(), options.lsr_radius_m, &outcome);
   outcome.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   return outcome;
 }

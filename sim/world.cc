@@ -1,6 +1,8 @@
 #include "sim/world.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "kernel/bspline.h"
 
@@ -11,12 +13,62 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;  // Clang 14 does not deduce aggregates (the fuzz build)
 
-bool AllFinite(const std::vector<Eigen::Vector2d>& points) {
+// Beyond this a coordinate is not a building's (the readers' bound, io/internal/plausible.h): a
+// world at 1e300 overflowed the map's arithmetic.
+constexpr double kMaxCoordinateM = 1e6;
+constexpr char kNotPlausible[] = "not finite or beyond +-1e6 m";
+
+bool Plausible(double value) { return std::abs(value) <= kMaxCoordinateM; }  // false for NaN
+bool AllPlausible(const std::vector<Eigen::Vector2d>& points) {
   for (const Eigen::Vector2d& p : points) {
-    if (!p.allFinite()) return false;
+    if (!Plausible(p.x()) || !Plausible(p.y())) return false;
   }
   return true;
+}
+
+// The sign of the turn a -> b -> c (exact for the doubles of a world's coordinates up to the
+// rounding of one product; enough to tell crossing edges from touching ones here).
+int Orientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const double cross = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  return (cross > 0.0) - (cross < 0.0);
+}
+// Whether segments p1-p2 and q1-q2 share a point.
+bool SegmentsMeet(const Eigen::Vector2d& p1, const Eigen::Vector2d& p2, const Eigen::Vector2d& q1,
+                  const Eigen::Vector2d& q2) {
+  const int o1 = Orientation(p1, p2, q1), o2 = Orientation(p1, p2, q2);
+  const int o3 = Orientation(q1, q2, p1), o4 = Orientation(q1, q2, p2);
+  if (o1 != o2 && o3 != o4) return true;
+  const auto on = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+    return c.x() >= std::min(a.x(), b.x()) && c.x() <= std::max(a.x(), b.x()) &&
+           c.y() >= std::min(a.y(), b.y()) && c.y() <= std::max(a.y(), b.y());
+  };
+  return (o1 == 0 && on(p1, p2, q1)) || (o2 == 0 && on(p1, p2, q2)) ||
+         (o3 == 0 && on(q1, q2, p1)) || (o4 == 0 && on(q1, q2, p2));
+}
+
+// Empty when the closed polygon is simple (no two edges that are not neighbours meet), else
+// which edges cross. Quadratic in the vertices, with a bounding-box test first.
+std::string SelfIntersection(const std::vector<Eigen::Vector2d>& v) {
+  const std::size_t n = v.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d &a = v[i], &b = v[(i + 1) % n];
+    for (std::size_t j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;  // neighbours through the closing edge
+      const Eigen::Vector2d &c = v[j], &d = v[(j + 1) % n];
+      if (std::max(c.x(), d.x()) < std::min(a.x(), b.x()) ||
+          std::min(c.x(), d.x()) > std::max(a.x(), b.x()) ||
+          std::max(c.y(), d.y()) < std::min(a.y(), b.y()) ||
+          std::min(c.y(), d.y()) > std::max(a.y(), b.y()))
+        continue;
+      if (SegmentsMeet(a, b, c, d))
+        return "edges " + std::to_string(i) + " and " + std::to_string(j) +
+               " cross: a polygon must not intersect itself";
+    }
+  }
+  return "";
 }
 
 std::vector<kernel::CubicBezier> SplinePieces(const Spline& spline) {
@@ -47,23 +99,23 @@ kernel::Status World::Validate() const {
                        return "needs at least " + std::to_string(need) + " vertices, has " +
                               std::to_string(p.vertices.size());
                      }
-                     if (!AllFinite(p.vertices)) return "vertex is not finite";
+                     if (!AllPlausible(p.vertices)) return kNotPlausible;
                      const std::size_t edges = p.closed ? p.vertices.size() : p.vertices.size() - 1;
                      for (std::size_t k = 0; k < edges; ++k) {
                        if (p.vertices[k] == p.vertices[(k + 1) % p.vertices.size()]) {
                          return "edge " + std::to_string(k) + " has zero length";
                        }
                      }
-                     return "";
+                     return p.closed ? SelfIntersection(p.vertices) : "";
                    },
                    [](const kernel::Circle2& c) -> std::string {
-                     if (!c.center.allFinite() || !std::isfinite(c.radius)) return "not finite";
+                     if (!AllPlausible({c.center}) || !Plausible(c.radius)) return kNotPlausible;
                      return c.radius > 0.0 ? "" : "radius must be positive";
                    },
                    [](const kernel::Ellipse2& e) -> std::string {
-                     if (!e.center.allFinite() || !std::isfinite(e.radius_x) ||
-                         !std::isfinite(e.radius_y) || !std::isfinite(e.angle_rad)) {
-                       return "not finite";
+                     if (!AllPlausible({e.center}) || !Plausible(e.radius_x) ||
+                         !Plausible(e.radius_y) || !std::isfinite(e.angle_rad)) {
+                       return kNotPlausible;
                      }
                      return (e.radius_x > 0.0 && e.radius_y > 0.0) ? "" : "radii must be positive";
                    },
@@ -73,14 +125,18 @@ kernel::Status World::Validate() const {
                        return "needs at least " + std::to_string(need) + " control points, has " +
                               std::to_string(s.control_points.size());
                      }
-                     return AllFinite(s.control_points) ? "" : "control point is not finite";
+                     if (!AllPlausible(s.control_points)) return kNotPlausible;
+                     for (const Eigen::Vector2d& p : s.control_points)
+                       if (p != s.control_points.front()) return "";
+                     return "all control points are the same point: the curve has no length";
                    }},
         obstacles[i]);
     if (!problem.empty()) return kernel::Status::Error(where + problem);
   }
-  if (start && !start->ToVector().allFinite())
-    return kernel::Status::Error("start pose is not finite");
-  if (!AllFinite(route)) return kernel::Status::Error("route waypoint is not finite");
+  if (start && (!AllPlausible({start->translation()}) || !std::isfinite(start->theta())))
+    return kernel::Status::Error("start pose is not finite or beyond +-1e6 m");
+  if (!AllPlausible(route))
+    return kernel::Status::Error("route waypoint is not finite or beyond +-1e6 m");
   return kernel::Status::Ok();
 }
 

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "io/carmen.h"
 #include "io/map_export.h"
@@ -345,6 +347,61 @@ TEST(SplamCli, OptionValuesMustBeFiniteAndInRange) {
 // Issue 19: eval gave "0.0000 +- 0.0000, used 0" and exit 0 for an empty or non-matching
 // relations file, a directory, an empty estimate; a huge estimate wrote null. A metric over
 // nothing, or one that is not finite, is an error (exit 2, the reason in eval.json).
+// Issue 19: worlds that were accepted and then broke the run, and explore on a floor-plan image
+// (it always said "has no start pose", with no way to give one).
+TEST(SplamCli, WorldsThatCannotBeRunAreRefusedAndAFloorPlanTakesAStart) {
+  const fs::path dir = Temp("worlds");
+  fs::create_directories(dir);
+  const auto write = [&](const std::string& name, const std::string& text) {
+    EXPECT_EQ(io::WriteTextFile((dir / name).string(), text), "");
+    return (dir / name).string();
+  };
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"simulate --world " +
+           write("bow.yaml", "obstacles:\n  - polygon: [[0, 0], [2, 2], [2, 0], [0, 2]]\n"),
+       "bow.yaml:2: edges 0 and 2 cross: a polygon must not intersect itself"},
+      {"simulate --world " +
+           write("dot.yaml", "obstacles:\n  - spline: [[1, 1], [1, 1], [1, 1], [1, 1]]\n"),
+       "dot.yaml:2: all control points are the same point"},
+      {"render --world " +
+           write("far.yaml", "obstacles:\n  - circle: {center: [1e300, 0], radius: 1}\n"),
+       "far.yaml:2: not finite or beyond +-1e6 m"},
+      {"explore --localization ground-truth --world " +
+           write("outside.yaml",
+                 "start: [-0.3, 5, 0]\nobstacles:\n  - polyline: [[0, 0], [10, 0], "
+                 "[10, 8], [0, 8], [0, 0]]\n"),
+       "is not enclosed by walls"},
+      {"explore --localization ground-truth --world " +
+           write("away.yaml",
+                 "start: [100, 100, 0]\nobstacles:\n  - polyline: [[0, 0], [10, 0], [10, 8], [0, "
+                 "8], [0, 0]]\n"),
+       "lies outside the world"}};
+  for (const auto& [args, message] : refused) {
+    const Output r = Splam(args + " --out " + (dir / "out").string());
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_NE(r.text.find(message), std::string::npos) << args << ": " << r.text;
+  }
+  // A 6 m x 4 m floor plan at 5 cm per pixel: two rooms behind a 1 m door; and a solid block.
+  cv::Mat plan(80, 120, CV_8U, cv::Scalar(255));
+  cv::rectangle(plan, cv::Rect(0, 0, 120, 80), cv::Scalar(0), 4);
+  cv::rectangle(plan, cv::Rect(59, 0, 2, 30), cv::Scalar(0), cv::FILLED);
+  cv::rectangle(plan, cv::Rect(59, 50, 2, 30), cv::Scalar(0), cv::FILLED);
+  ASSERT_TRUE(cv::imwrite((dir / "plan.png").string(), plan));
+  ASSERT_TRUE(cv::imwrite((dir / "solid.png").string(), cv::Mat(80, 120, CV_8U, cv::Scalar(0))));
+  const std::string explore = "explore --localization ground-truth --out " + (dir / "e").string();
+  Output r = Splam(explore + " --world " + (dir / "plan.png").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.text.find("has no start pose: give one with --start X,Y,THETA"), std::string::npos)
+      << r.text;
+  r = Splam(explore + " --world " + (dir / "solid.png").string() + " --start 2,2,0");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.text.find("the start pose (2, 2) lies on a dark pixel"), std::string::npos) << r.text;
+  r = Splam(explore + " --world " + (dir / "plan.png").string() + " --start 1.5,2,0");
+  EXPECT_NE(r.status, 2) << r.text;
+  const auto report = nlohmann::json::parse(Slurp(dir / "e" / "report.json"));
+  EXPECT_GT(report["coverage_fraction"].get<double>(), 0.9) << r.text;
+}
+
 TEST(SplamCli, EvalScoresNothingFromNothing) {
   const fs::path dir = Temp("eval_nothing");
   fs::create_directories(dir);

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "kernel/random.h"
+
 namespace splam::sim {
 namespace {
 
@@ -30,7 +34,7 @@ TEST(World, ValidateNamesTheObstacleAndTheProblem) {
   EXPECT_EQ(One(kernel::Circle2{{0, 0}, 0.0}).Validate().message(),
             "obstacle 0 (circle): radius must be positive");
   EXPECT_EQ(One(kernel::Circle2{{NAN, 0}, 1.0}).Validate().message(),
-            "obstacle 0 (circle): not finite");
+            "obstacle 0 (circle): not finite or beyond +-1e6 m");
   EXPECT_EQ(One(kernel::Ellipse2{{0, 0}, 1.0, -1.0, 0.0}).Validate().message(),
             "obstacle 0 (ellipse): radii must be positive");
   EXPECT_EQ(One(Spline{{{0, 0}, {1, 1}, {2, 0}}, false}).Validate().message(),
@@ -39,7 +43,43 @@ TEST(World, ValidateNamesTheObstacleAndTheProblem) {
             "obstacle 0 (closed_spline): needs at least 3 control points, has 2");
   World w = One(kernel::Circle2{{0, 0}, 1.0});
   w.route = {{INFINITY, 0}};
-  EXPECT_EQ(w.Validate().message(), "route waypoint is not finite");
+  EXPECT_EQ(w.Validate().message(), "route waypoint is not finite or beyond +-1e6 m");
+  // Issue 19: worlds that were accepted and then broke the run.
+  EXPECT_EQ(One(Polyline{{{0, 0}, {1e300, 0}, {0, 1}}, true}).Validate().message(),
+            "obstacle 0 (polygon): not finite or beyond +-1e6 m");
+  EXPECT_EQ(One(kernel::Circle2{{0, 0}, 1e300}).Validate().message(),
+            "obstacle 0 (circle): not finite or beyond +-1e6 m");
+  EXPECT_EQ(One(Polyline{{{0, 0}, {2, 2}, {2, 0}, {0, 2}}, true}).Validate().message(),
+            "obstacle 0 (polygon): edges 0 and 2 cross: a polygon must not intersect itself");
+  EXPECT_EQ(One(Spline{{{1, 1}, {1, 1}, {1, 1}, {1, 1}}, false}).Validate().message(),
+            "obstacle 0 (spline): all control points are the same point: the curve has no length");
+  // A simple polygon, convex or not, and an open polyline that crosses itself (two walls) pass.
+  EXPECT_TRUE(One(Polyline{{{0, 0}, {4, 0}, {4, 4}, {2, 1}, {0, 4}}, true}).Validate().ok());
+  EXPECT_TRUE(One(Polyline{{{0, 0}, {2, 2}, {2, 0}, {0, 2}}, false}).Validate().ok());
+}
+
+TEST(World, PropertyStarShapedPolygonsAreSimpleAndFoldedOnesAreNot) {
+  kernel::Random random(11);
+  for (int trial = 0; trial < 200; ++trial) {
+    // Vertices at increasing angles around a centre: a star-shaped, simple polygon.
+    std::vector<Eigen::Vector2d> v;
+    const int n = 3 + trial % 20;
+    for (int k = 0; k < n; ++k) {
+      const double a = 2.0 * M_PI * (k + 0.8 * random.Uniform()) / n;
+      const double r = 0.5 + 2.0 * random.Uniform();
+      v.emplace_back(5.0 + r * std::cos(a), 5.0 + r * std::sin(a));
+    }
+    EXPECT_TRUE(One(Polyline{v, true}).Validate().ok()) << trial;
+    // The same angles on a circle (convex position): swapping vertices 1 and 3 makes the edges
+    // 0-3 and 1-4 chords whose ends interleave, so they cross.
+    if (n >= 5) {
+      for (Eigen::Vector2d& p : v)
+        p = Eigen::Vector2d(5, 5) + 2.0 * (p - Eigen::Vector2d(5, 5)).normalized();
+      EXPECT_TRUE(One(Polyline{v, true}).Validate().ok()) << trial;
+      std::swap(v[1], v[3]);
+      EXPECT_FALSE(One(Polyline{v, true}).Validate().ok()) << trial;
+    }
+  }
 }
 
 TEST(World, PrimitivesOfEachShape) {
