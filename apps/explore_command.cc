@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "apps/commands.h"
+#include "apps/interrupt.h"
 #include "apps/run_config.h"
 #include "io/config.h"
 #include "io/text.h"
@@ -147,6 +148,8 @@ int RunExplore(const ExploreArgs& args) {
                std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
     std::fflush(stdout);
   };
+  setup.options.stop = Interrupted;
+  CatchInterrupts();
   const loop::ExploreOutcome outcome = RunExploration(*world.value, setup);
   if (!outcome.error.empty()) {
     fmt::print(stderr, "splam explore: {}\n", outcome.error);

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "apps/interrupt.h"
 #include "apps/log_input.h"
 #include "apps/run_config.h"
 #include "estimation/chi_square.h"
@@ -177,9 +178,14 @@ int RunSlam(const SlamArgs& args) {
   const io::CarmenReadResult read = ReadLogInput(args.log, args.input);
   if (!read.log.ok()) {
     fmt::print(stderr, "splam slam: {}\n", read.log.error);
-    return kExitBadInput;
+    if (read.before_error.Lasers().empty()) return kExitBadInput;
+    fmt::print(stderr,
+               "splam slam: running on the {} scans before that line; the results are written "
+               "and the exit status is 3\n",
+               read.before_error.Lasers().size());
   }
-  const io::CarmenLog& log = *read.log.value;
+  const bool truncated = !read.log.ok();
+  const io::CarmenLog& log = truncated ? read.before_error : *read.log.value;
   const auto lasers = log.Lasers();
   if (lasers.empty()) {
     fmt::print(stderr, "splam slam: {}: the log has no laser scans\n", args.log);
@@ -224,7 +230,15 @@ int RunSlam(const SlamArgs& args) {
     fmt::print("  {}/{} scans, {} in the map\n", done, total, slam.MapDescription());
     std::fflush(stdout);
   };
+  replay_options.stop = Interrupted;
+  CatchInterrupts();
   const loop::ReplayResult run = loop::ReplayLog(log, &driver, replay_options);
+  if (run.stopped_at) {
+    fmt::print(stderr,
+               "splam slam: interrupted before scan {} of {}: the results so far are written and "
+               "the exit status is 3\n",
+               *run.stopped_at + 1, run.scans_in_log);
+  }
   if (run.failed_at) {
     fmt::print(stderr, "splam slam: the filter failed at scan {} (t = {} s): {}\n", *run.failed_at,
                run.failed_at_time_s, slam.health().message());
@@ -248,6 +262,10 @@ int RunSlam(const SlamArgs& args) {
   summary["range_noise_model"] = {{"range_sigma_m", noise.range_sigma_m},
                                   {"range_sigma_fraction", noise.range_sigma_fraction}};
   summary["log"] = args.log;
+  // Why the run covers less than the log, when it does.
+  if (truncated) summary["stopped_early"] = read.log.error;
+  if (run.stopped_at)
+    summary["stopped_early"] = "interrupted before scan " + std::to_string(*run.stopped_at + 1);
   summary.update(loop::ReplaySummaryJson(slam, statistics, run, driver));
   std::ofstream(out + "/summary.json") << summary.dump(2) << "\n";
   for (const std::string& e : errors) {
@@ -262,7 +280,7 @@ int RunSlam(const SlamArgs& args) {
       "summary.json{}{}}}\n",
       out, run.truth.empty() ? "" : ", truth.txt, errors.svg, errors.png",
       args.trace ? ", steps.csv" : "");
-  if (!slam.healthy() || !finite) return kExitIncomplete;
+  if (!slam.healthy() || !finite || truncated || run.stopped_at) return kExitIncomplete;
   return kExitOk;
 }
 

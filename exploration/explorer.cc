@@ -39,6 +39,8 @@ std::string TerminationName(Termination termination) {
       return "time_limit";
     case Termination::kStuck:
       return "stuck";
+    case Termination::kInterrupted:
+      return "interrupted";
     case Termination::kInvalidInput:
       return "invalid_input";
   }

@@ -104,6 +104,9 @@ struct ExplorerOptions {
   // Called after every new node with the number of nodes and the simulated time (progress
   // reports); may be empty.
   std::function<void(int nodes, double time_s)> on_node;
+  // Asked at every cap check; true stops the run there (Ctrl-C): termination kInterrupted, the
+  // record up to then kept. May be empty.
+  std::function<bool()> stop;
 
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
@@ -116,6 +119,7 @@ enum class Termination {
   kNodeLimit,     // max_nodes reached
   kTimeLimit,     // max_time_s reached
   kStuck,         // max_failed_moves moves in a row (or SRT returns from one node) failed
+  kInterrupted,   // ExplorerOptions::stop asked to stop
   kInvalidInput,  // bad options or a localisation that cannot run on this robot
 };
 std::string TerminationName(Termination termination);

@@ -55,7 +55,7 @@ class Cursor {
     if (!Finite(out, what)) return false;
     if (std::abs(*out) > limit)
       return Fail(std::string(what) + " " + FormatDouble(*out) + " is beyond +-" +
-                  FormatDouble(limit) + " " + unit);
+                  FormatDouble(limit) + (*unit ? std::string(" ") + unit : ""));
     return true;
   }
   bool Pose(kernel::Pose2* out, const char* what) {
@@ -151,11 +151,14 @@ bool ParseRobotLaser(Cursor* c, CarmenReadStats* stats, LaserMessage* m) {
   kernel::Scan& s = m->scan;
   double fov = 0.0, laser_type = 0.0, remission_mode = 0.0;
   int n = 0, num_remissions = 0;
-  if (!c->Finite(&laser_type, "laser_type") || !c->Finite(&s.start_angle_rad, "start_angle") ||
+  // laser_type and remission_mode are small codes: bounded before they become ints.
+  if (!c->Bounded(&laser_type, "laser_type", 1e6, "") ||
+      !c->Finite(&s.start_angle_rad, "start_angle") ||
       !c->Bounded(&fov, "field_of_view", 2.0 * kernel::kPi + 1e-9, "rad") ||
       !c->Finite(&s.angular_step_rad, "angular_resolution") ||
       !c->Finite(&s.max_range_m, "maximum_range") || !c->Finite(&m->accuracy_m, "accuracy") ||
-      !c->Finite(&remission_mode, "remission_mode") || !c->Count(&n, "number of readings")) {
+      !c->Bounded(&remission_mode, "remission_mode", 1e6, "") ||
+      !c->Count(&n, "number of readings")) {
     return false;
   }
   m->laser_type = static_cast<int>(laser_type);
@@ -301,6 +304,7 @@ CarmenReadResult ParseCarmenLog(const std::string& text, const std::string& name
       }
       const std::string what = IsMessageType(type) ? std::string(type) + ": " : "";
       result.log = Result<CarmenLog>::Fail(FileError(name, line_number, what + cursor.error()));
+      result.before_error = std::move(log);
       return result;
     }
   }

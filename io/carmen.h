@@ -112,6 +112,9 @@ struct CarmenReadStats {
 struct CarmenReadResult {
   Result<CarmenLog> log;
   CarmenReadStats stats;
+  // When `log` failed on a malformed line: the messages of the lines before it (a caller may
+  // process them and say that it stopped early).
+  CarmenLog before_error;
 };
 
 // Reads a log; fails with "path:line: what is wrong" on the first malformed line.

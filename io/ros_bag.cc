@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <limits>
+#include <sstream>
+#include <string_view>
 #include <utility>
 
 #include "io/internal/plausible.h"
@@ -132,7 +136,64 @@ kernel::Scan ScanOf(const internal::RosScan& m) {
   return scan;
 }
 
+// Reads little-endian integers of a bag's bytes with bounds checks.
+std::optional<std::uint32_t> U32(std::string_view bytes, std::size_t at) {
+  if (at + 4 > bytes.size()) return std::nullopt;
+  std::uint32_t v = 0;
+  for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
+  return v;
+}
+
+// Checks the framing of the records in `bytes` (rosbag format 2.0: header length, header fields
+// "name=value" each with its length, data length, data), and of the records inside chunks that
+// are not compressed. Debian's rosbag trusts these lengths: a field longer than its header made
+// ros::Header::parse read past its buffer (found by fuzz_bag). Empty when they hold.
+std::string RecordFramingProblem(std::string_view bytes, int depth) {
+  std::size_t at = 0;
+  for (int record = 1; at < bytes.size(); ++record) {
+    const std::string where = (depth ? "chunk record " : "record ") + std::to_string(record);
+    const std::optional<std::uint32_t> header_len = U32(bytes, at);
+    if (!header_len || at + 4 + *header_len + 4 > bytes.size())
+      return where + ": its header runs past the end";
+    std::map<std::string, std::string_view> fields;
+    for (std::size_t f = at + 4; f < at + 4 + *header_len;) {
+      const std::optional<std::uint32_t> field_len = U32(bytes, f);
+      if (!field_len || f + 4 + *field_len > at + 4 + *header_len)
+        return where + ": a header field runs past its header";
+      const std::string_view field = bytes.substr(f + 4, *field_len);
+      const std::size_t equals = field.find('=');
+      if (equals == std::string_view::npos) return where + ": a header field without '='";
+      fields[std::string(field.substr(0, equals))] = field.substr(equals + 1);
+      f += 4 + *field_len;
+    }
+    const std::size_t data_at = at + 4 + *header_len + 4;
+    const std::uint32_t data_len = *U32(bytes, data_at - 4);
+    if (data_at + data_len > bytes.size()) return where + ": its data runs past the end";
+    const auto op = fields.find("op");
+    if (op == fields.end() || op->second.size() != 1) return where + ": no op field";
+    const auto compression = fields.find("compression");
+    if (op->second[0] == 0x05 && depth == 0 && compression != fields.end() &&
+        compression->second == "none") {
+      if (std::string problem = RecordFramingProblem(bytes.substr(data_at, data_len), 1);
+          !problem.empty())
+        return where + ": " + problem;
+    }
+    at = data_at + data_len;
+  }
+  return "";
+}
+
 }  // namespace
+
+std::string RosBagFramingProblem(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  const std::string bytes = buffer.str();
+  constexpr std::string_view kMagic = "#ROSBAG V2.0\n";
+  if (!std::string_view(bytes).starts_with(kMagic)) return "does not start with #ROSBAG V2.0";
+  return RecordFramingProblem(std::string_view(bytes).substr(kMagic.size()), 0);
+}
 
 bool IsRosBagPath(const std::string& path) { return path.ends_with(".bag"); }
 
@@ -149,6 +210,8 @@ RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& option
   std::string scan_topic;
   std::optional<std::string> odom_topic;
   bool has_truth = false;
+  if (std::string problem = RosBagFramingProblem(path); !problem.empty())
+    return fail("not a readable ROS bag: " + problem);
   try {
     topics = internal::ListTopics(path);
     stats.topics = topics.counts;

@@ -62,6 +62,11 @@ std::string WriteRosBag(const CarmenLog& log, const std::string& path,
 
 // True when `path` names a bag (it ends in ".bag").
 bool IsRosBagPath(const std::string& path);
+// Empty when the file's records are framed as rosbag 2.0 says (every length within its record and
+// the file, also inside uncompressed chunks), else what is wrong. ReadRosBag checks this before
+// Debian's rosbag reads the file: rosbag trusts the lengths (fuzz_bag found it reading past a
+// buffer). Inside compressed chunks only rosbag's own checks apply.
+std::string RosBagFramingProblem(const std::string& path);
 
 }  // namespace splam::io
 

@@ -36,6 +36,10 @@ void Replay(std::size_t count, const Reading& reading, SlamDriver* driver,
   estimation::SlamMethod& slam = driver->method();
   const auto begin = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < n; ++i) {
+    if (options.stop && options.stop()) {
+      result->stopped_at = i;
+      break;
+    }
     const auto [t, odometry, scan, robot_T_laser] = reading(i);
     if (!driver->Step(odometry, scan, robot_T_laser)) {
       result->failed_at = i;

@@ -37,6 +37,9 @@ struct ReplayOptions {
   std::size_t max_scans = 0;  // 0: every scan
   // Called every 1000 scans with the scans done and the total.
   std::function<void(std::size_t done, std::size_t total)> progress;
+  // Asked before every scan; true ends the replay there (Ctrl-C), as if the log ended. May be
+  // empty.
+  std::function<bool()> stop;
 };
 
 struct ReplayResult {
@@ -50,6 +53,8 @@ struct ReplayResult {
   double wall_s = 0.0;
   // The scan at which the method became unhealthy (not in `estimate`), if it did.
   std::optional<std::size_t> failed_at;
+  // The scan before which ReplayOptions::stop ended the replay, if it did.
+  std::optional<std::size_t> stopped_at;
   double failed_at_time_s = 0.0;
   // Time span of the processed data, s.
   double data_s() const {

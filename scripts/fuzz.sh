@@ -1,30 +1,30 @@
 #!/usr/bin/env bash
 # Fuzzes every reader and the scan pipeline: builds the libFuzzer harnesses of tests/fuzz with
-# Clang, ASan and UBSan in build-fuzz, then runs each for SECONDS (default 60) on its seed corpus
-# (tests/fuzz/corpus/<name>, read only; new inputs go to build-fuzz/runs/<name>/corpus). Prints
-# the executions each survived; exits non-zero on a crash, a hang (10 s on one input), a leak or
-# 4 GB of memory, leaving the input in build-fuzz/runs/<name>/.
+# Clang, ASan and UBSan in build-san (scripts/sanitize.sh shares it), then runs each for SECONDS
+# (default 60) on its seed corpus (tests/fuzz/corpus/<name>, read only; new inputs go to
+# build-san/runs/<name>/corpus). Prints the executions each survived; exits non-zero on a crash,
+# a hang (10 s on one input), a leak or 4 GB of memory, leaving the input in
+# build-san/runs/<name>/.
 # Usage: bash scripts/fuzz.sh [SECONDS] [NAME...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 bash scripts/setup.sh
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DSPLAM_FUZZ=ON -DSPLAM_BUILD_TESTS=OFF -DSPLAM_BUILD_EXAMPLES=OFF \
-  -DSPLAM_BUILD_BENCHMARKS=OFF > /dev/null
-cmake --build build-fuzz --target fuzzers --parallel "$(nproc 2>/dev/null || echo 2)"
+bash scripts/configure_sanitized.sh
+cmake --build build-san --target fuzzers --parallel "$(nproc 2>/dev/null || echo 2)"
 names=("$@")
 if ((${#names[@]} == 0)); then
-  names=(carmen text_files world options floor_plan bag scan_pipeline)
+  names=(carmen text_files world options floor_plan bag scan_features slam_step)
 fi
+export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp
 status=0
 printf '%-14s %12s %8s  %s\n' harness executions seconds result
 for name in "${names[@]}"; do
-  run=build-fuzz/runs/$name
+  run=build-san/runs/$name
   mkdir -p "$run/corpus"
   log=$run/fuzz.log
-  if build-fuzz/tests/fuzz/fuzz_"$name" -max_total_time="$seconds" -timeout=10 \
+  if build-san/tests/fuzz/fuzz_"$name" -max_total_time="$seconds" -timeout=10 \
       -rss_limit_mb=4096 -print_final_stats=1 -artifact_prefix="$run/" \
       "$run/corpus" "tests/fuzz/corpus/$name" > "$log" 2>&1; then
     result=ok

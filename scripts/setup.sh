@@ -11,6 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev valgrind
   librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev python3
   python3-ament-package
+  clang libclang-rt-14-dev
 )
 
 missing=()

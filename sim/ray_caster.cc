@@ -56,6 +56,15 @@ kernel::Status RayCasterOptions::Validate() const {
 RayCaster::RayCaster(const World& world, const RayCasterOptions& options) : options_(options) {
   assert(options.Validate().ok());
   assert(world.Validate().ok());
+  // At most kMaxCells cells: a world hundreds of kilometres wide (a coordinate from a fuzzed
+  // world file) gets coarser cells, not gigabytes of them.
+  constexpr double kMaxCells = 1 << 22;
+  if (const Box2 box = world.Bounds(); !box.IsEmpty()) {
+    const auto cells = [&](double c) {
+      return (box.Size().x() / c + 3.0) * (box.Size().y() / c + 3.0);
+    };
+    while (cells(options_.cell_size_m) > kMaxCells) options_.cell_size_m *= 2.0;
+  }
   const double cs = options_.cell_size_m;
   for (std::size_t i = 0; i < world.obstacles.size(); ++i) {
     Primitives p;

@@ -207,6 +207,11 @@ MoveResult Session::Drive(const std::vector<Eigen::Vector2d>& waypoints,
 }
 
 bool Session::CapReached() {
+  if (options_.stop && options_.stop()) {
+    run_.termination = Termination::kInterrupted;
+    run_.message = "stopped on request (Ctrl-C)";
+    return true;
+  }
   if (failures_in_a_row_ >= options_.max_failed_moves) {
     run_.termination = Termination::kStuck;
     run_.message = std::to_string(failures_in_a_row_) + " moves in a row failed";

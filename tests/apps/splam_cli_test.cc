@@ -1,13 +1,19 @@
 // End-to-end tests of the `splam` binary: exit codes, messages and the files it writes.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
+#include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <thread>
 
 #include "io/carmen.h"
 #include "io/map_export.h"
@@ -402,6 +408,70 @@ TEST(SplamCli, WorldsThatCannotBeRunAreRefusedAndAFloorPlanTakesAStart) {
   EXPECT_GT(report["coverage_fraction"].get<double>(), 0.9) << r.text;
 }
 
+// Runs splam with `args` (output discarded), sends it SIGINT after `after`, and returns its exit
+// status (-1 when a signal ended it).
+int SplamInterrupted(const std::string& args, std::chrono::milliseconds after) {
+  const std::string command =
+      std::string("exec ") + SPLAM_BINARY + " " + args + " > /dev/null 2>&1";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(after);
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Issue 19: work already done is written. A malformed line halfway through a log: the scans
+// before it are processed and written, exit 3. Ctrl-C during slam or explore: the same.
+TEST(SplamCli, ABadLineHalfwayOrCtrlCStillWritesTheWorkDone) {
+  const fs::path dir = Temp("partial");
+  ASSERT_EQ(Splam("simulate --world corridor --out " + (dir / "sim").string()).status, 0);
+  std::string text = Slurp(dir / "sim" / "log.clf");
+  const std::size_t half = text.find("\nROBOTLASER1", text.size() / 2);
+  ASSERT_NE(half, std::string::npos);
+  text.insert(half + 1, "ODOM 1 2\n");
+  const int bad_line =
+      static_cast<int>(std::count(text.begin(), text.begin() + half + 1, '\n')) + 1;
+  ASSERT_EQ(io::WriteTextFile((dir / "cut.clf").string(), text), "");
+  Output r = Splam("slam --method ekf-lines " + (dir / "cut.clf").string() + " --out " +
+                   (dir / "cut").string());
+  EXPECT_EQ(r.status, 3) << r.text;
+  EXPECT_NE(r.text.find("cut.clf:" + std::to_string(bad_line) + ": ODOM: line ends early"),
+            std::string::npos)
+      << r.text;
+  const auto all = io::ReadCarmenLog((dir / "sim" / "log.clf").string());
+  ASSERT_TRUE(all.log.ok());
+  const auto done = io::ReadTrajectory((dir / "cut" / "trajectory.txt").string());
+  ASSERT_TRUE(done.ok());
+  EXPECT_GT(done.value->size(), all.log.value->Lasers().size() / 3);
+  EXPECT_LT(done.value->size(), all.log.value->Lasers().size());
+  const auto summary = nlohmann::json::parse(Slurp(dir / "cut" / "summary.json"));
+  EXPECT_NE(summary["stopped_early"].get<std::string>().find("line ends early"), std::string::npos);
+
+  // Ctrl-C: a B-spline EKF run over `complex` (3.4 s alone) and an exploration, each stopped
+  // after a second.
+  ASSERT_EQ(Splam("simulate --world complex --out " + (dir / "complex").string()).status, 0);
+  EXPECT_EQ(SplamInterrupted("slam --method ekf-bspline " + (dir / "complex" / "log.clf").string() +
+                                 " --out " + (dir / "int").string(),
+                             std::chrono::milliseconds(1000)),
+            3);
+  const auto interrupted = nlohmann::json::parse(Slurp(dir / "int" / "summary.json"));
+  EXPECT_NE(interrupted["stopped_early"].get<std::string>().find("interrupted before scan"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "int" / "map.png"));
+  EXPECT_EQ(SplamInterrupted("explore --world complex --localization topological --out " +
+                                 (dir / "explore").string(),
+                             std::chrono::milliseconds(1000)),
+            3);
+  const auto report = nlohmann::json::parse(Slurp(dir / "explore" / "report.json"));
+  EXPECT_EQ(report["termination"], "interrupted");
+  EXPECT_TRUE(fs::exists(dir / "explore" / "graph.png"));
+}
+
 TEST(SplamCli, EvalScoresNothingFromNothing) {
   const fs::path dir = Temp("eval_nothing");
   fs::create_directories(dir);
@@ -440,9 +510,15 @@ TEST(SplamCli, SlamAndEvalRejectBadInput) {
   ASSERT_EQ(io::WriteTextFile((dir / "bad.clf").string(),
                               "FLASER 3 1 2 3 0 0 0 0 0 0 1 h 1\nFLASER 2 1\n"),
             "");
+  // The scan before the bad line is processed and written: exit 3, stopped early.
   Output r = Splam("slam " + (dir / "bad.clf").string() + " --out " + (dir / "o").string());
-  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.status, 3);
   EXPECT_NE(r.text.find("bad.clf:2: FLASER: line ends early"), std::string::npos) << r.text;
+  EXPECT_TRUE(fs::exists(dir / "o" / "trajectory.txt"));
+  ASSERT_EQ(io::WriteTextFile((dir / "bad_first.clf").string(), "FLASER 2 1\n"), "");
+  r = Splam("slam " + (dir / "bad_first.clf").string() + " --out " + (dir / "o1").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.text.find("bad_first.clf:1: FLASER: line ends early"), std::string::npos) << r.text;
   ASSERT_EQ(io::WriteTextFile((dir / "empty.clf").string(), "# nothing\n"), "");
   r = Splam("slam " + (dir / "empty.clf").string());
   EXPECT_EQ(r.status, 2);

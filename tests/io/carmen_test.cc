@@ -254,7 +254,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadLine{"\x7f\x01"
                 "ELF\x02 1 2",
                 "not a CARMEN message: it starts with '\\x7f\\x01ELF\\x02'"},
-        BadLine{"1.5 2 3", "not a CARMEN message: it starts with '1.5'"}));
+        BadLine{"1.5 2 3", "not a CARMEN message: it starts with '1.5'"},
+        // Found by fuzz_carmen: a laser type of 5e9 overflowed its int (UBSan).
+        BadLine{"ROBOTLASER1 5.3e9 -1.5 3 0.01 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
+                "laser_type 5.3e+09 is beyond +-1e+06"}));
 
 TEST(CarmenLog, AByteOrderMarkIsSkipped) {
   const CarmenReadResult r = ParseCarmenLog("\xEF\xBB\xBFODOM 1 2 0.5 0 0 0 1.0 h 1.0\n", "b.clf");

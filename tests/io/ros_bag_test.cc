@@ -162,6 +162,21 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
   EXPECT_FALSE(read.log.ok());
   read = ReadRosBag(::testing::TempDir());
   EXPECT_NE(read.log.error.find("is a directory, not a bag"), std::string::npos);
+  // Found by fuzz_bag: a header field longer than its header made Debian's rosbag read past its
+  // buffer (ASan). The framing is checked before rosbag reads the file.
+  const std::string good = TempBag("good");
+  ASSERT_EQ(WriteRosBag(ShortLog(3), good), "");
+  std::string bytes;
+  ASSERT_EQ(ReadTextFile(good, &bytes), "");
+  EXPECT_EQ(RosBagFramingProblem(good), "");
+  bytes[13 + 4] = '\x7f';  // the first field's length, past the first record's header
+  const std::string broken = TempBag("broken");
+  ASSERT_EQ(WriteTextFile(broken, bytes), "");
+  read = ReadRosBag(broken);
+  ASSERT_FALSE(read.log.ok());
+  EXPECT_NE(read.log.error.find("record 1: a header field runs past its header"),
+            std::string::npos)
+      << read.log.error;
   // A scan whose beams wrap the circle (a resolution in degrees) is refused at the reader.
   internal::RosBagMessages bag;
   bag.scans.push_back({1.0, "base_link", -1.0, 0.36, 0.05, 30.0, std::vector<float>(181, 2.0f)});

@@ -35,7 +35,10 @@ TEST(FitCubicBSpline, PropertyPointsFromAKnownSplineAreFittedBack) {
     for (const auto& q : fit->ResampleByArcLength(0.05))
       worst = std::max(worst, truth.Closest(q).distance);
     EXPECT_LT(worst, 2e-3) << "trial " << trial;
-    EXPECT_NEAR(fit->Length(), truth.Length(), 0.01 * truth.Length());
+    // The samples stop up to 2 cm before the true end (ResampleByArcLength): the fit spans the
+    // points, not the truth (the Clang build's trial at 1.78 m was 1.1 % short of the truth).
+    const double spanned = 0.02 * static_cast<double>(points.size() - 1);
+    EXPECT_NEAR(fit->Length(), spanned, 0.01 * spanned) << "trial " << trial;
   }
 }
 

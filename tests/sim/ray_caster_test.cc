@@ -137,6 +137,19 @@ TEST(RayCaster, CurvedWallsAreExactToAMillimetre) {
   EXPECT_GT(hits, 500);
 }
 
+// Found by fuzz_world: a wall 428 km long made the grid 43 million cells (over 10 s and a GB).
+// The grid stays under 2^22 cells and the casts stay exact.
+TEST(RayCaster, AWorldHundredsOfKilometresWideGetsCoarserCells) {
+  World w;
+  w.obstacles.push_back(Polyline{{{0, -1.2}, {10, -1.2}, {18, 428255}}, false});
+  w.obstacles.push_back(kernel::Circle2{{5, 5}, 1.0});
+  const RayCaster caster(w);
+  const RayHit hit = caster.Cast({{5, 2}, {0, 1}}, 100.0);
+  EXPECT_EQ(hit.obstacle, 1);
+  EXPECT_NEAR(hit.range_m, 2.0, 1e-9);
+  EXPECT_NEAR(caster.Cast({{5, 0}, {0, -1}}, 100.0).range_m, 1.2, 1e-9);
+}
+
 TEST(RayCaster, NothingWithinRangeIsNoHit) {
   World w;
   w.obstacles.push_back(Polyline{{{10, -1}, {10, 1}}, false});
