@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <vector>
 
 #include "loop/exit_status.h"
 
@@ -36,6 +37,9 @@ CLI::Validator FiniteRange(double lo, double hi);
 CLI::Validator FloorPlanResolution();
 // A seed: an integer from 0 to 2^64 - 1 written without a sign.
 CLI::Validator Seed();
+// An option "X,Y,THETA" (m, m, rad) into *pose (three numbers, or empty when not given).
+CLI::Option* AddPoseOption(CLI::App* cmd, const std::string& name, std::vector<double>* pose,
+                           const std::string& help);
 
 }  // namespace splam::apps
 

@@ -277,12 +277,9 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
                   "Metres per pixel of a floor-plan image world")
       ->check(FloorPlanResolution())
       ->capture_default_str();
-  cmd->add_option("--start", args->start,
-                  "Start pose X,Y,THETA (m, m, rad), e.g. for a floor-plan image, which has none; "
-                  "default: the world's")
-      ->delimiter(',')
-      ->expected(3)
-      ->check(CLI::Number);
+  AddPoseOption(cmd, "--start", &args->start,
+                "Start pose X,Y,THETA (m, m, rad), e.g. for a floor-plan image, which has none; "
+                "default: the world's");
   cmd->add_flag("--trace", args->trace,
                 "With a SLAM localisation, also write steps.csv: every step's predicted and "
                 "corrected pose, their errors against the truth and what the method's update did");

@@ -29,12 +29,9 @@ void AddLogInputOptions(CLI::App* cmd, LogInput* input) {
       ->capture_default_str();
   cmd->add_option("--base-frame", input->bag.base_frame, "ROS bag: the robot's frame")
       ->capture_default_str();
-  cmd->add_option("--laser-pose", input->laser_pose,
-                  "ROS bag: the laser's pose on the robot, X,Y,THETA (m, m, rad); default: "
-                  "from /tf_static")
-      ->delimiter(',')
-      ->expected(3)
-      ->check(CLI::Number);
+  AddPoseOption(cmd, "--laser-pose", &input->laser_pose,
+                "ROS bag: the laser's pose on the robot, X,Y,THETA (m, m, rad); default: from "
+                "/tf_static");
 }
 
 io::CarmenReadResult ReadLogInput(const std::string& path, const LogInput& input) {

@@ -51,4 +51,12 @@ CLI::Validator Seed() {
       "SEED");
 }
 
+CLI::Option* AddPoseOption(CLI::App* cmd, const std::string& name, std::vector<double>* pose,
+                           const std::string& help) {
+  return cmd->add_option(name, *pose, help)
+      ->delimiter(',')
+      ->expected(3)
+      ->check(FiniteRange(-1e6, 1e6));
+}
+
 }  // namespace splam::apps

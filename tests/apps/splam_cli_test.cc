@@ -52,6 +52,12 @@ fs::path Temp(const std::string& name) {
   return p;
 }
 
+// Writes `text` to dir/name and returns the path.
+std::string WriteIn(const fs::path& dir, const std::string& name, const std::string& text) {
+  EXPECT_EQ(io::WriteTextFile((dir / name).string(), text), "");
+  return (dir / name).string();
+}
+
 std::string Slurp(const fs::path& p) {
   std::string text;
   EXPECT_EQ(io::ReadTextFile(p.string(), &text), "") << p;
@@ -350,17 +356,13 @@ TEST(SplamCli, OptionValuesMustBeFiniteAndInRange) {
   }
 }
 
-// Issue 19: eval gave "0.0000 +- 0.0000, used 0" and exit 0 for an empty or non-matching
-// relations file, a directory, an empty estimate; a huge estimate wrote null. A metric over
-// nothing, or one that is not finite, is an error (exit 2, the reason in eval.json).
 // Issue 19: worlds that were accepted and then broke the run, and explore on a floor-plan image
 // (it always said "has no start pose", with no way to give one).
 TEST(SplamCli, WorldsThatCannotBeRunAreRefusedAndAFloorPlanTakesAStart) {
   const fs::path dir = Temp("worlds");
   fs::create_directories(dir);
   const auto write = [&](const std::string& name, const std::string& text) {
-    EXPECT_EQ(io::WriteTextFile((dir / name).string(), text), "");
-    return (dir / name).string();
+    return WriteIn(dir, name, text);
   };
   const std::vector<std::pair<std::string, std::string>> refused = {
       {"simulate --world " +
@@ -472,12 +474,14 @@ TEST(SplamCli, ABadLineHalfwayOrCtrlCStillWritesTheWorkDone) {
   EXPECT_TRUE(fs::exists(dir / "explore" / "graph.png"));
 }
 
+// Issue 19: eval gave "0.0000 +- 0.0000, used 0" and exit 0 for an empty or non-matching
+// relations file, a directory, an empty estimate; a huge estimate wrote null. A metric over
+// nothing, or one that is not finite, is an error (exit 2, the reason in eval.json).
 TEST(SplamCli, EvalScoresNothingFromNothing) {
   const fs::path dir = Temp("eval_nothing");
   fs::create_directories(dir);
   const auto write = [&](const std::string& name, const std::string& text) {
-    EXPECT_EQ(io::WriteTextFile((dir / name).string(), text), "");
-    return (dir / name).string();
+    return WriteIn(dir, name, text);
   };
   const std::string estimate = write("t.txt", "0 0 0 0\n1 1 0 0\n");
   const std::vector<std::pair<std::string, std::string>> cases = {
