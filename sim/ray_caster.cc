@@ -56,9 +56,9 @@ kernel::Status RayCasterOptions::Validate() const {
 RayCaster::RayCaster(const World& world, const RayCasterOptions& options) : options_(options) {
   assert(options.Validate().ok());
   assert(world.Validate().ok());
-  // At most kMaxCells cells: a world hundreds of kilometres wide (a coordinate from a fuzzed
-  // world file) gets coarser cells, not gigabytes of them.
-  constexpr double kMaxCells = 1 << 22;
+  // At most kMaxCells cells (a building 500 m square has 10^6): a world hundreds of kilometres wide
+  // (a coordinate from a fuzzed world file) gets coarser cells, not gigabytes of them.
+  constexpr double kMaxCells = 1 << 20;
   if (const Box2 box = world.Bounds(); !box.IsEmpty()) {
     const auto cells = [&](double c) {
       return (box.Size().x() / c + 3.0) * (box.Size().y() / c + 3.0);

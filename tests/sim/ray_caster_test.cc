@@ -138,7 +138,7 @@ TEST(RayCaster, CurvedWallsAreExactToAMillimetre) {
 }
 
 // Found by fuzz_world: a wall 428 km long made the grid 43 million cells (over 10 s and a GB).
-// The grid stays under 2^22 cells and the casts stay exact.
+// The grid stays under 2^20 cells and the casts stay exact.
 TEST(RayCaster, AWorldHundredsOfKilometresWideGetsCoarserCells) {
   World w;
   w.obstacles.push_back(Polyline{{{0, -1.2}, {10, -1.2}, {18, 428255}}, false});
