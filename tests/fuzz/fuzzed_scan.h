@@ -22,7 +22,6 @@ class Bytes {
     return v;
   }
   std::uint8_t Byte() { return next_ < size_ ? data_[next_++] : 0; }
-  bool empty() const { return next_ >= size_; }
 
  private:
   const std::uint8_t* data_;

@@ -174,8 +174,7 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
   ASSERT_EQ(WriteTextFile(broken, bytes), "");
   read = ReadRosBag(broken);
   ASSERT_FALSE(read.log.ok());
-  EXPECT_NE(read.log.error.find("record 1: a header field runs past its header"),
-            std::string::npos)
+  EXPECT_NE(read.log.error.find("record 1: a header field runs past its header"), std::string::npos)
       << read.log.error;
   // A scan whose beams wrap the circle (a resolution in degrees) is refused at the reader.
   internal::RosBagMessages bag;
