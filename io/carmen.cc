@@ -245,8 +245,7 @@ CarmenReadResult ParseCarmenLog(const std::string& text, const std::string& name
   CarmenReadResult result;
   CarmenLog log;
   CarmenReadStats& stats = result.stats;
-  constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
-  std::size_t pos = std::string_view(text).starts_with(kByteOrderMark) ? kByteOrderMark.size() : 0;
+  std::size_t pos = TextStart(text);
   int line_number = 0;
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
-#include <sstream>
 #include <string_view>
 #include <utility>
 
@@ -136,46 +136,52 @@ kernel::Scan ScanOf(const internal::RosScan& m) {
   return scan;
 }
 
-// Reads little-endian integers of a bag's bytes with bounds checks.
-std::optional<std::uint32_t> U32(std::string_view bytes, std::size_t at) {
-  if (at + 4 > bytes.size()) return std::nullopt;
+// The little-endian integer at `at` of `bytes` (at + 4 <= bytes.size()).
+std::uint32_t U32(std::string_view bytes, std::size_t at) {
   std::uint32_t v = 0;
   for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
   return v;
 }
 
-// Checks the framing of the records in `bytes` (rosbag format 2.0: header length, header fields
-// "name=value" each with its length, data length, data), and of the records inside chunks that
-// are not compressed. Debian's rosbag trusts these lengths: a field longer than its header made
-// ros::Header::parse read past its buffer (found by fuzz_bag). Empty when they hold.
-std::string RecordFramingProblem(std::string_view bytes, int depth) {
-  std::size_t at = 0;
-  for (int record = 1; at < bytes.size(); ++record) {
+// Bytes [at, at + n) of a file or a chunk; the caller has checked that they exist.
+using ReadBytes = std::function<std::string(std::uint64_t at, std::uint64_t n)>;
+
+// Checks the framing of the records in `size` bytes (rosbag format 2.0: header length, header
+// fields "name=value" each with its length, data length, data), and of the records inside chunks
+// that are not compressed. Debian's rosbag trusts these lengths: a field longer than its header
+// made ros::Header::parse read past its buffer (found by fuzz_bag). Reads the headers and the
+// uncompressed chunks only, one at a time. Empty when they hold.
+std::string RecordFramingProblem(const ReadBytes& read, std::uint64_t size, int depth) {
+  std::uint64_t at = 0;
+  for (int record = 1; at < size; ++record) {
     const std::string where = (depth ? "chunk record " : "record ") + std::to_string(record);
-    const std::optional<std::uint32_t> header_len = U32(bytes, at);
-    if (!header_len || at + 4 + *header_len + 4 > bytes.size())
-      return where + ": its header runs past the end";
+    if (at + 4 > size) return where + ": its header runs past the end";
+    const std::uint64_t header_len = U32(read(at, 4), 0);
+    if (at + 4 + header_len + 4 > size) return where + ": its header runs past the end";
+    const std::string header = read(at + 4, header_len);
     std::map<std::string, std::string_view> fields;
-    for (std::size_t f = at + 4; f < at + 4 + *header_len;) {
-      const std::optional<std::uint32_t> field_len = U32(bytes, f);
-      if (!field_len || f + 4 + *field_len > at + 4 + *header_len)
+    for (std::size_t f = 0; f < header.size();) {
+      if (f + 4 > header.size() || f + 4 + U32(header, f) > header.size())
         return where + ": a header field runs past its header";
-      const std::string_view field = bytes.substr(f + 4, *field_len);
+      const std::string_view field = std::string_view(header).substr(f + 4, U32(header, f));
       const std::size_t equals = field.find('=');
       if (equals == std::string_view::npos) return where + ": a header field without '='";
       fields[std::string(field.substr(0, equals))] = field.substr(equals + 1);
-      f += 4 + *field_len;
+      f += 4 + field.size();
     }
-    const std::size_t data_at = at + 4 + *header_len + 4;
-    const std::uint32_t data_len = *U32(bytes, data_at - 4);
-    if (data_at + data_len > bytes.size()) return where + ": its data runs past the end";
+    const std::uint64_t data_at = at + 4 + header_len + 4;
+    const std::uint64_t data_len = U32(read(data_at - 4, 4), 0);
+    if (data_at + data_len > size) return where + ": its data runs past the end";
     const auto op = fields.find("op");
     if (op == fields.end() || op->second.size() != 1) return where + ": no op field";
     const auto compression = fields.find("compression");
     if (op->second[0] == 0x05 && depth == 0 && compression != fields.end() &&
         compression->second == "none") {
-      if (std::string problem = RecordFramingProblem(bytes.substr(data_at, data_len), 1);
-          !problem.empty())
+      const std::string chunk = read(data_at, data_len);
+      const ReadBytes in_chunk = [&](std::uint64_t a, std::uint64_t n) {
+        return chunk.substr(a, n);
+      };
+      if (std::string problem = RecordFramingProblem(in_chunk, chunk.size(), 1); !problem.empty())
         return where + ": " + problem;
     }
     at = data_at + data_len;
@@ -186,13 +192,21 @@ std::string RecordFramingProblem(std::string_view bytes, int depth) {
 }  // namespace
 
 std::string RosBagFramingProblem(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  const std::string bytes = buffer.str();
   constexpr std::string_view kMagic = "#ROSBAG V2.0\n";
-  if (!std::string_view(bytes).starts_with(kMagic)) return "does not start with #ROSBAG V2.0";
-  return RecordFramingProblem(std::string_view(bytes).substr(kMagic.size()), 0);
+  std::ifstream in(path, std::ios::binary);
+  std::string magic(kMagic.size(), '\0');
+  if (!in.read(magic.data(), static_cast<std::streamsize>(magic.size())) || magic != kMagic)
+    return "does not start with #ROSBAG V2.0";
+  std::error_code error;
+  const std::uint64_t size = std::filesystem::file_size(path, error);
+  if (error) return "cannot read its size: " + error.message();
+  const ReadBytes from_file = [&](std::uint64_t at, std::uint64_t n) {
+    std::string bytes(n, '\0');
+    in.seekg(static_cast<std::streamoff>(kMagic.size() + at));
+    in.read(bytes.data(), static_cast<std::streamsize>(n));
+    return bytes;
+  };
+  return RecordFramingProblem(from_file, size - kMagic.size(), 0);
 }
 
 bool IsRosBagPath(const std::string& path) { return path.ends_with(".bag"); }

@@ -39,11 +39,15 @@ std::optional<long> ParseInteger(std::string_view token) {
   return value;
 }
 
+std::size_t TextStart(std::string_view text) {
+  constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+  return text.starts_with(kByteOrderMark) ? kByteOrderMark.size() : 0;
+}
+
 std::string ForEachDataLine(
     const std::string& text,
     const std::function<std::string(int, const std::vector<std::string_view>&)>& visit) {
-  constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
-  std::size_t pos = std::string_view(text).starts_with(kByteOrderMark) ? kByteOrderMark.size() : 0;
+  std::size_t pos = TextStart(text);
   int line_number = 0;
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);

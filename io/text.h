@@ -14,6 +14,8 @@ std::vector<std::string_view> SplitTokens(std::string_view line);
 // The whole token as a double (accepts "nan", "inf"), or nullopt.
 std::optional<double> ParseDouble(std::string_view token);
 std::optional<long> ParseInteger(std::string_view token);
+// Where the text of a file starts: after a UTF-8 byte order mark, if it has one.
+std::size_t TextStart(std::string_view text);
 // Calls visit(line_number, tokens) for every line of `text` that is neither blank nor a '#'
 // comment, counting lines from 1 (a leading UTF-8 byte order mark is skipped). Stops at the first
 // non-empty message `visit` returns and returns it; empty when every line was accepted.

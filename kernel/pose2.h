@@ -6,6 +6,10 @@
 
 namespace splam::kernel {
 
+// Beyond this a coordinate is not a robot's or a building's (1000 km): the readers and the world
+// check refuse it; a map at 1e238 had overflowed a DXF export's number formatting, m.
+inline constexpr double kMaxCoordinateM = 1e6;
+
 // A rigid transformation of the plane, a_T_b: maps coordinates in frame b to frame a.
 // As a robot pose it is world_T_robot = (x, y, theta): the robot's origin in the world and its
 // heading, theta wrapped to (-pi, pi].

@@ -16,12 +16,10 @@ struct Overloaded : Ts... {
 template <class... Ts>
 Overloaded(Ts...) -> Overloaded<Ts...>;  // Clang 14 does not deduce aggregates (the fuzz build)
 
-// Beyond this a coordinate is not a building's (the readers' bound, io/internal/plausible.h): a
-// world at 1e300 overflowed the map's arithmetic.
-constexpr double kMaxCoordinateM = 1e6;
 constexpr char kNotPlausible[] = "not finite or beyond +-1e6 m";
 
-bool Plausible(double value) { return std::abs(value) <= kMaxCoordinateM; }  // false for NaN
+// Within kernel::kMaxCoordinateM; false for NaN.
+bool Plausible(double value) { return std::abs(value) <= kernel::kMaxCoordinateM; }
 bool AllPlausible(const std::vector<Eigen::Vector2d>& points) {
   for (const Eigen::Vector2d& p : points) {
     if (!Plausible(p.x()) || !Plausible(p.y())) return false;

@@ -11,7 +11,7 @@
 // arithmetic (a DXF export crashed at 1e238).
 namespace splam::io::internal {
 
-inline constexpr double kMaxCoordinateM = 1e6;
+using kernel::kMaxCoordinateM;
 inline constexpr double kMaxHeadingRad = 1e4;
 inline constexpr double kMaxRangeM = 1e4;
 
