@@ -7,6 +7,9 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <map>
+#include <optional>
+#include <set>
 #include <string_view>
 #include <utility>
 
@@ -146,45 +149,123 @@ std::uint32_t U32(std::string_view bytes, std::size_t at) {
 // Bytes [at, at + n) of a file or a chunk; the caller has checked that they exist.
 using ReadBytes = std::function<std::string(std::uint64_t at, std::uint64_t n)>;
 
-// Checks the framing of the records in `size` bytes (rosbag format 2.0: header length, header
-// fields "name=value" each with its length, data length, data), and of the records inside chunks
-// that are not compressed. Debian's rosbag trusts these lengths: a field longer than its header
-// made ros::Header::parse read past its buffer (found by fuzz_bag). Reads the headers and the
-// uncompressed chunks only, one at a time. Empty when they hold.
-std::string RecordFramingProblem(const ReadBytes& read, std::uint64_t size, int depth) {
+// One record of a bag (rosbag format 2.0): its header fields, where it starts and where its data
+// lies, in bytes from the start of the records.
+struct BagRecord {
+  std::map<std::string, std::string, std::less<>> fields;
   std::uint64_t at = 0;
-  for (int record = 1; at < size; ++record) {
-    const std::string where = (depth ? "chunk record " : "record ") + std::to_string(record);
+  std::uint64_t data_at = 0;
+  std::uint64_t data_len = 0;
+  char op = 0;
+};
+
+// The little-endian integer of a header field, if it has exactly `bytes` bytes.
+std::optional<std::uint64_t> FieldInteger(const BagRecord& record, std::string_view name,
+                                          std::size_t bytes) {
+  const auto it = record.fields.find(name);
+  if (it == record.fields.end() || it->second.size() != bytes) return std::nullopt;
+  std::uint64_t v = 0;
+  for (std::size_t i = bytes; i-- > 0;) v = (v << 8) | static_cast<unsigned char>(it->second[i]);
+  return v;
+}
+
+// Splits `size` bytes into records (header length, header fields "name=value" each with its
+// length, an op field, data length, data), checking that every length stays inside. Empty when
+// they hold.
+std::string SplitRecords(const ReadBytes& read, std::uint64_t size, const std::string& what,
+                         std::vector<BagRecord>* records) {
+  std::uint64_t at = 0;
+  for (int number = 1; at < size; ++number) {
+    const std::string where = what + " " + std::to_string(number);
     if (at + 4 > size) return where + ": its header runs past the end";
     const std::uint64_t header_len = U32(read(at, 4), 0);
     if (at + 4 + header_len + 4 > size) return where + ": its header runs past the end";
     const std::string header = read(at + 4, header_len);
-    std::map<std::string, std::string_view> fields;
+    BagRecord record;
     for (std::size_t f = 0; f < header.size();) {
       if (f + 4 > header.size() || f + 4 + U32(header, f) > header.size())
         return where + ": a header field runs past its header";
       const std::string_view field = std::string_view(header).substr(f + 4, U32(header, f));
       const std::size_t equals = field.find('=');
       if (equals == std::string_view::npos) return where + ": a header field without '='";
-      fields[std::string(field.substr(0, equals))] = field.substr(equals + 1);
+      record.fields[std::string(field.substr(0, equals))] = field.substr(equals + 1);
       f += 4 + field.size();
     }
-    const std::uint64_t data_at = at + 4 + header_len + 4;
-    const std::uint64_t data_len = U32(read(data_at - 4, 4), 0);
-    if (data_at + data_len > size) return where + ": its data runs past the end";
-    const auto op = fields.find("op");
-    if (op == fields.end() || op->second.size() != 1) return where + ": no op field";
-    const auto compression = fields.find("compression");
-    if (op->second[0] == 0x05 && depth == 0 && compression != fields.end() &&
-        compression->second == "none") {
-      const std::string chunk = read(data_at, data_len);
+    record.at = at;
+    record.data_at = at + 4 + header_len + 4;
+    record.data_len = U32(read(record.data_at - 4, 4), 0);
+    if (record.data_at + record.data_len > size) return where + ": its data runs past the end";
+    const auto op = record.fields.find("op");
+    if (op == record.fields.end() || op->second.size() != 1) return where + ": no op field";
+    record.op = op->second[0];
+    at = record.data_at + record.data_len;
+    records->push_back(std::move(record));
+  }
+  return "";
+}
+
+constexpr char kMessageDataOp = 0x02;
+constexpr char kBagHeaderOp = 0x03;
+constexpr char kIndexDataOp = 0x04;
+constexpr char kChunkOp = 0x05;
+constexpr char kChunkInfoOp = 0x06;
+
+// Checks the framing of a bag's records and of the records inside its uncompressed chunks, and
+// that every position the bag's indices give (the index position, chunk positions, message
+// offsets in a chunk) is the start of a record of the right kind. Debian's rosbag trusts all of
+// these: a field longer than its header made ros::Header::parse read past its buffer, and an index
+// offset past a chunk made Bag::readHeaderFromBuffer read outside it (both found by fuzz_bag).
+// Reads the headers and the uncompressed chunks only, one at a time; `base` is the position of
+// the first record in the file. Compressed chunks are left to rosbag. Empty when all hold.
+std::string RecordFramingProblem(const ReadBytes& read, std::uint64_t size, std::uint64_t base) {
+  std::vector<BagRecord> records;
+  if (std::string problem = SplitRecords(read, size, "record", &records); !problem.empty())
+    return problem;
+  std::set<std::uint64_t> starts, chunk_starts;
+  for (const BagRecord& r : records) {
+    starts.insert(base + r.at);
+    if (r.op == kChunkOp) chunk_starts.insert(base + r.at);
+  }
+  // Message data offsets of the last uncompressed chunk; nullopt after a compressed one.
+  std::optional<std::set<std::uint64_t>> messages;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const BagRecord& r = records[i];
+    const std::string where = "record " + std::to_string(i + 1);
+    if (r.op == kBagHeaderOp) {
+      const auto index_pos = FieldInteger(r, "index_pos", 8);
+      if (!index_pos || (*index_pos != 0 && !starts.contains(*index_pos)))
+        return where + ": its index position is not a record";
+    } else if (r.op == kChunkInfoOp) {
+      const auto chunk_pos = FieldInteger(r, "chunk_pos", 8);
+      if (!chunk_pos || !chunk_starts.contains(*chunk_pos))
+        return where + ": its chunk position is not a chunk";
+    } else if (r.op == kChunkOp) {
+      const auto compression = r.fields.find("compression");
+      if (compression == r.fields.end()) return where + ": a chunk without compression field";
+      messages.reset();
+      if (compression->second != "none") continue;
+      if (FieldInteger(r, "size", 4) != r.data_len)
+        return where + ": an uncompressed chunk whose size is not its length";
+      const std::string chunk = read(r.data_at, r.data_len);
       const ReadBytes in_chunk = [&](std::uint64_t a, std::uint64_t n) {
         return chunk.substr(a, n);
       };
-      if (std::string problem = RecordFramingProblem(in_chunk, chunk.size(), 1); !problem.empty())
+      std::vector<BagRecord> inner;
+      if (std::string problem = SplitRecords(in_chunk, chunk.size(), "chunk record", &inner);
+          !problem.empty())
         return where + ": " + problem;
+      messages.emplace();
+      for (const BagRecord& m : inner)
+        if (m.op == kMessageDataOp) messages->insert(m.at);
+    } else if (r.op == kIndexDataOp && messages) {
+      const auto count = FieldInteger(r, "count", 4);
+      if (FieldInteger(r, "ver", 4) != 1 || !count || r.data_len != *count * 12)
+        return where + ": an index whose length is not its count";
+      const std::string entries = read(r.data_at, r.data_len);
+      for (std::size_t e = 0; e < *count; ++e)
+        if (!messages->contains(U32(entries, e * 12 + 8)))
+          return where + ": an index entry that is not a message of its chunk";
     }
-    at = data_at + data_len;
   }
   return "";
 }
@@ -206,7 +287,7 @@ std::string RosBagFramingProblem(const std::string& path) {
     in.read(bytes.data(), static_cast<std::streamsize>(n));
     return bytes;
   };
-  return RecordFramingProblem(from_file, size - kMagic.size(), 0);
+  return RecordFramingProblem(from_file, size - kMagic.size(), kMagic.size());
 }
 
 bool IsRosBagPath(const std::string& path) { return path.ends_with(".bag"); }

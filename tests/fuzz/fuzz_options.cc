@@ -14,13 +14,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!file.ok()) return 0;
   splam::exploration::ExplorerOptions explorer;
   if (file.value->Read([&](splam::kernel::FieldVisitor& v) { explorer.VisitFields(v); }, true).ok())
-    explorer.Validate();
+    static_cast<void>(explorer.Validate());
   const auto& registry = splam::estimation::SlamRegistry::Global();
   for (const std::string& name : registry.Names()) {
     auto options = registry.Find(name)->default_options({});
     if (file.value->Read([&](splam::kernel::FieldVisitor& v) { options->VisitFields(v); }, true)
             .ok())
-      options->Validate();
+      static_cast<void>(options->Validate());
   }
   return 0;
 }

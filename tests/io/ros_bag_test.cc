@@ -176,6 +176,27 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
   ASSERT_FALSE(read.log.ok());
   EXPECT_NE(read.log.error.find("record 1: a header field runs past its header"), std::string::npos)
       << read.log.error;
+  // Found by fuzz_bag: an index entry whose offset is not a message of its chunk made rosbag's
+  // Bag::readHeaderFromBuffer read outside the chunk (ASan). Walk the records to the first
+  // index data record (op 4) and move its first entry's offset by one byte.
+  ASSERT_EQ(ReadTextFile(good, &bytes), "");
+  const auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
+    return v;
+  };
+  std::size_t at = 13;
+  while (at < bytes.size() &&
+         bytes.substr(at + 4, u32(at)).find(std::string("op=\x04", 4)) == std::string::npos)
+    at += 4 + u32(at) + 4 + u32(at + 4 + u32(at));
+  ASSERT_LT(at, bytes.size()) << "no index data record in the bag";
+  ++bytes[at + 4 + u32(at) + 4 + 8];
+  ASSERT_EQ(WriteTextFile(broken, bytes), "");
+  read = ReadRosBag(broken);
+  ASSERT_FALSE(read.log.ok());
+  EXPECT_NE(read.log.error.find(": an index entry that is not a message of its chunk"),
+            std::string::npos)
+      << read.log.error;
   // A scan whose beams wrap the circle (a resolution in degrees) is refused at the reader.
   internal::RosBagMessages bag;
   bag.scans.push_back({1.0, "base_link", -1.0, 0.36, 0.05, 30.0, std::vector<float>(181, 2.0f)});
