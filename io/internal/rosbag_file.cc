@@ -8,6 +8,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
 
 namespace splam::io::internal {
 namespace {
@@ -66,6 +70,65 @@ void AddTransforms(const tf2_msgs::TFMessage& tf, std::vector<RosPose>* out) {
   }
 }
 
+// A read position in a message's serialized bytes (ROS 1 serialization: little-endian
+// integers, a string or an array as a uint32 length and its elements).
+class Cursor {
+ public:
+  Cursor(const std::uint8_t* data, std::size_t size) : data_(data), left_(size) {}
+  bool Skip(std::uint64_t n) {
+    if (n > left_) return false;
+    data_ += n;
+    left_ -= n;
+    return true;
+  }
+  bool U32(std::uint32_t* v) {
+    if (left_ < 4) return false;
+    std::memcpy(v, data_, 4);
+    return Skip(4);
+  }
+  // An array of `n` elements of `element_bytes` each, or a string (1 byte each).
+  bool Array(std::uint64_t element_bytes) {
+    std::uint32_t n = 0;
+    return U32(&n) && Skip(n * element_bytes);
+  }
+  bool Header() { return Skip(12) && Array(1); }  // seq, stamp, frame_id
+
+ private:
+  const std::uint8_t* data_;
+  std::size_t left_;
+};
+
+// Whether the array lengths of a message fit in its bytes. ros::serialization resizes a vector to
+// the length it reads before reading its elements, so a corrupt length allocated without bound
+// (a 580 GB request, found by fuzz_bag). nav_msgs/Odometry holds no variable-length array.
+bool LaserScanFits(Cursor c) { return c.Header() && c.Skip(7 * 4) && c.Array(4) && c.Array(4); }
+bool TfMessageFits(Cursor c) {
+  std::uint32_t n = 0;
+  if (!c.U32(&n)) return false;
+  for (std::uint32_t i = 0; i < n; ++i)  // header, child_frame_id, translation and rotation
+    if (!(c.Header() && c.Array(1) && c.Skip(7 * 8))) return false;
+  return true;
+}
+bool AlwaysFits(Cursor) { return true; }
+
+// The message, or null if it is of another type. Throws std::runtime_error when its array
+// lengths run past its bytes.
+template <class Message>
+boost::shared_ptr<Message> Instantiate(const rosbag::MessageInstance& m, bool (*fits)(Cursor)) {
+  if (!m.isType<Message>()) return nullptr;
+  std::vector<std::uint8_t> bytes(m.size());
+  ros::serialization::OStream out(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  m.write(out);
+  if (!fits(Cursor(bytes.data(), bytes.size())))
+    throw std::runtime_error("a " + m.getDataType() + " message on " + m.getTopic() +
+                             " whose array lengths run past its " + std::to_string(bytes.size()) +
+                             " bytes");
+  auto message = boost::make_shared<Message>();
+  ros::serialization::IStream in(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  ros::serialization::deserialize(in, *message);
+  return message;
+}
+
 }  // namespace
 
 RosBagTopics ListTopics(const std::string& path) {
@@ -87,7 +150,7 @@ RosBagMessages ReadMessages(const std::string& path, const std::string& scan_top
   for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
     const std::string& topic = m.getTopic();
     if (!scan_topic.empty() && topic == scan_topic) {
-      const auto s = m.instantiate<sensor_msgs::LaserScan>();
+      const auto s = Instantiate<sensor_msgs::LaserScan>(m, LaserScanFits);
       if (!s) continue;
       RosScan scan;
       scan.time_s = s->header.stamp.toSec();
@@ -99,12 +162,13 @@ RosBagMessages ReadMessages(const std::string& path, const std::string& scan_top
       scan.ranges = s->ranges;
       out.scans.push_back(std::move(scan));
     } else if (!odom_topic.empty() && topic == odom_topic) {
-      if (const auto o = m.instantiate<nav_msgs::Odometry>())
+      if (const auto o = Instantiate<nav_msgs::Odometry>(m, AlwaysFits))
         out.odometry.push_back(FromOdometry(*o));
     } else if (!truth_topic.empty() && topic == truth_topic) {
-      if (const auto o = m.instantiate<nav_msgs::Odometry>()) out.truth.push_back(FromOdometry(*o));
+      if (const auto o = Instantiate<nav_msgs::Odometry>(m, AlwaysFits))
+        out.truth.push_back(FromOdometry(*o));
     } else if (topic == "/tf_static" || (read_tf && topic == "/tf")) {
-      if (const auto tf = m.instantiate<tf2_msgs::TFMessage>())
+      if (const auto tf = Instantiate<tf2_msgs::TFMessage>(m, TfMessageFits))
         AddTransforms(*tf, topic == "/tf" ? &out.tf : &out.tf_static);
     }
   }

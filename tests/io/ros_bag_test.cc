@@ -206,6 +206,23 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
   read = ReadRosBag(wrapping);
   ASSERT_FALSE(read.log.ok());
   EXPECT_NE(read.log.error.find("scan 1 on /scan: 181 beams"), std::string::npos) << read.log.error;
+  // Found by fuzz_bag: ROS deserialization sized a vector by the length in the message before
+  // reading it (a 580 GB request). A scan's range count past its message is refused.
+  bag.scans.front().angle_increment = 0.01;
+  const std::string lying = TempBag("lying");
+  internal::WriteMessages(lying, "/scan", "/odom", "/ground_truth", bag);
+  ASSERT_EQ(ReadTextFile(lying, &bytes), "");
+  const std::string count("\xb5\0\0\0\0\0\0\x40", 8);  // 181 ranges, the first 2.0f
+  const std::size_t ranges = bytes.find(count);
+  ASSERT_NE(ranges, std::string::npos);
+  bytes.replace(ranges, 4, "\xff\xff\xff\x7f");
+  ASSERT_EQ(WriteTextFile(lying, bytes), "");
+  read = ReadRosBag(lying);
+  ASSERT_FALSE(read.log.ok());
+  EXPECT_NE(read.log.error.find("a sensor_msgs/LaserScan message on /scan whose array lengths run "
+                                "past its"),
+            std::string::npos)
+      << read.log.error;
   // Negative times have no ROS time.
   CarmenLog log = ShortLog(2);
   std::get<OdometryMessage>(log.messages[0]).stamp.ipc_timestamp_s = -1.0;
