@@ -19,6 +19,7 @@ void AddExperimentCommand(CLI::App* app, int* exit_code);
 void AddExploreCommand(CLI::App* app, int* exit_code);
 void AddConfigCommand(CLI::App* app, int* exit_code);
 void AddConvertCommand(CLI::App* app, int* exit_code);
+void AddSweepCommand(CLI::App* app, int* exit_code);
 
 // Exit statuses of every command: 0 done, 2 bad input, 3 stopped early (results written).
 using loop::kExitBadInput;

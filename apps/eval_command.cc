@@ -13,6 +13,7 @@
 #include "io/run_picture.h"
 #include "io/trajectory.h"
 #include "kernel/angle.h"
+#include "loop/slam_report.h"
 
 namespace splam::apps {
 namespace {
@@ -40,19 +41,6 @@ std::string NotScored(std::size_t used, const std::string& item, const std::stri
 int ReportNotScored(int status, const std::string& problem) {
   fmt::print(stderr, "splam eval: {}\n", problem);
   return std::max(status, kExitBadInput);
-}
-
-nlohmann::ordered_json RelationsJson(const estimation::RelationsError& r) {
-  return {
-      {"relations_used", r.used},
-      {"relations_skipped", r.skipped},
-      {"translation_m", {{"mean", r.translation_mean}, {"std", r.translation_std}}},
-      {"translation_sq_m2", {{"mean", r.translation_sq_mean}, {"std", r.translation_sq_std}}},
-      {"rotation_deg",
-       {{"mean", kernel::RadToDeg(r.rotation_mean)}, {"std", kernel::RadToDeg(r.rotation_std)}}},
-      {"rotation_sq_deg2",
-       {{"mean", kernel::RadToDeg(kernel::RadToDeg(r.rotation_sq_mean))},
-        {"std", kernel::RadToDeg(kernel::RadToDeg(r.rotation_sq_std))}}}};
 }
 
 int RunEval(EvalArgs args) {
@@ -150,7 +138,7 @@ int RunEval(EvalArgs args) {
         status = ReportNotScored(status, problem);
         continue;
       }
-      report["relations"][label] = RelationsJson(r);
+      report["relations"][label] = loop::RelationsJson(r);
       fmt::print("  {:<10} {:>10.4f} +- {:<9.4f} {:>10.3f} +- {:<9.3f} {:>6}\n", label,
                  r.translation_mean, r.translation_std, kernel::RadToDeg(r.rotation_mean),
                  kernel::RadToDeg(r.rotation_std), r.used);

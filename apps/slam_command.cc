@@ -18,6 +18,7 @@
 #include "io/carmen.h"
 #include "io/config.h"
 #include "io/plot.h"
+#include "io/relations.h"
 #include "io/run_picture.h"
 #include "io/simulation_log.h"
 #include "io/text.h"
@@ -39,6 +40,7 @@ struct SlamArgs {
   std::string log;
   std::string out;
   std::string world;
+  std::string relations;  // a relations file: the relations metric goes into summary.json
   int max_scans = 0;
   bool trace = false;
   LogInput input;
@@ -199,6 +201,16 @@ int RunSlam(const SlamArgs& args) {
   SlamConfig config;
   estimation::SensorNoise noise;
   if (!Configure(args, *lasers[0], &config, &noise)) return kExitBadInput;
+  std::vector<estimation::Relation> relations;
+  if (!args.relations.empty()) {
+    io::Result<std::vector<estimation::Relation>> read_relations =
+        io::ReadRelations(args.relations);
+    if (!read_relations.ok()) {
+      fmt::print(stderr, "splam slam: {}\n", read_relations.error);
+      return kExitBadInput;
+    }
+    relations = std::move(*read_relations.value);
+  }
   // The estimate starts at the first odometric pose: the map frame is the odometry frame (for
   // simulated runs, the true frame).
   auto made = estimation::SlamRegistry::Global().Make(config.method, config.options.get(),
@@ -267,6 +279,23 @@ int RunSlam(const SlamArgs& args) {
   if (run.stopped_at)
     summary["stopped_early"] = "interrupted before scan " + std::to_string(*run.stopped_at + 1);
   summary.update(loop::ReplaySummaryJson(slam, statistics, run, driver));
+  bool scored = true;
+  if (!args.relations.empty()) {
+    const estimation::RelationsError r = estimation::EvaluateRelations(relations, run.estimate);
+    scored = r.used > 0 && std::isfinite(r.translation_mean) && std::isfinite(r.rotation_mean);
+    summary["relations"] = loop::RelationsJson(r);
+    summary["relations"]["file"] = args.relations;
+    if (scored) {
+      fmt::print(
+          "relations metric ({} of {} relations): translation {:.4f} +- {:.4f} m, rotation "
+          "{:.3f} +- {:.3f} deg\n",
+          r.used, relations.size(), r.translation_mean, r.translation_std,
+          kernel::RadToDeg(r.rotation_mean), kernel::RadToDeg(r.rotation_std));
+    } else {
+      fmt::print(stderr, "splam slam: no relation of {} matches a time of the estimate\n",
+                 args.relations);
+    }
+  }
   std::ofstream(out + "/summary.json") << summary.dump(2) << "\n";
   for (const std::string& e : errors) {
     if (!e.empty()) {
@@ -280,7 +309,7 @@ int RunSlam(const SlamArgs& args) {
       "summary.json{}{}}}\n",
       out, run.truth.empty() ? "" : ", truth.txt, errors.svg, errors.png",
       args.trace ? ", steps.csv" : "");
-  if (!slam.healthy() || !finite || truncated || run.stopped_at) return kExitIncomplete;
+  if (!slam.healthy() || !finite || !scored || truncated || run.stopped_at) return kExitIncomplete;
   return kExitOk;
 }
 
@@ -304,7 +333,7 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--association", args->association,
                   "ekf-bspline data association: pedraza (end points) or curvature (paper 000)")
       ->check(CLI::IsMember({"pedraza", "curvature"}));
-  cmd->add_option("log", args->log, "CARMEN log or ROS 1 bag (.bag), simulated or real")
+  cmd->add_option("log,--log", args->log, "CARMEN log or ROS 1 bag (.bag), simulated or real")
       ->required();
   cmd->add_option("--max-curve-range", args->max_curve_range_m,
                   "B-spline methods: beams longer than this (metres) are not used for curves; 0 = "
@@ -313,6 +342,9 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--out", args->out, "Output directory (default runs/slam-<log>)");
   cmd->add_option("--world", args->world,
                   "World to draw under the map (default: world.yaml beside the log, if any)");
+  cmd->add_option("--relations", args->relations,
+                  "Relations file (Kuemmerle et al. 2009) of the log: score the estimate with the "
+                  "relations metric in summary.json, as `splam eval --relations` does");
   cmd->add_option("--max-scans", args->max_scans, "Process only the first N scans (0 = all)")
       ->check(FiniteNonNegative());
   cmd->add_flag("--trace", args->trace,

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   splam::apps::AddExploreCommand(&app, &exit_code);
   splam::apps::AddConfigCommand(&app, &exit_code);
   splam::apps::AddConvertCommand(&app, &exit_code);
+  splam::apps::AddSweepCommand(&app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -53,12 +53,17 @@ std::string SavePlot(const std::vector<PlotPanel>& panels, const PlotOptions& op
       for (double x : s.x) x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x);
     }
   }
-  if (!(x_lo < x_hi)) x_lo = 0.0, x_hi = 1.0;
+  if (!options.x_labels.empty()) {
+    x_lo = std::min(x_lo, 0.0);
+    x_hi = std::max(x_hi, static_cast<double>(options.x_labels.size()) - 1.0);
+  }
+  if (!(x_lo <= x_hi)) x_lo = 0.0, x_hi = 1.0;  // no data
+  if (x_lo == x_hi) x_lo -= 0.5, x_hi += 0.5;
   bool any_bars = false;
   for (const PlotPanel& panel : panels) {
     for (const PlotSeries& s : panel.series) any_bars = any_bars || s.bars;
   }
-  if (any_bars) x_lo -= 0.5, x_hi += 0.5;  // room for the outer bars
+  if (any_bars || !options.x_labels.empty()) x_lo -= 0.5, x_hi += 0.5;  // room at the ends
   const double width = options.width_px;
   const double height =
       kTitle + static_cast<double>(panels.size()) * (options.panel_height_px + kGap) + kBottom;
@@ -108,11 +113,15 @@ std::string SavePlot(const std::vector<PlotPanel>& panels, const PlotOptions& op
         Text(cr, kLeft - 6, py(t) + 4, label, 10, 1.0);
       }
       if (k + 1 == panels.size()) {
-        for (double t : Ticks(x_lo, x_hi, 8)) {
-          char label[32];
-          std::snprintf(label, sizeof(label), "%g", t);
-          Text(cr, px(t), top + h + 14, label, 10, 0.5);
+        if (options.x_labels.empty()) {
+          for (double t : Ticks(x_lo, x_hi, 8)) {
+            char label[32];
+            std::snprintf(label, sizeof(label), "%g", t);
+            Text(cr, px(t), top + h + 14, label, 10, 0.5);
+          }
         }
+        for (std::size_t i = 0; i < options.x_labels.size(); ++i)
+          Text(cr, px(static_cast<double>(i)), top + h + 14, options.x_labels[i], 10, 0.5);
         Text(cr, kLeft + plot_w / 2, top + h + 32, options.x_label, 12, 0.5);
       }
       cairo_save(cr);
@@ -135,6 +144,15 @@ std::string SavePlot(const std::vector<PlotPanel>& panels, const PlotOptions& op
             const double x0 = px(s.x[i] + offset - 0.5 * w), x1 = px(s.x[i] + offset + 0.5 * w);
             cairo_rectangle(cr, x0, py(std::max(0.0, s.y[i])), x1 - x0,
                             std::abs(py(s.y[i]) - py(0.0)));
+          }
+          cairo_set_source_rgb(cr, s.color.r, s.color.g, s.color.b);
+          cairo_fill(cr);
+          continue;
+        }
+        if (s.points) {
+          for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+            cairo_new_sub_path(cr);
+            cairo_arc(cr, px(s.x[i]), py(s.y[i]), 2.8, 0.0, 2.0 * M_PI);
           }
           cairo_set_source_rgb(cr, s.color.r, s.color.g, s.color.b);
           cairo_fill(cr);

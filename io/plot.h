@@ -16,6 +16,8 @@ struct PlotSeries {
   // Drawn as bars from 0 to y at each x (grouped side by side with the panel's other bar series,
   // x one apart), instead of a line.
   bool bars = false;
+  // Drawn as dots at (x, y), without a line (strip plots).
+  bool points = false;
 };
 
 // One chart; panels of a plot share the x axis and are stacked top to bottom.
@@ -29,6 +31,8 @@ struct PlotOptions {
   std::string x_label;
   double width_px = 900.0;
   double panel_height_px = 200.0;
+  // When given: the x axis is categorical, ticks at x = 0, 1, ... labelled with these.
+  std::vector<std::string> x_labels;
 
   kernel::Status Validate() const;
 };

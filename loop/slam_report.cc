@@ -1,5 +1,7 @@
 #include "loop/slam_report.h"
 
+#include "kernel/angle.h"
+
 #include <sys/resource.h>
 
 #include <cmath>
@@ -38,6 +40,19 @@ nlohmann::ordered_json StatisticsJson(const estimation::SlamStatistics& statisti
     json["optimizations"] = list;
   }
   return json;
+}
+
+nlohmann::ordered_json RelationsJson(const estimation::RelationsError& r) {
+  return {
+      {"relations_used", r.used},
+      {"relations_skipped", r.skipped},
+      {"translation_m", {{"mean", r.translation_mean}, {"std", r.translation_std}}},
+      {"translation_sq_m2", {{"mean", r.translation_sq_mean}, {"std", r.translation_sq_std}}},
+      {"rotation_deg",
+       {{"mean", kernel::RadToDeg(r.rotation_mean)}, {"std", kernel::RadToDeg(r.rotation_std)}}},
+      {"rotation_sq_deg2",
+       {{"mean", kernel::RadToDeg(kernel::RadToDeg(r.rotation_sq_mean))},
+        {"std", kernel::RadToDeg(kernel::RadToDeg(r.rotation_sq_std))}}}};
 }
 
 nlohmann::ordered_json ErrorJson(const estimation::TrajectoryError& e) {

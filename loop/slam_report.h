@@ -20,6 +20,9 @@ namespace splam::loop {
 nlohmann::ordered_json StatisticsJson(const estimation::SlamStatistics& statistics);
 // A trajectory error as summary.json and report.json write it.
 nlohmann::ordered_json ErrorJson(const estimation::TrajectoryError& e);
+// The relations metric as summary.json (`slam --relations`) and eval.json write it: translation
+// in m and m^2, rotation in deg and deg^2.
+nlohmann::ordered_json RelationsJson(const estimation::RelationsError& r);
 // Median time per step by map size.
 nlohmann::ordered_json TimeBinsJson(const std::vector<TimeBin>& bins);
 

@@ -1,0 +1,221 @@
+// splam sweep: experiment grids on all cores or on a Slurm cluster, merged into one report.
+//   splam sweep GRID.yaml [--jobs N] [--out DIR] [--slurm ...]
+//   splam sweep status DIR | splam sweep merge DIR | splam sweep cell DIR INDEX
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "apps/commands.h"
+#include "apps/interrupt.h"
+#include "io/sweep_grid.h"
+#include "loop/slurm.h"
+#include "loop/sweep.h"
+#include "loop/sweep_merge.h"
+
+namespace splam::apps {
+namespace {
+
+struct SweepArgs {
+  std::string grid, out, dir;
+  int jobs = 0;
+  bool slurm = false, merge = true;
+  loop::SlurmOptions slurm_options;
+  std::vector<int> cells;  // sweep cell
+};
+
+// The binary of this process: cells run the same splam.
+std::string SelfBinary() {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? "splam" : self.string();
+}
+
+std::string Duration(double s) {
+  if (s < 0) return "?";
+  const long total = std::lround(s);
+  return total >= 3600 ? fmt::format("{}h{:02}m", total / 3600, total / 60 % 60)
+                       : fmt::format("{}m{:02}s", total / 60, total % 60);
+}
+
+// A status line rewritten in place on a terminal; plain lines, one per finished cell, otherwise.
+std::function<void(const loop::SweepProgress&)> ProgressPrinter() {
+  const bool terminal = isatty(fileno(stdout)) != 0;
+  return [terminal](const loop::SweepProgress& p) {
+    const std::string status =
+        fmt::format("[{}/{} done, {} failed, {} running, {} skipped; {} left]", p.done + p.skipped,
+                    p.total, p.failed, p.running, p.skipped, Duration(p.eta_s));
+    if (terminal) {
+      if (!p.event.empty()) fmt::print("\r\033[K{}\n", p.event);
+      fmt::print("\r\033[K{}", status);
+    } else if (!p.event.empty()) {
+      fmt::print("{} {}\n", status, p.event);
+    }
+    std::fflush(stdout);
+  };
+}
+
+int Merge(const std::string& dir) {
+  kernel::Result<loop::MergedSweep> merged = loop::MergeSweep(dir);
+  if (!merged.ok()) {
+    fmt::print(stderr, "splam sweep merge: {}\n", merged.error);
+    return kExitBadInput;
+  }
+  kernel::Result<std::vector<std::string>> written = loop::WriteMergedSweep(*merged.value);
+  if (!written.ok()) {
+    fmt::print(stderr, "splam sweep merge: {}\n", written.error);
+    return kExitBadInput;
+  }
+  int missing = 0;
+  for (const loop::MergedCell& c : merged.value->cells) missing += !c.record || !c.record->ok();
+  fmt::print("merged {} cells ({} without results) into {}/{{table.csv, table.md, report.html}}\n",
+             merged.value->cells.size(), missing, dir);
+  return missing ? kExitIncomplete : kExitOk;
+}
+
+int Status(const std::string& dir) {
+  kernel::Result<loop::SweepStatus> status = loop::ReadSweepStatus(dir);
+  if (!status.ok()) {
+    fmt::print(stderr, "splam sweep status: {}\n", status.error);
+    return kExitBadInput;
+  }
+  const loop::SweepStatus& s = *status.value;
+  fmt::print("{}: {} cells: {} done, {} failed, {} running, {} not started\n", dir, s.total, s.done,
+             s.failed, s.running, s.pending);
+  for (const auto& [name, record] : s.failures)
+    fmt::print("  {}: exit {} on {}: {}\n", name, record.exit_status, record.host, record.message);
+  return s.done == s.total ? kExitOk : kExitIncomplete;
+}
+
+int RunCells(const SweepArgs& args) {
+  kernel::Result<loop::SweepPlan> plan = loop::ReadSweepPlan(args.dir);
+  if (!plan.ok()) {
+    fmt::print(stderr, "splam sweep cell: {}\n", plan.error);
+    return kExitBadInput;
+  }
+  int worst = kExitOk;
+  for (const int index : args.cells) {
+    if (index < 0 || index >= static_cast<int>(plan.value->cells.size())) {
+      fmt::print(stderr, "splam sweep cell: {} has no cell {} (0 to {})\n", args.dir, index,
+                 plan.value->cells.size() - 1);
+      return kExitBadInput;
+    }
+    const loop::SweepCell& cell = plan.value->cells[static_cast<std::size_t>(index)];
+    const loop::CellRecord r = loop::RunCell(args.dir, cell, SelfBinary());
+    fmt::print("{}: exit {} in {:.1f} s{}\n", cell.name, r.exit_status, r.wall_s,
+               r.ok() ? "" : ": " + r.message);
+    if (!r.ok()) worst = r.exit_status;
+  }
+  return worst;
+}
+
+int RunGrid(const SweepArgs& args) {
+  io::Result<io::Grid> grid = io::ReadGrid(args.grid);
+  if (!grid.ok()) {
+    fmt::print(stderr, "splam sweep: {}\n", grid.error);
+    return kExitBadInput;
+  }
+  const std::string dir = args.out.empty()
+                              ? "runs/sweep-" + std::filesystem::path(args.grid).stem().string()
+                              : args.out;
+  if (kernel::Status s = loop::WriteSweepPlan(dir, *grid.value); !s.ok()) {
+    fmt::print(stderr, "splam sweep: {}\n", s.message());
+    return kExitBadInput;
+  }
+  if (args.slurm) {
+    kernel::Result<loop::SweepPlan> plan = loop::ReadSweepPlan(dir);
+    std::vector<int> pending;
+    for (std::size_t i = 0; plan.ok() && i < plan.value->cells.size(); ++i) {
+      const auto r = loop::ReadCellRecord(loop::CellDir(dir, plan.value->cells[i]));
+      if (!r || !r->ok()) pending.push_back(static_cast<int>(i));
+    }
+    kernel::Result<std::string> job =
+        loop::SubmitSweepToSlurm(dir, SelfBinary(), pending, args.slurm_options);
+    if (!job.ok()) {
+      fmt::print(stderr, "splam sweep: {}\n", job.error);
+      return kExitBadInput;
+    }
+    fmt::print(
+        "submitted job {} ({} cells); follow it with `splam sweep status {}`, then run "
+        "`splam sweep merge {}`\n",
+        *job.value, pending.size(), dir, dir);
+    return kExitOk;
+  }
+  CatchInterrupts();
+  loop::SweepRunOptions options;
+  options.splam_binary = SelfBinary();
+  options.jobs = args.jobs;
+  options.stop = [] { return Interrupted(); };
+  options.progress = ProgressPrinter();
+  kernel::Result<loop::SweepRunSummary> run = loop::RunSweepLocally(dir, options);
+  if (!run.ok()) {
+    fmt::print(stderr, "splam sweep: {}\n", run.error);
+    return kExitBadInput;
+  }
+  const loop::SweepRunSummary& s = *run.value;
+  fmt::print(
+      "\n{}: {} cells: {} run now ({} failed), {} skipped (done before), {} left; {:.1f} s "
+      "wall for {:.1f} s of cells ({:.2f})\n",
+      dir, s.cells, s.done + s.failed, s.failed, s.skipped, s.left, s.wall_s, s.cells_wall_s,
+      s.cells_wall_s > 0 ? s.wall_s / s.cells_wall_s : 0.0);
+  if (s.interrupted) {
+    fmt::print("interrupted: the {} cells left run when the same command is given again\n", s.left);
+    return kExitIncomplete;
+  }
+  const int merged = args.merge ? Merge(dir) : kExitOk;
+  return s.failed > 0 || merged != kExitOk ? kExitIncomplete : kExitOk;
+}
+
+}  // namespace
+
+void AddSweepCommand(CLI::App* app, int* exit_code) {
+  auto args = std::make_shared<SweepArgs>();
+  CLI::App* cmd = app->add_subcommand(
+      "sweep",
+      "Run a grid of splam runs (a YAML file: command, options, axes) on all cores or as a Slurm "
+      "job array, then merge their figures into table.csv, table.md and report.html "
+      "(docs/sweeps.md)");
+  cmd->add_option("grid", args->grid, "Grid file (see experiments/*.yaml)");
+  cmd->add_option("--out", args->out, "Sweep directory (default runs/sweep-<grid name>)");
+  cmd->add_option("--jobs", args->jobs, "Cells run at once (default: one per core)")
+      ->check(FinitePositive());
+  cmd->add_flag("!--no-merge", args->merge, "Do not merge the cells when the sweep ends");
+  cmd->add_flag("--slurm", args->slurm,
+                "Submit the cells as a Slurm job array instead of running them here");
+  cmd->add_option("--partition", args->slurm_options.partition, "Slurm partition");
+  cmd->add_option("--time", args->slurm_options.time, "Slurm time limit per array task");
+  cmd->add_option("--cpus-per-task", args->slurm_options.cpus_per_task, "Slurm CPUs per task")
+      ->check(FinitePositive())
+      ->capture_default_str();
+  cmd->add_option("--array-chunk", args->slurm_options.array_chunk, "Cells per Slurm array task")
+      ->check(FinitePositive())
+      ->capture_default_str();
+  cmd->require_subcommand(0, 1);
+
+  CLI::App* status = cmd->add_subcommand("status", "Cells done, failed, running and not started");
+  status->add_option("dir", args->dir, "Sweep directory")->required();
+  CLI::App* merge =
+      cmd->add_subcommand("merge", "Write table.csv, table.md and report.html of a sweep");
+  merge->add_option("dir", args->dir, "Sweep directory")->required();
+  CLI::App* cell = cmd->add_subcommand(
+      "cell", "Run cells of a sweep by index (what each Slurm array task does)");
+  cell->add_option("dir", args->dir, "Sweep directory")->required();
+  cell->add_option("index", args->cells, "Cell indices (cells.tsv)")->required();
+
+  status->callback([args, exit_code] { *exit_code = Status(args->dir); });
+  merge->callback([args, exit_code] { *exit_code = Merge(args->dir); });
+  cell->callback([args, exit_code] { *exit_code = RunCells(*args); });
+  cmd->callback([cmd, args, exit_code] {
+    if (!cmd->get_subcommands().empty()) return;
+    if (args->grid.empty()) {
+      fmt::print(stderr, "splam sweep: give a grid file, or status/merge DIR\n");
+      *exit_code = kExitBadInput;
+      return;
+    }
+    *exit_code = RunGrid(*args);
+  });
+}
+
+}  // namespace splam::apps

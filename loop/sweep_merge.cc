@@ -1,0 +1,284 @@
+#include "loop/sweep_merge.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "estimation/metrics.h"
+#include "io/html.h"
+#include "io/plot.h"
+#include "io/text.h"
+#include "io/trajectory.h"
+#include "kernel/version.h"
+
+namespace splam::loop {
+namespace {
+
+void Flatten(const nlohmann::json& j, const std::string& path, std::map<std::string, double>* out) {
+  if (j.is_object()) {
+    for (const auto& [key, value] : j.items()) {
+      if (path.empty() && (key == "options" || key == "seed")) continue;
+      Flatten(value, path.empty() ? key : path + "." + key, out);
+    }
+  } else if (j.is_boolean()) {
+    (*out)[path] = j.get<bool>() ? 1.0 : 0.0;
+  } else if (j.is_number()) {
+    (*out)[path] = j.get<double>();
+  }
+}
+
+std::string Number(double v) { return fmt::format("{:.6g}", v); }
+
+std::string CsvField(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+// Strip plot of the figures against one axis: a panel per figure, a dot per successful cell at
+// its value of the axis (spread sideways by its index in the group), the medians in red.
+std::string AxisPlot(const MergedSweep& m, std::size_t axis, const std::string& path) {
+  const io::GridAxis& a = m.plan.grid.axes[axis];
+  io::PlotOptions options;
+  options.title = fmt::format("figures against {} ({} cells)", a.name, m.cells.size());
+  options.x_label = a.name;
+  options.panel_height_px = 130.0;
+  for (const io::GridValue& v : a.values) options.x_labels.push_back(v.label);
+  std::vector<io::PlotPanel> panels;
+  for (const std::string& figure : m.figures) {
+    io::PlotSeries dots{"cells", {0.15, 0.35, 0.75}, {}, {}, false, true};
+    io::PlotSeries medians{"median", {0.85, 0.1, 0.1}, {}, {}, false, true};
+    for (std::size_t k = 0; k < a.values.size(); ++k) {
+      std::vector<double> values;
+      for (const MergedCell& c : m.cells) {
+        const auto f = c.figures.find(figure);
+        if (c.cell.values[axis].second != a.values[k].label || f == c.figures.end()) continue;
+        values.push_back(f->second);
+      }
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        const double spread = values.size() > 1
+                                  ? static_cast<double>(i) / static_cast<double>(values.size() - 1)
+                                  : 0.5;
+        dots.x.push_back(static_cast<double>(k) - 0.2 + 0.4 * spread);
+        dots.y.push_back(values[i]);
+      }
+      if (!values.empty()) {
+        medians.x.push_back(static_cast<double>(k));
+        medians.y.push_back(StatsOf(values).median);
+      }
+    }
+    panels.push_back({figure, {dots, medians}});
+  }
+  return io::SavePlot(panels, options, {path});
+}
+
+std::string RelativeTo(const std::string& path, const std::string& dir) {
+  return std::filesystem::path(path).lexically_relative(dir).string();
+}
+
+void AddCellRows(const MergedSweep& m, io::HtmlPage* page) {
+  std::vector<std::string> header = {"cell"};
+  for (const io::GridAxis& a : m.plan.grid.axes) header.push_back(a.name);
+  header.insert(header.end(), {"exit status", "wall (s)", "message", "pictures"});
+  std::vector<std::vector<io::HtmlCell>> rows;
+  for (const MergedCell& c : m.cells) {
+    const std::string cell_dir = CellDir(m.dir, c.cell);
+    const std::string rel = RelativeTo(cell_dir, m.dir);
+    const bool has_report = std::filesystem::exists(cell_dir + "/report.html");
+    std::vector<io::HtmlCell> row = {
+        io::HtmlCell(c.cell.name, has_report ? rel + "/report.html" : rel + "/")};
+    for (const auto& [axis, value] : c.cell.values) row.emplace_back(value);
+    row.emplace_back(c.record ? std::to_string(c.record->exit_status) : "not run");
+    row.emplace_back(c.record ? fmt::format("{:.1f}", c.record->wall_s) : "");
+    row.emplace_back(c.record && !c.record->ok() ? c.record->message : "");
+    std::vector<std::string> pictures;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(cell_dir, ec))
+      if (entry.path().extension() == ".png") pictures.push_back(entry.path().filename().string());
+    std::sort(pictures.begin(), pictures.end());
+    rows.push_back(std::move(row));
+    for (const std::string& p : pictures) rows.back().emplace_back(p, rel + "/" + p);
+  }
+  page->Table(header, rows);
+}
+
+}  // namespace
+
+std::map<std::string, double> RunFigures(const std::string& run_dir) {
+  std::map<std::string, double> figures;
+  for (const char* name : {"report.json", "summary.json"}) {
+    std::ifstream in(run_dir + "/" + name);
+    if (!in) continue;
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+    if (j.is_discarded()) continue;
+    Flatten(j, "", &figures);
+    break;
+  }
+  return figures;
+}
+
+FigureStats StatsOf(std::vector<double> values) {
+  FigureStats s;
+  s.n = static_cast<int>(values.size());
+  if (values.empty()) return s;
+  std::tie(s.mean, s.std) = estimation::MeanStd(values);
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  s.median = n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+  s.min = values.front();
+  s.max = values.back();
+  return s;
+}
+
+kernel::Result<MergedSweep> MergeSweep(const std::string& dir) {
+  kernel::Result<SweepPlan> plan = ReadSweepPlan(dir);
+  if (!plan.ok()) return kernel::Result<MergedSweep>::Fail(plan.error);
+  MergedSweep m;
+  m.dir = dir;
+  m.plan = std::move(*plan.value);
+  const io::Grid& grid = m.plan.grid;
+  std::vector<bool> grouped;
+  for (const io::GridAxis& a : grid.axes) {
+    grouped.push_back(a.name != grid.replicate);
+    if (grouped.back()) m.group_axes.push_back(a.name);
+  }
+  std::set<std::string> seen;
+  std::map<std::vector<std::pair<std::string, std::string>>, std::size_t> group_of;
+  for (const SweepCell& cell : m.plan.cells) {
+    MergedCell c{cell, ReadCellRecord(CellDir(dir, cell)), {}};
+    if (c.record && c.record->ok()) {
+      c.figures = RunFigures(CellDir(dir, cell));
+      c.figures["cell.wall_s"] = c.record->wall_s;
+      c.figures["cell.exit_status"] = c.record->exit_status;
+      for (const auto& [name, value] : c.figures) seen.insert(name);
+    }
+    std::vector<std::pair<std::string, std::string>> key;
+    for (std::size_t a = 0; a < cell.values.size(); ++a)
+      if (grouped[a]) key.push_back(cell.values[a]);
+    if (!group_of.contains(key)) {
+      group_of[key] = m.groups.size();
+      m.groups.push_back({key, 0, 0, 0, {}});
+    }
+    MergedGroup& g = m.groups[group_of[key]];
+    ++g.cells;
+    g.failed += c.record && !c.record->ok();
+    g.missing += !c.record;
+    m.cells.push_back(std::move(c));
+  }
+  if (grid.figures.empty()) {
+    m.figures.assign(seen.begin(), seen.end());
+  } else {
+    m.figures = grid.figures;
+  }
+  for (MergedGroup& g : m.groups) {
+    for (const std::string& figure : m.figures) {
+      std::vector<double> values;
+      for (const MergedCell& c : m.cells) {
+        std::vector<std::pair<std::string, std::string>> key;
+        for (std::size_t a = 0; a < c.cell.values.size(); ++a)
+          if (grouped[a]) key.push_back(c.cell.values[a]);
+        const auto f = c.figures.find(figure);
+        if (key == g.values && f != c.figures.end()) values.push_back(f->second);
+      }
+      g.figures[figure] = StatsOf(std::move(values));
+    }
+  }
+  return kernel::Result<MergedSweep>::Ok(std::move(m));
+}
+
+kernel::Result<std::vector<std::string>> WriteMergedSweep(const MergedSweep& m) {
+  using R = kernel::Result<std::vector<std::string>>;
+  std::vector<std::string> written;
+  // table.csv and table.md
+  std::string csv, md;
+  for (const std::string& a : m.group_axes) csv += CsvField(a) + ",";
+  csv += "figure,n,mean,std,median,min,max,cells,failed,not_run\n";
+  md = "| " + (m.group_axes.empty() ? std::string("group") : "");
+  for (std::size_t i = 0; i < m.group_axes.size(); ++i) md += (i ? " | " : "") + m.group_axes[i];
+  md += " | figure | n | mean +- std | median | min | max |\n|";
+  for (std::size_t i = 0; i < std::max<std::size_t>(1, m.group_axes.size()) + 6; ++i) md += "---|";
+  md += "\n";
+  std::vector<std::vector<io::HtmlCell>> html_rows;
+  for (const MergedGroup& g : m.groups) {
+    for (const std::string& figure : m.figures) {
+      const FigureStats& s = g.figures.at(figure);
+      std::string prefix_csv, prefix_md;
+      std::vector<io::HtmlCell> row;
+      for (const auto& [axis, value] : g.values) {
+        prefix_csv += CsvField(value) + ",";
+        prefix_md += value + " | ";
+        row.emplace_back(value);
+      }
+      if (g.values.empty()) prefix_md = "all | ";
+      csv += prefix_csv + CsvField(figure) + "," + std::to_string(s.n) + "," + Number(s.mean) +
+             "," + Number(s.std) + "," + Number(s.median) + "," + Number(s.min) + "," +
+             Number(s.max) + "," + std::to_string(g.cells) + "," + std::to_string(g.failed) + "," +
+             std::to_string(g.missing) + "\n";
+      const std::string mean_std = s.n ? Number(s.mean) + " +- " + Number(s.std) : "-";
+      md += "| " + prefix_md + figure + " | " + std::to_string(s.n) + " | " + mean_std + " | " +
+            (s.n ? Number(s.median) + " | " + Number(s.min) + " | " + Number(s.max) : "- | - | -") +
+            " |\n";
+      row.insert(row.end(), {figure, std::to_string(s.n), mean_std, s.n ? Number(s.median) : "-",
+                             s.n ? Number(s.min) : "-", s.n ? Number(s.max) : "-"});
+      html_rows.push_back(std::move(row));
+    }
+  }
+  for (const auto& [name, text] : {std::pair{"table.csv", &csv}, std::pair{"table.md", &md}}) {
+    if (std::string error = io::WriteTextFile(m.dir + "/" + name, *text); !error.empty())
+      return R::Fail(error);
+    written.push_back(m.dir + "/" + name);
+  }
+
+  // report.html
+  int done = 0, failed = 0, not_run = 0;
+  for (const MergedCell& c : m.cells) {
+    done += c.record && c.record->ok();
+    failed += c.record && !c.record->ok();
+    not_run += !c.record;
+  }
+  io::HtmlPage page("splam sweep: " + std::filesystem::path(m.dir).filename().string());
+  std::string command = "splam";
+  for (const std::string& w : m.plan.grid.command) command += " " + w;
+  std::string axes;
+  for (const std::string& a : m.group_axes) axes += (axes.empty() ? "" : ", ") + a;
+  page.Paragraph(fmt::format(
+      "{} cells of `{}`: {} done, {} failed, {} not run. Grouped by: {}; replicate axis: {}.",
+      m.cells.size(), command, done, failed, not_run, axes.empty() ? "nothing" : axes,
+      m.plan.grid.replicate.empty() ? "none" : m.plan.grid.replicate));
+  page.Heading("Table");
+  std::vector<std::string> header = m.group_axes;
+  if (header.empty()) header.push_back("group");
+  if (m.group_axes.empty())
+    for (auto& row : html_rows) row.insert(row.begin(), io::HtmlCell("all"));
+  header.insert(header.end(), {"figure", "n", "mean +- std", "median", "min", "max"});
+  page.Table(header, html_rows);
+  page.Heading("Figures against each axis");
+  for (std::size_t a = 0; a < m.plan.grid.axes.size(); ++a) {
+    const std::string path = m.dir + "/plot-" + std::to_string(a + 1) + ".svg";
+    if (std::string error = AxisPlot(m, a, path); !error.empty()) return R::Fail(error);
+    if (kernel::Status s = page.EmbedImage(path, "figures against " + m.plan.grid.axes[a].name);
+        !s.ok())
+      return R::Fail(s.message());
+    written.push_back(path);
+  }
+  page.Heading("Cells");
+  AddCellRows(m, &page);
+  page.Heading("Grid");
+  page.Preformatted(io::GridToYaml(m.plan.grid));
+  page.Heading("Version");
+  page.Paragraph(
+      fmt::format("Merged by splam at git commit {}; each cell's commit and options are in its "
+                  "report.json and config.yaml.",
+                  kernel::GitCommit()));
+  if (kernel::Status s = page.Save(m.dir + "/report.html"); !s.ok()) return R::Fail(s.message());
+  written.push_back(m.dir + "/report.html");
+  return R::Ok(written);
+}
+
+}  // namespace splam::loop
