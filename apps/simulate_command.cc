@@ -11,6 +11,7 @@
 #include "io/simulation_log.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
+#include "loop/run_html.h"
 #include "sim/ray_caster.h"
 #include "sim/simulator.h"
 
@@ -184,6 +185,8 @@ int RunSimulate(const SimulateArgs& args) {
       io::SaveRunPicture(picture, {out + "/run.svg", out + "/run.png"}),
   };
   std::ofstream(out + "/summary.json") << summary.dump(2) << "\n";
+  errors.push_back(
+      loop::WriteRunHtml(out, "splam simulate: " + world.value->name + " world").message());
   for (const std::string& e : errors) {
     if (!e.empty()) {
       fmt::print(stderr, "splam simulate: {}\n", e);
@@ -194,7 +197,7 @@ int RunSimulate(const SimulateArgs& args) {
       "{} scans over {:.1f} s, {:.1f} m travelled, {}/{} waypoints; odometry drift at the end "
       "{:.3f} m, "
       "{:.2f} deg\nwrote {}/{{log.clf, truth.txt, odometry.txt, world.yaml, run.svg, run.png, "
-      "summary.json}}\n",
+      "summary.json, report.html}}\n",
       run.frames.size(), run.frames.back().time_s, run.distance_m, run.waypoints_reached,
       route.waypoints.size(), drift.translation().norm(), kernel::RadToDeg(std::abs(drift.theta())),
       out);

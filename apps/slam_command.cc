@@ -25,6 +25,7 @@
 #include "io/world_file.h"
 #include "kernel/angle.h"
 #include "loop/log_replay.h"
+#include "loop/run_html.h"
 #include "loop/slam_report.h"
 #include "loop/step_trace.h"
 
@@ -297,6 +298,7 @@ int RunSlam(const SlamArgs& args) {
     }
   }
   std::ofstream(out + "/summary.json") << summary.dump(2) << "\n";
+  errors.push_back(loop::WriteRunHtml(out, "splam slam: " + label + " on " + args.log).message());
   for (const std::string& e : errors) {
     if (!e.empty()) {
       fmt::print(stderr, "splam slam: {}\n", e);
@@ -306,7 +308,7 @@ int RunSlam(const SlamArgs& args) {
   const bool finite = PrintSlamSummary(label, slam, run, summary);
   fmt::print(
       "wrote {}/{{config.yaml, trajectory.txt, odometry.txt, map.txt, map.dxf, map.svg, map.png, "
-      "summary.json{}{}}}\n",
+      "summary.json, report.html{}{}}}\n",
       out, run.truth.empty() ? "" : ", truth.txt, errors.svg, errors.png",
       args.trace ? ", steps.csv" : "");
   if (!slam.healthy() || !finite || !scored || truncated || run.stopped_at) return kExitIncomplete;

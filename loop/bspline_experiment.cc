@@ -18,6 +18,7 @@
 #include "kernel/angle.h"
 #include "loop/association_scoring.h"
 #include "loop/exit_status.h"
+#include "loop/run_html.h"
 #include "loop/slam_report.h"
 #include "sim/builtin_worlds.h"
 #include "sim/simulator.h"
@@ -129,8 +130,11 @@ void WriteBSplineReport(const BSplineExperimentArgs& args, const std::vector<std
   fmt::print("\n{}", table);
   std::ofstream(args.out + "/table.md") << table;
   std::ofstream(args.out + "/report.json") << report.dump(2) << "\n";
+  if (kernel::Status s = WriteRunHtml(args.out, "splam experiment complex-bspline (paper 000)");
+      !s.ok())
+    fmt::print(stderr, "splam experiment: {}\n", s.message());
   fmt::print(
-      "wrote {}/{{table.md, report.json, errors.svg, errors.png, map_pedraza.svg/png, "
+      "wrote {}/{{table.md, report.json, report.html, errors.svg, errors.png, map_pedraza.svg/png, "
       "map_curvature.svg/png}}\n",
       args.out);
 }

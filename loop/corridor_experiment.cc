@@ -18,6 +18,7 @@
 #include "kernel/angle.h"
 #include "loop/exit_status.h"
 #include "loop/log_replay.h"
+#include "loop/run_html.h"
 #include "sim/builtin_worlds.h"
 #include "sim/simulator.h"
 
@@ -289,13 +290,19 @@ int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string
   }
   std::ofstream(out + "/table1.md") << table;
   std::ofstream(out + "/report.json") << report.dump(2) << "\n";
+  if (kernel::Status s = WriteRunHtml(out, "splam experiment corridor-lines (paper 001 Table 1)");
+      !s.ok()) {
+    fmt::print(stderr, "splam experiment: {}\n", s.message());
+    return kExitBadInput;
+  }
   fmt::print("average NEES inside the 95 % band [{:.2f}, {:.2f}] for {:.1f} % of {} steps ({})\n",
              lo, hi, 100 * fraction, options.steps + 1,
              fraction >= 0.9 ? "consistent" : "NOT consistent");
   fmt::print("final position error: ekf-lines {:.3f} m, odometry {:.3f} m (mean of {} runs)\n",
              mean_final, mean_odometry, options.runs);
   fmt::print(
-      "wrote {}/{{table1.md, report.json, nees.svg, nees.png, map.svg, map.png, errors.svg, "
+      "wrote {}/{{table1.md, report.json, report.html, nees.svg, nees.png, map.svg, map.png, "
+      "errors.svg, "
       "errors.png}}\n",
       out);
   return kExitOk;

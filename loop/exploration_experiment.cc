@@ -10,6 +10,7 @@
 #include "io/plot.h"
 #include "loop/exit_status.h"
 #include "loop/exploration_report.h"
+#include "loop/run_html.h"
 #include "sim/builtin_worlds.h"
 
 namespace splam::loop {
@@ -135,8 +136,15 @@ int RunExplorationExperiment(const ExplorationExperimentArgs& args) {
   }
   std::ofstream(args.out + "/table.md") << table;
   std::ofstream(args.out + "/summary.json") << summary.dump(2) << "\n";
-  fmt::print("{}wrote {}/{{table.md, summary.json, fig18-office.png, fig18-complex.png, ...}}\n",
-             table, args.out);
+  if (kernel::Status s = WriteRunHtml(args.out, "splam experiment exploration (paper 003 Fig. 18)");
+      !s.ok()) {
+    fmt::print(stderr, "splam experiment: {}\n", s.message());
+    return kExitBadInput;
+  }
+  fmt::print(
+      "{}wrote {}/{{table.md, summary.json, report.html, fig18-office.png, fig18-complex.png, "
+      "...}}\n",
+      table, args.out);
   return all_explored ? kExitOk : kExitIncomplete;
 }
 

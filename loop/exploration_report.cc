@@ -1,5 +1,7 @@
 #include "loop/exploration_report.h"
 
+#include "loop/run_html.h"
+
 #include <fmt/core.h>
 #include <algorithm>
 #include <chrono>
@@ -160,6 +162,7 @@ std::string WriteExplorationRun(const sim::World& world, const ExploreSetup& set
           save("steps.csv", WriteStepTrace(dir + "/steps.csv", outcome.slam->driver()->steps(),
                                            outcome.slam->step_times(), t.truth)));
   }
+  errors.push_back(save("report.html", WriteRunHtml(dir, "splam explore: " + title).message()));
   for (const std::string& error : errors) {
     if (!error.empty()) return error;
   }

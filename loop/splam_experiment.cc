@@ -14,6 +14,7 @@
 #include "kernel/angle.h"
 #include "loop/exit_status.h"
 #include "loop/exploration_report.h"
+#include "loop/run_html.h"
 #include "sim/builtin_worlds.h"
 
 namespace splam::loop {
@@ -270,8 +271,15 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
   }
   std::ofstream(args.out + "/table.md") << table;
   std::ofstream(args.out + "/summary.json") << summary.dump(2) << "\n";
+  if (kernel::Status s = WriteRunHtml(
+          args.out, "splam experiment splam (paper 003 Figs. 19-22) in " + args.world_name);
+      !s.ok()) {
+    fmt::print(stderr, "splam experiment: {}\n", s.message());
+    return kExitBadInput;
+  }
   fmt::print(
-      "{}wrote {}/{{table.md, summary.json, fig22.png, <figure>-map.png and <figure>-errors.png "
+      "{}wrote {}/{{table.md, summary.json, report.html, fig22.png, <figure>-map.png and "
+      "<figure>-errors.png "
       "(first seed) and <figure>-worst-map.png and -errors.png (largest position RMSE) for "
       "fig19, fig20, fig21, fig21-paper and graph, one directory per trial}}\n",
       table, args.out);

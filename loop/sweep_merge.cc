@@ -2,10 +2,13 @@
 
 #include <fmt/core.h>
 
+#include <functional>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -15,21 +18,16 @@
 #include "io/text.h"
 #include "io/trajectory.h"
 #include "kernel/version.h"
+#include "loop/run_html.h"
 
 namespace splam::loop {
 namespace {
 
-void Flatten(const nlohmann::json& j, const std::string& path, std::map<std::string, double>* out) {
-  if (j.is_object()) {
-    for (const auto& [key, value] : j.items()) {
-      if (path.empty() && (key == "options" || key == "seed")) continue;
-      Flatten(value, path.empty() ? key : path + "." + key, out);
-    }
-  } else if (j.is_boolean()) {
-    (*out)[path] = j.get<bool>() ? 1.0 : 0.0;
-  } else if (j.is_number()) {
-    (*out)[path] = j.get<double>();
-  }
+// "a, b" of a group's axis values; "all" without any.
+std::string GroupLabel(const MergedGroup& g) {
+  std::string label;
+  for (const auto& [axis, value] : g.values) label += (label.empty() ? "" : ", ") + value;
+  return label.empty() ? "all" : label;
 }
 
 std::string Number(double v) { return fmt::format("{:.6g}", v); }
@@ -43,7 +41,8 @@ std::string CsvField(const std::string& text) {
 
 // Strip plot of the figures against one axis: a panel per figure, a dot per successful cell at
 // its value of the axis (spread sideways by its index in the group), the medians in red.
-std::string AxisPlot(const MergedSweep& m, std::size_t axis, const std::string& path) {
+std::string AxisPlot(const MergedSweep& m, const std::vector<std::string>& figures,
+                     std::size_t axis, const std::string& path) {
   const io::GridAxis& a = m.plan.grid.axes[axis];
   io::PlotOptions options;
   options.title = fmt::format("figures against {} ({} cells)", a.name, m.cells.size());
@@ -51,7 +50,7 @@ std::string AxisPlot(const MergedSweep& m, std::size_t axis, const std::string& 
   options.panel_height_px = 130.0;
   for (const io::GridValue& v : a.values) options.x_labels.push_back(v.label);
   std::vector<io::PlotPanel> panels;
-  for (const std::string& figure : m.figures) {
+  for (const std::string& figure : figures) {
     io::PlotSeries dots{"cells", {0.15, 0.35, 0.75}, {}, {}, false, true};
     io::PlotSeries medians{"median", {0.85, 0.1, 0.1}, {}, {}, false, true};
     for (std::size_t k = 0; k < a.values.size(); ++k) {
@@ -109,19 +108,6 @@ void AddCellRows(const MergedSweep& m, io::HtmlPage* page) {
 }
 
 }  // namespace
-
-std::map<std::string, double> RunFigures(const std::string& run_dir) {
-  std::map<std::string, double> figures;
-  for (const char* name : {"report.json", "summary.json"}) {
-    std::ifstream in(run_dir + "/" + name);
-    if (!in) continue;
-    const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-    if (j.is_discarded()) continue;
-    Flatten(j, "", &figures);
-    break;
-  }
-  return figures;
-}
 
 FigureStats StatsOf(std::vector<double> values) {
   FigureStats s;
@@ -195,39 +181,49 @@ kernel::Result<MergedSweep> MergeSweep(const std::string& dir) {
 kernel::Result<std::vector<std::string>> WriteMergedSweep(const MergedSweep& m) {
   using R = kernel::Result<std::vector<std::string>>;
   std::vector<std::string> written;
-  // table.csv and table.md
-  std::string csv, md;
+  // table.csv: one row per group and figure.
+  std::string csv;
   for (const std::string& a : m.group_axes) csv += CsvField(a) + ",";
   csv += "figure,n,mean,std,median,min,max,cells,failed,not_run\n";
-  md = "| " + (m.group_axes.empty() ? std::string("group") : "");
-  for (std::size_t i = 0; i < m.group_axes.size(); ++i) md += (i ? " | " : "") + m.group_axes[i];
-  md += " | figure | n | mean +- std | median | min | max |\n|";
-  for (std::size_t i = 0; i < std::max<std::size_t>(1, m.group_axes.size()) + 6; ++i) md += "---|";
-  md += "\n";
-  std::vector<std::vector<io::HtmlCell>> html_rows;
   for (const MergedGroup& g : m.groups) {
     for (const std::string& figure : m.figures) {
       const FigureStats& s = g.figures.at(figure);
-      std::string prefix_csv, prefix_md;
-      std::vector<io::HtmlCell> row;
-      for (const auto& [axis, value] : g.values) {
-        prefix_csv += CsvField(value) + ",";
-        prefix_md += value + " | ";
-        row.emplace_back(value);
-      }
-      if (g.values.empty()) prefix_md = "all | ";
-      csv += prefix_csv + CsvField(figure) + "," + std::to_string(s.n) + "," + Number(s.mean) +
-             "," + Number(s.std) + "," + Number(s.median) + "," + Number(s.min) + "," +
-             Number(s.max) + "," + std::to_string(g.cells) + "," + std::to_string(g.failed) + "," +
-             std::to_string(g.missing) + "\n";
-      const std::string mean_std = s.n ? Number(s.mean) + " +- " + Number(s.std) : "-";
-      md += "| " + prefix_md + figure + " | " + std::to_string(s.n) + " | " + mean_std + " | " +
-            (s.n ? Number(s.median) + " | " + Number(s.min) + " | " + Number(s.max) : "- | - | -") +
-            " |\n";
-      row.insert(row.end(), {figure, std::to_string(s.n), mean_std, s.n ? Number(s.median) : "-",
-                             s.n ? Number(s.min) : "-", s.n ? Number(s.max) : "-"});
-      html_rows.push_back(std::move(row));
+      for (const auto& [axis, value] : g.values) csv += CsvField(value) + ",";
+      csv += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", CsvField(figure), s.n, Number(s.mean),
+                         Number(s.std), Number(s.median), Number(s.min), Number(s.max), g.cells,
+                         g.failed, g.missing);
     }
+  }
+  // table.md and the report's table: a row per figure, a column per group.
+  std::vector<std::string> header = {"figure"};
+  for (const MergedGroup& g : m.groups) header.push_back(GroupLabel(g));
+  std::vector<std::vector<io::HtmlCell>> rows;
+  std::string md = "|";
+  for (const std::string& h : header) md += " " + h + " |";
+  md += "\n|";
+  for (std::size_t i = 0; i < header.size(); ++i) md += "---|";
+  md += "\n";
+  const auto add_row = [&](const std::string& name,
+                           const std::function<std::string(const MergedGroup&)>& text) {
+    rows.push_back({name});
+    md += "| " + name + " |";
+    for (const MergedGroup& g : m.groups) {
+      rows.back().emplace_back(text(g));
+      md += " " + rows.back().back().text + " |";
+    }
+    md += "\n";
+  };
+  add_row("cells (failed, not run)", [](const MergedGroup& g) {
+    return fmt::format("{} ({}, {})", g.cells, g.failed, g.missing);
+  });
+  for (const std::string& figure : m.figures) {
+    add_row(figure, [&](const MergedGroup& g) {
+      const FigureStats& s = g.figures.at(figure);
+      return s.n == 0
+                 ? std::string("-")
+                 : fmt::format("{} +- {} (median {}; {} to {}; n {})", Number(s.mean),
+                               Number(s.std), Number(s.median), Number(s.min), Number(s.max), s.n);
+    });
   }
   for (const auto& [name, text] : {std::pair{"table.csv", &csv}, std::pair{"table.md", &md}}) {
     if (std::string error = io::WriteTextFile(m.dir + "/" + name, *text); !error.empty())
@@ -252,16 +248,29 @@ kernel::Result<std::vector<std::string>> WriteMergedSweep(const MergedSweep& m) 
       m.cells.size(), command, done, failed, not_run, axes.empty() ? "nothing" : axes,
       m.plan.grid.replicate.empty() ? "none" : m.plan.grid.replicate));
   page.Heading("Table");
-  std::vector<std::string> header = m.group_axes;
-  if (header.empty()) header.push_back("group");
-  if (m.group_axes.empty())
-    for (auto& row : html_rows) row.insert(row.begin(), io::HtmlCell("all"));
-  header.insert(header.end(), {"figure", "n", "mean +- std", "median", "min", "max"});
-  page.Table(header, html_rows);
+  page.Paragraph(
+      "Every figure the cells report, per group of the varied axes: mean +- standard "
+      "deviation (of the population), median, range and number of cells with it.");
+  page.Table(header, rows);
   page.Heading("Figures against each axis");
-  for (std::size_t a = 0; a < m.plan.grid.axes.size(); ++a) {
+  // The grid's figures, else those that differ between cells.
+  std::vector<std::string> plotted = m.plan.grid.figures;
+  for (const std::string& figure : m.plan.grid.figures.empty() ? m.figures : plotted) {
+    if (!m.plan.grid.figures.empty()) break;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const MergedCell& c : m.cells) {
+      if (const auto f = c.figures.find(figure); f != c.figures.end())
+        lo = std::min(lo, f->second), hi = std::max(hi, f->second);
+    }
+    if (lo < hi && figure != "cell.exit_status") plotted.push_back(figure);
+  }
+  page.Paragraph("A dot per cell (spread sideways within its value), the medians in red; " +
+                 std::to_string(plotted.size()) +
+                 " figures (the grid's `figures`, else those that "
+                 "differ between cells).");
+  for (std::size_t a = 0; a < m.plan.grid.axes.size() && !plotted.empty(); ++a) {
     const std::string path = m.dir + "/plot-" + std::to_string(a + 1) + ".svg";
-    if (std::string error = AxisPlot(m, a, path); !error.empty()) return R::Fail(error);
+    if (std::string error = AxisPlot(m, plotted, a, path); !error.empty()) return R::Fail(error);
     if (kernel::Status s = page.EmbedImage(path, "figures against " + m.plan.grid.axes[a].name);
         !s.ok())
       return R::Fail(s.message());

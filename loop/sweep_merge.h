@@ -15,11 +15,6 @@
 // report.
 namespace splam::loop {
 
-// The numbers a run reported: every number and boolean (as 0/1) of its report.json (else its
-// summary.json), named by its path ("trajectory_error.estimate.rmse_position_m"); lists, the
-// options and the seed left out. Empty when the run wrote neither file.
-std::map<std::string, double> RunFigures(const std::string& run_dir);
-
 struct FigureStats {
   int n = 0;
   double mean = 0, std = 0, median = 0, min = 0, max = 0;  // std: the population's

@@ -1,0 +1,153 @@
+#include "loop/sweep.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "io/trajectory.h"
+#include "loop/sweep_merge.h"
+
+namespace splam::loop {
+namespace {
+
+namespace fs = std::filesystem;
+
+io::Grid Parse(const std::string& text) {
+  io::Result<io::Grid> g = io::ParseGrid(text, "grid.yaml");
+  EXPECT_TRUE(g.ok()) << g.error;
+  return g.ok() ? *g.value : io::Grid{};
+}
+
+TEST(SweepCells, EveryCombinationNamedAfterItsValues) {
+  const io::Grid grid = Parse(R"(command: explore
+options: {world: office, explorer: reg, trace: true, sonar: false}
+set: {exploration.alpha: -20}
+axes:
+  explorer: [reg, srt]
+  seed: {from: 1, to: 3}
+  set.exploration.alpha: [-25]
+  world: [/some/where/floor plan.png]
+)");
+  const std::vector<SweepCell> cells = GridCells(grid);
+  ASSERT_EQ(cells.size(), 6u);  // 2 x 3 x 1 x 1, the last axis fastest
+  EXPECT_EQ(cells[0].name, "explorer-reg_seed-1_alpha--25_world-floor-plan");
+  EXPECT_EQ(cells[5].name, "explorer-srt_seed-3_alpha--25_world-floor-plan");
+  EXPECT_EQ(cells[4].values[1], (std::pair<std::string, std::string>{"seed", "2"}));
+  // A fixed option the axes also set is given once, with the axis's value; `true` is a flag and
+  // `false` leaves the option out.
+  EXPECT_EQ(cells[5].args,
+            (std::vector<std::string>{"explore", "--trace", "--explorer", "srt", "--seed", "3",
+                                      "--set", "exploration.alpha=-25", "--world",
+                                      "/some/where/floor plan.png"}));
+  // Without axes: one cell.
+  const std::vector<SweepCell> single = GridCells(Parse("command: slam\n"));
+  ASSERT_EQ(single.size(), 1u);
+  EXPECT_EQ(single[0].name, "single");
+  // Values whose names clash stay apart.
+  const std::vector<SweepCell> clash = GridCells(Parse("command: slam\naxes: {log: [a/x.clf, b/x.clf]}\n"));
+  ASSERT_EQ(clash.size(), 2u);
+  EXPECT_NE(clash[0].name, clash[1].name);
+}
+
+TEST(SweepStats, MedianAndPopulationStd) {
+  FigureStats s = StatsOf({4.0, 1.0, 3.0, 2.0});
+  EXPECT_EQ(s.n, 4);
+  EXPECT_DOUBLE_EQ(s.mean, 2.5);
+  EXPECT_DOUBLE_EQ(s.median, 2.5);
+  EXPECT_DOUBLE_EQ(s.std, std::sqrt(1.25));
+  EXPECT_DOUBLE_EQ(s.min, 1.0);
+  EXPECT_DOUBLE_EQ(s.max, 4.0);
+  s = StatsOf({5.0, 1.0, 2.0});
+  EXPECT_DOUBLE_EQ(s.median, 2.0);
+  EXPECT_EQ(StatsOf({}).n, 0);
+}
+
+TEST(SweepRun, RunsResumesRecordsFailuresAndMerges) {
+  const std::string dir = ::testing::TempDir() + "/splam_sweep_run";
+  fs::remove_all(dir);
+  // Two worlds, one that does not exist, times two seeds: the failures are recorded, the others
+  // still run.
+  const io::Grid grid = Parse(R"(command: simulate
+options: {max-steps: 40}
+axes:
+  world: [corridor, no_such_world.yaml]
+  seed: [1, 2]
+)");
+  ASSERT_TRUE(WriteSweepPlan(dir, grid).ok());
+  SweepRunOptions options;
+  options.splam_binary = SPLAM_BINARY;
+  options.jobs = 2;
+  std::vector<std::string> events;
+  options.progress = [&](const SweepProgress& p) {
+    EXPECT_EQ(p.total, 4);
+    EXPECT_LE(p.running, 2);
+    if (!p.event.empty()) events.push_back(p.event);
+  };
+  kernel::Result<SweepRunSummary> run = RunSweepLocally(dir, options);
+  ASSERT_TRUE(run.ok()) << run.error;
+  EXPECT_EQ(run.value->done, 2);
+  EXPECT_EQ(run.value->failed, 2);
+  EXPECT_EQ(run.value->skipped, 0);
+  EXPECT_EQ(events.size(), 4u);
+  const std::optional<CellRecord> bad =
+      ReadCellRecord(dir + "/cells/world-no-such-world.yaml_seed-1");
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->exit_status, 2);
+  EXPECT_NE(bad->message.find("no_such_world.yaml"), std::string::npos) << bad->message;
+  const std::optional<CellRecord> good = ReadCellRecord(dir + "/cells/world-corridor_seed-2");
+  ASSERT_TRUE(good);
+  // --max-steps cut the route short: exit 3, a result that stopped early, counted as done.
+  EXPECT_EQ(good->exit_status, 3);
+  EXPECT_TRUE(good->ok());
+  EXPECT_TRUE(fs::exists(dir + "/cells/world-corridor_seed-2/log.clf"));
+
+  kernel::Result<SweepStatus> status = ReadSweepStatus(dir);
+  ASSERT_TRUE(status.ok());
+  EXPECT_EQ(status.value->done, 2);
+  EXPECT_EQ(status.value->failed, 2);
+  ASSERT_EQ(status.value->failures.size(), 2u);
+
+  // Again: the finished cells are skipped, the failed ones run again.
+  run = RunSweepLocally(dir, options);
+  ASSERT_TRUE(run.ok());
+  EXPECT_EQ(run.value->skipped, 2);
+  EXPECT_EQ(run.value->failed, 2);
+
+  // The same directory does not take another grid.
+  io::Grid other = grid;
+  other.axes[1].values.pop_back();
+  EXPECT_NE(WriteSweepPlan(dir, other).message().find("holds the cells of another grid"),
+            std::string::npos);
+
+  // Merge: grouped by world (seed is the replicate); the corridor's two seeds are averaged.
+  kernel::Result<MergedSweep> merged = MergeSweep(dir);
+  ASSERT_TRUE(merged.ok()) << merged.error;
+  ASSERT_EQ(merged.value->groups.size(), 2u);
+  const MergedGroup& corridor = merged.value->groups[0];
+  EXPECT_EQ(corridor.values[0].second, "corridor");
+  EXPECT_EQ(corridor.cells, 2);
+  EXPECT_EQ(merged.value->groups[1].failed, 2);
+  const auto figures = RunFigures(dir + "/cells/world-corridor_seed-1");
+  ASSERT_FALSE(figures.empty());
+  const std::string figure = figures.begin()->first;
+  const double a = figures.at(figure);
+  const double b = RunFigures(dir + "/cells/world-corridor_seed-2").at(figure);
+  EXPECT_EQ(corridor.figures.at(figure).n, 2);
+  EXPECT_DOUBLE_EQ(corridor.figures.at(figure).mean, 0.5 * (a + b));
+  kernel::Result<std::vector<std::string>> written = WriteMergedSweep(*merged.value);
+  ASSERT_TRUE(written.ok()) << written.error;
+  std::string csv;
+  ASSERT_EQ(io::ReadTextFile(dir + "/table.csv", &csv), "");
+  EXPECT_EQ(csv.rfind("world,figure,n,mean,std,median,min,max,cells,failed,not_run\n", 0), 0u);
+  EXPECT_NE(csv.find("\ncorridor," + figure + ",2,"), std::string::npos) << csv;
+  std::string html;
+  ASSERT_EQ(io::ReadTextFile(dir + "/report.html", &html), "");
+  EXPECT_NE(html.find("data:image/svg+xml;base64,"), std::string::npos);
+  EXPECT_NE(html.find("cells/world-corridor_seed-1"), std::string::npos);
+  EXPECT_EQ(html.find("http://"), std::string::npos);
+  EXPECT_EQ(html.find("https://"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace splam::loop
