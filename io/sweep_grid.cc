@@ -211,8 +211,12 @@ std::string GridToYaml(const Grid& grid) {
     out << YAML::EndSeq;
   }
   out << YAML::EndMap;
-  out << YAML::Key << "replicate" << YAML::Value
-      << (grid.replicate.empty() ? YAML::Node() : YAML::Node(grid.replicate));
+  out << YAML::Key << "replicate" << YAML::Value;
+  if (grid.replicate.empty()) {
+    out << YAML::Null;
+  } else {
+    out << grid.replicate;
+  }
   if (!grid.figures.empty()) out << YAML::Key << "figures" << YAML::Value << grid.figures;
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";

@@ -12,6 +12,7 @@ packages=(
   librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev python3
   python3-ament-package
   clang libclang-rt-14-dev
+  slurm-wlm munge chromium
 )
 
 missing=()

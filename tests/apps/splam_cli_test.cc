@@ -20,49 +20,13 @@
 #include "io/simulation_log.h"
 #include "io/text.h"
 #include "io/trajectory.h"
+#include "tests/apps/cli_util.h"
 
 namespace splam {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Output {
-  int status = -1;
-  std::string text;  // stdout and stderr
-};
-
-// Runs `splam args` (in directory `cwd` when given) and collects its output and exit status.
-Output Splam(const std::string& args, const fs::path& cwd = {}) {
-  const std::string command = (cwd.empty() ? "" : "cd '" + cwd.string() + "' && ") +
-                              std::string(SPLAM_BINARY) + " " + args + " 2>&1";
-  Output out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return out;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
-    out.text.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  out.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return out;
-}
-
-fs::path Temp(const std::string& name) {
-  const fs::path p = fs::path(::testing::TempDir()) / ("splam_cli_" + name);
-  fs::remove_all(p);
-  return p;
-}
-
-// Writes `text` to dir/name and returns the path.
-std::string WriteIn(const fs::path& dir, const std::string& name, const std::string& text) {
-  EXPECT_EQ(io::WriteTextFile((dir / name).string(), text), "");
-  return (dir / name).string();
-}
-
-std::string Slurp(const fs::path& p) {
-  std::string text;
-  EXPECT_EQ(io::ReadTextFile(p.string(), &text), "") << p;
-  return text;
-}
+using namespace cli_test;  // NOLINT: the helpers of every CLI test
 
 TEST(SplamCli, SimulateComplexWritesAReproducibleRun) {
   const fs::path a = Temp("sim_a"), b = Temp("sim_b"), c = Temp("sim_c");
@@ -408,23 +372,6 @@ TEST(SplamCli, WorldsThatCannotBeRunAreRefusedAndAFloorPlanTakesAStart) {
   EXPECT_NE(r.status, 2) << r.text;
   const auto report = nlohmann::json::parse(Slurp(dir / "e" / "report.json"));
   EXPECT_GT(report["coverage_fraction"].get<double>(), 0.9) << r.text;
-}
-
-// Runs splam with `args` (output discarded), sends it SIGINT after `after`, and returns its exit
-// status (-1 when a signal ended it).
-int SplamInterrupted(const std::string& args, std::chrono::milliseconds after) {
-  const std::string command =
-      std::string("exec ") + SPLAM_BINARY + " " + args + " > /dev/null 2>&1";
-  const pid_t pid = fork();
-  if (pid == 0) {
-    execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  std::this_thread::sleep_for(after);
-  kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 // Issue 19: work already done is written. A malformed line halfway through a log: the scans

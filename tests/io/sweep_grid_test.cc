@@ -35,11 +35,13 @@ TEST(SweepGrid, ReadsCommandOptionsAxesAndRanges) {
   EXPECT_EQ(g.axes[0].name, "strategy");
   ASSERT_EQ(g.axes[0].values.size(), 2u);
   EXPECT_EQ(g.axes[0].values[1].label, "paper");
-  EXPECT_EQ(g.axes[0].values[1].options[1], (GridOption{"topological.prediction", "odometry", true}));
+  EXPECT_EQ(g.axes[0].values[1].options[1],
+            (GridOption{"topological.prediction", "odometry", true}));
   ASSERT_EQ(g.axes[1].values.size(), 3u);
   EXPECT_EQ(g.axes[1].values[2].label, "3");
   EXPECT_EQ(g.axes[1].values[2].options[0], (GridOption{"seed", "3", false}));
-  EXPECT_EQ(g.axes[2].values[0].options[0], (GridOption{"exploration.min_frontier_m", "0.3", true}));
+  EXPECT_EQ(g.axes[2].values[0].options[0],
+            (GridOption{"exploration.min_frontier_m", "0.3", true}));
   EXPECT_EQ(g.replicate, "seed");
   EXPECT_EQ(g.figures, std::vector<std::string>{"coverage_fraction"});
 }
@@ -62,6 +64,13 @@ TEST(SweepGrid, WritesWhatItReadsBack) {
   const Result<Grid> again = ParseGrid(GridToYaml(*read.value), "again.yaml");
   ASSERT_TRUE(again.ok()) << again.error << "\n" << GridToYaml(*read.value);
   EXPECT_EQ(*again.value, *read.value) << GridToYaml(*read.value);
+  // No replicate, figures after it.
+  const Result<Grid> plain =
+      ParseGrid("command: slam\naxes: {method: [graph]}\nfigures: [scans]\n", "plain.yaml");
+  ASSERT_TRUE(plain.ok());
+  const Result<Grid> plain_again = ParseGrid(GridToYaml(*plain.value), "again.yaml");
+  ASSERT_TRUE(plain_again.ok()) << plain_again.error << "\n" << GridToYaml(*plain.value);
+  EXPECT_EQ(*plain_again.value, *plain.value);
 }
 
 TEST(SweepGrid, ProblemsNameTheFileAndLine) {
@@ -97,8 +106,7 @@ TEST(SweepGrid, ProblemsNameTheFileAndLine) {
 }
 
 TEST(Html, EscapesAndEncodes) {
-  EXPECT_EQ(HtmlEscape("<a href=\"x\">&'</a>"),
-            "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;");
+  EXPECT_EQ(HtmlEscape("<a href=\"x\">&'</a>"), "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;");
   // RFC 4648 test vectors.
   EXPECT_EQ(Base64(""), "");
   EXPECT_EQ(Base64("f"), "Zg==");

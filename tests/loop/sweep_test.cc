@@ -36,16 +36,16 @@ axes:
   EXPECT_EQ(cells[4].values[1], (std::pair<std::string, std::string>{"seed", "2"}));
   // A fixed option the axes also set is given once, with the axis's value; `true` is a flag and
   // `false` leaves the option out.
-  EXPECT_EQ(cells[5].args,
-            (std::vector<std::string>{"explore", "--trace", "--explorer", "srt", "--seed", "3",
-                                      "--set", "exploration.alpha=-25", "--world",
-                                      "/some/where/floor plan.png"}));
+  EXPECT_EQ(cells[5].args, (std::vector<std::string>{
+                               "explore", "--trace", "--explorer", "srt", "--seed", "3", "--set",
+                               "exploration.alpha=-25", "--world", "/some/where/floor plan.png"}));
   // Without axes: one cell.
   const std::vector<SweepCell> single = GridCells(Parse("command: slam\n"));
   ASSERT_EQ(single.size(), 1u);
   EXPECT_EQ(single[0].name, "single");
   // Values whose names clash stay apart.
-  const std::vector<SweepCell> clash = GridCells(Parse("command: slam\naxes: {log: [a/x.clf, b/x.clf]}\n"));
+  const std::vector<SweepCell> clash =
+      GridCells(Parse("command: slam\naxes: {log: [a/x.clf, b/x.clf]}\n"));
   ASSERT_EQ(clash.size(), 2u);
   EXPECT_NE(clash[0].name, clash[1].name);
 }

@@ -1,0 +1,80 @@
+// Helpers of the end-to-end tests of the `splam` binary (SPLAM_BINARY).
+#ifndef SPLAM_TESTS_APPS_CLI_UTIL_H_
+#define SPLAM_TESTS_APPS_CLI_UTIL_H_
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <thread>
+
+#include "io/trajectory.h"
+
+namespace splam::cli_test {
+
+namespace fs = std::filesystem;
+
+struct Output {
+  int status = -1;
+  std::string text;  // stdout and stderr
+};
+
+// Runs `splam args` (in directory `cwd` when given) and collects its output and exit status.
+inline Output Splam(const std::string& args, const fs::path& cwd = {}) {
+  const std::string command = (cwd.empty() ? "" : "cd '" + cwd.string() + "' && ") +
+                              std::string(SPLAM_BINARY) + " " + args + " 2>&1";
+  Output out;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return out;
+  std::array<char, 4096> buffer;
+  while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
+    out.text.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  out.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return out;
+}
+
+inline fs::path Temp(const std::string& name) {
+  const fs::path p = fs::path(::testing::TempDir()) / ("splam_cli_" + name);
+  fs::remove_all(p);
+  return p;
+}
+
+// Writes `text` to dir/name and returns the path.
+inline std::string WriteIn(const fs::path& dir, const std::string& name, const std::string& text) {
+  EXPECT_EQ(io::WriteTextFile((dir / name).string(), text), "");
+  return (dir / name).string();
+}
+
+inline std::string Slurp(const fs::path& p) {
+  std::string text;
+  EXPECT_EQ(io::ReadTextFile(p.string(), &text), "") << p;
+  return text;
+}
+
+// Runs splam with `args` (output discarded), sends it SIGINT after `after`, and returns its exit
+// status (-1 when a signal ended it).
+inline int SplamInterrupted(const std::string& args, std::chrono::milliseconds after) {
+  const std::string command =
+      std::string("exec ") + SPLAM_BINARY + " " + args + " > /dev/null 2>&1";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(after);
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace splam::cli_test
+
+#endif  // SPLAM_TESTS_APPS_CLI_UTIL_H_
