@@ -21,6 +21,9 @@ void AddConfigCommand(CLI::App* app, int* exit_code);
 void AddConvertCommand(CLI::App* app, int* exit_code);
 void AddSweepCommand(CLI::App* app, int* exit_code);
 
+// The path of this splam binary (sweeps and experiments run their cells with it).
+std::string SplamBinary();
+
 // Exit statuses of every command: 0 done, 2 bad input, 3 stopped early (results written).
 using loop::kExitBadInput;
 using loop::kExitIncomplete;

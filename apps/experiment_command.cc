@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include "apps/commands.h"
+#include "apps/interrupt.h"
 #include "io/world_file.h"
 #include "loop/bspline_experiment.h"
 #include "loop/corridor_experiment.h"
@@ -34,6 +35,7 @@ struct ExperimentArgs {
   double corner_floor_m = 0.01;
   double odometry_floor = 1e-4;
   double line_floor_scale = 1.0;  // scales the line floors of 1 mm and 0.5 mrad
+  int jobs = 0;                   // splam: trials at once (0: one per core)
 };
 
 int RunCorridorLines(const ExperimentArgs& args) {
@@ -94,6 +96,9 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
                   "splam: metres per pixel of a floor-plan image")
       ->check(FloorPlanResolution())
       ->capture_default_str();
+  cmd->add_option("--jobs", args->jobs,
+                  "splam and exploration: trials run at once (default: one per core)")
+      ->check(FinitePositive());
   cmd->add_option("--odometry-noise", args->odometry_noise_scale,
                   "complex-bspline: scale of the odometry noise (simulated and modelled)")
       ->check(FinitePositive())
@@ -127,12 +132,21 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       }
       s.world = std::move(*world.value);
       s.world_name = args->world;
+      s.resolution_m_per_px = args->resolution_m_per_px;
+      s.splam_binary = SplamBinary();
+      s.jobs = args->jobs;
+      CatchInterrupts();
+      s.stop = [] { return Interrupted(); };
       *exit_code = loop::RunSplamExperiment(s);
       return;
     }
     if (args->name == "exploration") {
-      *exit_code =
-          loop::RunExplorationExperiment(WithCommonArgs<loop::ExplorationExperimentArgs>(*args));
+      loop::ExplorationExperimentArgs e = WithCommonArgs<loop::ExplorationExperimentArgs>(*args);
+      e.splam_binary = SplamBinary();
+      e.jobs = args->jobs;
+      CatchInterrupts();
+      e.stop = [] { return Interrupted(); };
+      *exit_code = loop::RunExplorationExperiment(e);
       return;
     }
     if (args->name == "complex-bspline") {

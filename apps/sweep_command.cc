@@ -2,9 +2,7 @@
 //   splam sweep GRID.yaml [--jobs N] [--out DIR] [--slurm ...]
 //   splam sweep status DIR | splam sweep merge DIR | splam sweep cell DIR INDEX
 #include <fmt/core.h>
-#include <unistd.h>
 
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -25,37 +23,6 @@ struct SweepArgs {
   loop::SlurmOptions slurm_options;
   std::vector<int> cells;  // sweep cell
 };
-
-// The binary of this process: cells run the same splam.
-std::string SelfBinary() {
-  std::error_code ec;
-  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? "splam" : self.string();
-}
-
-std::string Duration(double s) {
-  if (s < 0) return "?";
-  const long total = std::lround(s);
-  return total >= 3600 ? fmt::format("{}h{:02}m", total / 3600, total / 60 % 60)
-                       : fmt::format("{}m{:02}s", total / 60, total % 60);
-}
-
-// A status line rewritten in place on a terminal; plain lines, one per finished cell, otherwise.
-std::function<void(const loop::SweepProgress&)> ProgressPrinter() {
-  const bool terminal = isatty(fileno(stdout)) != 0;
-  return [terminal](const loop::SweepProgress& p) {
-    const std::string status =
-        fmt::format("[{}/{} done, {} failed, {} running, {} skipped; {} left]", p.done + p.skipped,
-                    p.total, p.failed, p.running, p.skipped, Duration(p.eta_s));
-    if (terminal) {
-      if (!p.event.empty()) fmt::print("\r\033[K{}\n", p.event);
-      fmt::print("\r\033[K{}", status);
-    } else if (!p.event.empty()) {
-      fmt::print("{} {}\n", status, p.event);
-    }
-    std::fflush(stdout);
-  };
-}
 
 int Merge(const std::string& dir) {
   kernel::Result<loop::MergedSweep> merged = loop::MergeSweep(dir);
@@ -103,7 +70,7 @@ int RunCells(const SweepArgs& args) {
       return kExitBadInput;
     }
     const loop::SweepCell& cell = plan.value->cells[static_cast<std::size_t>(index)];
-    const loop::CellRecord r = loop::RunCell(args.dir, cell, SelfBinary());
+    const loop::CellRecord r = loop::RunCell(args.dir, cell, SplamBinary());
     fmt::print("{}: exit {} in {:.1f} s{}\n", cell.name, r.exit_status, r.wall_s,
                r.ok() ? "" : ": " + r.message);
     if (!r.ok()) worst = r.exit_status;
@@ -132,7 +99,7 @@ int RunGrid(const SweepArgs& args) {
       if (!r || !r->ok()) pending.push_back(static_cast<int>(i));
     }
     kernel::Result<std::string> job =
-        loop::SubmitSweepToSlurm(dir, SelfBinary(), pending, args.slurm_options);
+        loop::SubmitSweepToSlurm(dir, SplamBinary(), pending, args.slurm_options);
     if (!job.ok()) {
       fmt::print(stderr, "splam sweep: {}\n", job.error);
       return kExitBadInput;
@@ -145,10 +112,10 @@ int RunGrid(const SweepArgs& args) {
   }
   CatchInterrupts();
   loop::SweepRunOptions options;
-  options.splam_binary = SelfBinary();
+  options.splam_binary = SplamBinary();
   options.jobs = args.jobs;
   options.stop = [] { return Interrupted(); };
-  options.progress = ProgressPrinter();
+  options.progress = loop::PrintSweepProgress();
   kernel::Result<loop::SweepRunSummary> run = loop::RunSweepLocally(dir, options);
   if (!run.ok()) {
     fmt::print(stderr, "splam sweep: {}\n", run.error);
@@ -169,6 +136,12 @@ int RunGrid(const SweepArgs& args) {
 }
 
 }  // namespace
+
+std::string SplamBinary() {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? "splam" : self.string();
+}
 
 void AddSweepCommand(CLI::App* app, int* exit_code) {
   auto args = std::make_shared<SweepArgs>();

@@ -8,9 +8,10 @@
 
 #include "estimation/metrics.h"
 #include "io/plot.h"
+#include "io/text.h"
 #include "loop/exit_status.h"
-#include "loop/exploration_report.h"
 #include "loop/run_html.h"
+#include "loop/sweep.h"
 #include "sim/builtin_worlds.h"
 
 namespace splam::loop {
@@ -18,32 +19,80 @@ namespace {
 
 struct Metric {
   std::string name, unit;
-  double (*get)(const ExploreOutcome&);
+  double (*get)(const nlohmann::json& report);
 };
 
 const std::vector<Metric>& Metrics() {
   static const std::vector<Metric> metrics = {
-      {"nodes", "",
-       [](const ExploreOutcome& o) {
-         return static_cast<double>(boost::num_vertices(o.run.graph));
-       }},
-      {"distance", "m", [](const ExploreOutcome& o) { return o.run.distance_m; }},
-      {"time", "s", [](const ExploreOutcome& o) { return o.run.time_s; }},
-      {"coverage", "%", [](const ExploreOutcome& o) { return 100.0 * o.coverage(); }},
+      {"nodes", "", [](const nlohmann::json& r) { return r["nodes"].get<double>(); }},
+      {"distance", "m", [](const nlohmann::json& r) { return r["distance_m"].get<double>(); }},
+      {"time", "s", [](const nlohmann::json& r) { return r["time_s"].get<double>(); }},
+      {"coverage", "%",
+       [](const nlohmann::json& r) { return 100.0 * r["coverage_fraction"].get<double>(); }},
   };
   return metrics;
 }
 
+const std::vector<std::string>& Worlds() {
+  static const std::vector<std::string> worlds = {"office", "office-long", "office-doors",
+                                                  "complex"};
+  return worlds;
+}
+const std::vector<std::string>& Explorers() {
+  static const std::vector<std::string> explorers = {"srt", "reg"};
+  return explorers;
+}
+
+std::string TrialDir(const std::string& out, const std::string& world, const std::string& explorer,
+                     std::uint64_t seed) {
+  return fmt::format("{}/cells/world-{}_explorer-{}_seed-{}", out, world, explorer, seed);
+}
+
 }  // namespace
 
+io::Grid ExplorationExperimentGrid(const ExplorationExperimentArgs& args) {
+  io::Grid grid;
+  grid.command = {"explore"};
+  grid.options = {{"localization", "ground-truth", false}};  // Fig. 18 studies exploration alone
+  if (args.alpha != ExplorationExperimentArgs().alpha)
+    grid.options.push_back({"exploration.alpha", io::FormatDouble(args.alpha), true});
+  io::GridAxis worlds{"world", {}}, explorers{"explorer", {}}, seeds{"seed", {}};
+  for (const std::string& w : Worlds()) worlds.values.push_back({w, {{"world", w, false}}});
+  for (const std::string& e : Explorers())
+    explorers.values.push_back({e, {{"explorer", e, false}}});
+  for (int i = 0; i < args.runs; ++i) {
+    const std::string seed = std::to_string(args.seed + static_cast<std::uint64_t>(i));
+    seeds.values.push_back({seed, {{"seed", seed, false}}});
+  }
+  grid.axes = {std::move(worlds), std::move(explorers), std::move(seeds)};
+  grid.figures = {"nodes", "distance_m", "time_s", "coverage_fraction", "wall_s"};
+  return grid;
+}
+
 int RunExplorationExperiment(const ExplorationExperimentArgs& args) {
-  std::error_code ec;
-  std::filesystem::create_directories(args.out, ec);
-  if (ec) {
-    fmt::print(stderr, "splam experiment: cannot create {}: {}\n", args.out, ec.message());
+  if (kernel::Status s = WriteSweepPlan(args.out, ExplorationExperimentGrid(args)); !s.ok()) {
+    fmt::print(stderr, "splam experiment: {}\n", s.message());
     return kExitBadInput;
   }
-  const std::vector<std::string> explorers = {"srt", "reg"};
+  SweepRunOptions run_options;
+  run_options.splam_binary = args.splam_binary;
+  run_options.jobs = args.jobs;
+  run_options.stop = args.stop;
+  run_options.progress = PrintSweepProgress();
+  const kernel::Result<SweepRunSummary> run = RunSweepLocally(args.out, run_options);
+  if (!run.ok()) {
+    fmt::print(stderr, "splam experiment: {}\n", run.error);
+    return kExitBadInput;
+  }
+  fmt::print("\n{} trials: {} run now in {:.1f} s wall for {:.1f} s of trials, {} done before\n",
+             run.value->cells, run.value->done + run.value->failed, run.value->wall_s,
+             run.value->cells_wall_s, run.value->skipped);
+  if (run.value->interrupted) {
+    fmt::print("interrupted: the {} trials left run when the same command is given again\n",
+               run.value->left);
+    return kExitIncomplete;
+  }
+  const std::vector<std::string>& explorers = Explorers();
   std::string table = fmt::format(
       "# SRT vs REG (paper 003 Fig. 18): {} trials per world, seeds {}-{}, ground-truth "
       "localisation, alpha {}\n\n",
@@ -52,43 +101,27 @@ int RunExplorationExperiment(const ExplorationExperimentArgs& args) {
   table += "|---|---|---|---|---|\n";
   nlohmann::json summary;
   bool all_explored = true;
-  for (const std::string world_name : {"office", "office-long", "office-doors", "complex"}) {
-    const sim::World world = *sim::BuiltinWorld(world_name);
-    std::vector<std::vector<ExploreOutcome>> outcomes(explorers.size());
+  for (const std::string& world_name : Worlds()) {
+    std::vector<std::vector<nlohmann::json>> outcomes(explorers.size());
     for (std::size_t e = 0; e < explorers.size(); ++e) {
       for (int i = 0; i < args.runs; ++i) {
-        ExploreSetup setup;
-        setup.localization = "ground-truth";  // Fig. 18 studies exploration alone
-        setup.explorer = explorers[e];
-        setup.seed = args.seed + static_cast<std::uint64_t>(i);
-        setup.options.alpha = args.alpha;
-        ExploreOutcome outcome = RunExploration(world, setup);
-        if (!outcome.error.empty()) {
-          fmt::print(stderr, "splam experiment: {}\n", outcome.error);
+        const std::uint64_t seed = args.seed + static_cast<std::uint64_t>(i);
+        const std::string dir = TrialDir(args.out, world_name, explorers[e], seed);
+        const std::optional<CellRecord> record = ReadCellRecord(dir);
+        std::ifstream in(dir + "/report.json");
+        nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
+        if (!record || !record->ok() || report.is_discarded()) {
+          fmt::print(stderr, "splam experiment: the trial in {} failed: {}\n", dir,
+                     record ? record->message : "no result");
           return kExitBadInput;
         }
-        all_explored &= outcome.run.termination == exploration::Termination::kExplored;
-        const std::string dir =
-            fmt::format("{}/{}-{}-seed{}", args.out, world_name, explorers[e], setup.seed);
-        std::filesystem::create_directories(dir, ec);
-        std::ofstream(dir + "/report.json")
-            << ExplorationReport(world, setup, outcome).dump(2) << "\n";
-        if (i == 0) {
-          if (std::string error = SaveExplorationPicture(
-                  world, outcome,
-                  fmt::format("{} | {} | seed {}", world_name, explorers[e], setup.seed),
-                  {dir + "/graph.svg", dir + "/graph.png"});
-              !error.empty()) {
-            fmt::print(stderr, "splam experiment: {}\n", error);
-            return kExitBadInput;
-          }
-        }
+        all_explored &= report["termination"] == "explored";
         fmt::print("{} {} seed {}: {} nodes, {:.1f} m, {:.1f} s, {:.1f} % explored, {}\n",
-                   world_name, explorers[e], setup.seed, boost::num_vertices(outcome.run.graph),
-                   outcome.run.distance_m, outcome.run.time_s, 100.0 * outcome.coverage(),
-                   exploration::TerminationName(outcome.run.termination));
-        std::fflush(stdout);
-        outcomes[e].push_back(std::move(outcome));
+                   world_name, explorers[e], seed, report["nodes"].get<int>(),
+                   report["distance_m"].get<double>(), report["time_s"].get<double>(),
+                   100.0 * report["coverage_fraction"].get<double>(),
+                   report["termination"].get<std::string>());
+        outcomes[e].push_back(std::move(report));
       }
     }
     std::vector<io::PlotPanel> panels;

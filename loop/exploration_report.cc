@@ -73,7 +73,8 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
     std::size_t control_points = 0;
     for (const estimation::MapSpline& s : splines)
       control_points += s.spline.control_points().size();
-    nlohmann::json map = {{"description", slam->MapDescription()}};
+    // size: control points of spline maps, landmarks of line maps (SlamMethod::MapSize).
+    nlohmann::json map = {{"description", slam->MapDescription()}, {"size", slam->MapSize()}};
     if (!splines.empty()) {
       map["curves"] = splines.size();
       map["control_points"] = control_points;

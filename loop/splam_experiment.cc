@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "estimation/metrics.h"
-#include "io/config.h"
 #include "io/plot.h"
+#include "io/text.h"
 #include "kernel/angle.h"
 #include "loop/exit_status.h"
-#include "loop/exploration_report.h"
 #include "loop/run_html.h"
+#include "loop/sweep.h"
 #include "sim/builtin_worlds.h"
 
 namespace splam::loop {
@@ -23,7 +23,7 @@ namespace {
 struct Strategy {
   std::string figure, explorer, method, label;
   io::Rgb color;
-  // Options of the method's defaults changed, "key=value" (empty: none).
+  // Options of the method's defaults changed, "key=value" under the method's name (empty: none).
   std::vector<std::string> set;
 };
 
@@ -37,7 +37,7 @@ const std::vector<Strategy>& Strategies() {
        "topological",
        "REG + topological (paper)",
        {0.35, 0.65, 0.95},
-       {"prediction=odometry", "correction=paper"}},
+       {"topological.prediction=odometry", "topological.correction=paper"}},
       {"graph", "reg", "graph", "REG + graph", {0.55, 0.15, 0.60}, {}},
   };
   return strategies;
@@ -56,9 +56,9 @@ struct Trial {
   std::string map;  // the method's description
 };
 
-Trial TrialOf(const nlohmann::json& report, const ExploreOutcome& outcome) {
+Trial TrialOf(const nlohmann::json& report) {
   Trial t;
-  t.explored = outcome.run.termination == exploration::Termination::kExplored;
+  t.explored = report["termination"] == "explored";
   const nlohmann::json& e = report["trajectory_error"];
   t.rmse_m = e["estimate"]["rmse_position_m"];
   t.max_error_m = e["estimate"]["max_position_m"];
@@ -68,13 +68,13 @@ Trial TrialOf(const nlohmann::json& report, const ExploreOutcome& outcome) {
   const nlohmann::json& slam = report["slam"];
   t.healthy = slam["healthy"];
   t.map = slam["map"]["description"];
-  t.map_size = static_cast<double>(outcome.slam_method()->MapSize());
-  t.map_curves = static_cast<double>(outcome.slam_method()->MapCurves());
+  t.map_size = slam["map"]["size"];
+  t.map_curves = slam["map"].value("curves", 0.0);
   t.map_accuracy_m = slam["map"].value("mean_distance_to_obstacles_m", -1.0);
   t.curves_per_obstacle = slam["map"].value("curves_per_obstacle", 0.0);
   t.ms_per_step = slam["ms_per_step"]["median"];
-  t.wall_s = outcome.wall_s;
-  t.coverage_percent = 100.0 * outcome.coverage();
+  t.wall_s = report["wall_s"];
+  t.coverage_percent = 100.0 * report["coverage_fraction"].get<double>();
   return t;
 }
 
@@ -108,11 +108,9 @@ const std::vector<std::pair<std::string, double Trial::*>>& SummaryFields() {
   return fields;
 }
 
-// A trial's run directory: <out>/<explorer>-<method>[-<value of the last changed option>]-seed<N>.
+// A trial's run directory: the cell of its strategy and seed.
 std::string TrialDir(const std::string& out, const Strategy& strategy, std::uint64_t seed) {
-  const std::vector<std::string>& set = strategy.set;
-  return fmt::format("{}/{}-{}{}-seed{}", out, strategy.explorer, strategy.method,
-                     set.empty() ? "" : "-" + set.back().substr(set.back().find('=') + 1), seed);
+  return fmt::format("{}/cells/strategy-{}_seed-{}", out, strategy.figure, seed);
 }
 
 // Copies a trial's map and error plots to <out>/<prefix>-map.svg/png and -errors.svg/png.
@@ -129,12 +127,64 @@ std::string CopyPictures(const std::string& dir, const std::string& out,
 
 }  // namespace
 
+io::Grid SplamExperimentGrid(const SplamExperimentArgs& args) {
+  io::Grid grid;
+  grid.command = {"explore"};
+  grid.options = {{"world", args.world_name, false}};
+  if (args.resolution_m_per_px != SplamExperimentArgs().resolution_m_per_px)
+    grid.options.push_back({"resolution", io::FormatDouble(args.resolution_m_per_px), false});
+  io::GridAxis strategy{"strategy", {}};
+  for (const Strategy& s : Strategies()) {
+    io::GridValue value{s.figure,
+                        {{"explorer", s.explorer, false}, {"localization", s.method, false}}};
+    for (const std::string& change : s.set) {
+      const std::size_t equals = change.find('=');
+      value.options.push_back({change.substr(0, equals), change.substr(equals + 1), true});
+    }
+    strategy.values.push_back(std::move(value));
+  }
+  io::GridAxis seeds{"seed", {}};
+  for (int i = 0; i < args.runs; ++i) {
+    const std::string seed = std::to_string(args.seed + static_cast<std::uint64_t>(i));
+    seeds.values.push_back({seed, {{"seed", seed, false}}});
+  }
+  grid.axes = {std::move(strategy), std::move(seeds)};
+  grid.figures = {"trajectory_error.estimate.rmse_position_m",
+                  "trajectory_error.estimate.max_position_m",
+                  "trajectory_error.estimate.rmse_heading_rad",
+                  "trajectory_error.odometry.rmse_position_m",
+                  "slam.map.curves",
+                  "slam.map.size",
+                  "slam.map.mean_distance_to_obstacles_m",
+                  "slam.ms_per_step.median",
+                  "wall_s",
+                  "coverage_fraction",
+                  "slam.healthy"};
+  return grid;
+}
+
 int RunSplamExperiment(const SplamExperimentArgs& args) {
-  std::error_code ec;
-  std::filesystem::create_directories(args.out, ec);
-  if (ec) {
-    fmt::print(stderr, "splam experiment: cannot create {}: {}\n", args.out, ec.message());
+  if (kernel::Status s = WriteSweepPlan(args.out, SplamExperimentGrid(args)); !s.ok()) {
+    fmt::print(stderr, "splam experiment: {}\n", s.message());
     return kExitBadInput;
+  }
+  SweepRunOptions run_options;
+  run_options.splam_binary = args.splam_binary;
+  run_options.jobs = args.jobs;
+  run_options.stop = args.stop;
+  run_options.progress = PrintSweepProgress();
+  const kernel::Result<SweepRunSummary> run = RunSweepLocally(args.out, run_options);
+  if (!run.ok()) {
+    fmt::print(stderr, "splam experiment: {}\n", run.error);
+    return kExitBadInput;
+  }
+  fmt::print("\n{} trials: {} run now in {:.1f} s wall for {:.1f} s of trials, {} done before\n",
+             run.value->cells, run.value->done + run.value->failed, run.value->wall_s,
+             run.value->cells_wall_s, run.value->skipped);
+  if (run.value->interrupted) {
+    fmt::print("interrupted: the {} trials left run when the same command is given again\n",
+               run.value->left);
+    return kExitIncomplete;
   }
   const sim::World& world = args.world;
   const std::vector<Strategy>& strategies = Strategies();
@@ -142,51 +192,34 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
   bool all_good = true;
   for (std::size_t s = 0; s < strategies.size(); ++s) {
     for (int i = 0; i < args.runs; ++i) {
-      ExploreSetup setup;
-      setup.explorer = strategies[s].explorer;
-      setup.localization = strategies[s].method;
-      setup.seed = args.seed + static_cast<std::uint64_t>(i);
-      std::shared_ptr<estimation::SlamOptions> options = DefaultSlamOptions(setup);
-      const io::ConfigRoot root = [&options](kernel::FieldVisitor& v) { options->VisitFields(v); };
-      for (const std::string& change : strategies[s].set) {
-        if (const kernel::Status set = io::SetConfigValue(root, change); !set.ok()) {
-          fmt::print(stderr, "splam experiment: {}\n", set.message());
-          return kExitBadInput;
-        }
-      }
-      setup.slam_options = options;
-      const ExploreOutcome outcome = RunExploration(world, setup);
-      if (!outcome.error.empty()) {
-        fmt::print(stderr, "splam experiment: {}\n", outcome.error);
+      const std::uint64_t seed = args.seed + static_cast<std::uint64_t>(i);
+      const std::string dir = TrialDir(args.out, strategies[s], seed);
+      const std::optional<CellRecord> record = ReadCellRecord(dir);
+      std::ifstream in(dir + "/report.json");
+      const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
+      if (!record || !record->ok() || report.is_discarded()) {
+        fmt::print(stderr, "splam experiment: the trial in {} failed: {}\n", dir,
+                   record ? record->message : "no result");
         return kExitBadInput;
       }
-      const std::string dir = TrialDir(args.out, strategies[s], setup.seed);
-      std::filesystem::create_directories(dir, ec);
-      const nlohmann::json report = ExplorationReport(world, setup, outcome);
-      std::vector<std::string> written;
-      std::string error = WriteExplorationRun(world, setup, outcome, report, dir, &written);
-      if (error.empty())
-        error = io::WriteConfig(dir + "/slam_options.yaml", root,
-                                "the options of " + setup.localization + " in this trial")
-                    .message();
-      if (i == 0 && error.empty())  // Figs. 19-21: the first seed's pictures
-        error = CopyPictures(dir, args.out, strategies[s].figure);
-      if (!error.empty()) {
-        fmt::print(stderr, "splam experiment: {}\n", error);
-        return kExitBadInput;
-      }
-      const Trial trial = TrialOf(report, outcome);
+      const Trial trial = TrialOf(report);
       all_good &= trial.explored && trial.healthy;
       fmt::print(
           "{} seed {}: {}, {:.1f} % explored; position RMSE {:.3f} m (odometry {:.3f} m), "
           "heading {:.2f} deg; map {}; {:.1f} s wall\n",
-          strategies[s].label, setup.seed, exploration::TerminationName(outcome.run.termination),
+          strategies[s].label, seed, report["termination"].get<std::string>(),
           trial.coverage_percent, trial.rmse_m, trial.odometry_rmse_m, trial.rmse_heading_deg,
           trial.map, trial.wall_s);
-      std::fflush(stdout);
+      if (i == 0) {  // Figs. 19-21: the first seed's pictures
+        if (std::string error = CopyPictures(dir, args.out, strategies[s].figure); !error.empty()) {
+          fmt::print(stderr, "splam experiment: {}\n", error);
+          return kExitBadInput;
+        }
+      }
       trials[s].push_back(trial);
     }
   }
+  std::fflush(stdout);
 
   for (std::size_t s = 0; s < strategies.size(); ++s) {
     // The trial with the largest position RMSE: its pictures too.

@@ -1,6 +1,7 @@
 #include "loop/sweep.h"
 
 #include <fcntl.h>
+#include <fmt/core.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -8,6 +9,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -159,7 +162,30 @@ std::string Describe(const SweepCell& cell, const CellRecord& r) {
   return text.str();
 }
 
+std::string Duration(double s) {
+  if (s < 0) return "?";
+  const long total = std::lround(s);
+  return total >= 3600 ? fmt::format("{}h{:02}m", total / 3600, total / 60 % 60)
+                       : fmt::format("{}m{:02}s", total / 60, total % 60);
+}
+
 }  // namespace
+
+std::function<void(const SweepProgress&)> PrintSweepProgress() {
+  const bool terminal = isatty(fileno(stdout)) != 0;
+  return [terminal](const SweepProgress& p) {
+    const std::string status =
+        fmt::format("[{}/{} done, {} failed, {} running, {} skipped; {} left]", p.done + p.skipped,
+                    p.total, p.failed, p.running, p.skipped, Duration(p.eta_s));
+    if (terminal) {
+      if (!p.event.empty()) fmt::print("\r\033[K{}\n", p.event);
+      fmt::print("\r\033[K{}", status);
+    } else if (!p.event.empty()) {
+      fmt::print("{} {}\n", status, p.event);
+    }
+    std::fflush(stdout);
+  };
+}
 
 std::vector<SweepCell> GridCells(const io::Grid& grid) {
   std::vector<SweepCell> cells;

@@ -64,6 +64,10 @@ struct SweepProgress {
   std::string event;    // "<name>: ok (12.3 s)" when a cell just ended, else empty
 };
 
+// Prints progress to stdout: a status line rewritten in place on a terminal (cells done, failed,
+// running, skipped, the time left), plain lines, one per finished cell, otherwise.
+std::function<void(const SweepProgress&)> PrintSweepProgress();
+
 struct SweepRunOptions {
   std::string splam_binary;
   int jobs = 0;                // cells at once; 0: one per core

@@ -648,12 +648,12 @@ TEST(SplamCli, SplamExperimentComparesTheStrategies) {
   for (const char* f :
        {"table.md", "summary.json", "fig19-map.png", "fig19-errors.png", "fig20-map.png",
         "fig21-map.png", "fig21-errors.svg", "fig21-paper-map.png", "fig21-worst-map.png",
-        "fig22.png", "graph-map.png", "reg-graph-seed1/report.json",
-        "reg-topological-seed1/report.json", "reg-topological-paper-seed1/slam_options.yaml",
-        "srt-ekf-lines-seed1/map.dxf"})
+        "fig22.png", "graph-map.png", "report.html", "grid.yaml", "cells.tsv",
+        "cells/strategy-graph_seed-1/report.json", "cells/strategy-fig21_seed-1/report.html",
+        "cells/strategy-fig21-paper_seed-1/config.yaml", "cells/strategy-fig19_seed-1/map.dxf"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   // The paper's formulation is what its run says it used.
-  const std::string paper = Slurp(out / "reg-topological-paper-seed1/slam_options.yaml");
+  const std::string paper = Slurp(out / "cells/strategy-fig21-paper_seed-1/config.yaml");
   EXPECT_NE(paper.find("correction: \"paper\""), std::string::npos);
   EXPECT_NE(paper.find("prediction: \"odometry\""), std::string::npos);
   const nlohmann::json summary = nlohmann::json::parse(Slurp(out / "summary.json"));

@@ -6,6 +6,9 @@
 #include <fstream>
 
 #include "io/trajectory.h"
+#include "loop/exploration_experiment.h"
+#include "loop/run_html.h"
+#include "loop/splam_experiment.h"
 #include "loop/sweep_merge.h"
 
 namespace splam::loop {
@@ -147,6 +150,19 @@ axes:
   EXPECT_NE(html.find("cells/world-corridor_seed-1"), std::string::npos);
   EXPECT_EQ(html.find("http://"), std::string::npos);
   EXPECT_EQ(html.find("https://"), std::string::npos);
+}
+
+// The experiment's grid is the one shipped in experiments/: `splam sweep experiments/splam.yaml`
+// runs the trials of `splam experiment splam`.
+TEST(SweepExperiments, TheShippedGridIsTheExperimentsGrid) {
+  const io::Result<io::Grid> shipped = io::ReadGrid(SPLAM_SOURCE_DIR "/experiments/splam.yaml");
+  ASSERT_TRUE(shipped.ok()) << shipped.error;
+  EXPECT_EQ(*shipped.value, SplamExperimentGrid(SplamExperimentArgs()));
+  EXPECT_EQ(GridCells(*shipped.value).size(), 50u);
+  const io::Result<io::Grid> fig18 = io::ReadGrid(SPLAM_SOURCE_DIR "/experiments/exploration.yaml");
+  ASSERT_TRUE(fig18.ok()) << fig18.error;
+  EXPECT_EQ(*fig18.value, ExplorationExperimentGrid(ExplorationExperimentArgs()));
+  EXPECT_EQ(GridCells(*fig18.value).size(), 80u);
 }
 
 }  // namespace
