@@ -55,7 +55,7 @@ io::Grid ExplorationExperimentGrid(const ExplorationExperimentArgs& args) {
   grid.command = {"explore"};
   grid.options = {{"localization", "ground-truth", false}};  // Fig. 18 studies exploration alone
   if (args.alpha != ExplorationExperimentArgs().alpha)
-    grid.options.push_back({"exploration.alpha", io::FormatDouble(args.alpha), true});
+    grid.options.push_back({"alpha", io::FormatDouble(args.alpha), false});
   io::GridAxis worlds{"world", {}}, explorers{"explorer", {}}, seeds{"seed", {}};
   for (const std::string& w : Worlds()) worlds.values.push_back({w, {{"world", w, false}}});
   for (const std::string& e : Explorers())
