@@ -11,6 +11,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <thread>
 
@@ -58,9 +59,9 @@ inline std::string Slurp(const fs::path& p) {
   return text;
 }
 
-// Runs splam with `args` (output discarded), sends it SIGINT after `after`, and returns its exit
-// status (-1 when a signal ended it).
-inline int SplamInterrupted(const std::string& args, std::chrono::milliseconds after) {
+// Runs splam with `args` (output discarded), sends it SIGINT once `ready()` holds (polled every
+// 20 ms; at the latest after 120 s), and returns its exit status (-1 when a signal ended it).
+inline int SplamInterruptedWhen(const std::string& args, const std::function<bool()>& ready) {
   const std::string command =
       std::string("exec ") + SPLAM_BINARY + " " + args + " > /dev/null 2>&1";
   const pid_t pid = fork();
@@ -68,11 +69,20 @@ inline int SplamInterrupted(const std::string& args, std::chrono::milliseconds a
     execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
-  std::this_thread::sleep_for(after);
+  const auto start = std::chrono::steady_clock::now();
+  while (!ready() && std::chrono::steady_clock::now() - start < std::chrono::seconds(120))
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
   kill(pid, SIGINT);
   int status = 0;
   waitpid(pid, &status, 0);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// The same, SIGINT after `after`.
+inline int SplamInterrupted(const std::string& args, std::chrono::milliseconds after) {
+  const auto start = std::chrono::steady_clock::now();
+  return SplamInterruptedWhen(args,
+                              [&] { return std::chrono::steady_clock::now() - start >= after; });
 }
 
 }  // namespace splam::cli_test

@@ -77,10 +77,14 @@ TEST(SweepCli, CtrlCKeepsFinishedCellsAndTheNextRunResumes) {
   fs::create_directories(dir);
   WriteIn(dir, "grid.yaml",
           "command: simulate\noptions: {world: complex}\naxes:\n  seed: {from: 1, to: 6}\n");
-  // Each cell takes about 1.5 s; two run at once.
-  const int status = SplamInterrupted(
-      "sweep " + (dir / "grid.yaml").string() + " --jobs 2 --out " + (dir / "out").string(),
-      std::chrono::milliseconds(2500));
+  // Each cell takes about 1.5 s, two at once: Ctrl-C once the first has finished.
+  const int status = SplamInterruptedWhen(
+      "sweep " + (dir / "grid.yaml").string() + " --jobs 2 --out " + (dir / "out").string(), [&] {
+        for (int seed = 1; seed <= 6; ++seed)
+          if (fs::exists(dir / "out/cells" / ("seed-" + std::to_string(seed)) / "cell.json"))
+            return true;
+        return false;
+      });
   EXPECT_EQ(status, 3);
   int finished = 0;
   for (int seed = 1; seed <= 6; ++seed) {
