@@ -10,6 +10,7 @@
 #include "io/plot.h"
 #include "io/text.h"
 #include "loop/exit_status.h"
+#include "loop/experiment_trials.h"
 #include "loop/run_html.h"
 #include "loop/sweep.h"
 #include "sim/builtin_worlds.h"
@@ -70,28 +71,10 @@ io::Grid ExplorationExperimentGrid(const ExplorationExperimentArgs& args) {
 }
 
 int RunExplorationExperiment(const ExplorationExperimentArgs& args) {
-  if (kernel::Status s = WriteSweepPlan(args.out, ExplorationExperimentGrid(args)); !s.ok()) {
-    fmt::print(stderr, "splam experiment: {}\n", s.message());
-    return kExitBadInput;
-  }
-  SweepRunOptions run_options;
-  run_options.splam_binary = args.splam_binary;
-  run_options.jobs = args.jobs;
-  run_options.stop = args.stop;
-  run_options.progress = PrintSweepProgress();
-  const kernel::Result<SweepRunSummary> run = RunSweepLocally(args.out, run_options);
-  if (!run.ok()) {
-    fmt::print(stderr, "splam experiment: {}\n", run.error);
-    return kExitBadInput;
-  }
-  fmt::print("\n{} trials: {} run now in {:.1f} s wall for {:.1f} s of trials, {} done before\n",
-             run.value->cells, run.value->done + run.value->failed, run.value->wall_s,
-             run.value->cells_wall_s, run.value->skipped);
-  if (run.value->interrupted) {
-    fmt::print("interrupted: the {} trials left run when the same command is given again\n",
-               run.value->left);
-    return kExitIncomplete;
-  }
+  if (const int status = RunExperimentTrials(args.out, ExplorationExperimentGrid(args),
+                                             args.splam_binary, args.jobs, args.stop);
+      status != kExitOk)
+    return status;
   const std::vector<std::string>& explorers = Explorers();
   std::string table = fmt::format(
       "# SRT vs REG (paper 003 Fig. 18): {} trials per world, seeds {}-{}, ground-truth "
@@ -107,14 +90,9 @@ int RunExplorationExperiment(const ExplorationExperimentArgs& args) {
       for (int i = 0; i < args.runs; ++i) {
         const std::uint64_t seed = args.seed + static_cast<std::uint64_t>(i);
         const std::string dir = TrialDir(args.out, world_name, explorers[e], seed);
-        const std::optional<CellRecord> record = ReadCellRecord(dir);
-        std::ifstream in(dir + "/report.json");
-        nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
-        if (!record || !record->ok() || report.is_discarded()) {
-          fmt::print(stderr, "splam experiment: the trial in {} failed: {}\n", dir,
-                     record ? record->message : "no result");
-          return kExitBadInput;
-        }
+        std::optional<nlohmann::json> trial = TrialReport(dir);
+        if (!trial) return kExitBadInput;
+        nlohmann::json& report = *trial;
         all_explored &= report["termination"] == "explored";
         fmt::print("{} {} seed {}: {} nodes, {:.1f} m, {:.1f} s, {:.1f} % explored, {}\n",
                    world_name, explorers[e], seed, report["nodes"].get<int>(),

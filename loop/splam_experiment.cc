@@ -13,6 +13,7 @@
 #include "io/text.h"
 #include "kernel/angle.h"
 #include "loop/exit_status.h"
+#include "loop/experiment_trials.h"
 #include "loop/run_html.h"
 #include "loop/sweep.h"
 #include "sim/builtin_worlds.h"
@@ -164,28 +165,10 @@ io::Grid SplamExperimentGrid(const SplamExperimentArgs& args) {
 }
 
 int RunSplamExperiment(const SplamExperimentArgs& args) {
-  if (kernel::Status s = WriteSweepPlan(args.out, SplamExperimentGrid(args)); !s.ok()) {
-    fmt::print(stderr, "splam experiment: {}\n", s.message());
-    return kExitBadInput;
-  }
-  SweepRunOptions run_options;
-  run_options.splam_binary = args.splam_binary;
-  run_options.jobs = args.jobs;
-  run_options.stop = args.stop;
-  run_options.progress = PrintSweepProgress();
-  const kernel::Result<SweepRunSummary> run = RunSweepLocally(args.out, run_options);
-  if (!run.ok()) {
-    fmt::print(stderr, "splam experiment: {}\n", run.error);
-    return kExitBadInput;
-  }
-  fmt::print("\n{} trials: {} run now in {:.1f} s wall for {:.1f} s of trials, {} done before\n",
-             run.value->cells, run.value->done + run.value->failed, run.value->wall_s,
-             run.value->cells_wall_s, run.value->skipped);
-  if (run.value->interrupted) {
-    fmt::print("interrupted: the {} trials left run when the same command is given again\n",
-               run.value->left);
-    return kExitIncomplete;
-  }
+  if (const int status = RunExperimentTrials(args.out, SplamExperimentGrid(args), args.splam_binary,
+                                             args.jobs, args.stop);
+      status != kExitOk)
+    return status;
   const sim::World& world = args.world;
   const std::vector<Strategy>& strategies = Strategies();
   std::vector<std::vector<Trial>> trials(strategies.size());
@@ -194,20 +177,14 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
     for (int i = 0; i < args.runs; ++i) {
       const std::uint64_t seed = args.seed + static_cast<std::uint64_t>(i);
       const std::string dir = TrialDir(args.out, strategies[s], seed);
-      const std::optional<CellRecord> record = ReadCellRecord(dir);
-      std::ifstream in(dir + "/report.json");
-      const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
-      if (!record || !record->ok() || report.is_discarded()) {
-        fmt::print(stderr, "splam experiment: the trial in {} failed: {}\n", dir,
-                   record ? record->message : "no result");
-        return kExitBadInput;
-      }
-      const Trial trial = TrialOf(report);
+      const std::optional<nlohmann::json> report = TrialReport(dir);
+      if (!report) return kExitBadInput;
+      const Trial trial = TrialOf(*report);
       all_good &= trial.explored && trial.healthy;
       fmt::print(
           "{} seed {}: {}, {:.1f} % explored; position RMSE {:.3f} m (odometry {:.3f} m), "
           "heading {:.2f} deg; map {}; {:.1f} s wall\n",
-          strategies[s].label, seed, report["termination"].get<std::string>(),
+          strategies[s].label, seed, (*report)["termination"].get<std::string>(),
           trial.coverage_percent, trial.rmse_m, trial.odometry_rmse_m, trial.rmse_heading_deg,
           trial.map, trial.wall_s);
       if (i == 0) {  // Figs. 19-21: the first seed's pictures

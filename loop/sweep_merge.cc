@@ -39,6 +39,20 @@ std::string CsvField(const std::string& text) {
   return quoted + "\"";
 }
 
+// The shortest end of a figure's name ("rmse_position_m", else "estimate.rmse_position_m") that
+// no other of `figures` ends with: the y label of its panel.
+std::string ShortName(const std::string& figure, const std::vector<std::string>& figures) {
+  for (std::size_t at = figure.rfind('.'); at != std::string::npos;
+       at = at == 0 ? std::string::npos : figure.rfind('.', at - 1)) {
+    const std::string end = figure.substr(at + 1);
+    const auto ends_so = [&](const std::string& other) {
+      return other != figure && (other == end || other.ends_with("." + end));
+    };
+    if (std::none_of(figures.begin(), figures.end(), ends_so)) return end;
+  }
+  return figure;
+}
+
 // Strip plot of the figures against one axis: a panel per figure, a dot per successful cell at
 // its value of the axis (spread sideways by its index in the group), the medians in red.
 std::string AxisPlot(const MergedSweep& m, const std::vector<std::string>& figures,
@@ -47,7 +61,7 @@ std::string AxisPlot(const MergedSweep& m, const std::vector<std::string>& figur
   io::PlotOptions options;
   options.title = fmt::format("figures against {} ({} cells)", a.name, m.cells.size());
   options.x_label = a.name;
-  options.panel_height_px = 130.0;
+  options.panel_height_px = 150.0;
   for (const io::GridValue& v : a.values) options.x_labels.push_back(v.label);
   std::vector<io::PlotPanel> panels;
   for (const std::string& figure : figures) {
@@ -72,7 +86,7 @@ std::string AxisPlot(const MergedSweep& m, const std::vector<std::string>& figur
         medians.y.push_back(StatsOf(values).median);
       }
     }
-    panels.push_back({figure, {dots, medians}});
+    panels.push_back({ShortName(figure, figures), {dots, medians}});
   }
   return io::SavePlot(panels, options, {path});
 }

@@ -5,7 +5,8 @@
 # start. Stops the daemons it started, by their pid files.
 # Usage: slurm_sweep_test.sh SPLAM_BINARY [GRID.yaml]
 # With a grid (e.g. experiments/splam.yaml), runs that grid both ways instead of the small one
-# and compares the tables without their timing figures; prints both wall times.
+# and compares the tables without their timing figures; prints both wall times. With
+# SPLAM_SLURM_TEST_KEEP=DIR the two sweep directories are moved to DIR/local and DIR/cluster.
 set -uo pipefail
 splam=$(realpath "$1")
 grid=${2:+$(realpath "$2")}
@@ -25,6 +26,10 @@ cleanup() {
   done
   if ((started_munge)) && [[ -f $tmp/munged.pid ]]; then kill "$(cat "$tmp/munged.pid")" 2> /dev/null; fi
   sleep 1
+  if [[ -n ${SPLAM_SLURM_TEST_KEEP:-} ]]; then
+    mkdir -p "$SPLAM_SLURM_TEST_KEEP"
+    mv "$tmp/local" "$tmp/cluster" "$SPLAM_SLURM_TEST_KEEP/" 2> /dev/null
+  fi
   rm -rf "$tmp"
 }
 trap cleanup EXIT

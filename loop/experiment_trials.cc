@@ -1,0 +1,52 @@
+#include "loop/experiment_trials.h"
+
+#include <fmt/core.h>
+
+#include <fstream>
+
+#include "loop/exit_status.h"
+#include "loop/sweep.h"
+
+namespace splam::loop {
+
+int RunExperimentTrials(const std::string& dir, const io::Grid& grid,
+                        const std::string& splam_binary, int jobs,
+                        const std::function<bool()>& stop) {
+  if (kernel::Status s = WriteSweepPlan(dir, grid); !s.ok()) {
+    fmt::print(stderr, "splam experiment: {}\n", s.message());
+    return kExitBadInput;
+  }
+  SweepRunOptions options;
+  options.splam_binary = splam_binary;
+  options.jobs = jobs;
+  options.stop = stop;
+  options.progress = PrintSweepProgress();
+  const kernel::Result<SweepRunSummary> run = RunSweepLocally(dir, options);
+  if (!run.ok()) {
+    fmt::print(stderr, "splam experiment: {}\n", run.error);
+    return kExitBadInput;
+  }
+  const SweepRunSummary& r = *run.value;
+  fmt::print("\n{} trials: {} run now in {:.1f} s wall for {:.1f} s of trials, {} done before\n",
+             r.cells, r.done + r.failed, r.wall_s, r.cells_wall_s, r.skipped);
+  if (r.interrupted) {
+    fmt::print("interrupted: the {} trials left run when the same command is given again\n",
+               r.left);
+    return kExitIncomplete;
+  }
+  return kExitOk;
+}
+
+std::optional<nlohmann::json> TrialReport(const std::string& cell_dir) {
+  const std::optional<CellRecord> record = ReadCellRecord(cell_dir);
+  std::ifstream in(cell_dir + "/report.json");
+  nlohmann::json report = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (!record || !record->ok() || report.is_discarded()) {
+    fmt::print(stderr, "splam experiment: the trial in {} failed: {}\n", cell_dir,
+               record ? record->message : "it has no result");
+    return std::nullopt;
+  }
+  return report;
+}
+
+}  // namespace splam::loop

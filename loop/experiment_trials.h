@@ -1,0 +1,29 @@
+#ifndef SPLAM_LOOP_EXPERIMENT_TRIALS_H_
+#define SPLAM_LOOP_EXPERIMENT_TRIALS_H_
+
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "io/sweep_grid.h"
+
+// The experiments' trials as cells of a grid (experiments/*.yaml): run on the sweep engine, read
+// back from their run directories.
+namespace splam::loop {
+
+// Writes the plan of `grid` into `dir` and runs its cells there, `jobs` at once (0: one per
+// core), with `splam_binary`; cells finished before are skipped. Prints progress and a summary.
+// kExitOk when every cell has run; else the exit status to stop with, the problem printed:
+// kExitBadInput (no plan, another grid in `dir`), kExitIncomplete (interrupted by `stop`).
+int RunExperimentTrials(const std::string& dir, const io::Grid& grid,
+                        const std::string& splam_binary, int jobs,
+                        const std::function<bool()>& stop);
+
+// The report.json of a trial that succeeded; nullopt, the problem printed, when it failed or
+// wrote none.
+std::optional<nlohmann::json> TrialReport(const std::string& cell_dir);
+
+}  // namespace splam::loop
+
+#endif  // SPLAM_LOOP_EXPERIMENT_TRIALS_H_
