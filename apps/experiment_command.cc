@@ -48,6 +48,10 @@ int RunCorridorLines(const ExperimentArgs& args) {
   options.corner_floor_m = args.corner_floor_m;
   options.odometry_floor = args.odometry_floor;
   options.line_floor_scale = args.line_floor_scale;
+  options.splam_binary = SplamBinary();
+  options.jobs = args.jobs;
+  CatchInterrupts();
+  options.stop = [] { return Interrupted(); };
   return loop::RunCorridorLinesExperiment(options, args.out);
 }
 
@@ -97,7 +101,7 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       ->check(FloorPlanResolution())
       ->capture_default_str();
   cmd->add_option("--jobs", args->jobs,
-                  "splam and exploration: trials run at once (default: one per core)")
+                  "Trials (seeds, strategies) run at once (default: one per core)")
       ->check(FinitePositive());
   cmd->add_option("--odometry-noise", args->odometry_noise_scale,
                   "complex-bspline: scale of the odometry noise (simulated and modelled)")
@@ -154,6 +158,10 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       b.max_scans = args->max_scans;
       b.odometry_noise_scale = args->odometry_noise_scale;
       b.max_correspondence_distance_m = args->max_correspondence_distance_m;
+      b.splam_binary = SplamBinary();
+      b.jobs = args->jobs;
+      CatchInterrupts();
+      b.stop = [] { return Interrupted(); };
       *exit_code = loop::RunComplexBSpline(b);
       return;
     }

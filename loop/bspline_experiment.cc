@@ -18,6 +18,7 @@
 #include "kernel/angle.h"
 #include "loop/association_scoring.h"
 #include "loop/exit_status.h"
+#include "loop/experiment_trials.h"
 #include "loop/run_html.h"
 #include "loop/slam_report.h"
 #include "sim/builtin_worlds.h"
@@ -104,7 +105,8 @@ void WriteBSplineReport(const BSplineExperimentArgs& args, const std::vector<std
   };
   table += row("odometry", odometry_summary, false);
   report["odometry"] = {{"rmse_position_m", Mean(odometry_summary.rmse)},
-                        {"max_position_m", Mean(odometry_summary.max)}};
+                        {"max_position_m", Mean(odometry_summary.max)},
+                        {"rmse_heading_rad", Mean(odometry_summary.heading_rmse)}};
   for (const std::string& method : methods) {
     const Summary& s = summaries[method];
     table += row(method, s, true);
@@ -139,9 +141,8 @@ void WriteBSplineReport(const BSplineExperimentArgs& args, const std::vector<std
       args.out);
 }
 
-}  // namespace
-
-int RunComplexBSpline(const BSplineExperimentArgs& args) {
+// Runs the seeds in this process, one after the other, and writes the report.
+int RunSeedsHere(const BSplineExperimentArgs& args) {
   const sim::World world = *sim::BuiltinWorld("complex");
   const sim::RayCaster caster(world);
   sim::SimulatorOptions sim_options;
@@ -212,6 +213,77 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
     }
   }
 
+  WriteBSplineReport(args, methods, summaries, odometry_summary);
+  return kExitOk;
+}
+
+// A summary of one method (or odometry) read back from a one-seed run's report.json.
+void AddFromReport(const nlohmann::json& r, bool filter, Summary* s) {
+  s->rmse.push_back(r["rmse_position_m"]);
+  s->max.push_back(r["max_position_m"]);
+  s->heading_rmse.push_back(r["rmse_heading_rad"]);
+  if (!filter) return;
+  s->map_error.push_back(r["map_error_m"]);
+  s->wrong_fraction.push_back(r["wrong_association_fraction"]);
+  s->wrong_beam_fraction.push_back(r["wrong_beam_fraction"]);
+  s->ms.push_back(r["ms_per_scan"]);
+  s->feature_fraction.push_back(r["paired_feature_fraction"]);
+  s->nees.push_back(r["mean_nees"]);
+}
+
+}  // namespace
+
+io::Grid ComplexBSplineGrid(const BSplineExperimentArgs& args) {
+  io::Grid grid;
+  grid.command = {"experiment", "complex-bspline"};
+  grid.options = {
+      {"runs", "1", false},
+      {"odometry-noise", fmt::format("{}", args.odometry_noise_scale), false},
+      {"max-correspondence", fmt::format("{}", args.max_correspondence_distance_m), false}};
+  if (args.max_scans > 0)
+    grid.options.push_back({"max-scans", std::to_string(args.max_scans), false});
+  io::GridAxis seeds{"seed", {}};
+  for (int i = 0; i < args.runs; ++i) {
+    const std::string seed = std::to_string(args.seed + static_cast<std::uint64_t>(i));
+    seeds.values.push_back({seed, {{"seed", seed, false}}});
+  }
+  grid.axes = {std::move(seeds)};
+  grid.figures = {"pedraza.rmse_position_m", "curvature.rmse_position_m", "pedraza.map_error_m",
+                  "curvature.map_error_m",   "pedraza.ms_per_scan",       "curvature.ms_per_scan",
+                  "odometry.rmse_position_m"};
+  return grid;
+}
+
+int RunComplexBSpline(const BSplineExperimentArgs& args) {
+  if (args.runs == 1) return RunSeedsHere(args);
+  if (const int status = RunExperimentTrials(args.out, ComplexBSplineGrid(args), args.splam_binary,
+                                             args.jobs, args.stop);
+      status != kExitOk)
+    return status;
+  const std::vector<std::string> methods = {"pedraza", "curvature"};
+  std::map<std::string, Summary> summaries;
+  Summary odometry_summary;
+  for (int i = 0; i < args.runs; ++i) {
+    const std::string dir =
+        fmt::format("{}/cells/seed-{}", args.out, args.seed + static_cast<std::uint64_t>(i));
+    const std::optional<nlohmann::json> report = TrialReport(dir);
+    if (!report) return kExitIncomplete;
+    AddFromReport((*report)["odometry"], false, &odometry_summary);
+    for (const std::string& method : methods)
+      AddFromReport((*report)[method], true, &summaries[method]);
+    if (i > 0) continue;
+    for (const std::string name :  // the first seed's pictures
+         {"errors.svg", "errors.png", "map_pedraza.svg", "map_pedraza.png", "map_curvature.svg",
+          "map_curvature.png"}) {
+      std::error_code ec;
+      std::filesystem::copy_file(dir + "/" + name, args.out + "/" + name,
+                                 std::filesystem::copy_options::overwrite_existing, ec);
+      if (ec) {
+        fmt::print(stderr, "splam experiment: cannot copy {}/{}: {}\n", dir, name, ec.message());
+        return kExitBadInput;
+      }
+    }
+  }
   WriteBSplineReport(args, methods, summaries, odometry_summary);
   return kExitOk;
 }

@@ -17,6 +17,7 @@
 #include "io/run_picture.h"
 #include "kernel/angle.h"
 #include "loop/exit_status.h"
+#include "loop/experiment_trials.h"
 #include "loop/log_replay.h"
 #include "loop/run_html.h"
 #include "sim/builtin_worlds.h"
@@ -145,15 +146,18 @@ CorridorResult RunCorridorExperiment(const CorridorOptions& args) {
     }
     for (std::size_t step = 0; step < replay.nees.size(); ++step)
       result.average_nees[step] += replay.nees[step];  // the sum, averaged below
+    result.nees.push_back(replay.nees);
     const kernel::Pose2& truth = frames.back().true_pose;
     result.final_error_m.push_back(
         (replay.estimate.back().pose.translation() - truth.translation()).norm());
     result.final_odometry_error_m.push_back(
         (frames.back().odometry_pose.translation() - truth.translation()).norm());
     const estimation::SlamMap map = driver.method().Map();
+    result.measured_by_run.emplace_back();
     for (std::size_t k = 0; k < distances.size(); ++k) {
-      if (const auto d = MeasuredDistance(distances[k], map.lines, map.corners))
-        result.measured[k].push_back(*d);
+      const auto d = MeasuredDistance(distances[k], map.lines, map.corners);
+      if (d) result.measured[k].push_back(*d);
+      result.measured_by_run.back().push_back(d);
     }
     if (run == 0) {
       result.truth = replay.truth;
@@ -237,19 +241,51 @@ std::string Table1(const CorridorOptions& options, const CorridorResult& result,
   return table;
 }
 
-}  // namespace
+// Every run's raw numbers, for a merge of one-run cells: NEES per step, final errors, and each
+// distance as mapped (null when not).
+nlohmann::ordered_json PerRunJson(const CorridorResult& result) {
+  nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+  for (std::size_t r = 0; r < result.nees.size(); ++r) {
+    nlohmann::ordered_json measured = nlohmann::ordered_json::array();
+    for (const std::optional<double>& d : result.measured_by_run[r])
+      measured.push_back(d ? nlohmann::ordered_json(*d) : nlohmann::ordered_json());
+    runs.push_back({{"nees", result.nees[r]},
+                    {"final_error_m", result.final_error_m[r]},
+                    {"final_odometry_error_m", result.final_odometry_error_m[r]},
+                    {"measured_m", measured}});
+  }
+  return runs;
+}
 
-int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string& out) {
-  std::filesystem::create_directories(out);
-  const CorridorResult result = RunCorridorExperiment(options);
-  if (!result.error.empty()) {
-    fmt::print(stderr, "splam experiment: {}\n", result.error);
-    return kExitIncomplete;
+// The runs of one-run cells' report.json merged into one result (no trajectories or map: the
+// pictures are the first cell's); the error names a cell without them.
+CorridorResult MergeRuns(const std::vector<nlohmann::json>& reports, int steps) {
+  CorridorResult result;
+  result.measured.resize(CorridorDistances().size());
+  result.average_nees.assign(static_cast<std::size_t>(steps) + 1, 0.0);
+  for (const nlohmann::json& report : reports) {
+    for (const nlohmann::json& run : report["per_run"]) {
+      const std::vector<double> nees = run["nees"];
+      for (std::size_t step = 0; step < nees.size() && step < result.average_nees.size(); ++step)
+        result.average_nees[step] += nees[step];
+      result.nees.push_back(nees);
+      result.final_error_m.push_back(run["final_error_m"]);
+      result.final_odometry_error_m.push_back(run["final_odometry_error_m"]);
+      result.measured_by_run.emplace_back();
+      for (std::size_t k = 0; k < result.measured.size(); ++k) {
+        const nlohmann::json& d = run["measured_m"][k];
+        if (!d.is_null()) result.measured[k].push_back(d.get<double>());
+        result.measured_by_run.back().push_back(
+            d.is_null() ? std::nullopt : std::optional<double>(d.get<double>()));
+      }
+    }
   }
-  if (std::string e = SaveCorridorPictures(options, result, out); !e.empty()) {
-    fmt::print(stderr, "splam experiment: {}\n", e);
-    return kExitBadInput;
-  }
+  for (double& nees : result.average_nees) nees /= static_cast<double>(result.nees.size());
+  return result;
+}
+
+int WriteCorridorResult(const CorridorOptions& options, const CorridorResult& result,
+                        const std::string& out) {
   nlohmann::ordered_json report;
   const std::string table = Table1(options, result, &report);
   // Consistency.
@@ -288,6 +324,7 @@ int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string
     fmt::print(stderr, "splam experiment: {}\n", e);
     return kExitBadInput;
   }
+  report["per_run"] = PerRunJson(result);
   std::ofstream(out + "/table1.md") << table;
   std::ofstream(out + "/report.json") << report.dump(2) << "\n";
   if (kernel::Status s = WriteRunHtml(out, "splam experiment corridor-lines (paper 001 Table 1)");
@@ -306,6 +343,68 @@ int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string
       "errors.png}}\n",
       out);
   return kExitOk;
+}
+
+}  // namespace
+
+io::Grid CorridorGrid(const CorridorOptions& options) {
+  io::Grid grid;
+  grid.command = {"experiment", "corridor-lines"};
+  grid.options = {{"runs", "1", false},
+                  {"steps", std::to_string(options.steps), false},
+                  {"speed", fmt::format("{}", options.speed_mps), false},
+                  {"corner-floor", fmt::format("{}", options.corner_floor_m), false},
+                  {"odometry-floor", fmt::format("{}", options.odometry_floor), false},
+                  {"line-floor-scale", fmt::format("{}", options.line_floor_scale), false}};
+  if (!options.corners) grid.options.push_back({"no-corners", "true", false});
+  io::GridAxis seeds{"seed", {}};
+  for (int i = 0; i < options.runs; ++i) {
+    const std::string seed = std::to_string(options.seed + static_cast<std::uint64_t>(i));
+    seeds.values.push_back({seed, {{"seed", seed, false}}});
+  }
+  grid.axes = {std::move(seeds)};
+  grid.figures = {"nees.fraction_of_steps_inside", "final_position_error_m.ekf_lines_mean",
+                  "final_position_error_m.odometry_mean"};
+  return grid;
+}
+
+int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string& out) {
+  std::filesystem::create_directories(out);
+  if (options.runs == 1) {  // here, with the pictures of this run
+    const CorridorResult result = RunCorridorExperiment(options);
+    if (!result.error.empty()) {
+      fmt::print(stderr, "splam experiment: {}\n", result.error);
+      return kExitIncomplete;
+    }
+    if (std::string e = SaveCorridorPictures(options, result, out); !e.empty()) {
+      fmt::print(stderr, "splam experiment: {}\n", e);
+      return kExitBadInput;
+    }
+    return WriteCorridorResult(options, result, out);
+  }
+  if (const int status = RunExperimentTrials(out, CorridorGrid(options), options.splam_binary,
+                                             options.jobs, options.stop);
+      status != kExitOk)
+    return status;
+  std::vector<nlohmann::json> reports;
+  for (int i = 0; i < options.runs; ++i) {
+    const std::string dir =
+        fmt::format("{}/cells/seed-{}", out, options.seed + static_cast<std::uint64_t>(i));
+    std::optional<nlohmann::json> report = TrialReport(dir);
+    if (!report) return kExitIncomplete;
+    reports.push_back(std::move(*report));
+    if (i > 0) continue;
+    for (const std::string name : {"map.svg", "map.png", "errors.svg", "errors.png"}) {
+      std::error_code ec;  // the first seed's pictures
+      std::filesystem::copy_file(dir + "/" + name, out + "/" + name,
+                                 std::filesystem::copy_options::overwrite_existing, ec);
+      if (ec) {
+        fmt::print(stderr, "splam experiment: cannot copy {}/{}: {}\n", dir, name, ec.message());
+        return kExitBadInput;
+      }
+    }
+  }
+  return WriteCorridorResult(options, MergeRuns(reports, options.steps), out);
 }
 
 }  // namespace splam::loop

@@ -3,11 +3,13 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "estimation/ekf_line_slam.h"
+#include "io/sweep_grid.h"
 #include "kernel/trajectory.h"
 
 // Paper 001 §6 on the simulator (`splam experiment corridor-lines`): EKF-SLAM with lines and
@@ -53,13 +55,19 @@ struct CorridorOptions {
   double corner_floor_m = 0.01;
   double odometry_floor = 1e-4;   // per step, m and rad
   double line_floor_scale = 1.0;  // scales the line floors of 1 mm and 0.5 mrad
+  // RunCorridorLinesExperiment with several runs: cells on the sweep engine.
+  std::string splam_binary = "splam";  // what runs the cells
+  int jobs = 0;                        // cells at once; 0: one per core
+  std::function<bool()> stop;          // Ctrl-C: finished runs stay, the rest run next time
 };
 
 struct CorridorResult {
   std::string error;  // non-empty when a run failed (collision, unhealthy filter)
   std::vector<std::vector<double>> measured;  // per distance, the value of every run mapping it
   std::vector<double> average_nees;           // per step, over the runs
-  std::vector<double> final_error_m, final_odometry_error_m;  // per run
+  std::vector<std::vector<double>> nees;      // per run, per step
+  std::vector<std::vector<std::optional<double>>> measured_by_run;  // per run, per distance
+  std::vector<double> final_error_m, final_odometry_error_m;        // per run
   // The first run: trajectories and map.
   kernel::Trajectory truth, estimate, odometry;
   std::vector<estimation::MapLine> lines;
@@ -70,10 +78,16 @@ struct CorridorResult {
 // registry with the simulator's noise models.
 CorridorResult RunCorridorExperiment(const CorridorOptions& options);
 
+// The grid of `splam experiment corridor-lines` with several runs: the experiment with --runs 1
+// (and the other options) for each seed.
+io::Grid CorridorGrid(const CorridorOptions& options);
+
 // `splam experiment corridor-lines`: runs the experiment and writes into `out` table1.md (the
-// nine distances as 001 Table 1), report.json, nees.svg/png (the average NEES against its 95 %
-// band), map.svg/png and errors.svg/png of the first run. kExitOk, kExitIncomplete when a run
-// failed, kExitBadInput when a file cannot be written.
+// nine distances as 001 Table 1), report.json (with every run's numbers under per_run),
+// nees.svg/png (the average NEES against its 95 % band), map.svg/png and errors.svg/png of the
+// first run. One run runs here; several are the cells of CorridorGrid on the sweep engine (`out`
+// its sweep directory), merged from their report.json. kExitOk, kExitIncomplete when a run
+// failed or was interrupted, kExitBadInput when a file cannot be written.
 int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string& out);
 
 }  // namespace splam::loop

@@ -8,7 +8,6 @@
 
 #include "estimation/metrics.h"
 #include "io/plot.h"
-#include "io/text.h"
 #include "loop/exit_status.h"
 #include "loop/experiment_trials.h"
 #include "loop/run_html.h"
@@ -56,7 +55,7 @@ io::Grid ExplorationExperimentGrid(const ExplorationExperimentArgs& args) {
   grid.command = {"explore"};
   grid.options = {{"localization", "ground-truth", false}};  // Fig. 18 studies exploration alone
   if (args.alpha != ExplorationExperimentArgs().alpha)
-    grid.options.push_back({"alpha", io::FormatDouble(args.alpha), false});
+    grid.options.push_back({"alpha", fmt::format("{}", args.alpha), false});
   io::GridAxis worlds{"world", {}}, explorers{"explorer", {}}, seeds{"seed", {}};
   for (const std::string& w : Worlds()) worlds.values.push_back({w, {{"world", w, false}}});
   for (const std::string& e : Explorers())

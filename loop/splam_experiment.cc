@@ -10,7 +10,6 @@
 
 #include "estimation/metrics.h"
 #include "io/plot.h"
-#include "io/text.h"
 #include "kernel/angle.h"
 #include "loop/exit_status.h"
 #include "loop/experiment_trials.h"
@@ -133,7 +132,7 @@ io::Grid SplamExperimentGrid(const SplamExperimentArgs& args) {
   grid.command = {"explore"};
   grid.options = {{"world", args.world_name, false}};
   if (args.resolution_m_per_px != SplamExperimentArgs().resolution_m_per_px)
-    grid.options.push_back({"resolution", io::FormatDouble(args.resolution_m_per_px), false});
+    grid.options.push_back({"resolution", fmt::format("{}", args.resolution_m_per_px), false});
   io::GridAxis strategy{"strategy", {}};
   for (const Strategy& s : Strategies()) {
     io::GridValue value{s.figure,

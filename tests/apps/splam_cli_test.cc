@@ -638,10 +638,10 @@ TEST(SplamCli, ExploreTraceWritesEverySlamStepWithItsErrors) {
 
 TEST(SplamCli, SplamExperimentComparesTheStrategies) {
   // One trial (seed 1) of paper 003 Figs. 19-22 (the topological SLAM with its default
-  // correction and with the paper's), and REG + graph. Measured: position RMSE 0.506 m
-  // (ekf-lines, odometry 0.533 m), 0.040 m (ekf-bspline, odometry 0.575 m), 0.076 m
-  // (topological, odometry 0.328 m; the paper's formulation 0.278 m, odometry 0.731 m),
-  // 0.083 m (graph, odometry 0.711 m).
+  // correction and with the paper's), and REG + graph, run as cells of the sweep engine.
+  // Measured: position RMSE 0.415 m (ekf-lines, odometry 0.816 m), 0.055 m (ekf-bspline,
+  // odometry 0.896 m), 0.079 m (topological, odometry 0.390 m; the paper's formulation 0.269 m,
+  // odometry 0.722 m), 0.043 m (graph, odometry 0.783 m).
   const fs::path out = Temp("experiment_splam");
   const Output run = Splam("experiment splam --world complex --runs 1 --out " + out.string());
   ASSERT_EQ(run.status, 0) << run.text;

@@ -6,6 +6,8 @@
 #include <fstream>
 
 #include "io/trajectory.h"
+#include "loop/bspline_experiment.h"
+#include "loop/corridor_experiment.h"
 #include "loop/exploration_experiment.h"
 #include "loop/run_html.h"
 #include "loop/splam_experiment.h"
@@ -152,8 +154,8 @@ axes:
   EXPECT_EQ(html.find("https://"), std::string::npos);
 }
 
-// The experiment's grid is the one shipped in experiments/: `splam sweep experiments/splam.yaml`
-// runs the trials of `splam experiment splam`.
+// The experiments' grids are the ones shipped in experiments/: `splam sweep experiments/X.yaml`
+// runs the trials of `splam experiment X`.
 TEST(SweepExperiments, TheShippedGridIsTheExperimentsGrid) {
   const io::Result<io::Grid> shipped = io::ReadGrid(SPLAM_SOURCE_DIR "/experiments/splam.yaml");
   ASSERT_TRUE(shipped.ok()) << shipped.error;
@@ -163,6 +165,16 @@ TEST(SweepExperiments, TheShippedGridIsTheExperimentsGrid) {
   ASSERT_TRUE(fig18.ok()) << fig18.error;
   EXPECT_EQ(*fig18.value, ExplorationExperimentGrid(ExplorationExperimentArgs()));
   EXPECT_EQ(GridCells(*fig18.value).size(), 80u);
+  const io::Result<io::Grid> corridor =
+      io::ReadGrid(SPLAM_SOURCE_DIR "/experiments/corridor-lines.yaml");
+  ASSERT_TRUE(corridor.ok()) << corridor.error;
+  EXPECT_EQ(*corridor.value, CorridorGrid(CorridorOptions()))
+      << io::GridToYaml(CorridorGrid(CorridorOptions()));
+  const io::Result<io::Grid> bspline =
+      io::ReadGrid(SPLAM_SOURCE_DIR "/experiments/complex-bspline.yaml");
+  ASSERT_TRUE(bspline.ok()) << bspline.error;
+  EXPECT_EQ(*bspline.value, ComplexBSplineGrid(BSplineExperimentArgs()))
+      << io::GridToYaml(ComplexBSplineGrid(BSplineExperimentArgs()));
 }
 
 }  // namespace
