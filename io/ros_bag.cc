@@ -169,6 +169,22 @@ std::optional<std::uint64_t> FieldInteger(const BagRecord& record, std::string_v
   return v;
 }
 
+// Reads the fields of a header ("name=value", each after its length) into *fields; the problem
+// when a field runs past the header or has no '='.
+std::string HeaderFieldsProblem(std::string_view header,
+                                std::map<std::string, std::string, std::less<>>* fields) {
+  for (std::size_t f = 0; f < header.size();) {
+    if (f + 4 > header.size() || f + 4 + U32(header, f) > header.size())
+      return "a header field runs past its header";
+    const std::string_view field = header.substr(f + 4, U32(header, f));
+    const std::size_t equals = field.find('=');
+    if (equals == std::string_view::npos) return "a header field without '='";
+    (*fields)[std::string(field.substr(0, equals))] = field.substr(equals + 1);
+    f += 4 + field.size();
+  }
+  return "";
+}
+
 // Splits `size` bytes into records (header length, header fields "name=value" each with its
 // length, an op field, data length, data), checking that every length stays inside. Empty when
 // they hold.
@@ -182,15 +198,8 @@ std::string SplitRecords(const ReadBytes& read, std::uint64_t size, const std::s
     if (at + 4 + header_len + 4 > size) return where + ": its header runs past the end";
     const std::string header = read(at + 4, header_len);
     BagRecord record;
-    for (std::size_t f = 0; f < header.size();) {
-      if (f + 4 > header.size() || f + 4 + U32(header, f) > header.size())
-        return where + ": a header field runs past its header";
-      const std::string_view field = std::string_view(header).substr(f + 4, U32(header, f));
-      const std::size_t equals = field.find('=');
-      if (equals == std::string_view::npos) return where + ": a header field without '='";
-      record.fields[std::string(field.substr(0, equals))] = field.substr(equals + 1);
-      f += 4 + field.size();
-    }
+    if (std::string problem = HeaderFieldsProblem(header, &record.fields); !problem.empty())
+      return where + ": " + problem;
     record.at = at;
     record.data_at = at + 4 + header_len + 4;
     record.data_len = U32(read(record.data_at - 4, 4), 0);
@@ -209,12 +218,25 @@ constexpr char kBagHeaderOp = 0x03;
 constexpr char kIndexDataOp = 0x04;
 constexpr char kChunkOp = 0x05;
 constexpr char kChunkInfoOp = 0x06;
+constexpr char kConnectionOp = 0x07;
 
-// Checks the framing of a bag's records and of the records inside its uncompressed chunks, and
-// that every position the bag's indices give (the index position, chunk positions, message
-// offsets in a chunk) is the start of a record of the right kind. Debian's rosbag trusts all of
-// these: a field longer than its header made ros::Header::parse read past its buffer, and an index
-// offset past a chunk made Bag::readHeaderFromBuffer read outside it (both found by fuzz_bag).
+// The data of a connection record is the connection's own header (topic, type, md5sum,
+// definition): rosbag reads the record's data length as that header's length. Empty when its
+// fields fit.
+std::string ConnectionProblem(std::string_view data) {
+  std::map<std::string, std::string, std::less<>> fields;
+  if (std::string problem = HeaderFieldsProblem(data, &fields); !problem.empty())
+    return "its connection header: " + problem;
+  return "";
+}
+
+// Checks the framing of a bag's records and of the records inside its uncompressed chunks, the
+// connection headers the connection records hold, and that every position the bag's indices give
+// (the index position, chunk positions, message offsets in a chunk) is the start of a record of
+// the right kind. Debian's rosbag trusts all of
+// these: a field longer than its header made ros::Header::parse read past its buffer (in a record's
+// header, and in a connection's), and an index offset past a chunk made
+// Bag::readHeaderFromBuffer read outside it (all found by fuzz_bag).
 // Reads the headers and the uncompressed chunks only, one at a time; `base` is the position of
 // the first record in the file. Compressed chunks are left to rosbag. Empty when all hold.
 std::string RecordFramingProblem(const ReadBytes& read, std::uint64_t size, std::uint64_t base) {
@@ -231,7 +253,10 @@ std::string RecordFramingProblem(const ReadBytes& read, std::uint64_t size, std:
   for (std::size_t i = 0; i < records.size(); ++i) {
     const BagRecord& r = records[i];
     const std::string where = "record " + std::to_string(i + 1);
-    if (r.op == kBagHeaderOp) {
+    if (r.op == kConnectionOp) {
+      if (std::string problem = ConnectionProblem(read(r.data_at, r.data_len)); !problem.empty())
+        return where + ": " + problem;
+    } else if (r.op == kBagHeaderOp) {
       const auto index_pos = FieldInteger(r, "index_pos", 8);
       if (!index_pos || (*index_pos != 0 && !starts.contains(*index_pos)))
         return where + ": its index position is not a record";
@@ -255,8 +280,14 @@ std::string RecordFramingProblem(const ReadBytes& read, std::uint64_t size, std:
           !problem.empty())
         return where + ": " + problem;
       messages.emplace();
-      for (const BagRecord& m : inner)
+      for (std::size_t k = 0; k < inner.size(); ++k) {
+        const BagRecord& m = inner[k];
         if (m.op == kMessageDataOp) messages->insert(m.at);
+        if (m.op != kConnectionOp) continue;
+        if (std::string problem = ConnectionProblem(chunk.substr(m.data_at, m.data_len));
+            !problem.empty())
+          return where + ": chunk record " + std::to_string(k + 1) + ": " + problem;
+      }
     } else if (r.op == kIndexDataOp && messages) {
       const auto count = FieldInteger(r, "count", 4);
       if (FieldInteger(r, "ver", 4) != 1 || !count || r.data_len != *count * 12)
