@@ -4,8 +4,9 @@
 # (default 60) on its seed corpus (tests/fuzz/corpus/<name>, read only; new inputs go to
 # build-san/runs/<name>/corpus). Prints the executions each survived; exits non-zero on a crash,
 # a hang (10 s on one input), a leak or 4 GB of memory, leaving the input in
-# build-san/runs/<name>/.
-# Usage: bash scripts/fuzz.sh [SECONDS] [NAME...]
+# build-san/runs/<name>/. The mutations start from FUZZ_SEED (default 1), so that a run repeats
+# what an earlier one with the same seed tried first; FUZZ_SEED=0 draws a new seed each time.
+# Usage: [FUZZ_SEED=N] bash scripts/fuzz.sh [SECONDS] [NAME...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -18,13 +19,14 @@ if ((${#names[@]} == 0)); then
   names=(carmen text_files world options floor_plan bag scan_features slam_step)
 fi
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp
+seed=${FUZZ_SEED:-1}
 status=0
 printf '%-14s %12s %8s  %s\n' harness executions seconds result
 for name in "${names[@]}"; do
   run=build-san/runs/$name
   mkdir -p "$run/corpus"
   log=$run/fuzz.log
-  if build-san/tests/fuzz/fuzz_"$name" -max_total_time="$seconds" -timeout=10 \
+  if build-san/tests/fuzz/fuzz_"$name" -seed="$seed" -max_total_time="$seconds" -timeout=10 \
       -rss_limit_mb=4096 -print_final_stats=1 -artifact_prefix="$run/" \
       "$run/corpus" "tests/fuzz/corpus/$name" > "$log" 2>&1; then
     result=ok
