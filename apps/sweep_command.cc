@@ -93,11 +93,11 @@ int RunGrid(const SweepArgs& args) {
   }
   if (args.slurm) {
     kernel::Result<loop::SweepPlan> plan = loop::ReadSweepPlan(dir);
-    std::vector<int> pending;
-    for (std::size_t i = 0; plan.ok() && i < plan.value->cells.size(); ++i) {
-      const auto r = loop::ReadCellRecord(loop::CellDir(dir, plan.value->cells[i]));
-      if (!r || !r->ok()) pending.push_back(static_cast<int>(i));
+    if (!plan.ok()) {
+      fmt::print(stderr, "splam sweep: {}\n", plan.error);
+      return kExitBadInput;
     }
+    const std::vector<int> pending = loop::CellsToRun(dir, *plan.value);
     kernel::Result<std::string> job =
         loop::SubmitSweepToSlurm(dir, SplamBinary(), pending, args.slurm_options);
     if (!job.ok()) {

@@ -286,6 +286,15 @@ std::optional<CellRecord> ReadCellRecord(const std::string& cell_dir) {
   return r;
 }
 
+std::vector<int> CellsToRun(const std::string& dir, const SweepPlan& plan) {
+  std::vector<int> cells;
+  for (std::size_t i = 0; i < plan.cells.size(); ++i) {
+    const std::optional<CellRecord> r = ReadCellRecord(CellDir(dir, plan.cells[i]));
+    if (!r || !r->ok()) cells.push_back(static_cast<int>(i));
+  }
+  return cells;
+}
+
 CellRecord RunCell(const std::string& dir, const SweepCell& cell, const std::string& splam_binary) {
   const Clock::time_point start = Clock::now();
   const pid_t pid = SpawnCell(dir, cell, splam_binary);
@@ -303,14 +312,8 @@ kernel::Result<SweepRunSummary> RunSweepLocally(const std::string& dir,
   const std::vector<SweepCell>& cells = plan.value->cells;
   summary.cells = static_cast<int>(cells.size());
   std::vector<std::size_t> pending;
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const std::optional<CellRecord> r = ReadCellRecord(CellDir(dir, cells[i]));
-    if (r && r->ok()) {
-      ++summary.skipped;
-    } else {
-      pending.push_back(i);
-    }
-  }
+  for (const int i : CellsToRun(dir, *plan.value)) pending.push_back(static_cast<std::size_t>(i));
+  summary.skipped = summary.cells - static_cast<int>(pending.size());
   std::reverse(pending.begin(), pending.end());  // pop_back runs them in grid order
   const int jobs = options.jobs > 0
                        ? options.jobs

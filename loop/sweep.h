@@ -53,6 +53,10 @@ struct CellRecord {
 };
 std::optional<CellRecord> ReadCellRecord(const std::string& cell_dir);
 
+// The indices of the plan's cells that have no successful cell.json in `dir`: what a run (local
+// or Slurm) still has to do.
+std::vector<int> CellsToRun(const std::string& dir, const SweepPlan& plan);
+
 // Runs one cell to its end in the calling process's place (`splam sweep cell`): writes
 // cell.started, runs `splam_binary args --out <cell dir>` with its output in cell.log, then
 // cell.json.
