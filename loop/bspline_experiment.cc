@@ -272,16 +272,13 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
     for (const std::string& method : methods)
       AddFromReport((*report)[method], true, &summaries[method]);
     if (i > 0) continue;
-    for (const std::string name :  // the first seed's pictures
-         {"errors.svg", "errors.png", "map_pedraza.svg", "map_pedraza.png", "map_curvature.svg",
-          "map_curvature.png"}) {
-      std::error_code ec;
-      std::filesystem::copy_file(dir + "/" + name, args.out + "/" + name,
-                                 std::filesystem::copy_options::overwrite_existing, ec);
-      if (ec) {
-        fmt::print(stderr, "splam experiment: cannot copy {}/{}: {}\n", dir, name, ec.message());
-        return kExitBadInput;
-      }
+    if (std::string error = CopyTrialFiles(  // the first seed's pictures
+            dir, args.out,
+            {"errors.svg", "errors.png", "map_pedraza.svg", "map_pedraza.png", "map_curvature.svg",
+             "map_curvature.png"});
+        !error.empty()) {
+      fmt::print(stderr, "splam experiment: {}\n", error);
+      return kExitBadInput;
     }
   }
   WriteBSplineReport(args, methods, summaries, odometry_summary);

@@ -394,14 +394,11 @@ int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string
     if (!report) return kExitIncomplete;
     reports.push_back(std::move(*report));
     if (i > 0) continue;
-    for (const std::string name : {"map.svg", "map.png", "errors.svg", "errors.png"}) {
-      std::error_code ec;  // the first seed's pictures
-      std::filesystem::copy_file(dir + "/" + name, out + "/" + name,
-                                 std::filesystem::copy_options::overwrite_existing, ec);
-      if (ec) {
-        fmt::print(stderr, "splam experiment: cannot copy {}/{}: {}\n", dir, name, ec.message());
-        return kExitBadInput;
-      }
+    if (std::string error =  // the first seed's pictures
+        CopyTrialFiles(dir, out, {"map.svg", "map.png", "errors.svg", "errors.png"});
+        !error.empty()) {
+      fmt::print(stderr, "splam experiment: {}\n", error);
+      return kExitBadInput;
     }
   }
   return WriteCorridorResult(options, MergeRuns(reports, options.steps), out);

@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "loop/exit_status.h"
@@ -47,6 +48,17 @@ std::optional<nlohmann::json> TrialReport(const std::string& cell_dir) {
     return std::nullopt;
   }
   return report;
+}
+
+std::string CopyTrialFiles(const std::string& cell_dir, const std::string& out,
+                           const std::vector<std::string>& names, const std::string& prefix) {
+  for (const std::string& name : names) {
+    std::error_code ec;
+    std::filesystem::copy_file(cell_dir + "/" + name, out + "/" + prefix + name,
+                               std::filesystem::copy_options::overwrite_existing, ec);
+    if (ec) return fmt::format("cannot copy {}/{}: {}", cell_dir, name, ec.message());
+  }
+  return "";
 }
 
 }  // namespace splam::loop

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "io/sweep_grid.h"
 
@@ -23,6 +24,11 @@ int RunExperimentTrials(const std::string& dir, const io::Grid& grid,
 // The report.json of a trial that succeeded; nullopt, the problem printed, when it failed or
 // wrote none.
 std::optional<nlohmann::json> TrialReport(const std::string& cell_dir);
+
+// Copies each of `names` from a trial's directory to <out>/<prefix><name> (a figure of the
+// experiment from one of its trials); the first error, or empty.
+std::string CopyTrialFiles(const std::string& cell_dir, const std::string& out,
+                           const std::vector<std::string>& names, const std::string& prefix = "");
 
 }  // namespace splam::loop
 

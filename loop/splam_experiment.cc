@@ -108,21 +108,16 @@ const std::vector<std::pair<std::string, double Trial::*>>& SummaryFields() {
   return fields;
 }
 
+// What a figure takes from a trial: its map and its errors over time.
+const std::vector<std::string>& Pictures() {
+  static const std::vector<std::string> pictures = {"map.svg", "map.png", "errors.svg",
+                                                    "errors.png"};
+  return pictures;
+}
+
 // A trial's run directory: the cell of its strategy and seed.
 std::string TrialDir(const std::string& out, const Strategy& strategy, std::uint64_t seed) {
   return fmt::format("{}/cells/strategy-{}_seed-{}", out, strategy.figure, seed);
-}
-
-// Copies a trial's map and error plots to <out>/<prefix>-map.svg/png and -errors.svg/png.
-std::string CopyPictures(const std::string& dir, const std::string& out,
-                         const std::string& prefix) {
-  for (const std::string name : {"map.svg", "map.png", "errors.svg", "errors.png"}) {
-    std::error_code ec;
-    std::filesystem::copy_file(dir + "/" + name, out + "/" + prefix + "-" + name,
-                               std::filesystem::copy_options::overwrite_existing, ec);
-    if (ec) return fmt::format("cannot copy {}/{}: {}", dir, name, ec.message());
-  }
-  return "";
 }
 
 }  // namespace
@@ -187,7 +182,9 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
           trial.coverage_percent, trial.rmse_m, trial.odometry_rmse_m, trial.rmse_heading_deg,
           trial.map, trial.wall_s);
       if (i == 0) {  // Figs. 19-21: the first seed's pictures
-        if (std::string error = CopyPictures(dir, args.out, strategies[s].figure); !error.empty()) {
+        if (std::string error =
+                CopyTrialFiles(dir, args.out, Pictures(), strategies[s].figure + "-");
+            !error.empty()) {
           fmt::print(stderr, "splam experiment: {}\n", error);
           return kExitBadInput;
         }
@@ -204,7 +201,8 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
                          [](const Trial& a, const Trial& b) { return a.rmse_m < b.rmse_m; });
     const std::string dir = TrialDir(
         args.out, strategies[s], args.seed + static_cast<std::uint64_t>(worst - trials[s].begin()));
-    if (std::string error = CopyPictures(dir, args.out, strategies[s].figure + "-worst");
+    if (std::string error =
+            CopyTrialFiles(dir, args.out, Pictures(), strategies[s].figure + "-worst-");
         !error.empty()) {
       fmt::print(stderr, "splam experiment: {}\n", error);
       return kExitBadInput;

@@ -150,6 +150,7 @@ kernel::Result<MergedSweep> MergeSweep(const std::string& dir) {
   }
   std::set<std::string> seen;
   std::map<std::vector<std::pair<std::string, std::string>>, std::size_t> group_of;
+  std::vector<std::size_t> cell_group;  // per cell, its index in m.groups
   for (const SweepCell& cell : m.plan.cells) {
     MergedCell c{cell, ReadCellRecord(CellDir(dir, cell)), {}};
     if (c.record && c.record->ok()) {
@@ -165,6 +166,7 @@ kernel::Result<MergedSweep> MergeSweep(const std::string& dir) {
       group_of[key] = m.groups.size();
       m.groups.push_back({key, 0, 0, 0, {}});
     }
+    cell_group.push_back(group_of[key]);
     MergedGroup& g = m.groups[group_of[key]];
     ++g.cells;
     g.failed += c.record && !c.record->ok();
@@ -176,17 +178,14 @@ kernel::Result<MergedSweep> MergeSweep(const std::string& dir) {
   } else {
     m.figures = grid.figures;
   }
-  for (MergedGroup& g : m.groups) {
+  for (std::size_t k = 0; k < m.groups.size(); ++k) {
     for (const std::string& figure : m.figures) {
       std::vector<double> values;
-      for (const MergedCell& c : m.cells) {
-        std::vector<std::pair<std::string, std::string>> key;
-        for (std::size_t a = 0; a < c.cell.values.size(); ++a)
-          if (grouped[a]) key.push_back(c.cell.values[a]);
-        const auto f = c.figures.find(figure);
-        if (key == g.values && f != c.figures.end()) values.push_back(f->second);
+      for (std::size_t c = 0; c < m.cells.size(); ++c) {
+        const auto f = m.cells[c].figures.find(figure);
+        if (cell_group[c] == k && f != m.cells[c].figures.end()) values.push_back(f->second);
       }
-      g.figures[figure] = StatsOf(std::move(values));
+      m.groups[k].figures[figure] = StatsOf(std::move(values));
     }
   }
   return kernel::Result<MergedSweep>::Ok(std::move(m));

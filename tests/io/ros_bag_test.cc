@@ -185,12 +185,18 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
     for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
     return v;
   };
-  std::size_t at = 13;
-  while (at < bytes.size() &&
-         bytes.substr(at + 4, u32(at)).find(std::string("op=\x04", 4)) == std::string::npos)
-    at += 4 + u32(at) + 4 + u32(at + 4 + u32(at));
-  ASSERT_LT(at, bytes.size()) << "no index data record in the bag";
-  ++bytes[at + 4 + u32(at) + 4 + 8];
+  // Where the data of the first top-level record with op `op` starts (after the 13-byte magic:
+  // header length, header, data length); npos when there is none.
+  const auto data_of_first = [&](char op) {
+    std::size_t at = 13;
+    while (at < bytes.size() &&
+           bytes.substr(at + 4, u32(at)).find(std::string("op=") + op) == std::string::npos)
+      at += 4 + u32(at) + 4 + u32(at + 4 + u32(at));
+    return at < bytes.size() ? at + 4 + u32(at) + 4 : std::string::npos;
+  };
+  std::size_t data = data_of_first('\x04');
+  ASSERT_NE(data, std::string::npos) << "no index data record in the bag";
+  ++bytes[data + 8];
   ASSERT_EQ(WriteTextFile(broken, bytes), "");
   read = ReadRosBag(broken);
   ASSERT_FALSE(read.log.ok());
@@ -210,12 +216,9 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
   // ros::Header::parse read past its buffer (ASan). The first connection record (op 7) of the
   // good bag gets a first field of 0x7f7f7f7f bytes in its data, the connection's header.
   ASSERT_EQ(ReadTextFile(good, &bytes), "");
-  at = 13;
-  while (at < bytes.size() &&
-         bytes.substr(at + 4, u32(at)).find(std::string("op=\x07", 4)) == std::string::npos)
-    at += 4 + u32(at) + 4 + u32(at + 4 + u32(at));
-  ASSERT_LT(at, bytes.size()) << "no connection record in the bag";
-  bytes.replace(at + 4 + u32(at) + 4, 4, "\x7f\x7f\x7f\x7f");
+  data = data_of_first('\x07');
+  ASSERT_NE(data, std::string::npos) << "no connection record in the bag";
+  bytes.replace(data, 4, "\x7f\x7f\x7f\x7f");
   ASSERT_EQ(WriteTextFile(broken, bytes), "");
   read = ReadRosBag(broken);
   ASSERT_FALSE(read.log.ok());
