@@ -69,6 +69,9 @@ void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
           "the space hidden behind an occluder is a frontier too (false: free arcs only)");
   v.Field("grid_paths", &grid_paths,
           "paths inside an LSR searched on a 5 cm grid (false: two legs through a polar grid)");
+  v.Field("exact_escapes", &exact_escapes,
+          "a robot closer to the LSR edge than it needs leaves by an exactly checked straight "
+          "leg when the grid's way out fails");
   v.Field("retry_nodes", &retry_nodes,
           "open given-up frontiers are retried from up to this many other nodes (0: as published)");
   v.Field("face_frontiers", &face_frontiers,

@@ -54,6 +54,13 @@ struct ExplorerOptions {
   // through a polar grid of waypoints (radii 0.4-2 m, every 10 deg), which missed narrow doors
   // seen at a slant (README, Fig. 18). Neither is in the papers, whose robot drives straight.
   bool grid_paths = true;
+  // When the grid path from a robot standing closer to the LSR boundary than its radius plus
+  // margin fails the exact clearance test (the raster's clearances are a cell off, and its first
+  // cells came 2-4 mm closer than the robot stood), the robot leaves by a straight leg that the
+  // exact test passed (Session::Escapes) and the grid search goes on from its end. REG in `office`,
+  // seed 7, gave up the east of a room from a node beside the sonar's boundary (README, Fig. 18).
+  // false: only the grid's own way out (needs grid_paths).
+  bool exact_escapes = true;
   // A frontier given up at its node (no clear leg, no approach saw behind it) and still open in
   // the explorer's map is retried from up to this many other nodes once nothing else is left: the
   // robot drives to the node whose LSR reaches nearest to it and approaches it from there

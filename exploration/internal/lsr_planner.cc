@@ -10,7 +10,7 @@
 namespace splam::exploration::internal {
 
 LsrPlanner::LsrPlanner(const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& from,
-                       double needed)
+                       double needed, const std::vector<Eigen::Vector2d>& escapes)
     : from_(from) {
   const double r = lsr.radius() + 2 * kCellM;
   origin_ = lsr.center() - Eigen::Vector2d(r, r);
@@ -38,15 +38,28 @@ LsrPlanner::LsrPlanner(const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d
   auto passable = [&](int i) {
     const double c = clearance(i);
     if (c > needed) return true;
-    return (Centre(i) - from).norm() <= needed && c >= start_clearance - 0.5 * kCellM;
+    return escapes.empty() && (Centre(i) - from).norm() <= needed &&
+           c >= start_clearance - 0.5 * kCellM;
   };
-  // Dijkstra from the start.
+  // Dijkstra from the start, or from the escapes (costs in cells).
   std::vector<double> cost(parent_.size(), std::numeric_limits<double>::infinity());
   using Entry = std::pair<double, int>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-  cost[static_cast<std::size_t>(start)] = 0.0;
-  parent_[static_cast<std::size_t>(start)] = start;
-  queue.emplace(0.0, start);
+  auto seed = [&](int i, double c) {
+    if (c >= cost[static_cast<std::size_t>(i)]) return false;
+    cost[static_cast<std::size_t>(i)] = c;
+    parent_[static_cast<std::size_t>(i)] = i;
+    queue.emplace(c, i);
+    return true;
+  };
+  if (escapes.empty()) seed(start, 0.0);
+  for (const Eigen::Vector2d& p : escapes) {
+    const int i = Index(p);
+    if (i >= 0 && seed(i, (p - from).norm() / kCellM)) {
+      std::erase_if(escape_cells_, [&](const auto& e) { return e.first == i; });
+      escape_cells_.emplace_back(i, p);
+    }
+  }
   while (!queue.empty()) {
     const auto [c, i] = queue.top();
     queue.pop();
@@ -126,7 +139,14 @@ std::optional<std::vector<Eigen::Vector2d>> LsrPlanner::CellPath(const Eigen::Ve
     path.push_back(Centre(i));
     i = parent_[static_cast<std::size_t>(i)];
   }
-  path.push_back(Centre(i));
+  const auto escape = std::find_if(escape_cells_.begin(), escape_cells_.end(),
+                                   [&](const auto& e) { return e.first == i; });
+  if (escape == escape_cells_.end()) {
+    path.push_back(Centre(i));
+  } else {
+    path.push_back(escape->second);
+    path.push_back(from_);
+  }
   std::reverse(path.begin(), path.end());
   return path;
 }

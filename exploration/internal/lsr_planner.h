@@ -19,14 +19,23 @@ namespace splam::exploration::internal {
 // reached through as many bends as they need; the two-leg paths of a polar grid of waypoints
 // missed doors off the grid's 10 deg rays (README, Fig. 18). The raster only finds the way:
 // Session::PathInside checks every leg of the result with the exact clearance test.
+//
+// The raster's clearances are a cell off the exact ones, and from a start closer to the boundary
+// than `needed` the cells it leaves by may bring the robot a few millimetres closer than it stands
+// (REG in `office`, seed 7: every path out of a node beside the sonar's boundary was refused by the
+// exact test). Given `escapes`, points that straight legs from the start reach and that the exact
+// test already passed (Session::Escapes), the search begins at them instead, each at the cost of
+// its leg, and keeps to cells whose clearance exceeds `needed` everywhere.
 class LsrPlanner {
  public:
   static constexpr double kCellM = 0.05;
 
-  LsrPlanner(const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& from, double needed);
+  LsrPlanner(const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& from, double needed,
+             const std::vector<Eigen::Vector2d>& escapes = {});
 
   // The centres of the cells along the shortest path from the start to the cell of `to`, the
-  // start's cell first; nullopt when `to` is not reachable.
+  // start's cell first (with escapes: `from`, then the escape point, then the cells); nullopt
+  // when `to` is not reachable.
   std::optional<std::vector<Eigen::Vector2d>> CellPath(const Eigen::Vector2d& to) const;
 
   // The centre of the reachable cell nearest to `target` among those at least min_travel_m from
@@ -57,6 +66,8 @@ class LsrPlanner {
   Eigen::Vector2d origin_;  // the grid's lower-left corner
   int cols_ = 0, rows_ = 0;
   std::vector<int> parent_;  // -1: not reached; the start is its own parent
+  // With escapes, the cells the search began at and the escape point in each.
+  std::vector<std::pair<int, Eigen::Vector2d>> escape_cells_;
 };
 
 }  // namespace splam::exploration::internal

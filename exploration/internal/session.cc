@@ -469,7 +469,7 @@ std::optional<Session::Retry> Session::NextRetry() {
       if (d - options_.lsr_radius_m >= bound) break;  // no point of v's LSR is nearer
       const std::optional<Eigen::Vector2d> goal =
           PlannerFor(g[v].lsr, nodes[v])
-              .NearestReachable(
+              ->NearestReachable(
                   target, kMinTravel, nodes, kMinTravel, kStride, [&](const Eigen::Vector2d& c) {
                     return (c - target).norm() < bound &&
                            kernel::UnionLineOfSight(regions, c, target, options_.shadow_edge_m);
@@ -577,35 +577,84 @@ std::optional<std::vector<Eigen::Vector2d>> Session::PathInside(const kernel::Lo
   return std::nullopt;
 }
 
-const LsrPlanner& Session::PlannerFor(const kernel::LocalSafeRegion& lsr,
-                                      const Eigen::Vector2d& from) const {
+bool Session::CachedPlanner::Matches(const kernel::LocalSafeRegion& lsr,
+                                     const Eigen::Vector2d& at) const {
+  return built && lsr_center == lsr.center() && lsr_size == lsr.boundary().size() && from == at &&
+         !lsr.boundary().empty() && lsr_first == lsr.boundary().front();
+}
+
+const LsrPlanner* Session::PlannerFor(const kernel::LocalSafeRegion& lsr,
+                                      const Eigen::Vector2d& from, bool escape) const {
   // Displacement asks for many goals from one start.
-  const bool same = planner_ && planner_lsr_center_ == lsr.center() &&
-                    planner_lsr_size_ == lsr.boundary().size() && planner_->from() == from &&
-                    !lsr.boundary().empty() && planner_lsr_first_ == lsr.boundary().front();
-  if (!same) {
-    planner_.emplace(lsr, from, Needed());
-    planner_lsr_center_ = lsr.center();
-    planner_lsr_size_ = lsr.boundary().size();
-    planner_lsr_first_ = lsr.boundary().empty() ? Eigen::Vector2d::Zero() : lsr.boundary().front();
+  CachedPlanner& cached = escape ? escape_planner_ : planner_;
+  if (!cached.Matches(lsr, from)) {
+    cached.planner.reset();
+    if (!escape) {
+      cached.planner.emplace(lsr, from, Needed());
+    } else if (const std::vector<Eigen::Vector2d> escapes = Escapes(lsr, from); !escapes.empty()) {
+      cached.planner.emplace(lsr, from, Needed(), escapes);
+    }
+    cached.lsr_center = lsr.center();
+    cached.lsr_size = lsr.boundary().size();
+    cached.lsr_first = lsr.boundary().empty() ? Eigen::Vector2d::Zero() : lsr.boundary().front();
+    cached.from = from;
+    cached.built = true;
   }
-  return *planner_;
+  return cached.planner ? &*cached.planner : nullptr;
+}
+
+std::vector<Eigen::Vector2d> Session::Escapes(const kernel::LocalSafeRegion& lsr,
+                                              const Eigen::Vector2d& from) const {
+  constexpr int kDirections = 72;
+  const double needed = Needed();
+  std::vector<Eigen::Vector2d> ends;
+  if (!options_.exact_escapes || kernel::SegmentClearance(lsr, from, from) >= needed) return ends;
+  for (int k = 0; k < kDirections; ++k) {
+    const double angle = 2.0 * kernel::kPi * k / kDirections;
+    const Eigen::Vector2d direction(std::cos(angle), std::sin(angle));
+    for (double length = LsrPlanner::kCellM; length <= 2.0 * needed; length += LsrPlanner::kCellM) {
+      const Eigen::Vector2d end = from + length * direction;
+      if (kernel::SegmentClearance(lsr, end, end) > needed && LegIsClear(lsr, from, end)) {
+        ends.push_back(end);
+        break;
+      }
+    }
+  }
+  return ends;
 }
 
 std::optional<std::vector<Eigen::Vector2d>> Session::Approach(
     const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& from, const Eigen::Vector2d& target,
     const std::vector<Eigen::Vector2d>& avoid) const {
   if (!options_.grid_paths) return std::nullopt;
-  const std::optional<Eigen::Vector2d> goal =
-      PlannerFor(lsr, from).NearestReachable(target, kMinTravel, avoid, kMinTravel);
-  if (!goal) return std::nullopt;
-  return PathInside(lsr, from, *goal);
+  for (const bool escape : {false, true}) {
+    const LsrPlanner* planner = PlannerFor(lsr, from, escape);
+    if (!planner) continue;
+    const std::optional<Eigen::Vector2d> goal =
+        planner->NearestReachable(target, kMinTravel, avoid, kMinTravel);
+    if (!goal) continue;
+    if (auto path = PathInside(lsr, from, *goal)) return path;
+  }
+  return std::nullopt;
 }
 
 std::optional<std::vector<Eigen::Vector2d>> Session::GridPath(const kernel::LocalSafeRegion& lsr,
                                                               const Eigen::Vector2d& from,
                                                               const Eigen::Vector2d& to) const {
-  std::optional<std::vector<Eigen::Vector2d>> cells = PlannerFor(lsr, from).CellPath(to);
+  // The start planner first; its first legs may fail the exact test, the escapes' do not.
+  for (const bool escape : {false, true}) {
+    const LsrPlanner* planner = PlannerFor(lsr, from, escape);
+    if (!planner) continue;
+    if (auto path = LegsAlong(lsr, from, to, *planner)) return path;
+  }
+  return std::nullopt;
+}
+
+std::optional<std::vector<Eigen::Vector2d>> Session::LegsAlong(const kernel::LocalSafeRegion& lsr,
+                                                               const Eigen::Vector2d& from,
+                                                               const Eigen::Vector2d& to,
+                                                               const LsrPlanner& planner) const {
+  std::optional<std::vector<Eigen::Vector2d>> cells = planner.CellPath(to);
   if (!cells) return std::nullopt;
   std::vector<Eigen::Vector2d>& points = *cells;
   points.front() = from;

@@ -170,11 +170,17 @@ class Session {
   // Senses (odometry, laser, sonar); a localisation that needs scans updates the estimate with
   // the reading, which is then traced.
   Perception SenseHere();
-  // LsrPlanner's shortest path from `from` to `to`, shortened to the fewest legs that pass
-  // LegIsClear; nullopt when there is none.
+  // LsrPlanner's shortest path from `from` to `to` (LegsAlong), from the start cell, else from
+  // the Escapes; nullopt when there is none.
   std::optional<std::vector<Eigen::Vector2d>> GridPath(const kernel::LocalSafeRegion& lsr,
                                                        const Eigen::Vector2d& from,
                                                        const Eigen::Vector2d& to) const;
+  // `planner`'s cell path to `to`, shortened to the fewest legs that pass LegIsClear; nullopt
+  // when there is none.
+  std::optional<std::vector<Eigen::Vector2d>> LegsAlong(const kernel::LocalSafeRegion& lsr,
+                                                        const Eigen::Vector2d& from,
+                                                        const Eigen::Vector2d& to,
+                                                        const LsrPlanner& planner) const;
   // The nodes' given-up arcs and shadows, each checked against the union of the other nodes' LSRs
   // (OpenParts, ShadowOpen), and the unseen stretches (UnseenStretches).
   std::vector<GivenUpFrontier> GivenUpFrontiers() const;
@@ -196,13 +202,26 @@ class Session {
   std::size_t drive_begin_ = 0;  // trace index where the last Drive() began
   int failures_in_a_row_ = 0;
   std::vector<std::pair<Eigen::Vector2d, graph::Vertex>> retries_;  // NextRetry's (target, node)
-  // GridPath's planner for (lsr, from), built anew unless it was the last one asked for.
-  const LsrPlanner& PlannerFor(const kernel::LocalSafeRegion& lsr,
-                               const Eigen::Vector2d& from) const;
-  // GridPath's planner and the region it was built for.
-  mutable std::optional<LsrPlanner> planner_;
-  mutable Eigen::Vector2d planner_lsr_center_, planner_lsr_first_;
-  mutable std::size_t planner_lsr_size_ = 0;
+  // The straight legs out of `from` when the robot stands closer to the boundary of `lsr` than
+  // Needed(): in every direction (each 5 deg) the shortest leg, in steps of a grid cell, that
+  // LegIsClear takes from the robot and that ends where the exact clearance exceeds Needed();
+  // their ends. Empty when the robot stands clear or options.exact_escapes is off.
+  std::vector<Eigen::Vector2d> Escapes(const kernel::LocalSafeRegion& lsr,
+                                       const Eigen::Vector2d& from) const;
+  // GridPath's planner for (lsr, from), from the start cell or (`escape`) from Escapes, built
+  // anew unless it was the last one of its kind asked for; nullptr for `escape` when there are no
+  // escapes.
+  const LsrPlanner* PlannerFor(const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& from,
+                               bool escape = false) const;
+  // A planner and the region and start it was built for.
+  struct CachedPlanner {
+    std::optional<LsrPlanner> planner;
+    Eigen::Vector2d lsr_center, lsr_first, from;
+    std::size_t lsr_size = 0;
+    bool built = false;
+    bool Matches(const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& at) const;
+  };
+  mutable CachedPlanner planner_, escape_planner_;
 };
 
 }  // namespace splam::exploration::internal
