@@ -299,6 +299,23 @@ TEST(ExplorationCauses, ACorridorBehindANodeInADoorwayIsRetriedFromAnotherNode) 
   }
 }
 
+TEST(ExplorationCauses, ARoomBesideANodeAtTheSonarsBoundaryIsEntered) {
+  // office, seed 7: REG's node below the middle south room's table stands 0.267 m from the sonars'
+  // boundary, 5 cm nearer than its disc needs; the grid's way out came 2-4 mm closer still, every
+  // path failed the exact test, and the room's east part (x 8-10, south of the table) was given
+  // up. Leaving by an exactly checked straight leg (exact_escapes), REG enters it.
+  ExplorerOptions without;
+  without.exact_escapes = false;
+  const Trial before = Explore("reg", "office", 7, without);
+  EXPECT_LT(before.coverage, 0.97);
+  EXPECT_EQ(before.run.termination, Termination::kIncomplete) << before.run.message;
+  EXPECT_FALSE(NodeIn(before.run, {7.9, 0.3}, {9.7, 2.1}));
+  const Trial t = Explore("reg", "office", 7);
+  EXPECT_GT(t.coverage, 0.98);
+  EXPECT_EQ(t.run.termination, Termination::kExplored) << t.run.message;
+  EXPECT_TRUE(NodeIn(t.run, {7.9, 0.3}, {9.7, 2.1}));
+}
+
 TEST(ExplorationCauses, PropertyARobotInADoorwayLooksBeforeItGivesUp) {
   // office, REG with ekf-lines, seed 5 (91.2 %): a node stopped in a doorway 0.15 m north of the
   // wall, facing south-west. Its laser's 240 deg end at -35 deg, so it saw the room through the
