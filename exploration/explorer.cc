@@ -72,6 +72,9 @@ void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("exact_escapes", &exact_escapes,
           "a robot closer to the LSR edge than it needs leaves by an exactly checked straight "
           "leg when the grid's way out fails");
+  v.Field("doorway_goals", &doorway_goals,
+          "a free arc seen only through a door at a slant is approached on the door's axis, "
+          "facing through it");
   v.Field("retry_nodes", &retry_nodes,
           "open given-up frontiers are retried from up to this many other nodes (0: as published)");
   v.Field("face_frontiers", &face_frontiers,

@@ -23,7 +23,7 @@ struct ExplorerOptions {
   double lsr_radius_m = 3.0;  // r: LSRs are clipped here (below the URG-04LX's 4 m range)
   // A new node lies alpha * r from the current one, 0 < alpha < 1, and alpha * r plus the robot's
   // radius and clearance margin must stay inside r. Paper 003 gives no value; with 0.6 SRT's
-  // VALID_CONF starves early in `complex` (see README), 0.8 lets both explorers finish.
+  // VALID_CONF starves early in `complex` (docs/experiments.md), 0.8 lets both explorers finish.
   double alpha = 0.8;
   // Every straight leg the robot drives keeps its radius plus this margin from the LSR
   // boundary (covers range noise and the obstacle parts between two beams), m.
@@ -38,8 +38,8 @@ struct ExplorerOptions {
   // jump over shadow_edge_m long, kernel::IsShadowEdge). 1 m is about two robot diameters: space a
   // robot could enter. 0: the point lying inside the other LSR is enough (Oriolo et al., paper
   // 003); in `office` a node that looked into a room through its door at a slant then covered the
-  // frontier through the door of the node that faced it, and REG never entered the room (README,
-  // Fig. 18). m.
+  // frontier through the door of the node that faced it, and REG never entered the room
+  // (docs/experiments.md, Fig. 18). m.
   double frontier_view_depth_m = 1.0;
   double shadow_edge_m = 0.2;
   // The space an LSR's sensor could not see behind an occluder (an occlusion edge at least
@@ -47,32 +47,41 @@ struct ExplorerOptions {
   // beyond it (Session::ShadowCovered): REG once no free arc is left, and SRT with
   // srt_relaxed_valid_conf, move as near to it as the LSR lets them. The papers' frontiers are the
   // free arcs only: the floor behind a table, and a room whose door a node saw edge-on (an arc
-  // under min_frontier_m), were never visited (README, Fig. 18).
+  // under min_frontier_m), were never visited (docs/experiments.md, Fig. 18).
   bool shadow_frontiers = true;
   // A path inside an LSR that no straight leg gives is searched on a 5 cm grid of the LSR
   // (internal::LsrPlanner), through as many bends as it needs; false: the shortest two-leg path
   // through a polar grid of waypoints (radii 0.4-2 m, every 10 deg), which missed narrow doors
-  // seen at a slant (README, Fig. 18). Neither is in the papers, whose robot drives straight.
+  // seen at a slant (docs/experiments.md, Fig. 18). Neither is in the papers, whose robot drives
+  // straight.
   bool grid_paths = true;
   // When the grid path from a robot standing closer to the LSR boundary than its radius plus
   // margin fails the exact clearance test (the raster's clearances are a cell off, and its first
   // cells came 2-4 mm closer than the robot stood), the robot leaves by a straight leg that the
   // exact test passed (Session::Escapes) and the grid search goes on from its end. REG in `office`,
-  // seed 7, gave up the east of a room from a node beside the sonar's boundary (README, Fig. 18).
-  // false: only the grid's own way out (needs grid_paths).
+  // seed 7, gave up the east of a room from a node beside the sonar's boundary
+  // (docs/experiments.md, Fig. 18). false: only the grid's own way out (needs grid_paths).
   bool exact_escapes = true;
+  // A free arc that a node saw only through a gap at a slant (a door: the wedge between the two
+  // jambs' shadow edges is narrower than the robot near the door) is approached on the gap's axis:
+  // the robot stands in front of the door's middle and faces through it
+  // (Session::DoorwayApproach), before the plain approach to the reachable point nearest the
+  // arc, which stopped beside the door and looked past it again. SRT in `office`, seed 1, left
+  // a room whose door the corridor nodes saw only at a slant (docs/experiments.md, Fig. 18).
+  // false: only the plain approach (needs grid_paths).
+  bool doorway_goals = true;
   // A frontier given up at its node (no clear leg, no approach saw behind it) and still open in
   // the explorer's map is retried from up to this many other nodes once nothing else is left: the
   // robot drives to the node whose LSR reaches nearest to it and approaches it from there
   // (Session::NextRetry; needs grid_paths). A node in a doorway perceives the corridor behind it
-  // with the sonars only, whose blind spikes between the cones close the way back (README,
-  // Fig. 18). 0: a given-up frontier stays given up, as published.
+  // with the sonars only, whose blind spikes between the cones close the way back
+  // (docs/experiments.md, Fig. 18). 0: a given-up frontier stays given up, as published.
   int retry_nodes = 2;
   // After REG's approaches and every retry (grid_paths), the robot turns in place to face the
   // frontier before it senses, when the frontier is in sight (Session::InSight): its laser
   // covers 240 deg, and the sonars that see the rest leave blind spikes between their cones
   // (0.27 m), which in a doorway closed the way through the door or back into the corridor
-  // (README, Fig. 18). false: the robot senses as it arrived.
+  // (docs/experiments.md, Fig. 18). false: the robot senses as it arrived.
   bool face_frontiers = true;
   // REG: a node with no clear leg towards a frontier piece turns in place to face the piece and
   // senses again (a new node at the same place, Session::LookTowards) before it approaches the
@@ -81,7 +90,8 @@ struct ExplorerOptions {
   // narrow near the robot for its disc, so no path led in (REG + ekf-lines in `office`, seed 5).
   // Off by default: on, it drove the floor-plan test's seed 1 into a room facing away from its
   // far half, which the sonars' first echoes closed, and that run ended `explored` at 88 %
-  // (README, Fig. 18). false: the robot plans with what it sensed on arrival, as published.
+  // (docs/experiments.md, Fig. 18). false: the robot plans with what it sensed on arrival, as
+  // published.
   bool look_before_giving_up = false;
   // A stretch of an LSR's boundary that only the sonars bounded (the 120 deg behind the laser)
   // and beyond which no node's laser saw, nor a laser hit within frontier_view_depth_m, is a
@@ -89,7 +99,7 @@ struct ExplorerOptions {
   // turning in place at the nearest node that sees it (Session::NextRetry), and the done check
   // counts it open. A sonar echo may come from anywhere in its 30 deg cone: the first echoes off a
   // desk corner closed half a room the laser never looked at, and the run said `explored` at 88 %
-  // (README, Fig. 18). false: a sonar boundary counts as a seen obstacle.
+  // (docs/experiments.md, Fig. 18). false: a sonar boundary counts as a seen obstacle.
   bool unseen_frontiers = true;
   // SRT: RANDOM_DIR + VALID_CONF attempts before backtracking to the parent.
   int srt_max_attempts = 30;
@@ -97,7 +107,7 @@ struct ExplorerOptions {
   // beyond (frontier_view_depth_m), VALID_CONF is relaxed for them: the candidate may lie inside
   // other LSRs and closer than alpha r, else the robot approaches the part (grid_paths). false:
   // the published SRT (Oriolo et al. 2004), which in `office` left rooms seen only through their
-  // doors (README, Fig. 18).
+  // doors (docs/experiments.md, Fig. 18).
   bool srt_relaxed_valid_conf = true;
   // REG: FRONT_RAND takes at most factor * 2 r acos(alpha / 2) of arc length, the part of the
   // circle of radius r around the node that a disc of radius r alpha * r away covers.

@@ -88,13 +88,19 @@ ExplorationRun Reg::Run() {
           // Retried from another node: the robot moves as near the piece as it can inside the
           // LSR (a node beside a door sees the room through it at a slant, a node in front of it
           // squarely), once per node.
-          const double mid = 0.5 * (piece->start_angle_rad + piece->end_angle_rad);
-          destination = session_.Approach(g_[current].lsr, g_[current].configuration.translation(),
-                                          g_[current].lsr.ArcPoint(mid), session_.NodePositions());
-          if (destination) {
-            approached_.insert(current);
-            face = internal::Session::ArcSight(g_[current].lsr, *piece);
+          // A piece seen through a door at a slant: in front of the door, facing through it.
+          const Eigen::Vector2d here = g_[current].configuration.translation();
+          if (auto door = session_.DoorwayApproach(g_[current].lsr, here, *piece,
+                                                   session_.NodePositions())) {
+            destination = std::move(door->path);
+            face = door->face;
+          } else {
+            const double mid = 0.5 * (piece->start_angle_rad + piece->end_angle_rad);
+            destination = session_.Approach(g_[current].lsr, here, g_[current].lsr.ArcPoint(mid),
+                                            session_.NodePositions());
+            if (destination) face = internal::Session::ArcSight(g_[current].lsr, *piece);
           }
+          if (destination) approached_.insert(current);
         }
         if (!destination) {
           ++session_.run().unreachable_frontiers;

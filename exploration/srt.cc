@@ -19,9 +19,13 @@ namespace {
 // it can. Only while what is open at v shrinks from one relaxed move to the next (the open width
 // in rad plus the number of open shadows; neither grows, as nodes are only added): a part that a
 // new node cannot see beyond is not tried forever. `last_open` holds that measure at v's previous
-// relaxed move.
-std::optional<std::vector<Eigen::Vector2d>> RelaxedMove(internal::Session* session, graph::Vertex v,
-                                                        double* last_open) {
+// relaxed move. A part seen only through a door at a slant is approached on the door's axis,
+// facing through it (Session::DoorwayApproach).
+struct Move {
+  std::vector<Eigen::Vector2d> path;
+  std::optional<Eigen::Vector2d> face;  // what the robot turns to at the end (Session::Drive)
+};
+std::optional<Move> RelaxedMove(internal::Session* session, graph::Vertex v, double* last_open) {
   const graph::ExplorationGraph& g = session->graph();
   const graph::NodeData& node = g[v];
   std::vector<kernel::FrontierArc> open;
@@ -45,7 +49,7 @@ std::optional<std::vector<Eigen::Vector2d>> RelaxedMove(internal::Session* sessi
     for (const double fraction : {1.0, 2.0 / 3.0, 1.0 / 3.0}) {
       const Eigen::Vector2d candidate =
           node.lsr.center() + fraction * step * Eigen::Vector2d(std::cos(theta), std::sin(theta));
-      if (auto path = session->PathInside(node.lsr, here, candidate)) return path;
+      if (auto path = session->PathInside(node.lsr, here, candidate)) return Move{*path, {}};
     }
   }
   const std::vector<Eigen::Vector2d> nodes = session->NodePositions();
@@ -53,13 +57,16 @@ std::optional<std::vector<Eigen::Vector2d>> RelaxedMove(internal::Session* sessi
     const kernel::FrontierArc* widest = &open.front();
     for (const kernel::FrontierArc& part : open)
       if (part.AngularWidth() > widest->AngularWidth()) widest = &part;
+    if (auto door = session->DoorwayApproach(node.lsr, here, *widest, nodes))
+      return Move{door->path, door->face};
     const double mid = 0.5 * (widest->start_angle_rad + widest->end_angle_rad);
-    if (auto path = session->Approach(node.lsr, here, node.lsr.ArcPoint(mid), nodes)) return path;
+    if (auto path = session->Approach(node.lsr, here, node.lsr.ArcPoint(mid), nodes))
+      return Move{*path, {}};
   }
   for (const std::size_t edge : shadows_open)
     if (auto path = session->Approach(node.lsr, here,
                                       internal::Session::ShadowTarget(node.lsr, edge), nodes))
-      return path;
+      return Move{*path, {}};
   return std::nullopt;
 }
 
@@ -75,6 +82,7 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
   std::map<graph::Vertex, double> last_open;    // RelaxedMove's open width at each node, rad
   while (!session.CapReached()) {
     std::optional<std::vector<Eigen::Vector2d>> path;  // to the new node's configuration
+    std::optional<Eigen::Vector2d> face;               // what to face there (RelaxedMove)
     {
       internal::Session::PlanningTimer timer(&session);
       const graph::NodeData& node = g[current];
@@ -92,12 +100,15 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
       if (!path && options_.srt_relaxed_valid_conf) {
         const auto [it, added] =
             last_open.try_emplace(current, std::numeric_limits<double>::infinity());
-        path = RelaxedMove(&session, current, &it->second);
+        if (std::optional<Move> move = RelaxedMove(&session, current, &it->second)) {
+          path = std::move(move->path);
+          face = move->face;
+        }
       }
     }
     if (path) {
-      current = session.Drive(*path).reached ? session.AddNodeHere(static_cast<int>(current))
-                                             : session.NodeAfterFailedMove(current);
+      current = session.Drive(*path, face).reached ? session.AddNodeHere(static_cast<int>(current))
+                                                   : session.NodeAfterFailedMove(current);
       continue;
     }
     // The node's free arcs are given up (SRT keeps them whole: the final check finds which

@@ -107,6 +107,7 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
                        {"shadow_frontiers", o.shadow_frontiers},
                        {"grid_paths", o.grid_paths},
                        {"exact_escapes", o.exact_escapes},
+                       {"doorway_goals", o.doorway_goals},
                        {"srt_max_attempts", o.srt_max_attempts},
                        {"srt_relaxed_valid_conf", o.srt_relaxed_valid_conf},
                        {"retry_nodes", o.retry_nodes},

@@ -17,8 +17,8 @@ namespace splam::exploration::internal {
 // of the start, where the robot may stand closer to the boundary than that, to cells no closer
 // than the start's. Doors narrow for the robot, seen at a slant, and rooms behind a corner are
 // reached through as many bends as they need; the two-leg paths of a polar grid of waypoints
-// missed doors off the grid's 10 deg rays (README, Fig. 18). The raster only finds the way:
-// Session::PathInside checks every leg of the result with the exact clearance test.
+// missed doors off the grid's 10 deg rays (docs/experiments.md, Fig. 18). The raster only finds the
+// way: Session::PathInside checks every leg of the result with the exact clearance test.
 //
 // The raster's clearances are a cell off the exact ones, and from a start closer to the boundary
 // than `needed` the cells it leaves by may bring the robot a few millimetres closer than it stands

@@ -13,6 +13,7 @@
 #include "exploration/perception.h"
 #include "graph/bidirectional_astar.h"
 #include "graph/frontiers.h"
+#include "kernel/angle.h"
 #include "kernel/shapes.h"
 
 namespace splam::exploration::internal {
@@ -126,7 +127,7 @@ graph::Vertex Session::AddNodeHere(int parent) {
   graph::NodeData& node = run_.graph[v];
   node.lsr = SafeRegionAt(record.safe_region_scan, estimate_, robot_->description(),
                           options_.lsr_radius_m);
-  node.frontiers = LongEnough(node.lsr.frontiers());
+  node.frontiers = FrontiersOf(node.lsr);
   if (options_.shadow_frontiers)
     node.shadows =
         kernel::OcclusionEdges(node.lsr, options_.shadow_edge_m, options_.frontier_view_depth_m);
@@ -636,6 +637,89 @@ std::optional<std::vector<Eigen::Vector2d>> Session::Approach(
     if (auto path = PathInside(lsr, from, *goal)) return path;
   }
   return std::nullopt;
+}
+
+std::optional<Session::Gap> Session::GapOf(const kernel::LocalSafeRegion& lsr,
+                                           const kernel::FrontierArc& arc) const {
+  constexpr double kSearch = kernel::kPi / 4;
+  const std::vector<Eigen::Vector2d>& pts = lsr.boundary();
+  const std::size_t n = pts.size();
+  const Eigen::Vector2d& c = lsr.center();
+  const double free_reach = lsr.radius() * (1.0 - 1e-9);
+  auto range = [&](std::size_t i) { return (pts[i] - c).norm(); };
+  auto bearing = [&](std::size_t i) { return std::atan2(pts[i].y() - c.y(), pts[i].x() - c.x()); };
+  // The arc's vertex nearest its middle direction.
+  const double mid = 0.5 * (arc.start_angle_rad + arc.end_angle_rad);
+  std::optional<std::size_t> middle;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (range(i) < free_reach) continue;
+    const double off = std::abs(kernel::WrapAngle(bearing(i) - mid));
+    if (off < best) {
+      best = off;
+      middle = i;
+    }
+  }
+  if (!middle) return std::nullopt;
+  // Walking from the middle in `step` (+1 or -1) direction past the arc: the first edge off it
+  // joins the arc to the jamb when it is short (a door at the rim), else the jamb is the near end
+  // of the first shadow edge (a depth jump at the occluder), within kSearch of the middle.
+  auto jamb = [&](int step) -> std::optional<Eigen::Vector2d> {
+    std::size_t i = *middle;
+    bool left_arc = false;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t edge = step > 0 ? i : (i + n - 1) % n;  // from vertex edge to edge + 1
+      const std::size_t next = step > 0 ? (i + 1) % n : (i + n - 1) % n;
+      if (!lsr.full_circle() && (edge == 0 || edge == n - 1)) return std::nullopt;  // the sensor
+      if (std::abs(kernel::WrapAngle(bearing(next) - mid)) > kSearch) return std::nullopt;
+      if (range(next) < free_reach && !left_arc) {
+        left_arc = true;
+        if ((pts[next] - pts[i]).norm() <= options_.shadow_edge_m) return pts[next];
+      }
+      if (left_arc && kernel::IsShadowEdge(lsr, edge, options_.shadow_edge_m))
+        return range(i) < range(next) ? pts[i] : pts[next];
+      i = next;
+    }
+    return std::nullopt;
+  };
+  const std::optional<Eigen::Vector2d> left = jamb(+1), right = jamb(-1);
+  if (!left || !right) return std::nullopt;
+  return Gap{*left, *right};
+}
+
+std::optional<Session::DoorwayMove> Session::DoorwayApproach(
+    const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& from, const kernel::FrontierArc& arc,
+    const std::vector<Eigen::Vector2d>& avoid) const {
+  constexpr double kStandOff = 0.3;  // m in front of the gap, beyond Needed()
+  if (!options_.doorway_goals || !options_.grid_paths) return std::nullopt;
+  const std::optional<Gap> gap = GapOf(lsr, arc);
+  if (!gap || gap->Width() < 2.0 * Needed()) return std::nullopt;
+  const Eigen::Vector2d along = (gap->left - gap->right) / gap->Width();
+  const Eigen::Vector2d centre = 0.5 * (gap->left + gap->right);
+  Eigen::Vector2d normal(-along.y(), along.x());
+  if (normal.dot(lsr.center() - centre) < 0.0) normal = -normal;
+  const Eigen::Vector2d goal = centre + (Needed() + kStandOff) * normal;
+  if ((goal - from).norm() < kMinTravel ||
+      std::any_of(avoid.begin(), avoid.end(),
+                  [&](const Eigen::Vector2d& a) { return (goal - a).norm() < kMinTravel; }) ||
+      !lsr.Contains(goal))
+    return std::nullopt;
+  std::optional<std::vector<Eigen::Vector2d>> path = PathInside(lsr, from, goal);
+  if (!path) return std::nullopt;
+  return DoorwayMove{std::move(*path), centre};
+}
+
+std::vector<kernel::FrontierArc> Session::FrontiersOf(const kernel::LocalSafeRegion& lsr) const {
+  std::vector<kernel::FrontierArc> kept;
+  for (const kernel::FrontierArc& arc : lsr.frontiers()) {
+    if (graph::ArcLength(arc, options_.lsr_radius_m) >= options_.min_frontier_m) {
+      kept.push_back(arc);
+    } else if (options_.doorway_goals) {
+      const std::optional<Gap> gap = GapOf(lsr, arc);
+      if (gap && gap->Width() >= 2.0 * Needed()) kept.push_back(arc);
+    }
+  }
+  return kept;
 }
 
 std::optional<std::vector<Eigen::Vector2d>> Session::GridPath(const kernel::LocalSafeRegion& lsr,

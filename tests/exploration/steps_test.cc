@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "exploration/localization.h"
@@ -271,6 +272,65 @@ TEST(Session, PropertyARobotBesideTheSonarsBoundaryLeavesByAnExactLeg) {
   EXPECT_GT(goals, 100);
   // The cause: without the escapes some of these goals are out of reach.
   EXPECT_GT(unreached_without, 0);
+}
+
+// A wall 1.2 m north of the node with a gap at x 1.9 to 1.9 + `gap_m`, seen at a slant near the
+// LSR's rim: the room beyond shows as a free arc shorter than the gap (0.7 m: a 0.39 m arc).
+kernel::Scan WallWithGap(double gap_m) {
+  return Circle([gap_m](double angle) {
+    const double s = std::sin(angle);
+    if (s <= 1e-9) return kernel::Scan::kNoReturn;
+    const double x = 1.2 * std::cos(angle) / s;
+    return x >= 1.9 && x <= 1.9 + gap_m ? kernel::Scan::kNoReturn : 1.2 / s;
+  });
+}
+
+// The arcs of `arcs` whose middle lies within 1 deg of `bearing`.
+int ArcsAt(const std::vector<kernel::FrontierArc>& arcs, double bearing) {
+  return static_cast<int>(std::count_if(arcs.begin(), arcs.end(), [&](const auto& a) {
+    return a.start_angle_rad - 0.02 <= bearing && bearing <= a.end_angle_rad + 0.02;
+  }));
+}
+
+TEST(Session, ADoorSeenAtASlantNearTheRimIsAFrontierASlitIsNot) {
+  const double door_bearing = std::atan2(1.2, 2.25);  // the 0.7 m door's middle
+  for (const bool doorway_goals : {false, true}) {
+    ExplorerOptions options;
+    options.doorway_goals = doorway_goals;
+    Fixture f(options);
+    const kernel::LocalSafeRegion door =
+        kernel::LocalSafeRegion::FromScan(WallWithGap(0.7), Pose2(0, 0, 0), 3.0);
+    // The arc is under min_frontier_m (0.5 m), the gap between its jambs is not.
+    int short_arcs = 0;
+    for (const auto& arc : door.frontiers()) {
+      if (ArcsAt({arc}, door_bearing) == 0) continue;
+      ++short_arcs;
+      EXPECT_LT(graph::ArcLength(arc, 3.0), 0.5);
+      const auto gap = f.session.GapOf(door, arc);
+      ASSERT_TRUE(gap);
+      // The jambs are the first hits beside the door: along a wall at 25 deg to the beams, up to
+      // a beam's footprint (1 deg at 2.9 m, 0.12 m along the wall) beyond it.
+      EXPECT_GE(gap->Width(), 0.7 - 0.06);
+      EXPECT_LE(gap->Width(), 0.7 + 0.18);
+      EXPECT_NEAR(gap->left.y(), 1.2, 1e-6);
+      EXPECT_NEAR(gap->right.y(), 1.2, 1e-6);
+      // The approach stands on the door's axis, 0.3 m beyond the robot's need in front of it,
+      // and faces the door's middle.
+      const auto move = f.session.DoorwayApproach(door, {0, 0}, arc, {});
+      ASSERT_EQ(move.has_value(), doorway_goals);
+      if (!move) continue;
+      EXPECT_NEAR(move->face.x(), 2.25, 0.1);
+      EXPECT_NEAR(move->face.y(), 1.2, 1e-6);
+      EXPECT_NEAR(move->path.back().x(), move->face.x(), 1e-9);
+      EXPECT_NEAR(move->path.back().y(), 1.2 - f.session.Needed() - 0.3, 1e-9);
+    }
+    EXPECT_EQ(short_arcs, 1);
+    EXPECT_EQ(ArcsAt(f.session.FrontiersOf(door), door_bearing), doorway_goals ? 1 : 0);
+    // A 0.3 m slit is no frontier either way: the robot needs 2 x 0.317 m.
+    const kernel::LocalSafeRegion slit =
+        kernel::LocalSafeRegion::FromScan(WallWithGap(0.3), Pose2(0, 0, 0), 3.0);
+    EXPECT_EQ(ArcsAt(f.session.FrontiersOf(slit), std::atan2(1.2, 2.05)), 0);
+  }
 }
 
 TEST(Session, FrontiersShorterThanTheMinimumAreDropped) {
