@@ -50,7 +50,7 @@ struct TopologicalSlamOptions {
   // 86 % of intel's scans pair no point with a map curve (the map is only extended after a
   // localisation). With the odometry's prediction the topological SLAM was worse than odometry
   // in rotation on both real logs (intel 41.9 against 39.2 deg, mit-csail 8.1 against 5.1 deg);
-  // with scan matching it is better in both (README, "Real data").
+  // with scan matching it is better in both (docs/real_data.md).
   TopologicalPrediction prediction = TopologicalPrediction::kScanMatching;
   // scan_matching: the front end (registration, submap, odometry test, recovery search). Its
   // loop closure is off; `topological-graph` adds the graph SLAM's loop closure behind the
@@ -144,8 +144,9 @@ struct TopologicalSlamOptions {
   // corrected pose: a raw 4 deg turn of two short curves passed it on the `complex` route (seed 5,
   // scan 201) and the map then agreed with the wrong heading. With this test the route's seeds
   // 1-10 went from 0.074-0.346 m (3 worse than odometry) to 0.037-0.135 m with the paper's
-  // correction (README). With the point-to-curve correction it does not help: REG explorations of
-  // `complex` (seeds 1-10) averaged 0.158 m with it, 0.139 m without. false: the paper's test.
+  // correction (docs/methods.md). With the point-to-curve correction it does not help: REG
+  // explorations of `complex` (seeds 1-10) averaged 0.158 m with it, 0.139 m without. false: the
+  // paper's test.
   bool verify_improves = false;
 
   // Dense refinement (point_to_curve): after the association, the points of every observed curve

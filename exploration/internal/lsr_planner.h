@@ -51,8 +51,6 @@ class LsrPlanner {
       double min_spacing_m, int stride,
       const std::function<bool(const Eigen::Vector2d&)>& accept) const;
 
-  const Eigen::Vector2d& from() const { return from_; }
-
  private:
   // Cell index of p, -1 outside the grid.
   int Index(const Eigen::Vector2d& p) const;
