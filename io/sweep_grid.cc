@@ -179,6 +179,15 @@ Result<Grid> ReadGrid(const std::string& path) {
   return ParseGrid(text, path);
 }
 
+GridAxis SeedAxis(std::uint64_t first, int count) {
+  GridAxis seeds{"seed", {}};
+  for (int i = 0; i < count; ++i) {
+    const std::string seed = std::to_string(first + static_cast<std::uint64_t>(i));
+    seeds.values.push_back({seed, {{"seed", seed, false}}});
+  }
+  return seeds;
+}
+
 std::string GridToYaml(const Grid& grid) {
   YAML::Emitter out;
   out << YAML::BeginMap;

@@ -1,6 +1,7 @@
 #ifndef SPLAM_IO_SWEEP_GRID_H_
 #define SPLAM_IO_SWEEP_GRID_H_
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -61,6 +62,9 @@ struct Grid {
 // list or a map, a replicate that is no axis.
 Result<Grid> ReadGrid(const std::string& path);
 Result<Grid> ParseGrid(const std::string& text, const std::string& path);
+
+// The axis "seed" with the values first, first + 1, ... (count of them), each setting --seed.
+GridAxis SeedAxis(std::uint64_t first, int count);
 
 // The grid as YAML that ParseGrid reads back to the same Grid.
 std::string GridToYaml(const Grid& grid);

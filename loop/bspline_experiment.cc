@@ -242,12 +242,7 @@ io::Grid ComplexBSplineGrid(const BSplineExperimentArgs& args) {
       {"max-correspondence", fmt::format("{}", args.max_correspondence_distance_m), false}};
   if (args.max_scans > 0)
     grid.options.push_back({"max-scans", std::to_string(args.max_scans), false});
-  io::GridAxis seeds{"seed", {}};
-  for (int i = 0; i < args.runs; ++i) {
-    const std::string seed = std::to_string(args.seed + static_cast<std::uint64_t>(i));
-    seeds.values.push_back({seed, {{"seed", seed, false}}});
-  }
-  grid.axes = {std::move(seeds)};
+  grid.axes = {io::SeedAxis(args.seed, args.runs)};
   grid.figures = {"pedraza.rmse_position_m", "curvature.rmse_position_m", "pedraza.map_error_m",
                   "curvature.map_error_m",   "pedraza.ms_per_scan",       "curvature.ms_per_scan",
                   "odometry.rmse_position_m"};

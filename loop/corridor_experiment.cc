@@ -357,12 +357,7 @@ io::Grid CorridorGrid(const CorridorOptions& options) {
                   {"odometry-floor", fmt::format("{}", options.odometry_floor), false},
                   {"line-floor-scale", fmt::format("{}", options.line_floor_scale), false}};
   if (!options.corners) grid.options.push_back({"no-corners", "true", false});
-  io::GridAxis seeds{"seed", {}};
-  for (int i = 0; i < options.runs; ++i) {
-    const std::string seed = std::to_string(options.seed + static_cast<std::uint64_t>(i));
-    seeds.values.push_back({seed, {{"seed", seed, false}}});
-  }
-  grid.axes = {std::move(seeds)};
+  grid.axes = {io::SeedAxis(options.seed, options.runs)};
   grid.figures = {"nees.fraction_of_steps_inside", "final_position_error_m.ekf_lines_mean",
                   "final_position_error_m.odometry_mean"};
   return grid;

@@ -56,15 +56,11 @@ io::Grid ExplorationExperimentGrid(const ExplorationExperimentArgs& args) {
   grid.options = {{"localization", "ground-truth", false}};  // Fig. 18 studies exploration alone
   if (args.alpha != ExplorationExperimentArgs().alpha)
     grid.options.push_back({"alpha", fmt::format("{}", args.alpha), false});
-  io::GridAxis worlds{"world", {}}, explorers{"explorer", {}}, seeds{"seed", {}};
+  io::GridAxis worlds{"world", {}}, explorers{"explorer", {}};
   for (const std::string& w : Worlds()) worlds.values.push_back({w, {{"world", w, false}}});
   for (const std::string& e : Explorers())
     explorers.values.push_back({e, {{"explorer", e, false}}});
-  for (int i = 0; i < args.runs; ++i) {
-    const std::string seed = std::to_string(args.seed + static_cast<std::uint64_t>(i));
-    seeds.values.push_back({seed, {{"seed", seed, false}}});
-  }
-  grid.axes = {std::move(worlds), std::move(explorers), std::move(seeds)};
+  grid.axes = {std::move(worlds), std::move(explorers), io::SeedAxis(args.seed, args.runs)};
   grid.figures = {"nodes", "distance_m", "time_s", "coverage_fraction", "wall_s"};
   return grid;
 }

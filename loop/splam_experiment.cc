@@ -138,12 +138,7 @@ io::Grid SplamExperimentGrid(const SplamExperimentArgs& args) {
     }
     strategy.values.push_back(std::move(value));
   }
-  io::GridAxis seeds{"seed", {}};
-  for (int i = 0; i < args.runs; ++i) {
-    const std::string seed = std::to_string(args.seed + static_cast<std::uint64_t>(i));
-    seeds.values.push_back({seed, {{"seed", seed, false}}});
-  }
-  grid.axes = {std::move(strategy), std::move(seeds)};
+  grid.axes = {std::move(strategy), io::SeedAxis(args.seed, args.runs)};
   grid.figures = {"trajectory_error.estimate.rmse_position_m",
                   "trajectory_error.estimate.max_position_m",
                   "trajectory_error.estimate.rmse_heading_rad",
