@@ -21,10 +21,7 @@ namespace {
 // new node cannot see beyond is not tried forever. `last_open` holds that measure at v's previous
 // relaxed move. A part seen only through a door at a slant is approached on the door's axis,
 // facing through it (Session::DoorwayApproach).
-struct Move {
-  std::vector<Eigen::Vector2d> path;
-  std::optional<Eigen::Vector2d> face;  // what the robot turns to at the end (Session::Drive)
-};
+using Move = internal::Session::Move;
 std::optional<Move> RelaxedMove(internal::Session* session, graph::Vertex v, double* last_open) {
   const graph::ExplorationGraph& g = session->graph();
   const graph::NodeData& node = g[v];
@@ -57,8 +54,7 @@ std::optional<Move> RelaxedMove(internal::Session* session, graph::Vertex v, dou
     const kernel::FrontierArc* widest = &open.front();
     for (const kernel::FrontierArc& part : open)
       if (part.AngularWidth() > widest->AngularWidth()) widest = &part;
-    if (auto door = session->DoorwayApproach(node.lsr, here, *widest, nodes))
-      return Move{door->path, door->face};
+    if (auto door = session->DoorwayApproach(node.lsr, here, *widest, nodes)) return door;
     const double mid = 0.5 * (widest->start_angle_rad + widest->end_angle_rad);
     if (auto path = session->Approach(node.lsr, here, node.lsr.ArcPoint(mid), nodes))
       return Move{*path, {}};

@@ -687,7 +687,7 @@ std::optional<Session::Gap> Session::GapOf(const kernel::LocalSafeRegion& lsr,
   return Gap{*left, *right};
 }
 
-std::optional<Session::DoorwayMove> Session::DoorwayApproach(
+std::optional<Session::Move> Session::DoorwayApproach(
     const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& from, const kernel::FrontierArc& arc,
     const std::vector<Eigen::Vector2d>& avoid) const {
   constexpr double kStandOff = 0.3;  // m in front of the gap, beyond Needed()
@@ -706,7 +706,7 @@ std::optional<Session::DoorwayMove> Session::DoorwayApproach(
     return std::nullopt;
   std::optional<std::vector<Eigen::Vector2d>> path = PathInside(lsr, from, goal);
   if (!path) return std::nullopt;
-  return DoorwayMove{std::move(*path), centre};
+  return Move{std::move(*path), centre};
 }
 
 std::vector<kernel::FrontierArc> Session::FrontiersOf(const kernel::LocalSafeRegion& lsr) const {

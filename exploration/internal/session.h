@@ -111,14 +111,13 @@ class Session {
   // least 2 Needed() wide. The goal lies Needed() + 0.3 m in front of the gap's middle on the
   // LSR's side, at least 0.5 m from `from` and from every point of `avoid`; `face` is the gap's
   // middle. nullopt when there is no such gap or no path.
-  struct DoorwayMove {
+  struct Move {
     std::vector<Eigen::Vector2d> path;
-    Eigen::Vector2d face;
+    std::optional<Eigen::Vector2d> face;  // what the robot turns to at the end (Drive)
   };
-  std::optional<DoorwayMove> DoorwayApproach(const kernel::LocalSafeRegion& lsr,
-                                             const Eigen::Vector2d& from,
-                                             const kernel::FrontierArc& arc,
-                                             const std::vector<Eigen::Vector2d>& avoid) const;
+  std::optional<Move> DoorwayApproach(const kernel::LocalSafeRegion& lsr,
+                                      const Eigen::Vector2d& from, const kernel::FrontierArc& arc,
+                                      const std::vector<Eigen::Vector2d>& avoid) const;
   // A given-up frontier retried from another node (ExplorerOptions::retry_nodes): the robot drives
   // to `node` along the graph, then `approach` inside its LSR, as near to `target` (the
   // frontier's middle, or ShadowTarget) as it gets.

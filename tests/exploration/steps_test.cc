@@ -319,9 +319,10 @@ TEST(Session, ADoorSeenAtASlantNearTheRimIsAFrontierASlitIsNot) {
       const auto move = f.session.DoorwayApproach(door, {0, 0}, arc, {});
       ASSERT_EQ(move.has_value(), doorway_goals);
       if (!move) continue;
-      EXPECT_NEAR(move->face.x(), 2.25, 0.1);
-      EXPECT_NEAR(move->face.y(), 1.2, 1e-6);
-      EXPECT_NEAR(move->path.back().x(), move->face.x(), 1e-9);
+      ASSERT_TRUE(move->face);
+      EXPECT_NEAR(move->face->x(), 2.25, 0.1);
+      EXPECT_NEAR(move->face->y(), 1.2, 1e-6);
+      EXPECT_NEAR(move->path.back().x(), move->face->x(), 1e-9);
       EXPECT_NEAR(move->path.back().y(), 1.2 - f.session.Needed() - 0.3, 1e-9);
     }
     EXPECT_EQ(short_arcs, 1);
