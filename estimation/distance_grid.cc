@@ -72,6 +72,10 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
   std::vector<Eigen::Vector2d> sum(static_cast<std::size_t>(g.rows_) * g.cols_,
                                    Eigen::Vector2d::Zero());
   std::vector<Eigen::Vector2d> normal(sum.size(), Eigen::Vector2d::Zero());
+  // The normals turned more than 90 deg from the cell's first normal (`reference`), summed: an
+  // outline seen from both sides (normals point towards the sensor that saw the point).
+  std::vector<Eigen::Vector2d> reference(sum.size(), Eigen::Vector2d::Zero());
+  std::vector<Eigen::Vector2d> opposed(sum.size(), Eigen::Vector2d::Zero());
   std::vector<int> count(sum.size(), 0);
   for (const auto& [p, n] : oriented) {
     const int c = static_cast<int>((p.x() - g.origin_.x()) / resolution_m);
@@ -79,6 +83,8 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
     const std::size_t i = static_cast<std::size_t>(r) * g.cols_ + c;
     sum[i] += p;
     normal[i] += n;
+    if (reference[i].isZero()) reference[i] = n;
+    if (n.dot(reference[i]) < 0) opposed[i] += n;
     ++count[i];
     free_cells.at<unsigned char>(r, c) = 0;
   }
@@ -93,7 +99,17 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
       const auto label = static_cast<std::size_t>(labels.at<int>(r, c));
       if (g.pieces_.size() <= label) g.pieces_.resize(label + 1);
       g.pieces_[label] = {sum[i] / count[i], normal[i]};
+      if (opposed[i].isZero()) continue;
+      // Two-sided: the back is the side the summed normal does not point to.
+      const Eigen::Vector2d same_as_reference = normal[i] - opposed[i];
+      const Eigen::Vector2d back =
+          normal[i].dot(same_as_reference) >= 0 ? opposed[i] : same_as_reference;
+      if (back.dot(normal[i]) >= 0 || back.norm() < 1e-12) continue;
+      if (g.back_normals_.size() <= label)
+        g.back_normals_.resize(label + 1, Eigen::Vector2d::Zero());
+      g.back_normals_[label] = back.normalized();
     }
+  g.back_normals_.resize(g.pieces_.size(), Eigen::Vector2d::Zero());
   for (auto& piece : g.pieces_)
     if (piece.normal.norm() > 1e-12) piece.normal.normalize();
   const double half = kSegmentHalfLength * resolution_m;
@@ -186,6 +202,12 @@ const OrientedPoint* DistanceGrid::NearestPiece(const Eigen::Vector2d& p) const 
   const long i = CellIndex(p);
   const int label = i < 0 ? -1 : nearest_[static_cast<std::size_t>(i)];
   return label < 0 ? nullptr : &pieces_[static_cast<std::size_t>(label)];
+}
+
+Eigen::Vector2d DistanceGrid::BackNormal(const Eigen::Vector2d& p) const {
+  const long i = CellIndex(p);
+  const int label = i < 0 ? -1 : nearest_[static_cast<std::size_t>(i)];
+  return label < 0 ? Eigen::Vector2d::Zero() : back_normals_[static_cast<std::size_t>(label)];
 }
 
 double DistanceGrid::PieceHalfLength() const { return kSegmentHalfLength * resolution_m_; }

@@ -107,6 +107,11 @@ class DistanceGrid {
   double Distance(const Eigen::Vector2d& p, Eigen::Vector2d* gradient = nullptr) const;
   // The outline piece Distance(p) measures to; null where there is none within the truncation.
   const OrientedPoint* NearestPiece(const Eigen::Vector2d& p) const;
+  // Where the cell of that piece holds an outline seen from both sides (a thin wall, a door's
+  // leaf: some of its points' normals, which point towards the sensors that saw them, turned more
+  // than 90 deg from the others), the normal of the side the piece's does not show (unit);
+  // zero for a one-sided piece and where there is none.
+  Eigen::Vector2d BackNormal(const Eigen::Vector2d& p) const;
   // Half the length of an outline piece, m.
   double PieceHalfLength() const;
   // Fractional (row, col) of a point, in the convention of ceres::Grid2D (cell centres at
@@ -127,6 +132,7 @@ class DistanceGrid {
   std::vector<unsigned char> known_;   // 0 unseen, 1 behind a hit, 2 seen free; empty: all 2
   std::vector<int> nearest_;           // per cell: index into pieces_ of its nearest piece
   std::vector<OrientedPoint> pieces_;  // the occupied cells' outline pieces
+  std::vector<Eigen::Vector2d> back_normals_;  // per piece: BackNormal, or zero
 };
 
 // Score grids for the correlative search (Olson 2009): level 0 holds the likelihood

@@ -244,11 +244,14 @@ RegistrationResult GraphSlam::RegisterScan(const std::vector<OrientedPoint>& poi
         RegisterPoints(points, submap_, pose_, options_.registration, &odometry);
     if (r.accepted ? OdometryIsInlier(fused, r, options_.odometry_outlier_probability)
                    : fused.accepted)
-      return fused;
+      r = std::move(fused);
   }
-  if (r.accepted || options_.recovery_window_m <= 0) return r;
-  // The odometry can be off by more than the registration's basin (wheel slip, a bump): a
-  // correlative search around the prediction finds the basin, the registration refines it.
+  const bool suspect = r.accepted && r.misfit_fraction > options_.verify_misfit_fraction;
+  if ((r.accepted && !suspect) || options_.recovery_window_m <= 0) return r;
+  // The odometry can be off by more than the registration's basin (wheel slip, a bump, a fast
+  // turn): a correlative search around the prediction finds the basin, the registration refines
+  // it. It replaces a failed registration when at least as many points lie near the map, a
+  // suspect one only when more do and fewer contradict it.
   ++recoveries_;
   if (!submap_scores_)
     submap_scores_ = std::make_unique<LikelihoodPyramid>(submap_, options_.loop.sigma_m, 3);
@@ -263,6 +266,9 @@ RegistrationResult GraphSlam::RegisterScan(const std::vector<OrientedPoint>& poi
   wide.max_correction_rad = options_.recovery_window_rad + wide.max_correction_rad;
   RegistrationResult recovered = RegisterPoints(points, submap_, match.pose, wide);
   if (!recovered.accepted || recovered.inlier_fraction < r.inlier_fraction) return r;
+  if (suspect && !(recovered.inlier_fraction > r.inlier_fraction &&
+                   recovered.misfit_fraction < r.misfit_fraction))
+    return r;
   recovered.covariance +=
       Diagonal(options_.registration.prior_sigma_m, options_.registration.prior_sigma_rad);
   ++recovered_;
@@ -730,6 +736,9 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
           "a failed registration is searched again within this of the odometry (0: never), m");
   v.Field("recovery_window_rad", &recovery_window_rad, "and within this heading, rad");
   v.Field("recovery_step_rad", &recovery_step_rad, "heading step of that search, rad");
+  v.Field("verify_misfit_fraction", &verify_misfit_fraction,
+          "a registration with more of its points contradicting the submap is checked by the "
+          "recovery search (1: never)");
   v.Field("robust_recovery_edges", &robust_recovery_edges,
           "the keyframe edge across a recovered scan gets the closures' robust loss");
   v.Field("edge_sigma_m", &edge_sigma_m, "keyframe edge sigma: base, m");
@@ -765,6 +774,8 @@ kernel::Status GraphSlamOptions::Validate() const {
     return kernel::Status::Error("odometry_outlier_probability must be in (0, 1)");
   if (!(recovery_window_m >= 0) || !(recovery_window_rad >= 0) || !(recovery_step_rad > 0))
     return kernel::Status::Error("recovery windows >= 0 and recovery_step_rad > 0");
+  if (!(verify_misfit_fraction >= 0 && verify_misfit_fraction <= 1))
+    return kernel::Status::Error("verify_misfit_fraction must be in [0, 1]");
   if (!(edge_sigma_m > 0) || !(edge_sigma_rad > 0) || !(edge_sigma_per_m >= 0) ||
       !(edge_sigma_per_rad >= 0))
     return kernel::Status::Error("edge sigmas must be positive");

@@ -147,6 +147,14 @@ struct GraphSlamOptions {
   double recovery_window_m = 0.5;
   double recovery_window_rad = 1.2;
   double recovery_step_rad = 0.01;
+  // A registration that passes the test but leaves more than verify_misfit_fraction of the scan's
+  // points where the submap saw, away from its outlines (RegistrationResult::misfit_fraction), is
+  // suspect: the recovery search runs, and its pose replaces the registration's when more points
+  // lie near the submap there and fewer contradict it. A right pose leaves 0-2 % of a scan so; a
+  // fast turn (2 rad/s) whose odometry heading was 0.19 rad off converged to a local minimum
+  // with 21 % (mit-csail, scan 1350), and the log's map then broke or not with a 1 cm change of
+  // keyframe_distance_m (docs/graph_slam.md). 1: never.
+  double verify_misfit_fraction = 0.05;
   // The front-end edge into the next keyframe after a recovery gets the loop closures' robust
   // loss: a search over a window can take the wrong basin (a 16 deg turn where the robot drove
   // straight, exploring `complex`, seed 1), and closures that later find the robot elsewhere then

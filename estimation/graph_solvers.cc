@@ -190,8 +190,13 @@ bool Matchable(const DistanceGrid& grid, const OrientedPoint& placed,
       std::abs(tangent.dot(placed.point - piece->point)) > grid.PieceHalfLength() &&
       !grid.SeenFree(placed.point))
     return false;
-  return options.max_normal_angle_rad >= M_PI || placed.normal.isZero() ||
-         placed.normal.dot(piece->normal) >= std::cos(options.max_normal_angle_rad);
+  if (options.max_normal_angle_rad >= M_PI || placed.normal.isZero()) return true;
+  // An outline seen from both sides (a thin wall) matches a point facing either side.
+  const double min_cos = std::cos(options.max_normal_angle_rad);
+  const Eigen::Vector2d back =
+      options.two_sided_outlines ? grid.BackNormal(placed.point) : Eigen::Vector2d::Zero();
+  return placed.normal.dot(piece->normal) >= min_cos ||
+         (!back.isZero() && placed.normal.dot(back) >= min_cos);
 }
 
 std::vector<OrientedPoint> Placed(const kernel::Pose2& pose,
@@ -293,6 +298,8 @@ RegistrationResult RegisterPoints(const std::vector<OrientedPoint>& points,
   // Of the whole scan: a scan mostly outside what the map saw is not trusted (the recovery
   // search or the odometry take over).
   result.inlier_fraction = static_cast<double>(inliers) / static_cast<double>(points.size());
+  result.misfit_fraction = static_cast<double>(static_cast<int>(seen.size()) - inliers) /
+                           static_cast<double>(points.size());
   result.rms_m = inliers > 0 ? std::sqrt(sum_sq / inliers) : 0.0;
   const kernel::Pose2 correction = prior.Between(result.pose);
   if (!std::isfinite(pose[0] + pose[1] + pose[2]) || !result.covariance.allFinite())
@@ -332,6 +339,8 @@ void RegistrationOptions::VisitFields(kernel::FieldVisitor& v) {
           "points past the end of their nearest outline piece are not matched");
   v.Field("max_normal_angle_rad", &max_normal_angle_rad,
           "a point turned from its nearest piece's normal by more is not matched (pi: off), rad");
+  v.Field("two_sided_outlines", &two_sided_outlines,
+          "where the map saw an outline from both sides, a point facing either side is matched");
 }
 
 kernel::Status RegistrationOptions::Validate() const {

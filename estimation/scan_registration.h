@@ -63,6 +63,13 @@ struct RegistrationOptions {
   // surface, fitted over 0.3 m of a URG's noise or turning along a pillar's piece, stay well
   // within it; 0.8 already refused good points on mit-csail (docs/graph_slam.md).
   double max_normal_angle_rad = 1.0;
+  // Where the map saw an outline from both sides (DistanceGrid::BackNormal: a thin wall, a door's
+  // leaf), a point facing either side is matched. One normal per cell showed only the side seen
+  // more often: leaving a room into a corridor along its wall (zero-thick in the simulator), half
+  // of every scan faced away from the room side and went unmatched, the registration failed its
+  // inlier test, and the recovery search pulled the robot back 0.3 m every few scans while it
+  // drove 4 m (`office` exploration, REG + graph, seed 8; docs/graph_slam.md).
+  bool two_sided_outlines = true;
 
   void VisitFields(kernel::FieldVisitor& v);
   kernel::Status Validate() const;
@@ -85,6 +92,9 @@ struct RegistrationResult {
   double evidence_cost = 0.0;
   double rms_m = 0.0;            // RMS distance of the inliers to the map
   double inlier_fraction = 0.0;  // of all the points, those near the map
+  // Of all the points, those where the map has seen (Matchable) but not near it: they contradict
+  // the pose (a point where the map has not seen says nothing, for or against).
+  double misfit_fraction = 0.0;
   int iterations = 0;
   bool converged = false;
   bool accepted = false;  // passed the quality test

@@ -528,30 +528,35 @@ TEST(SplamCli, SlamRunsOnTheRealMitLog) {
 }
 
 // The graph SLAM on all of mit-csail: every relation scored, with the accuracy of the published
-// graph-based systems (measured 0.0327 m, 0.44 deg; Cartographer 0.0319 m).
+// graph-based systems (measured 0.0301 m, 0.41 deg; Cartographer 0.0319 m), and still so with
+// keyframes 2 cm farther apart. Before the front end checked registrations whose points contradict
+// the submap (GraphSlamOptions::verify_misfit_fraction), a fast turn's wrong local minimum at
+// scan 1350 was accepted or not depending on such details: 0.0295 m at 0.30 m, 0.49 m at 0.32 m.
 TEST(SplamCli, GraphSlamClosesTheMitLoopsToCentimetres) {
   const char* env = std::getenv("SPLAM_DATA");
   const fs::path data = env != nullptr ? env : SPLAM_DEFAULT_DATA_DIR;
   if (!fs::exists(data / "mit-csail.clf"))
     GTEST_SKIP() << data / "mit-csail.clf"
                  << " not found: set SPLAM_DATA";
-  const fs::path dir = Temp("mit_graph");
-  const Output r =
-      Splam("slam --method graph " + (data / "mit-csail.clf").string() + " --out " + dir.string());
-  ASSERT_EQ(r.status, 0) << r.text;
-  const auto summary = nlohmann::json::parse(Slurp(dir / "summary.json"));
-  EXPECT_GT(summary["associations"]["loop_accepted"].get<int>(), 50);
-  EXPECT_FALSE(summary["optimizations"].empty());
-  for (const char* f : {"map.png", "map.dxf", "map.txt", "trajectory.txt"})
-    EXPECT_TRUE(fs::exists(dir / f)) << f;
-  const Output e =
-      Splam("eval " + dir.string() + " --relations " + (data / "mit-csail.relations").string());
-  ASSERT_EQ(e.status, 0) << e.text;
-  const auto report = nlohmann::json::parse(Slurp(dir / "eval.json"));
-  const auto& estimate = report["relations"]["estimate"];
-  EXPECT_EQ(estimate["relations_used"].get<int>(), 1172);
-  EXPECT_LT(estimate["translation_m"]["mean"].get<double>(), 0.05);
-  EXPECT_LT(estimate["rotation_deg"]["mean"].get<double>(), 1.0);
+  for (const std::string keyframes : {"", " --set graph.keyframe_distance_m=0.32"}) {
+    const fs::path dir = Temp("mit_graph");
+    const Output r = Splam("slam --method graph " + (data / "mit-csail.clf").string() + keyframes +
+                           " --out " + dir.string());
+    ASSERT_EQ(r.status, 0) << r.text;
+    const auto summary = nlohmann::json::parse(Slurp(dir / "summary.json"));
+    EXPECT_GT(summary["associations"]["loop_accepted"].get<int>(), 50);
+    EXPECT_FALSE(summary["optimizations"].empty());
+    for (const char* f : {"map.png", "map.dxf", "map.txt", "trajectory.txt"})
+      EXPECT_TRUE(fs::exists(dir / f)) << f;
+    const Output e =
+        Splam("eval " + dir.string() + " --relations " + (data / "mit-csail.relations").string());
+    ASSERT_EQ(e.status, 0) << e.text;
+    const auto report = nlohmann::json::parse(Slurp(dir / "eval.json"));
+    const auto& estimate = report["relations"]["estimate"];
+    EXPECT_EQ(estimate["relations_used"].get<int>(), 1172);
+    EXPECT_LT(estimate["translation_m"]["mean"].get<double>(), 0.05) << keyframes;
+    EXPECT_LT(estimate["rotation_deg"]["mean"].get<double>(), 1.0) << keyframes;
+  }
 }
 
 TEST(SplamCli, ExploreWritesTheGraphCoverageAndReport) {
