@@ -796,6 +796,10 @@ std::vector<kernel::FrontierArc> Session::UncoveredParts(
     const std::vector<const kernel::LocalSafeRegion*>& others) const {
   const auto covered =
       kernel::ArcPartsInside(owner, arc, others, options_.arc_sampling_rad, Cover());
+  // A frontier nothing covers stays as its node made it: FrontiersOf keeps an arc shorter than
+  // min_frontier_m seen through a door (doorway_goals), and re-filtering dropped it at the
+  // node's first overlap with any LSR, so that REG never went for such doors.
+  if (covered.empty() && options_.doorway_goals) return {arc};
   return LongEnough(graph::Subtract(arc, covered, options_.arc_sampling_rad));
 }
 

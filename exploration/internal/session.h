@@ -82,7 +82,8 @@ class Session {
   // (kernel::UnionLineOfSight).
   bool InSight(const Eigen::Vector2d& from, const Eigen::Vector2d& point) const;
   // The parts of `arc` (a frontier of `owner`) that the union of `others` does not cover (the
-  // view_depth and shadow_edge options), long enough to stay frontiers.
+  // view_depth and shadow_edge options), long enough to stay frontiers; with doorway_goals, the
+  // whole arc when they cover none of it (it passed FrontiersOf).
   std::vector<kernel::FrontierArc> UncoveredParts(
       const kernel::LocalSafeRegion& owner, const kernel::FrontierArc& arc,
       const std::vector<const kernel::LocalSafeRegion*>& others) const;

@@ -334,6 +334,42 @@ TEST(Session, ADoorSeenAtASlantNearTheRimIsAFrontierASlitIsNot) {
   }
 }
 
+// REG in `office`, seed 8 (with ekf-bspline and graph localisation): the only node that saw the
+// north middle room saw it through its door at a slant, a 0.43 m arc that FrontiersOf kept; the
+// node's first overlap with another LSR, which saw nothing of that room, re-applied
+// min_frontier_m to the arc (UncoveredParts), dropped it, and the room was never entered. A short
+// frontier nothing covers now stays (doorway_goals); what another LSR covers of it still leaves.
+TEST(Session, AShortDoorArcThatNothingCoversStaysAFrontier) {
+  const double door_bearing = std::atan2(1.2, 2.25);
+  // A neighbour 1 m west in the same corridor: its LSR overlaps, its wall hides the room.
+  const kernel::LocalSafeRegion neighbour =
+      kernel::LocalSafeRegion::FromScan(Circle([](double angle) {
+                                          const double s = std::sin(angle);
+                                          return s <= 1e-9 ? kernel::Scan::kNoReturn : 1.2 / s;
+                                        }),
+                                        Pose2(-1.0, 0, 0), 3.0);
+  for (const bool doorway_goals : {false, true}) {
+    ExplorerOptions options;
+    options.doorway_goals = doorway_goals;
+    Fixture f(options);
+    const kernel::LocalSafeRegion door =
+        kernel::LocalSafeRegion::FromScan(WallWithGap(0.7), Pose2(0, 0, 0), 3.0);
+    ASSERT_TRUE(kernel::Overlaps(door, neighbour));
+    for (const kernel::FrontierArc& arc : f.session.FrontiersOf(door)) {
+      if (ArcsAt({arc}, door_bearing) == 0) continue;
+      EXPECT_EQ(f.session.UncoveredParts(door, arc, {&neighbour}).size(), 1u);
+      // A region that covers part of it leaves the rest to LongEnough (the door's own: nothing).
+      EXPECT_TRUE(f.session.UncoveredParts(door, arc, {&door}).empty());
+    }
+    // Kept through the overlap with the option; without it the arc was never a frontier.
+    std::vector<kernel::FrontierArc> kept;
+    for (const kernel::FrontierArc& arc : f.session.FrontiersOf(door))
+      for (const kernel::FrontierArc& part : f.session.UncoveredParts(door, arc, {&neighbour}))
+        kept.push_back(part);
+    EXPECT_EQ(ArcsAt(kept, door_bearing), doorway_goals ? 1 : 0);
+  }
+}
+
 TEST(Session, FrontiersShorterThanTheMinimumAreDropped) {
   Fixture f;  // min_frontier_m = 0.5 at r = 3 m: arcs narrower than 1/6 rad are slits
   const std::vector<kernel::FrontierArc> arcs = {{0.0, 0.1}, {1.0, 1.2}, {2.0, 3.0}};
