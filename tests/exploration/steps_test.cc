@@ -292,14 +292,21 @@ int ArcsAt(const std::vector<kernel::FrontierArc>& arcs, double bearing) {
   }));
 }
 
+// The node's LSR (r = 3 m) of WallWithGap(0.7), and the explorer's options with doorway_goals.
+kernel::LocalSafeRegion DoorAtASlant() {
+  return kernel::LocalSafeRegion::FromScan(WallWithGap(0.7), Pose2(0, 0, 0), 3.0);
+}
+ExplorerOptions DoorwayGoals(bool on) {
+  ExplorerOptions options;
+  options.doorway_goals = on;
+  return options;
+}
+
 TEST(Session, ADoorSeenAtASlantNearTheRimIsAFrontierASlitIsNot) {
   const double door_bearing = std::atan2(1.2, 2.25);  // the 0.7 m door's middle
   for (const bool doorway_goals : {false, true}) {
-    ExplorerOptions options;
-    options.doorway_goals = doorway_goals;
-    Fixture f(options);
-    const kernel::LocalSafeRegion door =
-        kernel::LocalSafeRegion::FromScan(WallWithGap(0.7), Pose2(0, 0, 0), 3.0);
+    Fixture f(DoorwayGoals(doorway_goals));
+    const kernel::LocalSafeRegion door = DoorAtASlant();
     // The arc is under min_frontier_m (0.5 m), the gap between its jambs is not.
     int short_arcs = 0;
     for (const auto& arc : door.frontiers()) {
@@ -349,11 +356,8 @@ TEST(Session, AShortDoorArcThatNothingCoversStaysAFrontier) {
                                         }),
                                         Pose2(-1.0, 0, 0), 3.0);
   for (const bool doorway_goals : {false, true}) {
-    ExplorerOptions options;
-    options.doorway_goals = doorway_goals;
-    Fixture f(options);
-    const kernel::LocalSafeRegion door =
-        kernel::LocalSafeRegion::FromScan(WallWithGap(0.7), Pose2(0, 0, 0), 3.0);
+    Fixture f(DoorwayGoals(doorway_goals));
+    const kernel::LocalSafeRegion door = DoorAtASlant();
     ASSERT_TRUE(kernel::Overlaps(door, neighbour));
     for (const kernel::FrontierArc& arc : f.session.FrontiersOf(door)) {
       if (ArcsAt({arc}, door_bearing) == 0) continue;
