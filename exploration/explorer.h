@@ -68,6 +68,9 @@ struct ExplorerOptions {
   // (Session::DoorwayApproach), before the plain approach to the reachable point nearest the
   // arc, which stopped beside the door and looked past it again. SRT in `office`, seed 1, left
   // a room whose door the corridor nodes saw only at a slant (docs/experiments.md, Fig. 18).
+  // With it, a free arc shorter than min_frontier_m seen through such a gap is a frontier
+  // (Session::FrontiersOf), and stays one until another LSR covers part of it
+  // (Session::UncoveredParts; REG dropped it at its node's first overlap: `office`, seed 8).
   // false: only the plain approach (needs grid_paths).
   bool doorway_goals = true;
   // A frontier given up at its node (no clear leg, no approach saw behind it) and still open in
