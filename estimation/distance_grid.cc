@@ -97,7 +97,10 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
       const std::size_t i = static_cast<std::size_t>(r) * g.cols_ + c;
       if (count[i] == 0) continue;
       const auto label = static_cast<std::size_t>(labels.at<int>(r, c));
-      if (g.pieces_.size() <= label) g.pieces_.resize(label + 1);
+      if (g.pieces_.size() <= label) {
+        g.pieces_.resize(label + 1);
+        g.back_normals_.resize(label + 1, Eigen::Vector2d::Zero());
+      }
       g.pieces_[label] = {sum[i] / count[i], normal[i]};
       if (opposed[i].isZero()) continue;
       // Two-sided: the back is the side the summed normal does not point to.
@@ -105,11 +108,8 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
       const Eigen::Vector2d back =
           normal[i].dot(same_as_reference) >= 0 ? opposed[i] : same_as_reference;
       if (back.dot(normal[i]) >= 0 || back.norm() < 1e-12) continue;
-      if (g.back_normals_.size() <= label)
-        g.back_normals_.resize(label + 1, Eigen::Vector2d::Zero());
       g.back_normals_[label] = back.normalized();
     }
-  g.back_normals_.resize(g.pieces_.size(), Eigen::Vector2d::Zero());
   for (auto& piece : g.pieces_)
     if (piece.normal.norm() > 1e-12) piece.normal.normalize();
   const double half = kSegmentHalfLength * resolution_m;

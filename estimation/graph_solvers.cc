@@ -191,12 +191,12 @@ bool Matchable(const DistanceGrid& grid, const OrientedPoint& placed,
       !grid.SeenFree(placed.point))
     return false;
   if (options.max_normal_angle_rad >= M_PI || placed.normal.isZero()) return true;
-  // An outline seen from both sides (a thin wall) matches a point facing either side.
   const double min_cos = std::cos(options.max_normal_angle_rad);
-  const Eigen::Vector2d back =
-      options.two_sided_outlines ? grid.BackNormal(placed.point) : Eigen::Vector2d::Zero();
-  return placed.normal.dot(piece->normal) >= min_cos ||
-         (!back.isZero() && placed.normal.dot(back) >= min_cos);
+  if (placed.normal.dot(piece->normal) >= min_cos) return true;
+  if (!options.two_sided_outlines) return false;
+  // An outline seen from both sides (a thin wall) matches a point facing either side.
+  const Eigen::Vector2d back = grid.BackNormal(placed.point);
+  return !back.isZero() && placed.normal.dot(back) >= min_cos;
 }
 
 std::vector<OrientedPoint> Placed(const kernel::Pose2& pose,

@@ -502,7 +502,8 @@ LapsRun DriveLaps(int laps, const GraphSlamOptions& options = {}) {
 // were searched before; mit-csail's clutter let one pass, GraphSlamClosesTheMitLoopsToCentimetres).
 TEST_F(ComplexWorld, PropertyAFastTurnsHeadingErrorIsCorrected) {
   std::mt19937 gen(13);
-  const Pose2& robot_T_laser = simulator_.options().laser.robot_T_laser;
+  const sim::LaserOptions& laser = simulator_.options().laser;
+  const Pose2& robot_T_laser = laser.robot_T_laser;
   const auto heading_errors = [&](const GraphSlamOptions& options, int trials) {
     std::mt19937 draws(gen);
     std::vector<double> errors;
@@ -515,7 +516,6 @@ TEST_F(ComplexWorld, PropertyAFastTurnsHeadingErrorIsCorrected) {
                        [&](const Pose2& p) { return simulator_.IsFree(p); }))
         continue;
       GraphSlam slam(start, options);
-      sim::LaserOptions laser = simulator_.options().laser;
       for (std::size_t k = 0; k < truth.size(); ++k) {
         if (k > 0) {
           Pose2 increment = truth[k - 1].Between(truth[k]);
