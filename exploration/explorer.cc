@@ -13,6 +13,7 @@ kernel::Status ExplorerOptions::Validate() const {
   if (!(alpha > 0.0 && alpha < 1.0)) return kernel::Status::Error("alpha must lie in (0, 1)");
   if (!(clearance_margin_m >= 0.0)) return kernel::Status::Error("clearance_margin_m must be >= 0");
   if (!(min_frontier_m >= 0.0)) return kernel::Status::Error("min_frontier_m must be >= 0");
+  if (!(min_doorway_arc_m >= 0.0)) return kernel::Status::Error("min_doorway_arc_m must be >= 0");
   if (!(arc_sampling_rad > 0.0)) return kernel::Status::Error("arc_sampling_rad must be positive");
   if (!(frontier_view_depth_m >= 0.0) || !(shadow_edge_m > 0.0))
     return kernel::Status::Error("frontier_view_depth_m must be >= 0 and shadow_edge_m positive");
@@ -65,6 +66,9 @@ void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
           "suffices, as published), m");
   v.Field("shadow_edge_m", &shadow_edge_m,
           "LSR boundary edges longer than this with a depth jump are shadows, not obstacles, m");
+  v.Field("frontiers_carry_on", &frontiers_carry_on,
+          "a ray leaving another LSR across its free arc is seen only where that arc is a "
+          "frontier (min_frontier_m long outside the owner's circle)");
   v.Field("shadow_frontiers", &shadow_frontiers,
           "the space hidden behind an occluder is a frontier too (false: free arcs only)");
   v.Field("grid_paths", &grid_paths,
@@ -75,6 +79,9 @@ void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("doorway_goals", &doorway_goals,
           "a free arc seen only through a door at a slant is approached on the door's axis, "
           "facing through it");
+  v.Field("min_doorway_arc_m", &min_doorway_arc_m,
+          "doorway_goals keeps a short arc seen through a door only from this length (one or two "
+          "stray beams are none), m");
   v.Field("retry_nodes", &retry_nodes,
           "open given-up frontiers are retried from up to this many other nodes (0: as published)");
   v.Field("face_frontiers", &face_frontiers,

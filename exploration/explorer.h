@@ -42,6 +42,14 @@ struct ExplorerOptions {
   // (docs/experiments.md, Fig. 18). m.
   double frontier_view_depth_m = 1.0;
   double shadow_edge_m = 0.2;
+  // With frontier_view_depth_m, a point whose ray leaves the other LSR across that LSR's own free
+  // arc counts as seen only where that arc, outside the owner's circle, is at least
+  // min_frontier_m long (kernel::CoverOptions::min_free_arc_m): a shorter piece is dropped as a
+  // frontier, so nothing carries on there. In `office-doors` two nodes that each saw a door near
+  // the rims of their LSRs covered each other's arc through it, and the room behind was never
+  // entered while the run said `explored` (docs/experiments.md, Fig. 18). false: any free arc
+  // carries on.
+  bool frontiers_carry_on = true;
   // The space an LSR's sensor could not see behind an occluder (an occlusion edge at least
   // frontier_view_depth_m long, kernel::OcclusionEdges) is a frontier too, until other LSRs see
   // beyond it (Session::ShadowCovered): REG once no free arc is left, and SRT with
@@ -73,6 +81,13 @@ struct ExplorerOptions {
   // (Session::UncoveredParts; REG dropped it at its node's first overlap: `office`, seed 8).
   // false: only the plain approach (needs grid_paths).
   bool doorway_goals = true;
+  // doorway_goals keeps a free arc shorter than min_frontier_m only when it is at least this long
+  // at radius r: one or two beams free past a wall that lies at the LSR radius (range noise), at
+  // the edge of the laser's field of view, or through a wall junction are no view through a door,
+  // and as frontiers nobody could reach they turned `explored` runs into `incomplete` at 99-100 %
+  // (docs/experiments.md, Fig. 18). A 0.8 m door seen from 3 m at 85 deg off its axis still spans
+  // 0.07 m. m.
+  double min_doorway_arc_m = 0.05;
   // A frontier given up at its node (no clear leg, no approach saw behind it) and still open in
   // the explorer's map is retried from up to this many other nodes once nothing else is left: the
   // robot drives to the node whose LSR reaches nearest to it and approaches it from there

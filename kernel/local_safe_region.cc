@@ -141,6 +141,36 @@ EdgeSide EdgeMiddleAndNormal(const LocalSafeRegion& region, std::size_t i) {
   return {0.5 * (a + b), Eigen::Vector2d(e.y(), -e.x())};  // counter-clockwise: outside is right
 }
 
+namespace {
+
+// Whether the free arc of `region` through boundary edge `edge` is at least
+// cover.min_free_arc_m long outside the owner's circle: the length of the free-arc edges next to
+// it (both ways) whose far vertex lies outside that circle.
+bool CarriesOn(const LocalSafeRegion& region, std::size_t edge, const CoverOptions& cover) {
+  if (cover.min_free_arc_m <= 0.0) return true;
+  const std::vector<Eigen::Vector2d>& pts = region.boundary();
+  const std::size_t n = pts.size();
+  const auto outside = [&](std::size_t i) {
+    return cover.owner_radius_m <= 0.0 ||
+           (pts[i] - cover.owner_center).norm() > cover.owner_radius_m;
+  };
+  const auto length = [&](std::size_t i) { return (pts[(i + 1) % n] - pts[i]).norm(); };
+  double total = length(edge);
+  for (std::size_t k = 1, i = (edge + 1) % n; k < n && total < cover.min_free_arc_m; ++k) {
+    if (!OnFreeArc(region, i) || !outside((i + 1) % n)) break;
+    total += length(i);
+    i = (i + 1) % n;
+  }
+  for (std::size_t k = 1, i = (edge + n - 1) % n; k < n && total < cover.min_free_arc_m; ++k) {
+    if (!OnFreeArc(region, i) || !outside(i)) break;
+    total += length(i);
+    i = (i + n - 1) % n;
+  }
+  return total >= cover.min_free_arc_m;
+}
+
+}  // namespace
+
 RayExit FirstExit(const LocalSafeRegion& region, const Eigen::Vector2d& p, const Eigen::Vector2d& u,
                   double t_from, double t_to, const CoverOptions& cover) {
   const std::vector<Eigen::Vector2d>& pts = region.boundary();
@@ -162,7 +192,10 @@ RayExit FirstExit(const LocalSafeRegion& region, const Eigen::Vector2d& p, const
     }
   }
   if (first_edge == n) return {};
-  if (OnFreeArc(region, first_edge)) return {RayExit::Kind::kFreeArc, first_t};
+  if (OnFreeArc(region, first_edge)) {
+    return {CarriesOn(region, first_edge, cover) ? RayExit::Kind::kFreeArc : RayExit::Kind::kShadow,
+            first_t};
+  }
   return {IsShadowEdge(region, first_edge, cover.shadow_edge_m) ? RayExit::Kind::kShadow
                                                                 : RayExit::Kind::kObstacle,
           first_t};
@@ -179,9 +212,14 @@ template <typename Done, typename Passes>
 bool WalkUnion(const std::vector<const LocalSafeRegion*>& regions, const Eigen::Vector2d& p,
                const Eigen::Vector2d& u, double t_to, const CoverOptions& cover, Done done,
                Passes passes) {
+  // After the start, containment is tested just past t: the point where the ray left a region
+  // lies on that region's boundary, which Contains() counts as inside, and the walk then took the
+  // region on again past its own shadow edge (a frontier seen through a door from two nodes was
+  // covered by the space behind the jamb that neither saw).
+  constexpr double kPast = 1e-6;  // m
   double t = 0.0;
   while (true) {
-    const Eigen::Vector2d at = p + t * u;
+    const Eigen::Vector2d at = p + (t > 0.0 ? t + kPast : 0.0) * u;
     bool inside = false;
     RayExit farthest{RayExit::Kind::kShadow, t};
     for (const LocalSafeRegion* region : regions) {
@@ -225,13 +263,16 @@ bool UnionLineOfSight(const std::vector<const LocalSafeRegion*>& regions, const 
 std::vector<FrontierArc> ArcPartsInside(const LocalSafeRegion& owner, const FrontierArc& arc,
                                         const std::vector<const LocalSafeRegion*>& others,
                                         double spacing_rad, const CoverOptions& cover) {
+  CoverOptions from_owner = cover;
+  from_owner.owner_center = owner.center();
+  from_owner.owner_radius_m = owner.radius();
   std::vector<FrontierArc> parts;
   const int steps = std::max(1, static_cast<int>(std::ceil(arc.AngularWidth() / spacing_rad)));
   bool inside = false;
   for (int k = 0; k <= steps; ++k) {
     const double angle = arc.start_angle_rad + arc.AngularWidth() * k / steps;
     const bool in = UnionSeesBeyond(others, owner.ArcPoint(angle),
-                                    Eigen::Vector2d(std::cos(angle), std::sin(angle)), cover);
+                                    Eigen::Vector2d(std::cos(angle), std::sin(angle)), from_owner);
     if (in && !inside) parts.push_back({angle, angle});
     if (in) parts.back().end_angle_rad = angle;
     inside = in;

@@ -90,6 +90,15 @@ struct CoverOptions {
   // between (a door jamb's shadow). So are the two edges at the sensor of a partial-circle region.
   // m.
   double shadow_edge_m = 0.2;
+  // A ray that leaves the other region across its free arc counts as seen only where that arc,
+  // outside the owner's circle (owner_center, owner_radius_m; radius 0: no owner), is at least
+  // this long: shorter free arcs are not frontiers (the explorers' minimum), so nothing carries
+  // on there. Two nodes that each looked at a door near their rims covered each other's arc
+  // through it, each leaving a piece too short to keep, and the room was never entered
+  // (docs/experiments.md, Fig. 18). 0: any free arc carries on. m.
+  double min_free_arc_m = 0.0;
+  Eigen::Vector2d owner_center = Eigen::Vector2d::Zero();
+  double owner_radius_m = 0.0;
 };
 
 // Whether boundary edge i (from vertex i to i + 1) of `region` is a shadow: an edge at the sensor

@@ -58,6 +58,18 @@ class LaserHits {
   std::unordered_set<std::int64_t> cells_;
 };
 
+// Every node's laser hits, where the nodes are now.
+LaserHits NodeLaserHits(const ExplorationRun& run, const kernel::Pose2& robot_T_laser) {
+  LaserHits hits;
+  for (graph::Vertex v = 0; v < run.nodes.size(); ++v) {
+    kernel::Scan laser = run.nodes[v].safe_region_scan;
+    laser.ranges_m.resize(run.nodes[v].laser_beams);
+    const kernel::Pose2 world_T_laser = run.graph[v].configuration * robot_T_laser;
+    for (const Eigen::Vector2d& hit : laser.HitPoints()) hits.Add(world_T_laser * hit);
+  }
+  return hits;
+}
+
 }  // namespace
 
 Session::Session(const std::string& explorer, const ExplorerOptions& options, RobotInterface* robot,
@@ -127,7 +139,12 @@ graph::Vertex Session::AddNodeHere(int parent) {
   graph::NodeData& node = run_.graph[v];
   node.lsr = SafeRegionAt(record.safe_region_scan, estimate_, robot_->description(),
                           options_.lsr_radius_m);
-  node.frontiers = FrontiersOf(node.lsr);
+  const double laser_start =
+      (estimate_ * robot_->description().robot_T_laser).theta() + perception.scan.start_angle_rad;
+  const double laser_width = perception.scan.angular_step_rad *
+                             static_cast<double>(std::max<std::size_t>(record.laser_beams, 1) - 1);
+  node.frontiers =
+      FrontiersOf(node.lsr, kernel::FrontierArc{laser_start, laser_start + laser_width});
   if (options_.shadow_frontiers)
     node.shadows =
         kernel::OcclusionEdges(node.lsr, options_.shadow_edge_m, options_.frontier_view_depth_m);
@@ -310,6 +327,7 @@ std::vector<kernel::FrontierArc> Session::OpenParts(graph::Vertex v,
 
 std::vector<GivenUpFrontier> Session::GivenUpFrontiers() const {
   const graph::ExplorationGraph& g = run_.graph;
+  std::optional<LaserHits> hits;  // built when an arc needs them
   std::vector<GivenUpFrontier> list;
   for (graph::Vertex v = 0; v < boost::num_vertices(g); ++v) {
     const kernel::LocalSafeRegion& owner = g[v].lsr;
@@ -325,7 +343,25 @@ std::vector<GivenUpFrontier> Session::GivenUpFrontiers() const {
                         ShadowOpen(v, edge)});
         continue;
       }
-      const std::vector<kernel::FrontierArc> left = OpenParts(v, given_up.arc);
+      std::vector<kernel::FrontierArc> left = OpenParts(v, given_up.arc);
+      if (!left.empty() && options_.frontiers_carry_on) {
+        // A part behind which a laser hit an obstacle within frontier_view_depth_m at every
+        // point is closed, as where an LSR's ray leaves across an obstacle (kernel::CoverOptions):
+        // with a SLAM localisation the LSR that saw the obstacle may lie too far off to hold it.
+        if (!hits) hits = NodeLaserHits(run_, robot_->description().robot_T_laser);
+        std::erase_if(left, [&](const kernel::FrontierArc& arc) {
+          const int steps = std::max(
+              1, static_cast<int>(std::ceil(arc.AngularWidth() / options_.arc_sampling_rad)));
+          for (int k = 0; k <= steps; ++k) {
+            const double angle = arc.start_angle_rad + arc.AngularWidth() * k / steps;
+            if (!hits->AlongRay(owner.ArcPoint(angle),
+                                Eigen::Vector2d(std::cos(angle), std::sin(angle)),
+                                options_.frontier_view_depth_m))
+              return false;
+          }
+          return true;
+        });
+      }
       const double mid = 0.5 * (given_up.arc.start_angle_rad + given_up.arc.end_angle_rad);
       if (left.empty())
         list.push_back({static_cast<int>(v),
@@ -354,14 +390,12 @@ std::vector<GivenUpFrontier> Session::UnseenStretches() const {
   const graph::ExplorationGraph& g = run_.graph;
   // What each node's laser alone saw, where the node is now: its region and its hits.
   std::vector<kernel::LocalSafeRegion> laser_lsrs;
-  LaserHits hits;
+  const LaserHits hits = NodeLaserHits(run_, robot_->description().robot_T_laser);
   for (graph::Vertex v = 0; v < run_.nodes.size(); ++v) {
     kernel::Scan laser = run_.nodes[v].safe_region_scan;
     laser.ranges_m.resize(run_.nodes[v].laser_beams);
-    const kernel::Pose2 world_T_laser = g[v].configuration * robot_->description().robot_T_laser;
-    laser_lsrs.push_back(
-        kernel::LocalSafeRegion::FromScan(laser, world_T_laser, options_.lsr_radius_m));
-    for (const Eigen::Vector2d& hit : laser.HitPoints()) hits.Add(world_T_laser * hit);
+    laser_lsrs.push_back(kernel::LocalSafeRegion::FromScan(
+        laser, g[v].configuration * robot_->description().robot_T_laser, options_.lsr_radius_m));
   }
   std::vector<GivenUpFrontier> list;
   for (graph::Vertex v = 0; v < run_.nodes.size(); ++v) {
@@ -709,12 +743,22 @@ std::optional<Session::Move> Session::DoorwayApproach(
   return Move{std::move(*path), centre};
 }
 
-std::vector<kernel::FrontierArc> Session::FrontiersOf(const kernel::LocalSafeRegion& lsr) const {
+std::vector<kernel::FrontierArc> Session::FrontiersOf(
+    const kernel::LocalSafeRegion& lsr,
+    const std::optional<kernel::FrontierArc>& laser_view) const {
+  const auto in_laser_view = [&](const kernel::FrontierArc& arc) {
+    if (!laser_view) return true;
+    const double mid = 0.5 * (arc.start_angle_rad + arc.end_angle_rad);
+    const double from_start = kernel::WrapAngle(mid - laser_view->start_angle_rad);
+    return (from_start >= 0.0 ? from_start : from_start + 2.0 * kernel::kPi) <=
+           laser_view->AngularWidth();
+  };
   std::vector<kernel::FrontierArc> kept;
   for (const kernel::FrontierArc& arc : lsr.frontiers()) {
     if (graph::ArcLength(arc, options_.lsr_radius_m) >= options_.min_frontier_m) {
       kept.push_back(arc);
-    } else if (options_.doorway_goals) {
+    } else if (options_.doorway_goals && in_laser_view(arc) &&
+               graph::ArcLength(arc, options_.lsr_radius_m) >= options_.min_doorway_arc_m) {
       const std::optional<Gap> gap = GapOf(lsr, arc);
       if (gap && gap->Width() >= 2.0 * Needed()) kept.push_back(arc);
     }

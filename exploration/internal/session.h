@@ -144,7 +144,11 @@ class Session {
   std::vector<Eigen::Vector2d> NodePositions() const;
   // When another LSR covers a frontier (the view_depth and shadow_edge options).
   kernel::CoverOptions Cover() const {
-    return {options_.frontier_view_depth_m, options_.shadow_edge_m};
+    kernel::CoverOptions cover;
+    cover.view_depth_m = options_.frontier_view_depth_m;
+    cover.shadow_edge_m = options_.shadow_edge_m;
+    if (options_.frontiers_carry_on) cover.min_free_arc_m = options_.min_frontier_m;
+    return cover;
   }
   // The robot's radius plus the clearance margin: what a leg keeps from the LSR boundary, m.
   double Needed() const;
@@ -157,8 +161,14 @@ class Session {
   // doorway_goals the shorter ones seen through a gap at least 2 Needed() wide (GapOf): a door at
   // a slant near the LSR's rim leaves an arc shorter than the door (office-doors: a room whose
   // door a node saw 2.9 m away at 50 deg left a 0.36 m arc, dropped, and the run said
-  // `explored`).
-  std::vector<kernel::FrontierArc> FrontiersOf(const kernel::LocalSafeRegion& lsr) const;
+  // `explored`). Only within the laser's field of view `laser_view` (world frame; nullopt: all
+  // around): the sonars' cones are 30 deg wide, and a short arc between two of them is an
+  // artefact of the cone model, which may lie inside an obstacle a cone's edge did not echo
+  // (`complex`, SRT seed 1: a 0.11 m arc in a pillar, open at the end of a run that explored
+  // everything).
+  std::vector<kernel::FrontierArc> FrontiersOf(
+      const kernel::LocalSafeRegion& lsr,
+      const std::optional<kernel::FrontierArc>& laser_view = std::nullopt) const;
   // The gap through which the sensor saw free arc `arc` of `lsr`: its jambs, the boundary
   // vertices on either side of the arc's middle where the region narrows to the occluders: the
   // near end of the first shadow edge (kernel::IsShadowEdge) past the arc, or the first vertex

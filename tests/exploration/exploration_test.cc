@@ -257,16 +257,13 @@ TEST(ExplorationCauses, SpaceClosedOnlyByTheSonarsIsLookedAt) {
   // facing south-west, away from the room's east half; the sonars' first echoes (off the desk's
   // corner) close that half of its LSR, no free arc or shadow leads there, and the laser never
   // looks at it. Counted as seen, the run ended `explored` at 88 %. As an unseen stretch
-  // (unseen_frontiers), it is looked at and the east half entered.
+  // (unseen_frontiers), it is looked at and the east half entered. Since the union walk no longer
+  // takes a region on again where the ray left it (kernel::UnionSeesBeyond, session 24), the run
+  // without the option enters that half too (100 %), so only the run with it is checked here.
   const sim::World world = FloorPlanRooms();
   ExplorerOptions options;
   options.look_before_giving_up = true;
-  options.unseen_frontiers = false;
   options.doorway_goals = false;  // with it the robot enters that room facing its east half
-  const Trial before = ExploreWorld("reg", world, 1, options);
-  EXPECT_FALSE(NodeIn(before.run, {3.7, 0.3}, {5.9, 3.3}));
-  EXPECT_LT(before.coverage, 0.9);
-  options.unseen_frontiers = true;
   const Trial t = ExploreWorld("reg", world, 1, options);
   EXPECT_TRUE(NodeIn(t.run, {3.7, 0.3}, {5.9, 3.3}));
   EXPECT_GT(t.coverage, 0.97);
@@ -274,30 +271,21 @@ TEST(ExplorationCauses, SpaceClosedOnlyByTheSonarsIsLookedAt) {
 }
 
 TEST(ExplorationCauses, ACorridorBehindANodeInADoorwayIsRetriedFromAnotherNode) {
-  // office-long, seeds 1 and 9: REG stops in a doorway facing the room; the corridor behind it is
-  // seen by the sonars only, whose blind spikes close the way back, and its continuation (the
-  // whole east half) is given up. Retried from the node whose LSR reaches nearest and sees it,
-  // facing it (retry_nodes, face_frontiers), the floor is explored.
-  ExplorerOptions published;
-  published.retry_nodes = 0;
-  published.face_frontiers = false;
-  published.look_before_giving_up = false;
-  published.doorway_goals = false;  // its short door arcs, kept in REG, open the floor too
-  ExplorerOptions retries = published;
-  retries.retry_nodes = 2;
-  retries.face_frontiers = true;
-  ExplorerOptions looks = published;
-  looks.look_before_giving_up = true;
-  for (const std::uint64_t seed : {1, 9}) {
-    const Trial before = Explore("reg", "office-long", seed, published);
+  // office-long: REG stops in a doorway facing the room; the corridor behind it is seen by the
+  // sonars only, whose blind spikes close the way back, and its continuation (the whole east
+  // half) is given up. Retried from the node whose LSR reaches nearest and sees it (retry_nodes),
+  // facing it, the floor is explored. Measured without retries (the other options on): seed 4
+  // 52.9 %, seed 7 45.7 % (seeds 1 and 9 showed it before the union-walk fix of session 24, and
+  // no longer do).
+  ExplorerOptions no_retries;
+  no_retries.retry_nodes = 0;
+  for (const std::uint64_t seed : {4, 7}) {
+    const Trial before = Explore("reg", "office-long", seed, no_retries);
     EXPECT_LT(before.coverage, 0.6) << "seed " << seed;
     EXPECT_EQ(before.run.termination, Termination::kIncomplete) << before.run.message;
-    // Either fix alone: retries with facing, or the look before the corridor is given up.
-    EXPECT_GT(Explore("reg", "office-long", seed, retries).coverage, 0.98) << "seed " << seed;
-    EXPECT_GT(Explore("reg", "office-long", seed, looks).coverage, 0.98) << "seed " << seed;
+    EXPECT_FALSE(NodeIn(before.run, {20.3, 7.3}, {24.7, 11.7})) << "seed " << seed;
     const Trial t = Explore("reg", "office-long", seed);
     EXPECT_GT(t.coverage, 0.98) << "seed " << seed;
-    EXPECT_EQ(t.run.termination, Termination::kExplored) << t.run.message;
     EXPECT_TRUE(NodeIn(t.run, {20.3, 7.3}, {24.7, 11.7})) << "seed " << seed;  // a far room
   }
 }
@@ -306,21 +294,13 @@ TEST(ExplorationCauses, ARoomBesideANodeAtTheSonarsBoundaryIsEntered) {
   // office, seed 7: REG's node below the middle south room's table stands 0.267 m from the sonars'
   // boundary, 5 cm nearer than its disc needs; the grid's way out came 2-4 mm closer still, every
   // path failed the exact test, and the room's east part (x 8-10, south of the table) was given
-  // up. Leaving by an exactly checked straight leg (exact_escapes), REG enters it. (Without
-  // doorway_goals, which came after and drives other paths there.)
-  ExplorerOptions without;
-  without.doorway_goals = false;
-  without.exact_escapes = false;
-  const Trial before = Explore("reg", "office", 7, without);
-  EXPECT_LT(before.coverage, 0.97);
-  EXPECT_EQ(before.run.termination, Termination::kIncomplete) << before.run.message;
-  EXPECT_FALSE(NodeIn(before.run, {7.9, 0.3}, {9.7, 2.1}));
-  ExplorerOptions with = without;
-  with.exact_escapes = true;
-  const Trial t = Explore("reg", "office", 7, with);
-  EXPECT_GT(t.coverage, 0.98);
-  EXPECT_EQ(t.run.termination, Termination::kExplored) << t.run.message;
-  EXPECT_TRUE(NodeIn(t.run, {7.9, 0.3}, {9.7, 2.1}));
+  // up. Leaving by an exactly checked straight leg (exact_escapes), REG enters it. Since the
+  // union-walk fix of session 24 the run without the option (and without doorway_goals) enters
+  // it too (99.3 %); the escapes' own test is
+  // Session.PropertyARobotBesideTheSonarsBoundaryLeavesByAnExactLeg.
+  ExplorerOptions with;
+  with.doorway_goals = false;
+  EXPECT_GT(Explore("reg", "office", 7, with).coverage, 0.98);
   EXPECT_GT(Explore("reg", "office", 7).coverage, 0.98);  // the defaults
 }
 
@@ -328,13 +308,9 @@ TEST(ExplorationCauses, ARoomWhoseDoorWasSeenOnlyAtASlantIsEntered) {
   // SRT in office, seed 1: the corridor nodes saw the north-east room only through its door at a
   // slant, in a wedge narrower than the robot; the approach to the point nearest the arc stopped
   // beside the door and looked past it again, and the room was left (86.9 %). Approached on the
-  // door's axis, facing through it (doorway_goals), SRT enters it.
-  ExplorerOptions without;
-  without.doorway_goals = false;
-  const Trial before = Explore("srt", "office", 1, without);
-  EXPECT_LT(before.coverage, 0.9);
-  EXPECT_EQ(before.run.termination, Termination::kIncomplete) << before.run.message;
-  EXPECT_FALSE(NodeIn(before.run, {11.3, 7.3}, {15.7, 11.7}));
+  // door's axis, facing through it (doorway_goals), SRT enters it. Since the union-walk fix of
+  // session 24 SRT enters it without the option too (99.1 %); the approach's own test is
+  // Session.ADoorSeenAtASlantNearTheRimIsAFrontierASlitIsNot.
   const Trial t = Explore("srt", "office", 1);
   EXPECT_GT(t.coverage, 0.98);
   EXPECT_TRUE(NodeIn(t.run, {11.3, 7.3}, {15.7, 11.7}));
@@ -346,37 +322,38 @@ TEST(ExplorationCauses, PropertyARobotInADoorwayLooksBeforeItGivesUp) {
   // door in a wedge whose apex, at the robot, was too narrow for its disc: no path led in, and
   // the room was given up. The same kind of start here, in the 0.9 m door of CorridorAndRoom at
   // 42 poses (2 x 3 positions, 7 headings): turning to face a piece that no leg reaches and
-  // sensing again (look_before_giving_up, off by default) opens the wedge. Measured without it: 5
-  // of the 42 end incomplete at 53-87 %, two without entering the room.
-  // Without doorway_goals: with it, 2 of the 42 end `incomplete` at 99.1 and 100 %, a one-beam
-  // arc that slipped past the corridor's end corner (outside the walls) kept as a frontier that
-  // no LSR ever covers (docs/experiments.md, named gap).
+  // sensing again (look_before_giving_up, off by default) opens the wedge. Measured without it
+  // before the union-walk fix of session 24: 5 of the 42 ended incomplete at 53-87 %, two without
+  // entering the room; since that fix none does, with or without it, and both are checked.
+  // Without doorway_goals, as before (with it and min_doorway_arc_m at 0, two starts ended
+  // `incomplete` at 99-100 % for a one-beam arc past the corridor's end corner).
   sim::World w = CorridorAndRoom();
   ExplorerOptions without;
   without.doorway_goals = false;
   ExplorerOptions with = without;
   with.look_before_giving_up = true;
-  int incomplete_without = 0;
   for (const double x : {5.95, 6.05}) {
     for (const double y : {0.1, 0.25, 0.4}) {
       for (const double heading : {-2.7, 3.14, 2.0, 1.57, 0.5, 0.0, -0.4}) {
         w.start = kernel::Pose2(x, y, heading);
-        incomplete_without +=
-            ExploreWorld("reg", w, 1, without).run.termination != Termination::kExplored;
-        const Trial t = ExploreWorld("reg", w, 1, with);
-        EXPECT_EQ(t.run.termination, Termination::kExplored) << t.run.message;
-        EXPECT_GT(t.coverage, 0.98) << x << " " << y << " " << heading;
-        EXPECT_TRUE(NodeIn(t.run, {4.3, -6.2}, {7.7, -0.5})) << x << " " << y << " " << heading;
+        for (const ExplorerOptions& options : {without, with}) {
+          const Trial t = ExploreWorld("reg", w, 1, options);
+          EXPECT_EQ(t.run.termination, Termination::kExplored) << t.run.message;
+          EXPECT_GT(t.coverage, 0.98) << x << " " << y << " " << heading;
+          EXPECT_TRUE(NodeIn(t.run, {4.3, -6.2}, {7.7, -0.5}))
+              << x << " " << y << " " << heading << " look " << options.look_before_giving_up;
+        }
       }
     }
   }
-  EXPECT_GE(incomplete_without, 3);
 }
 
 TEST(ExplorationCauses, TheFloorBehindATableIsSeen) {
   // A 6 m x 5 m room with a 3 m table across it, 1.5 m from the south wall: from the start in the
   // north nothing reaches r = 3 m beyond the table, so the floor behind it is no free arc, only a
-  // shadow (ExplorerOptions::shadow_frontiers).
+  // shadow (ExplorerOptions::shadow_frontiers). Since the union-walk fix of session 24, REG
+  // without shadows (and without unseen stretches and door arcs) gets behind it too (99.96,
+  // 99.68, 99.88 %), so only the defaults are checked.
   sim::World w;
   w.name = "room-with-table";
   using V = Eigen::Vector2d;
@@ -387,12 +364,6 @@ TEST(ExplorationCauses, TheFloorBehindATableIsSeen) {
     const Trial t = ExploreWorld("reg", w, seed);
     EXPECT_GT(t.coverage, 0.98) << "seed " << seed;
     EXPECT_TRUE(NodeIn(t.run, {0.3, 0.3}, {5.7, 1.5})) << "seed " << seed;
-    ExplorerOptions published;
-    published.shadow_frontiers = false;
-    published.unseen_frontiers = false;  // would look behind the table from the start node
-    published.doorway_goals = false;     // its short arcs, kept in REG, reach behind it (seed 2)
-    const Trial p = ExploreWorld("reg", w, seed, published);
-    EXPECT_LT(p.coverage, t.coverage) << "seed " << seed;
   }
 }
 
@@ -447,8 +418,9 @@ TEST(Exploration, PublishedSrtKeepsValidConfAndReportsWhatItLeftOpen) {
     }
   }
   // Its draws ran out at nodes whose free arcs no LSR saw beyond (rooms seen through their doors
-  // only: 49 % covered): the run is incomplete and says where.
-  EXPECT_LT(t.coverage, 0.7);
+  // only: 49 % covered, 75 % since the union-walk fix of session 24): the run is incomplete and
+  // says where.
+  EXPECT_LT(t.coverage, 0.8);
   EXPECT_EQ(t.run.termination, Termination::kIncomplete) << t.run.message;
   int open = 0;
   for (const GivenUpFrontier& f : t.run.given_up) {

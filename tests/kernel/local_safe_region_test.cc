@@ -206,6 +206,33 @@ TEST(LocalSafeRegion, TheUnionOfRegionsSeesBehindAShadow) {
   EXPECT_FALSE(UnionSeesBeyond({&below}, p, down, {1.0, 0.2}));
 }
 
+TEST(LocalSafeRegion, PropertyARayIntoAShadowIsNotSeenWhereNoRegionTakesItOn) {
+  // Rays from random points of the box's region into its shadow, with a view depth that ends
+  // before they could enter the region again: never seen. The point where a ray leaves lies on
+  // the boundary, which Contains() counts as inside; the walk once took the region on again
+  // there (when rounding put the crossing inside) and reported the shadow seen.
+  Scan scan = UrgScan(Scan::kNoReturn);
+  for (std::size_t i = 0; i < scan.size(); ++i)
+    if (std::abs(scan.BeamAngle(i)) <= DegToRad(10.0)) scan.ranges_m[i] = 1.0;
+  const LocalSafeRegion box = LocalSafeRegion::FromScan(scan, Pose2(0, 0, 0), 3.0);
+  Random random(7);
+  int trials = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const double x = random.Uniform(1.5, 2.8);
+    const double edge = x * std::tan(DegToRad(10.0));  // the shadow spans |y| < edge here
+    const Eigen::Vector2d p(x, random.Uniform(edge + 0.02, edge + 0.3));
+    const double angle = -kPi / 2 + random.Uniform(-0.3, 0.3);
+    const Eigen::Vector2d u(std::cos(angle), std::sin(angle));
+    if (!box.Contains(p)) continue;
+    // Up to 1 cm before the shadow's far side (y = -edge): no region takes the ray on.
+    const double depth = (p.y() + edge - 0.01) / -u.y();
+    if (std::abs(p.x() + depth * u.x()) < 1.1 || p.x() + depth * u.x() > 2.9) continue;
+    ++trials;
+    EXPECT_FALSE(UnionSeesBeyond({&box}, p, u, {depth, 0.2})) << p.transpose() << " " << angle;
+  }
+  EXPECT_GT(trials, 1000);
+}
+
 TEST(LocalSafeRegion, LineOfSightRunsThroughTheUnionNotThroughWalls) {
   // Two corridors 2 m wide along x, one at y = 0 and one at y = 3, with a wall between them
   // (y = 1 and y = 2), and a region at x = 2.5 on the first corridor's axis that carries it on.
