@@ -344,10 +344,11 @@ std::vector<GivenUpFrontier> Session::GivenUpFrontiers() const {
         continue;
       }
       std::vector<kernel::FrontierArc> left = OpenParts(v, given_up.arc);
-      if (!left.empty() && options_.frontiers_carry_on) {
+      if (!left.empty()) {
         // A part behind which a laser hit an obstacle within frontier_view_depth_m at every
         // point is closed, as where an LSR's ray leaves across an obstacle (kernel::CoverOptions):
-        // with a SLAM localisation the LSR that saw the obstacle may lie too far off to hold it.
+        // with a SLAM localisation the LSR that saw the obstacle may lie too far off to hold it
+        // (`complex`, the paper formulation's seed 1: an arc 0.3 m inside a pillar).
         if (!hits) hits = NodeLaserHits(run_, robot_->description().robot_T_laser);
         std::erase_if(left, [&](const kernel::FrontierArc& arc) {
           const int steps = std::max(

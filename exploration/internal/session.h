@@ -222,7 +222,8 @@ class Session {
                                                         const Eigen::Vector2d& to,
                                                         const LsrPlanner& planner) const;
   // The nodes' given-up arcs and shadows, each checked against the union of the other nodes' LSRs
-  // (OpenParts, ShadowOpen), and the unseen stretches (UnseenStretches).
+  // (OpenParts, ShadowOpen; an arc also against every node's laser hits within
+  // frontier_view_depth_m behind it), and the unseen stretches (UnseenStretches).
   std::vector<GivenUpFrontier> GivenUpFrontiers() const;
   // The stretches of the nodes' LSR boundaries that only the sonars bounded (beams past the
   // laser's) and beyond which no node's laser saw (kernel::UnionSeesBeyond over the laser-only
