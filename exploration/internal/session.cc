@@ -17,22 +17,6 @@
 #include "kernel/shapes.h"
 
 namespace splam::exploration::internal {
-namespace {
-
-constexpr double kPathSpacing = 0.1;  // m between the stored points of a driven path
-// How much closer to the LSR boundary than where it stands a leg from the robot may come, m.
-constexpr double kStartTolerance = 0.5 * LsrPlanner::kCellM;
-// The polar grid of PathInside's waypoints around the LSR's centre.
-constexpr double kWaypointRadii[] = {0.4, 0.8, 1.2, 1.6, 2.0};  // m
-constexpr int kWaypointDirections = 36;
-// Where PathNear looks for a clear goal around one that is not.
-constexpr double kGoalOffsets[] = {0.15, 0.3, 0.45};  // m
-constexpr int kGoalOffsetDirections = 12;
-// How far an approach takes the robot at least, from where it starts and from every node: a new
-// node where it sees differently, m.
-constexpr double kMinTravel = 0.5;
-// The point of a frontier that an approach must see lies this far inside its owner's LSR, m.
-constexpr double kSightInside = 0.1;
 
 // Laser hit points on a grid of kCell squares: an obstacle a laser saw bounds the space behind
 // a sonar boundary in front of it (Session::UnseenStretches).
@@ -58,6 +42,8 @@ class LaserHits {
   std::unordered_set<std::int64_t> cells_;
 };
 
+namespace {
+
 // Every node's laser hits, where the nodes are now.
 LaserHits NodeLaserHits(const ExplorationRun& run, const kernel::Pose2& robot_T_laser) {
   LaserHits hits;
@@ -69,6 +55,21 @@ LaserHits NodeLaserHits(const ExplorationRun& run, const kernel::Pose2& robot_T_
   }
   return hits;
 }
+
+constexpr double kPathSpacing = 0.1;  // m between the stored points of a driven path
+// How much closer to the LSR boundary than where it stands a leg from the robot may come, m.
+constexpr double kStartTolerance = 0.5 * LsrPlanner::kCellM;
+// The polar grid of PathInside's waypoints around the LSR's centre.
+constexpr double kWaypointRadii[] = {0.4, 0.8, 1.2, 1.6, 2.0};  // m
+constexpr int kWaypointDirections = 36;
+// Where PathNear looks for a clear goal around one that is not.
+constexpr double kGoalOffsets[] = {0.15, 0.3, 0.45};  // m
+constexpr int kGoalOffsetDirections = 12;
+// How far an approach takes the robot at least, from where it starts and from every node: a new
+// node where it sees differently, m.
+constexpr double kMinTravel = 0.5;
+// The point of a frontier that an approach must see lies this far inside its owner's LSR, m.
+constexpr double kSightInside = 0.1;
 
 }  // namespace
 
@@ -327,7 +328,7 @@ std::vector<kernel::FrontierArc> Session::OpenParts(graph::Vertex v,
 
 std::vector<GivenUpFrontier> Session::GivenUpFrontiers() const {
   const graph::ExplorationGraph& g = run_.graph;
-  std::optional<LaserHits> hits;  // built when an arc needs them
+  const LaserHits hits = NodeLaserHits(run_, robot_->description().robot_T_laser);
   std::vector<GivenUpFrontier> list;
   for (graph::Vertex v = 0; v < boost::num_vertices(g); ++v) {
     const kernel::LocalSafeRegion& owner = g[v].lsr;
@@ -349,15 +350,14 @@ std::vector<GivenUpFrontier> Session::GivenUpFrontiers() const {
         // point is closed, as where an LSR's ray leaves across an obstacle (kernel::CoverOptions):
         // with a SLAM localisation the LSR that saw the obstacle may lie too far off to hold it
         // (`complex`, the paper formulation's seed 1: an arc 0.3 m inside a pillar).
-        if (!hits) hits = NodeLaserHits(run_, robot_->description().robot_T_laser);
         std::erase_if(left, [&](const kernel::FrontierArc& arc) {
           const int steps = std::max(
               1, static_cast<int>(std::ceil(arc.AngularWidth() / options_.arc_sampling_rad)));
           for (int k = 0; k <= steps; ++k) {
             const double angle = arc.start_angle_rad + arc.AngularWidth() * k / steps;
-            if (!hits->AlongRay(owner.ArcPoint(angle),
-                                Eigen::Vector2d(std::cos(angle), std::sin(angle)),
-                                options_.frontier_view_depth_m))
+            if (!hits.AlongRay(owner.ArcPoint(angle),
+                               Eigen::Vector2d(std::cos(angle), std::sin(angle)),
+                               options_.frontier_view_depth_m))
               return false;
           }
           return true;
@@ -380,18 +380,17 @@ std::vector<GivenUpFrontier> Session::GivenUpFrontiers() const {
     }
   }
   std::vector<GivenUpFrontier> unseen =
-      options_.unseen_frontiers ? UnseenStretches() : std::vector<GivenUpFrontier>();
+      options_.unseen_frontiers ? UnseenStretches(hits) : std::vector<GivenUpFrontier>();
   list.insert(list.end(), std::make_move_iterator(unseen.begin()),
               std::make_move_iterator(unseen.end()));
   return list;
 }
 
-std::vector<GivenUpFrontier> Session::UnseenStretches() const {
+std::vector<GivenUpFrontier> Session::UnseenStretches(const LaserHits& hits) const {
   constexpr double kInside = 0.05;  // m: a boundary point is tested this far inside it
   const graph::ExplorationGraph& g = run_.graph;
-  // What each node's laser alone saw, where the node is now: its region and its hits.
+  // What each node's laser alone saw, where the node is now.
   std::vector<kernel::LocalSafeRegion> laser_lsrs;
-  const LaserHits hits = NodeLaserHits(run_, robot_->description().robot_T_laser);
   for (graph::Vertex v = 0; v < run_.nodes.size(); ++v) {
     kernel::Scan laser = run_.nodes[v].safe_region_scan;
     laser.ranges_m.resize(run_.nodes[v].laser_beams);

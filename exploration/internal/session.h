@@ -16,6 +16,8 @@
 // geometry of safe legs.
 namespace splam::exploration::internal {
 
+class LaserHits;  // every node's laser hits on a grid (session.cc)
+
 class Session {
  public:
   Session(const std::string& explorer, const ExplorerOptions& options, RobotInterface* robot,
@@ -229,8 +231,9 @@ class Session {
   // laser's) and beyond which no node's laser saw (kernel::UnionSeesBeyond over the laser-only
   // LSRs) nor hit an obstacle within frontier_view_depth_m, at least min_frontier_m long: a
   // sonar echo may come from anywhere in its cone, so such a boundary is no obstacle and what
-  // lies behind it is unknown (ExplorerOptions::unseen_frontiers).
-  std::vector<GivenUpFrontier> UnseenStretches() const;
+  // lies behind it is unknown (ExplorerOptions::unseen_frontiers). `hits`: every node's laser
+  // hits (NodeLaserHits).
+  std::vector<GivenUpFrontier> UnseenStretches(const LaserHits& hits) const;
   // The LSRs of the nodes other than v that can reach view_depth beyond v's circle.
   std::vector<const kernel::LocalSafeRegion*> OthersNear(graph::Vertex v) const;
 
