@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -95,7 +96,13 @@ class YamlReader : public kernel::FieldVisitor {
         prefix_(std::move(prefix)),
         allow_unknown_(allow_unknown),
         lines_(lines),
-        status_(status) {}
+        status_(status) {
+    // yaml-cpp looks a key up by decoding every key of the map into a new node, so a file's
+    // fields cost (fields x keys) decodings; one pass builds an index instead. As in yaml-cpp's
+    // own lookup, the first of duplicate keys is the one read.
+    for (const auto& entry : map_)
+      if (entry.first.IsScalar()) index_.emplace(entry.first.Scalar(), entry.second);
+  }
 
   void Field(std::string_view key, double* v, std::string_view) override {
     Scalar(
@@ -180,8 +187,7 @@ class YamlReader : public kernel::FieldVisitor {
   }
   void Group(std::string_view key, std::string_view,
              const std::function<void(FieldVisitor&)>& fields) override {
-    seen_.insert(std::string(key));
-    const YAML::Node n = map_[std::string(key)];
+    const YAML::Node n = Find(key);
     if (!n || !status_->ok()) return;
     if (!n.IsMap()) return Fail(n, key, "expected a map of keys");
     YamlReader nested(n, path_, Qualified(key) + ".", allow_unknown_, lines_, status_);
@@ -200,6 +206,12 @@ class YamlReader : public kernel::FieldVisitor {
 
  private:
   std::string Qualified(std::string_view key) const { return prefix_ + std::string(key); }
+  // The value of `key`, marked as seen; an invalid node when the map has no such key.
+  YAML::Node Find(std::string_view key) {
+    seen_.insert(std::string(key));
+    const auto it = index_.find(key);
+    return it == index_.end() ? YAML::Node(YAML::NodeType::Undefined) : it->second;
+  }
   void Fail(const YAML::Node& at, std::string_view key, const std::string& message) {
     if (status_->ok())
       *status_ = kernel::Status::Error(
@@ -207,8 +219,7 @@ class YamlReader : public kernel::FieldVisitor {
   }
   template <class Convert>
   void Scalar(std::string_view key, Convert convert, const char* expected) {
-    seen_.insert(std::string(key));
-    const YAML::Node n = map_[std::string(key)];
+    const YAML::Node n = Find(key);
     if (!n || !status_->ok()) return;
     if (!n.IsScalar()) return Fail(n, key, std::string("expected ") + expected);
     try {
@@ -219,8 +230,7 @@ class YamlReader : public kernel::FieldVisitor {
   }
   template <class Use>
   void Numbers(std::string_view key, Use use) {
-    seen_.insert(std::string(key));
-    const YAML::Node n = map_[std::string(key)];
+    const YAML::Node n = Find(key);
     if (!n || !status_->ok()) return;
     if (!n.IsSequence()) return Fail(n, key, "expected a list of numbers");
     std::vector<double> values;
@@ -241,6 +251,7 @@ class YamlReader : public kernel::FieldVisitor {
   bool allow_unknown_, lines_;
   kernel::Status* status_;
   std::set<std::string> seen_;
+  std::map<std::string, YAML::Node, std::less<>> index_;
 };
 
 kernel::Status ReadInto(const YAML::Node& map, const std::string& path, const ConfigRoot& root,
