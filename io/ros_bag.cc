@@ -339,7 +339,8 @@ RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& option
   if (std::string problem = RosBagFramingProblem(path); !problem.empty())
     return fail("not a readable ROS bag: " + problem);
   try {
-    topics = internal::ListTopics(path);
+    const internal::RosBagFile file(path);
+    topics = file.Topics();
     stats.topics = topics.counts;
     const Result<std::string> chosen_scan = ChooseTopic(topics.types, topics.counts, kLaserScanType,
                                                         options.scan_topic, "--scan-topic");
@@ -358,8 +359,8 @@ RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& option
     } else if (!options.odom_topic.empty() || !has_tf) {
       return fail(chosen_odom.error + (has_tf ? "" : "; and no /tf to read it from"));
     }
-    bag = internal::ReadMessages(path, scan_topic, odom_topic.value_or(""),
-                                 has_truth ? options.truth_topic : "", !odom_topic);
+    bag = file.Messages(scan_topic, odom_topic.value_or(""), has_truth ? options.truth_topic : "",
+                        !odom_topic);
   } catch (const std::exception& e) {
     return fail(std::string("not a readable ROS bag: ") + e.what());
   }

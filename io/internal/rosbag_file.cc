@@ -131,8 +131,12 @@ boost::shared_ptr<Message> Instantiate(const rosbag::MessageInstance& m, bool (*
 
 }  // namespace
 
-RosBagTopics ListTopics(const std::string& path) {
-  rosbag::Bag bag(path, rosbag::bagmode::Read);
+RosBagFile::RosBagFile(const std::string& path)
+    : bag_(std::make_unique<rosbag::Bag>(path, rosbag::bagmode::Read)) {}
+RosBagFile::~RosBagFile() = default;
+
+RosBagTopics RosBagFile::Topics() const {
+  const rosbag::Bag& bag = *bag_;
   RosBagTopics topics;
   rosbag::View all(bag);
   for (const rosbag::ConnectionInfo* c : all.getConnections()) topics.types[c->topic] = c->datatype;
@@ -142,10 +146,9 @@ RosBagTopics ListTopics(const std::string& path) {
   return topics;
 }
 
-RosBagMessages ReadMessages(const std::string& path, const std::string& scan_topic,
-                            const std::string& odom_topic, const std::string& truth_topic,
-                            bool read_tf) {
-  rosbag::Bag bag(path, rosbag::bagmode::Read);
+RosBagMessages RosBagFile::Messages(const std::string& scan_topic, const std::string& odom_topic,
+                                    const std::string& truth_topic, bool read_tf) const {
+  const rosbag::Bag& bag = *bag_;
   RosBagMessages out;
   for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
     const std::string& topic = m.getTopic();

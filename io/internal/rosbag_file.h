@@ -2,8 +2,13 @@
 #define SPLAM_IO_INTERNAL_ROSBAG_FILE_H_
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
+
+namespace rosbag {
+class Bag;
+}
 
 // The messages of a ROS 1 bag that io::ReadRosBag and io::WriteRosBag use, in plain structs.
 // rosbag_file.cc is the only file that includes ROS headers, and it is compiled as C++17: ROS 1's
@@ -29,19 +34,31 @@ struct RosBagTopics {
   std::map<std::string, std::string> types;  // topic -> message type
   std::map<std::string, int> counts;         // topic -> messages
 };
-// Throws std::exception (rosbag's) when the file is not a readable bag.
-RosBagTopics ListTopics(const std::string& path);
 
 struct RosBagMessages {
   std::vector<RosScan> scans;
   std::vector<RosPose> odometry, truth;
   std::vector<RosPose> tf, tf_static;  // every transform of /tf and /tf_static
 };
-// The messages of the named topics, in the bag's time order (an empty topic name: none);
-// /tf only with read_tf. Throws std::exception on a message that does not decode.
-RosBagMessages ReadMessages(const std::string& path, const std::string& scan_topic,
-                            const std::string& odom_topic, const std::string& truth_topic,
-                            bool read_tf);
+
+// A bag open for reading. One object serves both questions: rosbag::Bag's constructor crawls
+// every ROS package on the machine for encryptor plugins (about 300 directories of /usr/share on
+// Debian), the larger part of reading a small bag.
+class RosBagFile {
+ public:
+  // Throws std::exception (rosbag's) when the file is not a readable bag.
+  explicit RosBagFile(const std::string& path);
+  ~RosBagFile();
+
+  RosBagTopics Topics() const;
+  // The messages of the named topics, in the bag's time order (an empty topic name: none);
+  // /tf only with read_tf. Throws std::exception on a message that does not decode.
+  RosBagMessages Messages(const std::string& scan_topic, const std::string& odom_topic,
+                          const std::string& truth_topic, bool read_tf) const;
+
+ private:
+  std::unique_ptr<rosbag::Bag> bag_;
+};
 
 // Writes a bag: each scan on scan_topic, each odometry pose on odom_topic and each truth pose on
 // truth_topic (nav_msgs/Odometry), the transforms on /tf and /tf_static. Throws std::exception.
