@@ -246,6 +246,7 @@ void AddGraphStatistics(const GraphSlam& graph, SlamStatistics* s) {
                           {"loop_rejected_score", l.rejected_score},
                           {"loop_rejected_ambiguous", l.rejected_ambiguous},
                           {"loop_rejected_registration", l.rejected_registration},
+                          {"loop_rejected_misfit", l.rejected_misfit},
                           {"loop_rejected_disagreement", l.rejected_disagreement},
                           {"loop_rejected_unconfirmed", l.rejected_unconfirmed}});
   const GraphSlam::Times& t = graph.times();

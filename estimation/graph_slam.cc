@@ -149,6 +149,15 @@ double ClosureDisagreementChi2(const kernel::Pose2& by_older,
   return e.dot(covariance.inverse() * e);
 }
 
+double SeenFreeMisfitFraction(const DistanceGrid& target, const std::vector<OrientedPoint>& placed,
+                              double inlier_distance_m) {
+  if (placed.empty()) return 0.0;
+  const auto misfits = std::count_if(placed.begin(), placed.end(), [&](const OrientedPoint& p) {
+    return target.SeenFree(p.point) && std::abs(target.Distance(p.point)) >= inlier_distance_m;
+  });
+  return static_cast<double>(misfits) / static_cast<double>(placed.size());
+}
+
 std::vector<int> LargestAgreeingSet(const std::vector<bool>& with_graph,
                                     const std::function<bool(int, int)>& agree) {
   const int n = static_cast<int>(with_graph.size());
@@ -586,6 +595,12 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
     ++loops_.rejected_score;
     return std::nullopt;
   }
+  if (SeenFreeMisfitFraction(target, Placed(fine.pose, query),
+                             options_.loop.registration.inlier_distance_m) >
+      options_.loop.max_misfit_fraction) {
+    ++loops_.rejected_misfit;
+    return std::nullopt;
+  }
   PoseGraphEdge edge;
   edge.from = candidate;
   edge.to = k;
@@ -685,6 +700,9 @@ void LoopClosureOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("max_chi2", &max_chi2,
           "closure test: whitened squared residual after optimisation at most; also the bound of "
           "a closure's agreement with the graph and with another closure");
+  v.Field("max_misfit_fraction", &max_misfit_fraction,
+          "closure test: fraction of the query's points where the target saw free space, away "
+          "from its outline, at most");
   v.Field("confirm_keyframes", &confirm_keyframes,
           "a closure that moves the graph waits this many keyframes for another that agrees (0: "
           "none needed)");
@@ -705,8 +723,10 @@ kernel::Status LoopClosureOptions::Validate() const {
     return kernel::Status::Error("loop radii, windows and sigma must be positive and ordered");
   if (!(min_score > 0 && min_score <= 1) || !(min_overlap > 0 && min_overlap <= 1) ||
       !(ambiguity_ratio > 0 && ambiguity_ratio <= 1) || !(max_rms_m > 0) || !(max_chi2 > 0) ||
-      !(sigma_floor_m > 0) || !(sigma_floor_rad > 0))
-    return kernel::Status::Error("loop tests: score and ratio in (0, 1], bounds positive");
+      !(max_misfit_fraction >= 0 && max_misfit_fraction <= 1) || !(sigma_floor_m > 0) ||
+      !(sigma_floor_rad > 0))
+    return kernel::Status::Error(
+        "loop tests: score and ratio in (0, 1], misfit fraction in [0, 1], bounds positive");
   return kernel::Status::Ok();
 }
 
