@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <string_view>
 
 namespace splam::io {
 
@@ -21,6 +23,21 @@ kernel::Status FloorPlanOptions::Validate() const {
 
 namespace {
 
+// Whether the file starts as a PNG, JPEG, Netpbm (PGM, PPM, PBM), BMP or TIFF image does.
+// cv::imread picks its decoder by these first bytes, not by the name, and Debian's OpenCV also
+// decodes DICOM, JPEG 2000, OpenEXR, HDR and GDAL's formats: a ".png" starting with "DICM" went to
+// GDCM, which aborts on a failed assertion (found by fuzz_floor_plan).
+bool HasFloorPlanSignature(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(8, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  const auto starts = [&](std::string_view magic) { return head.starts_with(magic); };
+  return starts("\x89PNG\r\n\x1a\n") || starts("\xff\xd8\xff") || starts("BM") ||
+         starts(std::string_view("II*\0", 4)) || starts(std::string_view("MM\0*", 4)) ||
+         (head.size() >= 2 && head[0] == 'P' && head[1] >= '1' && head[1] <= '6');
+}
+
 // The image in grey levels; an error names the file.
 Result<cv::Mat> ReadGrey(const std::string& path, const FloorPlanOptions& options) {
   using R = Result<cv::Mat>;
@@ -28,6 +45,8 @@ Result<cv::Mat> ReadGrey(const std::string& path, const FloorPlanOptions& option
     return R::Fail(FileError(path, 0, problem.message()));
   if (!std::filesystem::is_regular_file(path))
     return R::Fail(FileError(path, 0, "no such image file"));
+  if (!HasFloorPlanSignature(path))
+    return R::Fail(FileError(path, 0, "not a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF image"));
   cv::Mat grey;
   try {
     grey = cv::imread(path, cv::IMREAD_GRAYSCALE);

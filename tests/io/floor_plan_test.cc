@@ -55,7 +55,19 @@ TEST(FloorPlan, BadInputsAreClearErrors) {
   ASSERT_EQ(WriteTextFile(text_file, "this is not a PNG"), "");
   const Result<sim::World> garbage = ReadFloorPlan(text_file, FloorPlanOptions());
   ASSERT_FALSE(garbage.ok());
-  EXPECT_EQ(garbage.error, text_file + ": cannot decode image (not a PNG/JPEG/... file?)");
+  EXPECT_EQ(garbage.error, text_file + ": not a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF image");
+
+  // Found by fuzz_floor_plan: a ".png" that starts as a DICOM file went to GDCM, which aborted
+  // (SIGABRT) on a failed assertion; only the formats a floor plan comes in are decoded.
+  const std::string dicom = TempPath("dicom.png");
+  ASSERT_EQ(WriteTextFile(dicom, std::string("DICM\0\0\0\0\0\0\0\0<WMS_)apabilities\0\rIHDR", 33)),
+            "");
+  EXPECT_EQ(ReadFloorPlan(dicom, FloorPlanOptions()).error,
+            dicom + ": not a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF image");
+  const std::string truncated_png = TempPath("truncated.png");
+  ASSERT_EQ(WriteTextFile(truncated_png, std::string("\x89PNG\r\n\x1a\n\0\0", 10)), "");
+  EXPECT_EQ(ReadFloorPlan(truncated_png, FloorPlanOptions()).error,
+            truncated_png + ": cannot decode image (not a PNG/JPEG/... file?)");
 
   EXPECT_EQ(ReadFloorPlan("/nonexistent.png", FloorPlanOptions()).error,
             "/nonexistent.png: no such image file");
