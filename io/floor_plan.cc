@@ -1,5 +1,6 @@
 #include "io/floor_plan.h"
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -23,10 +24,12 @@ kernel::Status FloorPlanOptions::Validate() const {
 
 namespace {
 
-// Whether the file starts as a PNG, JPEG, Netpbm (PGM, PPM, PBM), BMP or TIFF image does.
-// cv::imread picks its decoder by these first bytes, not by the name, and Debian's OpenCV also
-// decodes DICOM, JPEG 2000, OpenEXR, HDR and GDAL's formats: a ".png" starting with "DICM" went to
-// GDCM, which aborts on a failed assertion (found by fuzz_floor_plan).
+// Whether the file starts as a PNG, JPEG, Netpbm (PGM, PPM, PBM), BMP or TIFF image does, as
+// OpenCV's decoders of those formats check it. cv::imread picks the first decoder whose check
+// passes, whatever the name, and Debian's OpenCV also decodes DICOM, JPEG 2000, OpenEXR, HDR and
+// others: a ".png" starting with "DICM" went to GDCM, which aborts on a failed assertion, and so
+// did a "P24" file with "DICM" at byte 128, where GDCM looks, once no earlier decoder took it (a
+// Netpbm magic number must be followed by white space). Both found by fuzz_floor_plan.
 bool HasFloorPlanSignature(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string head(8, '\0');
@@ -35,7 +38,8 @@ bool HasFloorPlanSignature(const std::string& path) {
   const auto starts = [&](std::string_view magic) { return head.starts_with(magic); };
   return starts("\x89PNG\r\n\x1a\n") || starts("\xff\xd8\xff") || starts("BM") ||
          starts(std::string_view("II*\0", 4)) || starts(std::string_view("MM\0*", 4)) ||
-         (head.size() >= 2 && head[0] == 'P' && head[1] >= '1' && head[1] <= '6');
+         (head.size() >= 3 && head[0] == 'P' && head[1] >= '1' && head[1] <= '6' &&
+          std::isspace(static_cast<unsigned char>(head[2])));
 }
 
 // The image in grey levels; an error names the file.

@@ -64,6 +64,12 @@ TEST(FloorPlan, BadInputsAreClearErrors) {
             "");
   EXPECT_EQ(ReadFloorPlan(dicom, FloorPlanOptions()).error,
             dicom + ": not a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF image");
+  std::string pgm_like = "P24\n+0 30\n255\n";  // DICM at byte 128, where GDCM looks
+  pgm_like.resize(128, '\xff');
+  const std::string dicom_at_128 = TempPath("dicom_at_128.pgm");
+  ASSERT_EQ(WriteTextFile(dicom_at_128, pgm_like + "DICM"), "");
+  EXPECT_EQ(ReadFloorPlan(dicom_at_128, FloorPlanOptions()).error,
+            dicom_at_128 + ": not a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF image");
   const std::string truncated_png = TempPath("truncated.png");
   ASSERT_EQ(WriteTextFile(truncated_png, std::string("\x89PNG\r\n\x1a\n\0\0", 10)), "");
   EXPECT_EQ(ReadFloorPlan(truncated_png, FloorPlanOptions()).error,
