@@ -27,8 +27,8 @@ namespace {
 // Whether the file starts as a PNG, JPEG, Netpbm (PGM, PPM, PBM), BMP or TIFF image does, as
 // OpenCV's decoders of those formats check it. cv::imread picks the first decoder whose check
 // passes, whatever the name, and Debian's OpenCV also decodes DICOM, JPEG 2000, OpenEXR, HDR and
-// others: a ".png" starting with "DICM" went to GDCM, which aborts on a failed assertion, and so
-// did a "P24" file with "DICM" at byte 128, where GDCM looks, once no earlier decoder took it (a
+// others: files that no earlier decoder took but with "DICM" at byte 128, where DICOM puts it,
+// went to GDCM, which aborts on a failed assertion (a ".png" of other bytes, and a "P24" file: a
 // Netpbm magic number must be followed by white space). Both found by fuzz_floor_plan.
 bool HasFloorPlanSignature(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

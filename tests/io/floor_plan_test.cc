@@ -57,14 +57,17 @@ TEST(FloorPlan, BadInputsAreClearErrors) {
   ASSERT_FALSE(garbage.ok());
   EXPECT_EQ(garbage.error, text_file + ": not a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF image");
 
-  // Found by fuzz_floor_plan: a ".png" that starts as a DICOM file went to GDCM, which aborted
-  // (SIGABRT) on a failed assertion; only the formats a floor plan comes in are decoded.
+  // Found by fuzz_floor_plan: files that no decoder of a floor-plan format takes but with "DICM"
+  // at byte 128, where DICOM puts it, went to GDCM, which aborted (SIGABRT) on a failed
+  // assertion: one named .png, and a "P24" file (a Netpbm magic number needs white space after
+  // it). Only the formats a floor plan comes in are decoded.
+  std::string dicom_like = "DICM";
+  dicom_like.resize(128, '\0');
   const std::string dicom = TempPath("dicom.png");
-  ASSERT_EQ(WriteTextFile(dicom, std::string("DICM\0\0\0\0\0\0\0\0<WMS_)apabilities\0\rIHDR", 33)),
-            "");
+  ASSERT_EQ(WriteTextFile(dicom, dicom_like + "DICM"), "");
   EXPECT_EQ(ReadFloorPlan(dicom, FloorPlanOptions()).error,
             dicom + ": not a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF image");
-  std::string pgm_like = "P24\n+0 30\n255\n";  // DICM at byte 128, where GDCM looks
+  std::string pgm_like = "P24\n+0 30\n255\n";
   pgm_like.resize(128, '\xff');
   const std::string dicom_at_128 = TempPath("dicom_at_128.pgm");
   ASSERT_EQ(WriteTextFile(dicom_at_128, pgm_like + "DICM"), "");
