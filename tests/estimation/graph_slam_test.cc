@@ -639,13 +639,18 @@ TEST(GraphSlam, AQuerySlidAlongACorridorContradictsWhatTheTargetSawFree) {
   const sim::LaserOptions laser;
   kernel::Random random(3);
   const double margin_m = 0.2;
+  // A scan from the robot at `pose`: its points, with normals, added to *points (world frame).
+  const auto sense = [&](const Pose2& pose, std::vector<OrientedPoint>* points) {
+    const Pose2 sensor = pose * laser.robot_T_laser;
+    const kernel::Scan scan = sim::SimulateLaser(caster, laser, sensor, 0.0, &random);
+    for (const OrientedPoint& p : OrientTowards(scan.HitPoints(), Eigen::Vector2d::Zero(), 0.3))
+      points->push_back({sensor * p.point, sensor.Rotation() * p.normal});
+    return std::pair{sensor, scan};
+  };
   std::vector<OrientedPoint> target;
   std::vector<std::vector<Eigen::Vector2d>> views;
   for (int i = 0; i < 16; ++i) {  // keyframes every 0.3 m from the start, facing east
-    const Pose2 sensor = Pose2(1.0 + 0.3 * i, 6.0, 0.0) * laser.robot_T_laser;
-    const kernel::Scan scan = sim::SimulateLaser(caster, laser, sensor, 0.0, &random);
-    for (const OrientedPoint& p : OrientTowards(scan.HitPoints(), Eigen::Vector2d::Zero(), 0.3))
-      target.push_back({sensor * p.point, sensor.Rotation() * p.normal});
+    const auto [sensor, scan] = sense(Pose2(1.0 + 0.3 * i, 6.0, 0.0), &target);
     std::vector<Eigen::Vector2d> view{sensor.translation()};
     for (std::size_t b = 0; b < scan.size(); ++b)
       if (scan.IsHit(b))
@@ -655,12 +660,8 @@ TEST(GraphSlam, AQuerySlidAlongACorridorContradictsWhatTheTargetSawFree) {
   }
   const DistanceGrid grid = DistanceGrid::Build(target, 0.1, 0.5, 0.5, views, false, margin_m);
   std::vector<OrientedPoint> query;  // turning on the spot near the end wall, world frame
-  for (const double heading : {2.23, 1.91, 1.59, 1.27, 0.95, 0.63, 0.31, -0.01}) {
-    const Pose2 sensor = Pose2(0.85, 6.6, heading) * laser.robot_T_laser;
-    const kernel::Scan scan = sim::SimulateLaser(caster, laser, sensor, 0.0, &random);
-    for (const OrientedPoint& p : OrientTowards(scan.HitPoints(), Eigen::Vector2d::Zero(), 0.3))
-      query.push_back({sensor * p.point, sensor.Rotation() * p.normal});
-  }
+  for (const double heading : {2.23, 1.91, 1.59, 1.27, 0.95, 0.63, 0.31, -0.01})
+    sense(Pose2(0.85, 6.6, heading), &query);
   const auto misfits = [&](const Pose2& shift) {
     return SeenFreeMisfitFraction(grid, Placed(shift, query), 0.1);
   };

@@ -61,18 +61,18 @@ TEST(FloorPlan, BadInputsAreClearErrors) {
   // at byte 128, where DICOM puts it, went to GDCM, which aborted (SIGABRT) on a failed
   // assertion: one named .png, and a "P24" file (a Netpbm magic number needs white space after
   // it). Only the formats a floor plan comes in are decoded.
-  std::string dicom_like = "DICM";
-  dicom_like.resize(128, '\0');
-  const std::string dicom = TempPath("dicom.png");
-  ASSERT_EQ(WriteTextFile(dicom, dicom_like + "DICM"), "");
-  EXPECT_EQ(ReadFloorPlan(dicom, FloorPlanOptions()).error,
-            dicom + ": not a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF image");
-  std::string pgm_like = "P24\n+0 30\n255\n";
-  pgm_like.resize(128, '\xff');
-  const std::string dicom_at_128 = TempPath("dicom_at_128.pgm");
-  ASSERT_EQ(WriteTextFile(dicom_at_128, pgm_like + "DICM"), "");
-  EXPECT_EQ(ReadFloorPlan(dicom_at_128, FloorPlanOptions()).error,
-            dicom_at_128 + ": not a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF image");
+  const auto with_dicm_at_128 = [](std::string head, char fill) {
+    head.resize(128, fill);
+    return head + "DICM";
+  };
+  for (const auto& [name, bytes] :
+       {std::pair{"dicom.png", with_dicm_at_128("DICM", '\0')},
+        std::pair{"dicom_at_128.pgm", with_dicm_at_128("P24\n+0 30\n255\n", '\xff')}}) {
+    const std::string file = TempPath(name);
+    ASSERT_EQ(WriteTextFile(file, bytes), "");
+    EXPECT_EQ(ReadFloorPlan(file, FloorPlanOptions()).error,
+              file + ": not a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF image");
+  }
   const std::string truncated_png = TempPath("truncated.png");
   ASSERT_EQ(WriteTextFile(truncated_png, std::string("\x89PNG\r\n\x1a\n\0\0", 10)), "");
   EXPECT_EQ(ReadFloorPlan(truncated_png, FloorPlanOptions()).error,
