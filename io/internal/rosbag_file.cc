@@ -129,10 +129,30 @@ boost::shared_ptr<Message> Instantiate(const rosbag::MessageInstance& m, bool (*
   return message;
 }
 
+// rosbag::Bag loads its encryptor plugins (librosbag_default_encryption_plugins, which pulls in
+// gpgme) through a pluginlib loader of its own and unloads them with the Bag: a dlopen and a
+// dlclose of four libraries per bag. class_loader unloads a library only when no loader holds it,
+// so one loader kept for the life of the process keeps them loaded once. If it cannot load them,
+// each Bag tries (and reports) as before.
+void KeepEncryptorPluginsLoaded() {
+  static pluginlib::ClassLoader<rosbag::EncryptorBase>* const kLoader = [] {
+    auto* loader = new pluginlib::ClassLoader<rosbag::EncryptorBase>("rosbag_storage",
+                                                                     "rosbag::EncryptorBase");
+    try {
+      loader->loadLibraryForClass("rosbag/NoEncryptor");
+    } catch (const std::exception&) {
+    }
+    return loader;
+  }();
+  (void)kLoader;
+}
+
 }  // namespace
 
-RosBagFile::RosBagFile(const std::string& path)
-    : bag_(std::make_unique<rosbag::Bag>(path, rosbag::bagmode::Read)) {}
+RosBagFile::RosBagFile(const std::string& path) {
+  KeepEncryptorPluginsLoaded();
+  bag_ = std::make_unique<rosbag::Bag>(path, rosbag::bagmode::Read);
+}
 RosBagFile::~RosBagFile() = default;
 
 RosBagTopics RosBagFile::Topics() const {
