@@ -201,6 +201,7 @@ RosBagMessages RosBagFile::Messages(const std::string& scan_topic, const std::st
 void WriteMessages(const std::string& path, const std::string& scan_topic,
                    const std::string& odom_topic, const std::string& truth_topic,
                    const RosBagMessages& messages) {
+  KeepEncryptorPluginsLoaded();
   rosbag::Bag bag(path, rosbag::bagmode::Write);
   const auto write_transform = [&](const char* topic, const RosPose& p) {
     tf2_msgs::TFMessage tf;
