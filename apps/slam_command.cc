@@ -104,10 +104,24 @@ bool Configure(const SlamArgs& args, const io::LaserMessage& first, SlamConfig* 
   return true;
 }
 
+// consistency.csv: every scan checked for the map's self-consistency; "" or the error.
+std::string WriteConsistency(const std::string& path,
+                             const estimation::ConsistencyReport& consistency,
+                             const kernel::Trajectory& estimate) {
+  std::string text = "scan,time_s,x_m,y_m,references,contradicting\n";
+  for (const estimation::CheckedScan& c : consistency.checked)
+    text += fmt::format("{},{:.3f},{:.3f},{:.3f},{},{:.4f}\n", c.index,
+                        estimate[static_cast<std::size_t>(c.index)].time_s, c.position.x(),
+                        c.position.y(), c.references, c.contradicting);
+  return io::WriteTextFile(path, text);
+}
+
 // trajectory, odometry, truth, map files and pictures; errors appended to *errors.
 void WriteSlamFiles(const std::string& log, const std::string& out, const std::string& label,
                     const sim::World* world, const estimation::SlamMethod& slam,
-                    const loop::ReplayResult& run, std::vector<std::string>* errors) {
+                    const loop::ReplayResult& run, const estimation::ConsistencyReport& consistency,
+                    const estimation::ConsistencyOptions& consistency_options,
+                    std::vector<std::string>* errors) {
   const estimation::SlamMap map = slam.Map();
   for (std::string& e : io::WriteMap(map, out)) errors->push_back(std::move(e));
   errors->push_back(
@@ -125,6 +139,10 @@ void WriteSlamFiles(const std::string& log, const std::string& out, const std::s
   picture.estimates = {{"estimate", run.estimate}};
   picture.before_optimization = run.online;
   io::DrawMap(map, &picture);
+  for (const estimation::CheckedScan& c : consistency.checked)
+    (c.contradicting > consistency_options.inconsistent_share ? picture.inconsistent_scans
+                                                              : picture.consistent_scans)
+        .push_back(c.position);
   picture.pixels_per_meter = 40.0;
   errors->push_back(io::SaveRunPicture(picture, {out + "/map.svg", out + "/map.png"}));
   if (!run.truth.empty()) {
@@ -147,6 +165,13 @@ bool PrintSlamSummary(const std::string& label, const estimation::SlamMethod& sl
       summary["time_per_scan_ms"]["median"].get<double>(),
       summary["time_per_scan_ms"]["max"].get<double>(), summary["peak_memory_mb"].get<double>());
   fmt::print("map: {}; associations: {}\n", slam.MapDescription(), summary["associations"].dump());
+  const nlohmann::ordered_json& c = summary["consistency"];
+  fmt::print(
+      "self-consistency: {:.1f} % of the points of {} scans checked against other passes lie in "
+      "their free space; {} scans ({:.1f} %) above {:.0f} %\n",
+      100 * c["mean_contradicting"].get<double>(), c["scans_checked"].get<int>(),
+      c["inconsistent_scans"].get<int>(), 100 * c["inconsistent_share"].get<double>(),
+      100 * c["inconsistent_above"].get<double>());
   if (!run.truth.empty()) {
     const auto e = estimation::CompareToTruth(run.truth, run.estimate);
     const auto o = estimation::CompareToTruth(run.truth, run.odometry);
@@ -257,10 +282,15 @@ int RunSlam(const SlamArgs& args) {
                run.failed_at_time_s, slam.health().message());
   }
   const estimation::SlamStatistics statistics = slam.Statistics();
+  const estimation::ConsistencyOptions consistency_options;
+  const estimation::ConsistencyReport consistency =
+      estimation::CheckMapConsistency(loop::PlacedScans(log, run.estimate), consistency_options);
+  errors.push_back(WriteConsistency(out + "/consistency.csv", consistency, run.estimate));
   const std::string label = statistics.association.empty()
                                 ? config.method
                                 : config.method + " (" + statistics.association + ")";
-  WriteSlamFiles(args.log, out, label, *world.value ? &**world.value : nullptr, slam, run, &errors);
+  WriteSlamFiles(args.log, out, label, *world.value ? &**world.value : nullptr, slam, run,
+                 consistency, consistency_options, &errors);
   if (args.trace) {
     std::vector<double> times;
     for (const kernel::StampedPose& p : run.online.empty() ? run.estimate : run.online)
@@ -280,6 +310,7 @@ int RunSlam(const SlamArgs& args) {
   if (run.stopped_at)
     summary["stopped_early"] = "interrupted before scan " + std::to_string(*run.stopped_at + 1);
   summary.update(loop::ReplaySummaryJson(slam, statistics, run, driver));
+  summary["consistency"] = loop::ConsistencyJson(consistency, consistency_options);
   bool scored = true;
   if (!args.relations.empty()) {
     const estimation::RelationsError r = estimation::EvaluateRelations(relations, run.estimate);

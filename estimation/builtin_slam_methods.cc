@@ -235,6 +235,7 @@ void AddGraph(const GraphSlam& graph, SlamMap* map) {
   for (const auto& kf : graph.keyframes()) map->keyframes.push_back(kf.pose);
   for (const auto& e : graph.graph().edges())
     if (e.loop) map->loop_edges.emplace_back(e.from, e.to);
+  map->loop_searches = graph.loop_searches();
 }
 
 // The loop-closure counters, times and optimisations of a graph, appended to *s.

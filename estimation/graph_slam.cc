@@ -6,6 +6,9 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "estimation/pose_graph_uncertainty.h"
+#include "estimation/scan_view.h"
+
 namespace splam::estimation {
 namespace {
 
@@ -59,44 +62,6 @@ double MeanLikelihood(const DistanceGrid& grid, const std::vector<OrientedPoint>
   return points.empty() ? 0.0 : sum / static_cast<double>(points.size());
 }
 
-// The scan's view (robot frame): from the sensor to every beam's end, a hit seen_margin_m behind
-// it so that points just behind a wall count, a no-return (clipped beams included) seen_margin_m
-// short of `range` (the laser's or max_range_m, whichever is shorter): the view's edge is
-// rasterised to whole cells, and a wall just beyond the range, seen by the next scan, must not
-// land in cells the map calls seen and empty, where its points would be pulled towards the
-// nearest known outline. Between two neighbouring beams the view reaches only the shorter one's
-// end (a step on the longer beam), not the chord between their ends: a beam sees along its
-// ray, and the chord between two hits on a wall at grazing incidence, metres apart, runs along
-// the wall itself. A scan that saw that part of the wall was held where its points met the
-// last outline piece the submap had there, by the pull of points on "seen free" wall (a 60 m
-// corridor with 1 deg beams clipped at 30 m: the front end stopped for metres at each
-// opening).
-std::vector<Eigen::Vector2d> ScanView(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
-                                      double range, double seen_margin_m) {
-  std::vector<std::pair<double, double>> ends;  // (range, angle) of each usable beam's end
-  for (std::size_t i = 0; i < scan.size(); ++i) {
-    if (scan.IsHit(i))
-      ends.emplace_back(std::min(scan.ranges_m[i] + seen_margin_m, range), scan.BeamAngle(i));
-    else if (scan.IsNoReturn(i))
-      ends.emplace_back(std::min(range, scan.max_range_m) - seen_margin_m, scan.BeamAngle(i));
-  }
-  std::vector<Eigen::Vector2d> view{robot_T_laser.translation()};
-  const auto add = [&](double r, double angle) {
-    view.push_back(robot_T_laser * kernel::PolarToCartesian({r, angle}));
-  };
-  for (std::size_t k = 0; k < ends.size(); ++k) {
-    const auto [r, angle] = ends[k];
-    add(r, angle);
-    if (k + 1 == ends.size()) break;
-    const auto [next_r, next_angle] = ends[k + 1];
-    if (next_r < r)
-      add(next_r, angle);
-    else if (r < next_r)
-      add(r, next_angle);
-  }
-  return view;
-}
-
 // True when b lies closer than distance_m to a and is turned less than angle_rad from it.
 bool Within(const kernel::Pose2& a, const kernel::Pose2& b, double distance_m, double angle_rad) {
   return (a.translation() - b.translation()).norm() < distance_m &&
@@ -105,17 +70,6 @@ bool Within(const kernel::Pose2& a, const kernel::Pose2& b, double distance_m, d
 
 Eigen::Matrix3d Diagonal(double sigma_m, double sigma_rad) {
   return Eigen::Vector3d(sigma_m * sigma_m, sigma_m * sigma_m, sigma_rad * sigma_rad).asDiagonal();
-}
-
-// A covariance of pose A's error (right perturbation, A * exp(xi)) as one of A * b_T_c's:
-// Ad(c_T_b) cov Ad(c_T_b)^T, with Ad(R, t) = [R, (t_y, -t_x)^T; 0, 1].
-Eigen::Matrix3d Propagated(const Eigen::Matrix3d& covariance, const kernel::Pose2& b_T_c) {
-  const kernel::Pose2 c_T_b = b_T_c.Inverse();
-  Eigen::Matrix3d adjoint = Eigen::Matrix3d::Identity();
-  adjoint.topLeftCorner<2, 2>() = c_T_b.Rotation();
-  adjoint(0, 2) = c_T_b.y();
-  adjoint(1, 2) = -c_T_b.x();
-  return adjoint * covariance * adjoint.transpose();
 }
 
 // Adds the wall time of its scope to a counter, ms.
@@ -145,7 +99,7 @@ double ClosureDisagreementChi2(const kernel::Pose2& by_older,
                                const Eigen::Matrix3d& newer_covariance) {
   const Eigen::Vector3d e = by_newer.Between(by_older * chain).ToVector();
   const Eigen::Matrix3d covariance =
-      newer_covariance + Propagated(older_covariance, chain) + chain_covariance;
+      newer_covariance + PropagatedCovariance(older_covariance, chain) + chain_covariance;
   return e.dot(covariance.inverse() * e);
 }
 
@@ -433,30 +387,51 @@ void GraphSlam::RebuildSubmap() {
 void GraphSlam::SearchLoopClosures(int k) {
   const int newest_candidate = k - options_.loop.min_gap_keyframes;
   if (newest_candidate < 0) return;
-  const Keyframe& kf = keyframes_[static_cast<std::size_t>(k)];
-  const double since = travelled_m_ - closure_at_m_;
-  const double radius = std::min(options_.loop.radius_m + options_.loop.radius_per_m * since,
-                                 options_.loop.max_radius_m);
-  std::vector<std::pair<double, int>> near;
+  const LoopClosureOptions& o = options_.loop;
+  const kernel::Pose2& pose = keyframes_[static_cast<std::size_t>(k)].pose;
+  // The graph's uncertainty of this keyframe relative to each earlier one, in the world's axes.
+  const std::vector<Eigen::Matrix3d> relative = RelativeCovariances(graph_, k);
+  Eigen::Matrix3d to_world = Eigen::Matrix3d::Identity();
+  to_world.topLeftCorner<2, 2>() = pose.Rotation();
+  // Candidates: keyframes whose distance, whitened by that covariance plus radius_m^2 (the reach
+  // of a target around its keyframe), is at most candidate_sigmas; the most likely first.
+  std::vector<std::pair<double, int>> plausible;
   for (int i = 0; i <= newest_candidate; ++i) {
-    if (keyframes_[static_cast<std::size_t>(i)].trimmed) continue;
-    const double d =
-        (keyframes_[static_cast<std::size_t>(i)].pose.translation() - kf.pose.translation()).norm();
-    if (d <= radius) near.emplace_back(d, i);
+    const Keyframe& c = keyframes_[static_cast<std::size_t>(i)];
+    if (c.trimmed || !std::isfinite(relative[static_cast<std::size_t>(i)](0, 0))) continue;
+    const Eigen::Matrix2d position =
+        (to_world * relative[static_cast<std::size_t>(i)] * to_world.transpose())
+            .topLeftCorner<2, 2>() +
+        o.radius_m * o.radius_m * Eigen::Matrix2d::Identity();
+    const Eigen::Vector2d d = c.pose.translation() - pose.translation();
+    const double mahalanobis2 = d.dot(position.inverse() * d);
+    if (mahalanobis2 <= o.candidate_sigmas * o.candidate_sigmas)
+      plausible.emplace_back(mahalanobis2, i);
   }
-  std::sort(near.begin(), near.end());
+  std::sort(plausible.begin(), plausible.end());
   std::vector<int> chosen;
-  for (const auto& candidate : near) {
+  for (const auto& candidate : plausible) {
     const int i = candidate.second;
-    if (static_cast<int>(chosen.size()) >= options_.loop.candidates) break;
+    if (static_cast<int>(chosen.size()) >= o.candidates) break;
     if (std::all_of(chosen.begin(), chosen.end(),
-                    [&](int c) { return std::abs(c - i) >= options_.loop.min_gap_keyframes; }))
+                    [&](int c) { return std::abs(c - i) >= o.min_gap_keyframes; }))
       chosen.push_back(i);
   }
   for (int c : chosen) {
-    if (std::optional<PoseGraphEdge> edge = MatchLoop(k, c, radius, since)) {
+    // The window covers candidate_sigmas of the relative pose's uncertainty: the translation
+    // along its largest axis, the heading on its own.
+    const Eigen::Matrix3d& covariance = relative[static_cast<std::size_t>(c)];
+    const Eigen::Matrix2d position = covariance.topLeftCorner<2, 2>();
+    const double largest =
+        0.5 * (position.trace() + std::sqrt(std::pow(position(0, 0) - position(1, 1), 2) +
+                                            4 * position(0, 1) * position(0, 1)));
+    const double window_m =
+        std::min(o.radius_m + o.candidate_sigmas * std::sqrt(largest), o.max_window_m);
+    const double window_rad =
+        std::min(o.window_rad + o.candidate_sigmas * std::sqrt(covariance(2, 2)), o.max_window_rad);
+    if (std::optional<PoseGraphEdge> edge = MatchLoop(k, c, window_m, window_rad)) {
       pending_.push_back(*edge);
-      closure_at_m_ = travelled_m_;
+      pending_searches_.push_back(static_cast<int>(searches_.size()) - 1);
       if (unflushed_since_ < 0) unflushed_since_ = k;
     }
   }
@@ -471,7 +446,8 @@ bool GraphSlam::Agree(const PoseGraphEdge& a, const PoseGraphEdge& b) const {
   const auto pose = [&](int i) { return keyframes_[static_cast<std::size_t>(i)].pose; };
   Eigen::Matrix3d chain_covariance = Eigen::Matrix3d::Zero();
   for (int i = older.to + 1; i <= newer.to; ++i)
-    chain_covariance += Propagated(FrontEndCovariance(i), pose(i).Between(pose(newer.to)));
+    chain_covariance +=
+        PropagatedCovariance(FrontEndCovariance(i), pose(i).Between(pose(newer.to)));
   return ClosureDisagreementChi2(pose(older.from) * older.measurement, older.information.inverse(),
                                  pose(older.to).Between(pose(newer.to)), chain_covariance,
                                  pose(newer.from) * newer.measurement,
@@ -494,6 +470,7 @@ void GraphSlam::FlushClosures(bool final) {
     for (int i : best) chosen[static_cast<std::size_t>(i)] = true;
   }
   std::vector<PoseGraphEdge> accepted, waiting;
+  std::vector<int> accepted_searches, waiting_searches;
   const int newest = static_cast<int>(keyframes_.size()) - 1;
   for (std::size_t i = 0; i < n; ++i) {
     const PoseGraphEdge& e = pending_[i];
@@ -504,14 +481,20 @@ void GraphSlam::FlushClosures(bool final) {
       return std::all_of(best.begin(), best.end(),
                          [&](int j) { return Agree(e, pending_[static_cast<std::size_t>(j)]); });
     };
-    if (chosen[i] || (final && young && agrees_with_set()))
+    const int search = pending_searches_[i];
+    if (chosen[i] || (final && young && agrees_with_set())) {
       accepted.push_back(e);
-    else if (!final && young)
+      accepted_searches.push_back(search);
+    } else if (!final && young) {
       waiting.push_back(e);
-    else
+      waiting_searches.push_back(search);
+    } else {
       ++loops_.rejected_unconfirmed;
+      searches_[static_cast<std::size_t>(search)].outcome = LoopSearch::Outcome::kUnconfirmed;
+    }
   }
   pending_ = std::move(waiting);
+  pending_searches_ = std::move(waiting_searches);
   if (accepted.empty()) return;
   std::vector<kernel::Pose2> before;
   for (int i = 0; i < graph_.num_nodes(); ++i) before.push_back(graph_.node(i));
@@ -522,9 +505,13 @@ void GraphSlam::FlushClosures(bool final) {
   // Agreement with the other edges: optimised together, a closure's residual stays small;
   // those that do not are removed and the graph optimised again from where it was.
   std::vector<int> disagree;
-  for (int e = first; e < static_cast<int>(graph_.edges().size()); ++e)
-    if (graph_.EdgeChi2(graph_.edges()[static_cast<std::size_t>(e)]) > options_.loop.max_chi2)
-      disagree.push_back(e);
+  for (int e = first; e < static_cast<int>(graph_.edges().size()); ++e) {
+    const bool undone =
+        graph_.EdgeChi2(graph_.edges()[static_cast<std::size_t>(e)]) > options_.loop.max_chi2;
+    if (undone) disagree.push_back(e);
+    searches_[static_cast<std::size_t>(accepted_searches[static_cast<std::size_t>(e - first)])]
+        .outcome = undone ? LoopSearch::Outcome::kUndone : LoopSearch::Outcome::kAccepted;
+  }
   loops_.accepted +=
       static_cast<long>(graph_.edges().size()) - first - static_cast<long>(disagree.size());
   if (disagree.empty()) return;
@@ -543,10 +530,20 @@ void GraphSlam::Finish() {
   if (loops_.accepted > 0) Optimize();
 }
 
-std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double radius,
-                                                  double travelled) {
+std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double window_m,
+                                                  double window_rad) {
   const ScopedTimer timer(&times_.loop_search_ms);
   ++loops_.searches;
+  LoopSearch& record = searches_.emplace_back();
+  record.query = k;
+  record.target = candidate;
+  record.window_m = window_m;
+  record.window_rad = window_rad;
+  const auto refuse = [&](LoopSearch::Outcome outcome, long* count) {
+    record.outcome = outcome;
+    ++*count;
+    return std::nullopt;
+  };
   const Keyframe& kf = keyframes_[static_cast<std::size_t>(k)];
   const kernel::Pose2 kf_inverse = kf.pose.Inverse();
   std::vector<OrientedPoint> query;
@@ -562,12 +559,11 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
       WorldRaster(keyframes), options_.loop.resolution_m, options_.truncation_m,
       options_.truncation_m, WorldViews(keyframes), false, options_.seen_margin_m);
   const LikelihoodPyramid pyramid(target, options_.loop.sigma_m, options_.loop.levels);
-  const double window_rad =
-      std::min(options_.loop.window_rad + options_.loop.window_rad_per_m * travelled,
-               options_.loop.max_window_rad);
   const CorrelativeMatch match = SearchCorrelative(
-      Positions(query), pyramid, kf.pose, std::min(radius, options_.loop.max_window_m), window_rad,
+      Positions(query), pyramid, kf.pose, window_m, window_rad,
       options_.loop.min_score * options_.loop.min_overlap, options_.loop.ambiguity_ratio);
+  record.matched = match.found;
+  record.match = match.pose;
   std::vector<OrientedPoint> overlapping;
   if (match.found) {
     const std::vector<OrientedPoint> placed = Placed(match.pose, query);
@@ -576,31 +572,22 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double r
   }
   const double overlap =
       static_cast<double>(overlapping.size()) / static_cast<double>(query.size());
-  if (!match.found || overlap < options_.loop.min_overlap) {
-    ++loops_.rejected_score;
-    return std::nullopt;
-  }
-  if (match.second_score > 0) {
-    ++loops_.rejected_ambiguous;
-    return std::nullopt;
-  }
+  if (!match.found || overlap < options_.loop.min_overlap)
+    return refuse(LoopSearch::Outcome::kScore, &loops_.rejected_score);
+  if (match.second_score > 0)
+    return refuse(LoopSearch::Outcome::kAmbiguous, &loops_.rejected_ambiguous);
   const RegistrationResult fine =
       RegisterPoints(overlapping, target, match.pose, options_.loop.registration);
-  if (!fine.accepted || fine.rms_m > options_.loop.max_rms_m) {
-    ++loops_.rejected_registration;
-    return std::nullopt;
-  }
+  if (!fine.accepted || fine.rms_m > options_.loop.max_rms_m)
+    return refuse(LoopSearch::Outcome::kRegistration, &loops_.rejected_registration);
+  record.match = fine.pose;
   if (MeanLikelihood(target, Placed(fine.pose, overlapping), options_.loop.sigma_m) <
-      options_.loop.min_score) {
-    ++loops_.rejected_score;
-    return std::nullopt;
-  }
+      options_.loop.min_score)
+    return refuse(LoopSearch::Outcome::kScore, &loops_.rejected_score);
   if (SeenFreeMisfitFraction(target, Placed(fine.pose, query),
                              options_.loop.registration.inlier_distance_m) >
-      options_.loop.max_misfit_fraction) {
-    ++loops_.rejected_misfit;
-    return std::nullopt;
-  }
+      options_.loop.max_misfit_fraction)
+    return refuse(LoopSearch::Outcome::kMisfit, &loops_.rejected_misfit);
   PoseGraphEdge edge;
   edge.from = candidate;
   edge.to = k;
@@ -675,15 +662,14 @@ void LoopClosureOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("enabled", &enabled, "search for loop closures");
   v.Field("min_gap_keyframes", &min_gap_keyframes,
           "candidates are at least this many keyframes older");
-  v.Field("radius_m", &radius_m, "candidate radius right after a closure, m");
-  v.Field("radius_per_m", &radius_per_m,
-          "candidate radius growth per metre travelled since the last closure");
-  v.Field("max_radius_m", &max_radius_m, "candidate radius at most, m");
+  v.Field("radius_m", &radius_m,
+          "a target reaches this far around its keyframe (added to the candidates' and the "
+          "window's uncertainty), m");
+  v.Field("candidate_sigmas", &candidate_sigmas,
+          "candidates within this many standard deviations of the graph's relative uncertainty");
   v.Field("candidates", &candidates, "candidates searched per keyframe");
   v.Field("max_window_m", &max_window_m, "search window half-width at most, m");
-  v.Field("window_rad", &window_rad, "search heading half-width after a closure, rad");
-  v.Field("window_rad_per_m", &window_rad_per_m,
-          "heading half-width growth per metre travelled, rad/m");
+  v.Field("window_rad", &window_rad, "search heading half-width beyond the uncertainty, rad");
   v.Field("max_window_rad", &max_window_rad, "heading half-width at most, rad");
   v.Field("query_keyframes", &query_keyframes, "query: the new keyframe and this many before it");
   v.Field("target_keyframes", &target_keyframes,
@@ -717,8 +703,7 @@ kernel::Status LoopClosureOptions::Validate() const {
       confirm_keyframes < 0 || levels < 1 || levels > 8)
     return kernel::Status::Error(
         "min_gap_keyframes, candidates >= 1; keyframe counts >= 0; levels in [1, 8]");
-  if (!(radius_m > 0) || !(radius_per_m >= 0) || !(max_radius_m >= radius_m) ||
-      !(max_window_m > 0) || !(window_rad >= 0) || !(window_rad_per_m >= 0) ||
+  if (!(radius_m > 0) || !(candidate_sigmas > 0) || !(max_window_m > 0) || !(window_rad >= 0) ||
       !(max_window_rad >= window_rad) || !(sigma_m > 0) || !(resolution_m > 0))
     return kernel::Status::Error("loop radii, windows and sigma must be positive and ordered");
   if (!(min_score > 0 && min_score <= 1) || !(min_overlap > 0 && min_overlap <= 1) ||

@@ -24,19 +24,21 @@ namespace splam::estimation {
 // Loop closure of the graph SLAM (GraphSlamOptions::loop).
 struct LoopClosureOptions {
   bool enabled = true;
-  // Candidates: keyframes at least min_gap_keyframes older than the new one, within
-  // radius_m + radius_per_m * (distance travelled since the last accepted closure), at most
-  // max_radius_m; the nearest `candidates` of them (kept min_gap_keyframes apart) are searched.
+  // Candidates, by the pose graph's own uncertainty (RelativeCovariances): keyframes at least
+  // min_gap_keyframes older than the new one whose distance from it, whitened by the covariance
+  // of the new keyframe relative to them plus radius_m^2 (how far a target reaches around its
+  // keyframe), is at most candidate_sigmas; the `candidates` most likely (kept
+  // min_gap_keyframes apart) are searched. Along a long loop the covariance grows, and so do the
+  // set of candidates and the window; right after a closure both are small.
   int min_gap_keyframes = 60;
   double radius_m = 1.0;
-  double radius_per_m = 0.05;
-  double max_radius_m = 8.0;
+  double candidate_sigmas = 3.0;
   int candidates = 2;
-  // The search window: translations within min(radius, max_window_m), headings within
-  // window_rad + window_rad_per_m * distance since the last closure.
-  double max_window_m = 3.0;
+  // The search window: translations within radius_m + candidate_sigmas times the relative
+  // position's largest standard deviation, at most max_window_m; headings within window_rad +
+  // candidate_sigmas times the heading's, at most max_window_rad.
+  double max_window_m = 12.0;
   double window_rad = 0.2;
-  double window_rad_per_m = 0.005;
   double max_window_rad = 0.8;
   // Query: the points of the new keyframe and query_keyframes before it; target: the
   // candidate's submap (target_keyframes either side of it).
@@ -291,6 +293,8 @@ class GraphSlam {
   long recovery_searches() const { return recoveries_; }
   long recovered() const { return recovered_; }
   const LoopClosureCounts& loops() const { return loops_; }
+  // Every loop-closure search, in order.
+  const std::vector<LoopSearch>& loop_searches() const { return searches_; }
   const std::vector<PoseGraphSummary>& optimizations() const { return optimizations_; }
   // Wall time spent in each part, ms.
   struct Times {
@@ -330,7 +334,8 @@ class GraphSlam {
   bool Agree(const PoseGraphEdge& a, const PoseGraphEdge& b) const;
   // Covariance of the front-end edge from keyframe `to` - 1 to `to` (edge_sigma_m, ...).
   Eigen::Matrix3d FrontEndCovariance(int to) const;
-  std::optional<PoseGraphEdge> MatchLoop(int k, int candidate, double radius, double travelled);
+  // Searches keyframe k against the candidate's target within the windows; records the search.
+  std::optional<PoseGraphEdge> MatchLoop(int k, int candidate, double window_m, double window_rad);
   // Optimises, then moves the current pose with its keyframe.
   void Optimize();
 
@@ -353,14 +358,15 @@ class GraphSlam {
   double travelled_m_ = 0.0;
   kernel::Pose2 since_update_;  // odometry since the last registered scan
   bool registered_ = false;
-  double closure_at_m_ = 0.0;  // travelled when the last closure was accepted
   struct ScanAnchor {
     int keyframe;
     kernel::Pose2 offset;  // keyframe^-1 * scan pose
   };
   std::vector<ScanAnchor> scans_;
   std::vector<PoseGraphEdge> pending_;  // closures found, not yet in the graph
-  int unflushed_since_ = -1;            // keyframe of the first closure found since the last flush
+  std::vector<int> pending_searches_;   // their searches_ indices
+  std::vector<LoopSearch> searches_;
+  int unflushed_since_ = -1;  // keyframe of the first closure found since the last flush
   long registrations_ = 0, fallbacks_ = 0, recoveries_ = 0, recovered_ = 0, trimmed_ = 0;
   LoopClosureCounts loops_;
   std::vector<PoseGraphSummary> optimizations_;

@@ -357,6 +357,28 @@ kernel::Status RegistrationOptions::Validate() const {
   return kernel::Status::Ok();
 }
 
+const char* OutcomeName(LoopSearch::Outcome outcome) {
+  switch (outcome) {
+    case LoopSearch::Outcome::kPending:
+      return "pending";
+    case LoopSearch::Outcome::kAccepted:
+      return "accepted";
+    case LoopSearch::Outcome::kScore:
+      return "score";
+    case LoopSearch::Outcome::kAmbiguous:
+      return "ambiguous";
+    case LoopSearch::Outcome::kRegistration:
+      return "registration";
+    case LoopSearch::Outcome::kMisfit:
+      return "misfit";
+    case LoopSearch::Outcome::kUnconfirmed:
+      return "unconfirmed";
+    case LoopSearch::Outcome::kUndone:
+      return "undone";
+  }
+  return "?";
+}
+
 int PoseGraph::AddNode(const kernel::Pose2& pose) {
   poses_.push_back(pose.ToVector());
   return num_nodes() - 1;

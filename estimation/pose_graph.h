@@ -23,6 +23,27 @@ struct PoseGraphEdge {
   bool robust = false;
 };
 
+// One loop-closure search and what became of it (GraphSlam::loop_searches, SlamMap::loop_searches).
+struct LoopSearch {
+  enum class Outcome {
+    kPending,       // passed the search's tests, waiting for confirmation
+    kAccepted,      // in the graph
+    kScore,         // refused: no pose scored, too little overlap or too low a likelihood
+    kAmbiguous,     // refused: a distinct pose scored nearly as well
+    kRegistration,  // refused: the fine registration failed its test
+    kMisfit,        // refused: too much of the query where the target saw free space
+    kUnconfirmed,   // dropped: no other closure agreed with it in time
+    kUndone,        // added, then removed: it disagreed with the optimised graph
+  };
+  int query = 0;                            // the new keyframe
+  int target = 0;                           // the candidate keyframe
+  double window_m = 0.0, window_rad = 0.0;  // the search's half-widths
+  bool matched = false;  // the correlative search found a pose (`match` is then the query's)
+  kernel::Pose2 match;   // world pose of the query keyframe the search proposed
+  Outcome outcome = Outcome::kPending;
+};
+const char* OutcomeName(LoopSearch::Outcome outcome);
+
 struct PoseGraphOptions {
   // Loop-closure edges get a Cauchy loss of this scale on their whitened residual: a wrong
   // closure that survived the tests pulls with bounded force.

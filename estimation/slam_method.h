@@ -36,6 +36,8 @@ struct SlamMap {
   // A keyframe graph (graph SLAM): its nodes in order and its loop-closure edges (node indices).
   std::vector<kernel::Pose2> keyframes;
   std::vector<std::pair<int, int>> loop_edges;
+  // Every loop-closure search (query and target index `keyframes`) and its outcome.
+  std::vector<LoopSearch> loop_searches;
 };
 
 // Method-independent counters of what a method did, in the order they are reported.

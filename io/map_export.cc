@@ -3,6 +3,8 @@
 #include <dxflib/dl_creationadapter.h>
 #include <dxflib/dl_dxf.h>
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <memory>
 
@@ -195,13 +197,37 @@ Result<DxfContent> ReadDxf(const std::string& path) {
   return Result<DxfContent>::Ok(std::move(collector.content));
 }
 
-std::vector<std::string> WriteMap(const estimation::SlamMap& map, const std::string& dir) {
-  if (!map.splines.empty() || (map.lines.empty() && map.corners.empty())) {
-    return {WriteSplineMapText(dir + "/map.txt", map.splines),
-            WriteSplineMapDxf(dir + "/map.dxf", map.splines)};
+std::string WriteLoopSearches(const std::string& path, const estimation::SlamMap& map) {
+  std::string text =
+      "query,target,query_x,query_y,query_theta,target_x,target_y,target_theta,window_m,"
+      "window_rad,match_x,match_y,match_theta,outcome\n";
+  const auto pose = [&](int i) -> const kernel::Pose2& {
+    return map.keyframes.at(static_cast<std::size_t>(i));
+  };
+  for (const estimation::LoopSearch& s : map.loop_searches) {
+    const kernel::Pose2 &q = pose(s.query), &t = pose(s.target);
+    text += fmt::format("{},{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{:.4f},{:.3f},{:.4f},", s.query,
+                        s.target, q.x(), q.y(), q.theta(), t.x(), t.y(), t.theta(), s.window_m,
+                        s.window_rad);
+    text += s.matched
+                ? fmt::format("{:.3f},{:.3f},{:.4f},", s.match.x(), s.match.y(), s.match.theta())
+                : std::string(",,,");
+    text += fmt::format("{}\n", estimation::OutcomeName(s.outcome));
   }
-  return {WriteLineMapText(dir + "/map.txt", map.lines, map.corners),
-          WriteLineMapDxf(dir + "/map.dxf", map.lines, map.corners)};
+  return WriteTextFile(path, text);
+}
+
+std::vector<std::string> WriteMap(const estimation::SlamMap& map, const std::string& dir) {
+  std::vector<std::string> errors;
+  if (!map.splines.empty() || (map.lines.empty() && map.corners.empty())) {
+    errors = {WriteSplineMapText(dir + "/map.txt", map.splines),
+              WriteSplineMapDxf(dir + "/map.dxf", map.splines)};
+  } else {
+    errors = {WriteLineMapText(dir + "/map.txt", map.lines, map.corners),
+              WriteLineMapDxf(dir + "/map.dxf", map.lines, map.corners)};
+  }
+  if (!map.loop_searches.empty()) errors.push_back(WriteLoopSearches(dir + "/loops.csv", map));
+  return errors;
 }
 
 }  // namespace splam::io

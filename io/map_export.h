@@ -45,8 +45,13 @@ struct DxfContent {
 };
 Result<DxfContent> ReadDxf(const std::string& path);
 
-// map.txt and map.dxf of a SLAM map (splines, or lines and corners) into dir; the errors, if
-// any (empty strings for success).
+// Every loop-closure search of a keyframe graph, one line each: the query and target keyframes
+// with their poses, the search's window, the pose the search proposed for the query (empty when
+// none) and the outcome (LoopSearch::Outcome's name). "" on success, else the error.
+std::string WriteLoopSearches(const std::string& path, const estimation::SlamMap& map);
+
+// map.txt and map.dxf of a SLAM map (splines, or lines and corners) into dir, and loops.csv when
+// the map has loop-closure searches; the errors, if any (empty strings for success).
 std::vector<std::string> WriteMap(const estimation::SlamMap& map, const std::string& dir);
 
 }  // namespace splam::io

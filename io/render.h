@@ -27,6 +27,7 @@ inline constexpr Rgb kScan{0.95, 0.45, 0.05};      // laser points: orange
 inline constexpr Rgb kMap{0.75, 0.10, 0.10};       // estimated map: dark red
 inline constexpr Rgb kOnline{0.55, 0.55, 0.55};    // estimate before optimisation: grey
 inline constexpr Rgb kGraph{0.10, 0.60, 0.25};     // keyframe graph and loop closures: green
+inline constexpr Rgb kDropped{0.95, 0.55, 0.0};    // loop closures found, then dropped: amber
 }  // namespace palette
 
 struct FigureOptions {

@@ -36,12 +36,12 @@ std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::str
     for (const io::StampedPose& p : t) area.Extend(p.pose.translation());
   };
   extend(picture.truth);
-  extend(picture.odometry);
   for (const auto& [label, t] : picture.estimates) extend(t);
   for (const Eigen::Vector2d& p : picture.scan_points) area.Extend(p);
   for (const auto& [a, b] : picture.map_segments) area.Extend(a), area.Extend(b);
   for (const auto& curve : picture.map_curves)
     for (const Eigen::Vector2d& p : curve) area.Extend(p);
+  if (area.IsEmpty()) extend(picture.odometry);
   if (area.IsEmpty()) area = kernel::Box2{Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1)};
 
   io::FigureOptions options;
@@ -62,7 +62,13 @@ std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::str
                      "map corners");
   for (const auto& [a, b] : picture.graph_loops)
     figure.DrawPolyline({a, b}, io::palette::kGraph, 0.8, "loop closures");
+  for (const auto& [a, b] : picture.dropped_loops)
+    figure.DrawPolyline({a, b}, io::palette::kDropped, 0.8, "closures dropped");
   figure.DrawPoints(picture.graph_nodes, io::palette::kGraph, 1.5, "keyframes");
+  figure.DrawMarkers(picture.consistent_scans, io::Figure::Marker::kCircle, io::palette::kTrue, 3.0,
+                     "scans that agree with other passes");
+  figure.DrawMarkers(picture.inconsistent_scans, io::Figure::Marker::kDiamond,
+                     io::palette::kDropped, 7.0, "scans that contradict other passes");
   figure.DrawPath(io::Poses(picture.odometry), io::palette::kOdometry, 1.5, "odometry");
   figure.DrawPath(io::Poses(picture.before_optimization), io::palette::kOnline, 1.5,
                   "before optimisation");
@@ -118,6 +124,14 @@ void DrawMap(const estimation::SlamMap& map, RunPicture* picture) {
   for (const auto& [a, b] : map.loop_edges) {
     picture->graph_loops.emplace_back(map.keyframes[static_cast<std::size_t>(a)].translation(),
                                       map.keyframes[static_cast<std::size_t>(b)].translation());
+  }
+  for (const estimation::LoopSearch& s : map.loop_searches) {
+    if (s.outcome != estimation::LoopSearch::Outcome::kUnconfirmed &&
+        s.outcome != estimation::LoopSearch::Outcome::kUndone)
+      continue;
+    picture->dropped_loops.emplace_back(
+        map.keyframes[static_cast<std::size_t>(s.target)].translation(),
+        map.keyframes[static_cast<std::size_t>(s.query)].translation());
   }
 }
 

@@ -31,6 +31,12 @@ struct RunPicture {
   // A keyframe graph: its nodes and its loop-closure edges (world frame).
   std::vector<Eigen::Vector2d> graph_nodes;
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> graph_loops;
+  // Closures that passed the search's tests and were then dropped (unconfirmed, or undone by the
+  // optimised graph), between their two keyframes.
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> dropped_loops;
+  // Scans checked for the map's self-consistency (CheckMapConsistency): where those that agree
+  // with the other passes and those that contradict them were taken.
+  std::vector<Eigen::Vector2d> consistent_scans, inconsistent_scans;
   // The estimate as the method gave it while running, before later optimisations moved it.
   io::Trajectory before_optimization;
   io::Rgb world_color = io::palette::kWorld;
@@ -47,7 +53,9 @@ std::vector<Eigen::Vector2d> ScanPointsInWorld(const io::CarmenLog& log, int eve
 // draw them; and a keyframe graph (nodes, loop closures) when the map has one.
 void DrawMap(const estimation::SlamMap& map, RunPicture* picture);
 
-// Draws the picture into each path (.svg or .png); empty on success, else the first error.
+// Draws the picture into each path (.svg or .png); empty on success, else the first error. The
+// frame holds the world, the truth, the estimates and the map; the odometry, which drifts far
+// off on real logs, widens it only when there is nothing else to frame, and is clipped.
 std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::string>& paths);
 
 // Plots the x, y and theta errors over time of each (label, colour, trajectory) against the

@@ -88,6 +88,17 @@ ReplayResult ReplayLog(const io::CarmenLog& log, SlamDriver* driver, const Repla
   return result;
 }
 
+std::vector<estimation::PlacedScan> PlacedScans(const io::CarmenLog& log,
+                                                const kernel::Trajectory& estimate) {
+  const auto lasers = log.Lasers();
+  std::vector<estimation::PlacedScan> placed;
+  for (std::size_t i = 0; i < lasers.size() && i < estimate.size(); ++i) {
+    const io::LaserMessage& m = *lasers[i];
+    placed.push_back({estimate[i].pose, m.robot_pose.Between(m.laser_pose), &m.scan});
+  }
+  return placed;
+}
+
 ReplayResult ReplayFrames(const std::vector<sim::SensorFrame>& frames,
                           const kernel::Pose2& robot_T_laser, SlamDriver* driver,
                           const ReplayOptions& options) {

@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "estimation/map_consistency.h"
 #include "estimation/slam_method.h"
 #include "io/carmen.h"
 #include "kernel/trajectory.h"
@@ -67,6 +68,11 @@ struct ReplayResult {
 // the laser's mounting pose from the message.
 ReplayResult ReplayLog(const io::CarmenLog& log, SlamDriver* driver,
                        const ReplayOptions& options = {});
+
+// The log's scans placed by a trajectory of the replay (`estimate`: one pose per scan processed,
+// in order), for CheckMapConsistency; the log must outlive the result.
+std::vector<estimation::PlacedScan> PlacedScans(const io::CarmenLog& log,
+                                                const kernel::Trajectory& estimate);
 // The same for simulated frames (a route the simulator drove) seen by a laser at robot_T_laser;
 // the truth is the frames' true poses.
 ReplayResult ReplayFrames(const std::vector<sim::SensorFrame>& frames,

@@ -55,6 +55,19 @@ nlohmann::ordered_json RelationsJson(const estimation::RelationsError& r) {
         {"std", kernel::RadToDeg(kernel::RadToDeg(r.rotation_sq_std))}}}};
 }
 
+nlohmann::ordered_json ConsistencyJson(const estimation::ConsistencyReport& report,
+                                       const estimation::ConsistencyOptions& options) {
+  return {{"scans_checked", report.scans_checked},
+          {"mean_contradicting", report.mean_contradicting},
+          {"inconsistent_scans", report.inconsistent},
+          {"inconsistent_share", report.inconsistent_share},
+          {"inconsistent_above", options.inconsistent_share},
+          {"scan_spacing_m", options.scan_spacing_m},
+          {"reference_radius_m", options.reference_radius_m},
+          {"min_path_gap_m", options.min_path_gap_m},
+          {"inlier_distance_m", options.inlier_distance_m}};
+}
+
 nlohmann::ordered_json ErrorJson(const estimation::TrajectoryError& e) {
   return {{"matched_poses", e.matched},
           {"rmse_position_m", e.rmse_position_m},

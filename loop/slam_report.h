@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "estimation/map_consistency.h"
 #include "estimation/metrics.h"
 #include "estimation/slam_method.h"
 #include "io/map_export.h"
@@ -23,6 +24,9 @@ nlohmann::ordered_json ErrorJson(const estimation::TrajectoryError& e);
 // The relations metric as summary.json (`slam --relations`) and eval.json write it: translation
 // in m and m^2, rotation in deg and deg^2.
 nlohmann::ordered_json RelationsJson(const estimation::RelationsError& r);
+// The map's self-consistency (CheckMapConsistency) for summary.json: totals and the options.
+nlohmann::ordered_json ConsistencyJson(const estimation::ConsistencyReport& report,
+                                       const estimation::ConsistencyOptions& options);
 // Median time per step by map size.
 nlohmann::ordered_json TimeBinsJson(const std::vector<TimeBin>& bins);
 
