@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include "apps/commands.h"
+#include "io/no_return_pile.h"
 #include "kernel/angle.h"
 
 namespace splam::apps {
@@ -14,8 +15,10 @@ void AddLogInputOptions(CLI::App* cmd, LogInput* input) {
       ->check(FiniteNonNegative())
       ->capture_default_str();
   cmd->add_option("--flaser-max-range", input->flaser_max_range_m,
-                  "CARMEN FLASER readings at or above this are no-returns")
+                  "CARMEN FLASER readings at or above this are no-returns; without it, readings "
+                  "piled at the top of the log's range distribution are also taken as no-returns")
       ->check(FinitePositive())
+      ->each([input](const std::string&) { input->detect_no_returns = false; })
       ->capture_default_str();
   cmd->add_option("--scan-topic", input->bag.scan_topic,
                   "ROS bag: the sensor_msgs/LaserScan topic (default: the only one)");
@@ -39,7 +42,19 @@ io::CarmenReadResult ReadLogInput(const std::string& path, const LogInput& input
     io::CarmenReadOptions options;
     options.flaser_angular_step_rad = kernel::DegToRad(input.flaser_step_deg);
     options.flaser_max_range_m = input.flaser_max_range_m;
-    return io::ReadCarmenLog(path, options);
+    io::CarmenReadResult read = io::ReadCarmenLog(path, options);
+    if (!input.detect_no_returns || !read.log.ok()) return read;
+    if (const std::optional<io::NoReturnPile> pile = io::FindNoReturnPile(*read.log.value)) {
+      io::MarkNoReturns(pile->from_m, &*read.log.value);
+      read.stats.piled_no_return_from_m = pile->from_m;
+      read.stats.piled_no_return_readings = pile->readings;
+      read.stats.piled_no_return_share = pile->share;
+      fmt::print(
+          "{}: {} readings ({:.1f} % of the hits) pile at {:.2f}-{:.2f} m, the top of the range "
+          "distribution: taken as no-returns (--flaser-max-range sets the limit instead)\n",
+          path, pile->readings, 100 * pile->share, pile->from_m, pile->to_m);
+    }
+    return read;
   }
   io::RosBagOptions options = input.bag;
   if (input.laser_pose.size() == 3)

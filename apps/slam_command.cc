@@ -172,6 +172,11 @@ bool PrintSlamSummary(const std::string& label, const estimation::SlamMethod& sl
       100 * c["mean_contradicting"].get<double>(), c["scans_checked"].get<int>(),
       c["inconsistent_scans"].get<int>(), 100 * c["inconsistent_share"].get<double>(),
       100 * c["inconsistent_above"].get<double>());
+  if (c["flagged"].get<bool>())
+    fmt::print(
+        "self-consistency: more than {:.0f} % of the scans contradict other passes: the map may "
+        "hold a place twice or a local failure (marked in map.png, listed in consistency.csv)\n",
+        100 * c["flagged_above"].get<double>());
   if (!run.truth.empty()) {
     const auto e = estimation::CompareToTruth(run.truth, run.estimate);
     const auto o = estimation::CompareToTruth(run.truth, run.odometry);
@@ -305,6 +310,10 @@ int RunSlam(const SlamArgs& args) {
   summary["range_noise_model"] = {{"range_sigma_m", noise.range_sigma_m},
                                   {"range_sigma_fraction", noise.range_sigma_fraction}};
   summary["log"] = args.log;
+  if (read.stats.piled_no_return_from_m > 0)
+    summary["no_returns_found"] = {{"from_m", read.stats.piled_no_return_from_m},
+                                   {"readings", read.stats.piled_no_return_readings},
+                                   {"share_of_hits", read.stats.piled_no_return_share}};
   // Why the run covers less than the log, when it does.
   if (truncated) summary["stopped_early"] = read.log.error;
   if (run.stopped_at)

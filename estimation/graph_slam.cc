@@ -429,6 +429,10 @@ void GraphSlam::SearchLoopClosures(int k) {
         std::min(o.radius_m + o.candidate_sigmas * std::sqrt(largest), o.max_window_m);
     const double window_rad =
         std::min(o.window_rad + o.candidate_sigmas * std::sqrt(covariance(2, 2)), o.max_window_rad);
+    // A wide window is searched at every stride-th keyframe only: consecutive queries share all
+    // but one keyframe, and a search's cost grows with the window's area, so the cost per
+    // keyframe grows with the window's width instead.
+    if (k % static_cast<int>(std::ceil(window_m / o.stride_window_m)) != 0) continue;
     if (std::optional<PoseGraphEdge> edge = MatchLoop(k, c, window_m, window_rad)) {
       pending_.push_back(*edge);
       pending_searches_.push_back(static_cast<int>(searches_.size()) - 1);
@@ -535,6 +539,7 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double w
   const ScopedTimer timer(&times_.loop_search_ms);
   ++loops_.searches;
   LoopSearch& record = searches_.emplace_back();
+  const ScopedTimer search_timer(&record.time_ms);
   record.query = k;
   record.target = candidate;
   record.window_m = window_m;
@@ -671,6 +676,8 @@ void LoopClosureOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("max_window_m", &max_window_m, "search window half-width at most, m");
   v.Field("window_rad", &window_rad, "search heading half-width beyond the uncertainty, rad");
   v.Field("max_window_rad", &max_window_rad, "heading half-width at most, rad");
+  v.Field("stride_window_m", &stride_window_m,
+          "a window of w m is searched every ceil(w / this) keyframes, m");
   v.Field("query_keyframes", &query_keyframes, "query: the new keyframe and this many before it");
   v.Field("target_keyframes", &target_keyframes,
           "target: the candidate and this many keyframes either side");
@@ -704,7 +711,8 @@ kernel::Status LoopClosureOptions::Validate() const {
     return kernel::Status::Error(
         "min_gap_keyframes, candidates >= 1; keyframe counts >= 0; levels in [1, 8]");
   if (!(radius_m > 0) || !(candidate_sigmas > 0) || !(max_window_m > 0) || !(window_rad >= 0) ||
-      !(max_window_rad >= window_rad) || !(sigma_m > 0) || !(resolution_m > 0))
+      !(stride_window_m > 0) || !(max_window_rad >= window_rad) || !(sigma_m > 0) ||
+      !(resolution_m > 0))
     return kernel::Status::Error("loop radii, windows and sigma must be positive and ordered");
   if (!(min_score > 0 && min_score <= 1) || !(min_overlap > 0 && min_overlap <= 1) ||
       !(ambiguity_ratio > 0 && ambiguity_ratio <= 1) || !(max_rms_m > 0) || !(max_chi2 > 0) ||

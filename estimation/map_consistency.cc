@@ -13,10 +13,11 @@ namespace splam::estimation {
 kernel::Status ConsistencyOptions::Validate() const {
   if (!(scan_spacing_m > 0) || !(reference_radius_m > 0) || !(min_path_gap_m >= 0) ||
       max_references < 1 || !(max_range_m > 0) || !(resolution_m > 0) || !(seen_margin_m >= 0) ||
-      !(inlier_distance_m > 0) || !(inconsistent_share >= 0 && inconsistent_share <= 1))
+      !(inlier_distance_m > 0) || !(inconsistent_share >= 0 && inconsistent_share <= 1) ||
+      !(flag_share >= 0 && flag_share <= 1))
     return kernel::Status::Error(
         "consistency: spacings, radius, range, resolution and inlier distance must be positive, "
-        "max_references >= 1, inconsistent_share in [0, 1]");
+        "max_references >= 1, inconsistent_share and flag_share in [0, 1]");
   return kernel::Status::Ok();
 }
 
@@ -79,6 +80,7 @@ ConsistencyReport CheckMapConsistency(const std::vector<PlacedScan>& scans,
   if (report.scans_checked > 0) {
     report.mean_contradicting = sum / report.scans_checked;
     report.inconsistent_share = static_cast<double>(report.inconsistent) / report.scans_checked;
+    report.flagged = report.inconsistent_share > options.flag_share;
   }
   return report;
 }

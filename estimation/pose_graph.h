@@ -38,6 +38,7 @@ struct LoopSearch {
   int query = 0;                            // the new keyframe
   int target = 0;                           // the candidate keyframe
   double window_m = 0.0, window_rad = 0.0;  // the search's half-widths
+  double time_ms = 0.0;                     // the search's wall time (target, search, tests)
   bool matched = false;  // the correlative search found a pose (`match` is then the query's)
   kernel::Pose2 match;   // world pose of the query keyframe the search proposed
   Outcome outcome = Outcome::kPending;

@@ -106,6 +106,12 @@ struct CarmenReadStats {
   int malformed_lines = 0;  // only with skip_malformed_lines
   int no_return_readings = 0;
   int invalid_readings = 0;
+  // Readings found piled at the top of the range distribution and taken as no-returns
+  // (FindNoReturnPile, applied by the command line unless --flaser-max-range is given): from
+  // this range up (0: none), how many, and their share of the hits.
+  double piled_no_return_from_m = 0.0;
+  long piled_no_return_readings = 0;
+  double piled_no_return_share = 0.0;
   std::map<std::string, int> skipped_messages;  // unknown message type -> count
 };
 

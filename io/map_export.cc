@@ -200,7 +200,7 @@ Result<DxfContent> ReadDxf(const std::string& path) {
 std::string WriteLoopSearches(const std::string& path, const estimation::SlamMap& map) {
   std::string text =
       "query,target,query_x,query_y,query_theta,target_x,target_y,target_theta,window_m,"
-      "window_rad,match_x,match_y,match_theta,outcome\n";
+      "window_rad,match_x,match_y,match_theta,outcome,ms\n";
   const auto pose = [&](int i) -> const kernel::Pose2& {
     return map.keyframes.at(static_cast<std::size_t>(i));
   };
@@ -212,7 +212,7 @@ std::string WriteLoopSearches(const std::string& path, const estimation::SlamMap
     text += s.matched
                 ? fmt::format("{:.3f},{:.3f},{:.4f},", s.match.x(), s.match.y(), s.match.theta())
                 : std::string(",,,");
-    text += fmt::format("{}\n", estimation::OutcomeName(s.outcome));
+    text += fmt::format("{},{:.2f}\n", estimation::OutcomeName(s.outcome), s.time_ms);
   }
   return WriteTextFile(path, text);
 }

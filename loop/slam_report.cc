@@ -62,6 +62,8 @@ nlohmann::ordered_json ConsistencyJson(const estimation::ConsistencyReport& repo
           {"inconsistent_scans", report.inconsistent},
           {"inconsistent_share", report.inconsistent_share},
           {"inconsistent_above", options.inconsistent_share},
+          {"flagged", report.flagged},
+          {"flagged_above", options.flag_share},
           {"scan_spacing_m", options.scan_spacing_m},
           {"reference_radius_m", options.reference_radius_m},
           {"min_path_gap_m", options.min_path_gap_m},

@@ -1,6 +1,9 @@
 #include "io/carmen.h"
+#include "io/no_return_pile.h"
 
 #include <gtest/gtest.h>
+
+#include <random>
 
 #include <cmath>
 #include <filesystem>
@@ -303,6 +306,63 @@ TEST(CarmenLog, WritesAndReadsFiles) {
   EXPECT_EQ(r.log.value->Odometry()[0]->pose.ToVector(), Pose2(1, 2, 0.5).ToVector());
   EXPECT_NE(WriteCarmenLog("/nonexistent/dir/x.clf", log), "");
   std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace splam::io
+
+namespace splam::io {
+namespace {
+
+// A FLASER log of `scans` scans of 180 beams: ranges drawn from 0.5-20 m, except a share of
+// beams written as `no_return` (plus up to 0.07 m, as MIT Killian's SICK writes them).
+std::string LogWithPile(int scans, double pile_share, double no_return, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::string text;
+  for (int s = 0; s < scans; ++s) {
+    text += "FLASER 180";
+    for (int b = 0; b < 180; ++b) {
+      const double r = u(gen) < pile_share ? no_return + 0.07 * u(gen) : 0.5 + 19.5 * u(gen);
+      text += " " + std::to_string(r);
+    }
+    text +=
+        " 0 0 0 0 0 0 " + std::to_string(100.0 + s) + " host " + std::to_string(100.0 + s) + "\n";
+  }
+  return text;
+}
+
+// Property: over random logs (fixed seeds), a pile of 0.5-5 % of the beams at 51.05 m is found
+// from 51.05 m up and every piled reading becomes a no-return; the same logs without the pile,
+// and a log whose every beam reads one range (a robot parked facing a wall), have none.
+TEST(NoReturnPile, PropertyAPileAtTheTopIsFoundAndNothingElse) {
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    const double share = 0.005 + 0.045 * (seed - 1) / 19.0;
+    CarmenReadResult piled = ParseCarmenLog(LogWithPile(100, share, 51.05, seed), "mem");
+    ASSERT_TRUE(piled.log.ok()) << piled.log.error;
+    const std::optional<NoReturnPile> pile = FindNoReturnPile(*piled.log.value);
+    ASSERT_TRUE(pile.has_value()) << "seed " << seed;
+    EXPECT_NEAR(pile->from_m, 51.05, 0.01);
+    EXPECT_NEAR(pile->share, share, 0.5 * share + 0.002);
+    MarkNoReturns(pile->from_m, &*piled.log.value);
+    for (const LaserMessage* m : piled.log.value->Lasers()) {
+      for (std::size_t i = 0; i < m->scan.size(); ++i) {
+        if (m->scan.IsHit(i)) {
+          EXPECT_LT(m->scan.ranges_m[i], 20.0 + 1e-9);
+        }
+      }
+    }
+    const CarmenReadResult clean = ParseCarmenLog(LogWithPile(100, 0.0, 51.05, seed), "mem");
+    EXPECT_FALSE(FindNoReturnPile(*clean.log.value).has_value()) << "seed " << seed;
+  }
+  std::string wall;
+  for (int s = 0; s < 50; ++s) {
+    wall += "FLASER 180";
+    for (int b = 0; b < 180; ++b) wall += " 3.0";
+    wall +=
+        " 0 0 0 0 0 0 " + std::to_string(100.0 + s) + " host " + std::to_string(100.0 + s) + "\n";
+  }
+  EXPECT_FALSE(FindNoReturnPile(*ParseCarmenLog(wall, "mem").log.value).has_value());
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "io/carmen.h"
+#include "io/no_return_pile.h"
 #include "kernel/angle.h"
 
 namespace splam::io {
@@ -55,6 +56,29 @@ TEST(RealLogs, MitCsailHasTheDocumentedContent) {
   const double duration =
       log.Lasers().back()->stamp.ipc_timestamp_s - log.Lasers().front()->stamp.ipc_timestamp_s;
   EXPECT_NEAR(duration, 424, 5);
+}
+
+// MIT Killian Court's SICK writes its no-returns as 51.05-51.12 m (the datasets README): the
+// pile is found there, at the 1.3 % of the readings the README counts.
+TEST(RealLogs, MitKillianNoReturnsAreFoundAtTheTopOfTheRanges) {
+  const std::string path = DataPath("mit-killian.clf");
+  if (!std::filesystem::exists(path))
+    GTEST_SKIP() << path << " not found: set SPLAM_DATA to the datasets folder";
+  const CarmenReadResult r = ReadCarmenLog(path);
+  ASSERT_TRUE(r.log.ok()) << r.log.error;
+  EXPECT_EQ(r.log.value->Lasers().size(), 17480u);
+  const std::optional<NoReturnPile> pile = FindNoReturnPile(*r.log.value);
+  ASSERT_TRUE(pile.has_value());
+  EXPECT_GT(pile->from_m, 50.5);
+  EXPECT_LE(pile->from_m, 51.05);
+  EXPECT_NEAR(pile->share, 0.013, 0.002);
+  // The other logs have none: intel's no-returns are 81.8 m, FLASER's own convention.
+  for (const char* other : {"intel.clf", "mit-csail.clf"}) {
+    const CarmenReadResult o = ReadCarmenLog(DataPath(other));
+    if (o.log.ok()) {
+      EXPECT_FALSE(FindNoReturnPile(*o.log.value).has_value()) << other;
+    }
+  }
 }
 
 }  // namespace
