@@ -393,8 +393,9 @@ void GraphSlam::SearchLoopClosures(int k) {
   const std::vector<Eigen::Matrix3d> relative = RelativeCovariances(graph_, k);
   Eigen::Matrix3d to_world = Eigen::Matrix3d::Identity();
   to_world.topLeftCorner<2, 2>() = pose.Rotation();
-  // Candidates: keyframes whose distance, whitened by that covariance plus radius_m^2 (the reach
-  // of a target around its keyframe), is at most candidate_sigmas; the most likely first.
+  // Candidates: keyframes whose distance, whitened by that covariance plus reach_m^2 (how far
+  // from its keyframe a target still sees what the query sees), is at most candidate_sigmas;
+  // the most likely first.
   std::vector<std::pair<double, int>> plausible;
   for (int i = 0; i <= newest_candidate; ++i) {
     const Keyframe& c = keyframes_[static_cast<std::size_t>(i)];
@@ -402,7 +403,7 @@ void GraphSlam::SearchLoopClosures(int k) {
     const Eigen::Matrix2d position =
         (to_world * relative[static_cast<std::size_t>(i)] * to_world.transpose())
             .topLeftCorner<2, 2>() +
-        o.radius_m * o.radius_m * Eigen::Matrix2d::Identity();
+        o.reach_m * o.reach_m * Eigen::Matrix2d::Identity();
     const Eigen::Vector2d d = c.pose.translation() - pose.translation();
     const double mahalanobis2 = d.dot(position.inverse() * d);
     if (mahalanobis2 <= o.candidate_sigmas * o.candidate_sigmas)
@@ -418,22 +419,33 @@ void GraphSlam::SearchLoopClosures(int k) {
       chosen.push_back(i);
   }
   for (int c : chosen) {
-    // The window covers candidate_sigmas of the relative pose's uncertainty: the translation
+    // Windows of sigmas standard deviations of the relative pose's uncertainty: the translation
     // along its largest axis, the heading on its own.
     const Eigen::Matrix3d& covariance = relative[static_cast<std::size_t>(c)];
     const Eigen::Matrix2d position = covariance.topLeftCorner<2, 2>();
     const double largest =
         0.5 * (position.trace() + std::sqrt(std::pow(position(0, 0) - position(1, 1), 2) +
                                             4 * position(0, 1) * position(0, 1)));
-    const double window_m =
-        std::min(o.radius_m + o.candidate_sigmas * std::sqrt(largest), o.max_window_m);
-    const double window_rad =
-        std::min(o.window_rad + o.candidate_sigmas * std::sqrt(covariance(2, 2)), o.max_window_rad);
-    // A wide window is searched at every stride-th keyframe only: consecutive queries share all
+    const auto window = [&](double sigmas) {
+      return std::pair{
+          std::min(o.radius_m + sigmas * std::sqrt(largest), o.max_window_m),
+          std::min(o.window_rad + sigmas * std::sqrt(covariance(2, 2)), o.max_window_rad)};
+    };
+    // The nearer hypothesis first: the best pose of a wide window can be a place that looks
+    // alike (a wrong pose that the tests then refuse) while the right one, within one sigma,
+    // scores a little lower. Only when the one-sigma window finds nothing is the whole window
+    // searched, and a wide one at every stride-th keyframe only: consecutive queries share all
     // but one keyframe, and a search's cost grows with the window's area, so the cost per
     // keyframe grows with the window's width instead.
-    if (k % static_cast<int>(std::ceil(window_m / o.stride_window_m)) != 0) continue;
-    if (std::optional<PoseGraphEdge> edge = MatchLoop(k, c, window_m, window_rad)) {
+    const double near_m = std::min(std::max(window(1.0).first, o.min_window_m), o.max_window_m);
+    const double near_rad = window(o.candidate_sigmas).second;
+    const auto [window_m, window_rad] = window(o.candidate_sigmas);
+    std::optional<PoseGraphEdge> edge = MatchLoop(k, c, near_m, near_rad);
+    if (!edge && searches_.back().outcome == LoopSearch::Outcome::kScore &&
+        (window_m > near_m || window_rad > near_rad) &&
+        k % static_cast<int>(std::ceil(window_m / o.stride_window_m)) == 0)
+      edge = MatchLoop(k, c, window_m, window_rad);
+    if (edge) {
       pending_.push_back(*edge);
       pending_searches_.push_back(static_cast<int>(searches_.size()) - 1);
       if (unflushed_since_ < 0) unflushed_since_ = k;
@@ -670,9 +682,13 @@ void LoopClosureOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("radius_m", &radius_m,
           "a target reaches this far around its keyframe (added to the candidates' and the "
           "window's uncertainty), m");
+  v.Field("reach_m", &reach_m,
+          "a candidate this far from the query still sees the same walls (added to the "
+          "uncertainty when choosing candidates), m");
   v.Field("candidate_sigmas", &candidate_sigmas,
           "candidates within this many standard deviations of the graph's relative uncertainty");
   v.Field("candidates", &candidates, "candidates searched per keyframe");
+  v.Field("min_window_m", &min_window_m, "first search window half-width at least, m");
   v.Field("max_window_m", &max_window_m, "search window half-width at most, m");
   v.Field("window_rad", &window_rad, "search heading half-width beyond the uncertainty, rad");
   v.Field("max_window_rad", &max_window_rad, "heading half-width at most, rad");
@@ -710,7 +726,8 @@ kernel::Status LoopClosureOptions::Validate() const {
       confirm_keyframes < 0 || levels < 1 || levels > 8)
     return kernel::Status::Error(
         "min_gap_keyframes, candidates >= 1; keyframe counts >= 0; levels in [1, 8]");
-  if (!(radius_m > 0) || !(candidate_sigmas > 0) || !(max_window_m > 0) || !(window_rad >= 0) ||
+  if (!(radius_m > 0) || !(reach_m > 0) || !(min_window_m > 0) || !(max_window_m >= min_window_m) ||
+      !(candidate_sigmas > 0) || !(max_window_m > 0) || !(window_rad >= 0) ||
       !(stride_window_m > 0) || !(max_window_rad >= window_rad) || !(sigma_m > 0) ||
       !(resolution_m > 0))
     return kernel::Status::Error("loop radii, windows and sigma must be positive and ordered");
