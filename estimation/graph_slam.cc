@@ -426,6 +426,8 @@ void GraphSlam::SearchLoopClosures(int k) {
     const double largest =
         0.5 * (position.trace() + std::sqrt(std::pow(position(0, 0) - position(1, 1), 2) +
                                             4 * position(0, 1) * position(0, 1)));
+    // The graph already knows this relative pose about as well as a closure would tell it.
+    if (std::sqrt(largest) < o.min_uncertainty_m) continue;
     const auto window = [&](double sigmas) {
       return std::pair{
           std::min(o.radius_m + sigmas * std::sqrt(largest), o.max_window_m),
@@ -438,11 +440,11 @@ void GraphSlam::SearchLoopClosures(int k) {
     // but one keyframe, and a search's cost grows with the window's area, so the cost per
     // keyframe grows with the window's width instead.
     const double near_m = std::min(std::max(window(1.0).first, o.min_window_m), o.max_window_m);
-    const double near_rad = window(o.candidate_sigmas).second;
+    const double near_rad = window(1.0).second;
     const auto [window_m, window_rad] = window(o.candidate_sigmas);
     std::optional<PoseGraphEdge> edge = MatchLoop(k, c, near_m, near_rad);
     if (!edge && searches_.back().outcome == LoopSearch::Outcome::kScore &&
-        (window_m > near_m || window_rad > near_rad) &&
+        window_m >= o.wide_window_ratio * near_m &&
         k % static_cast<int>(std::ceil(window_m / o.stride_window_m)) == 0)
       edge = MatchLoop(k, c, window_m, window_rad);
     if (edge) {
@@ -570,12 +572,10 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double w
     query.insert(query.end(), placed.begin(), placed.end());
   }
   query = Thinned(query, options_.loop.resolution_m);
-  const std::vector<int> keyframes =
-      TargetKeyframes(candidate, k - options_.loop.min_gap_keyframes);
-  const DistanceGrid target = DistanceGrid::Build(
-      WorldRaster(keyframes), options_.loop.resolution_m, options_.truncation_m,
-      options_.truncation_m, WorldViews(keyframes), false, options_.seen_margin_m);
-  const LikelihoodPyramid pyramid(target, options_.loop.sigma_m, options_.loop.levels);
+  const LoopTarget& loop_target =
+      Target(TargetKeyframes(candidate, k - options_.loop.min_gap_keyframes));
+  const DistanceGrid& target = *loop_target.grid;
+  const LikelihoodPyramid& pyramid = *loop_target.pyramid;
   const CorrelativeMatch match = SearchCorrelative(
       Positions(query), pyramid, kf.pose, window_m, window_rad,
       options_.loop.min_score * options_.loop.min_overlap, options_.loop.ambiguity_ratio);
@@ -621,8 +621,27 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double w
   return edge;
 }
 
+const GraphSlam::LoopTarget& GraphSlam::Target(const std::vector<int>& keyframes) {
+  for (const LoopTarget& t : targets_)
+    if (t.keyframes == keyframes && t.graph_version == graph_version_) return t;
+  LoopTarget t;
+  t.keyframes = keyframes;
+  t.graph_version = graph_version_;
+  t.grid = std::make_unique<DistanceGrid>(DistanceGrid::Build(
+      WorldRaster(keyframes), options_.loop.resolution_m, options_.truncation_m,
+      options_.truncation_m, WorldViews(keyframes), false, options_.seen_margin_m));
+  t.pyramid =
+      std::make_unique<LikelihoodPyramid>(*t.grid, options_.loop.sigma_m, options_.loop.levels);
+  // Consecutive keyframes search the same few candidates: a handful of targets is enough.
+  constexpr std::size_t kCachedTargets = 4;
+  if (targets_.size() >= kCachedTargets) targets_.erase(targets_.begin());
+  targets_.push_back(std::move(t));
+  return targets_.back();
+}
+
 void GraphSlam::Optimize() {
   const ScopedTimer timer(&times_.optimization_ms);
+  ++graph_version_;
   const int last = graph_.num_nodes() - 1;
   const kernel::Pose2 offset = keyframes_.back().pose.Between(pose_);
   optimizations_.push_back(graph_.Optimize(options_.pose_graph));
@@ -680,11 +699,13 @@ void LoopClosureOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("min_gap_keyframes", &min_gap_keyframes,
           "candidates are at least this many keyframes older");
   v.Field("radius_m", &radius_m,
-          "a target reaches this far around its keyframe (added to the candidates' and the "
-          "window's uncertainty), m");
+          "the search windows: this plus the relative pose's uncertainty, m");
   v.Field("reach_m", &reach_m,
           "a candidate this far from the query still sees the same walls (added to the "
           "uncertainty when choosing candidates), m");
+  v.Field("min_uncertainty_m", &min_uncertainty_m,
+          "a candidate whose relative position the graph knows better than this (largest "
+          "standard deviation) is not searched, m");
   v.Field("candidate_sigmas", &candidate_sigmas,
           "candidates within this many standard deviations of the graph's relative uncertainty");
   v.Field("candidates", &candidates, "candidates searched per keyframe");
@@ -692,6 +713,8 @@ void LoopClosureOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("max_window_m", &max_window_m, "search window half-width at most, m");
   v.Field("window_rad", &window_rad, "search heading half-width beyond the uncertainty, rad");
   v.Field("max_window_rad", &max_window_rad, "heading half-width at most, rad");
+  v.Field("wide_window_ratio", &wide_window_ratio,
+          "the wide window is searched only when this many times as wide as the first");
   v.Field("stride_window_m", &stride_window_m,
           "a window of w m is searched every ceil(w / this) keyframes, m");
   v.Field("query_keyframes", &query_keyframes, "query: the new keyframe and this many before it");
@@ -726,10 +749,10 @@ kernel::Status LoopClosureOptions::Validate() const {
       confirm_keyframes < 0 || levels < 1 || levels > 8)
     return kernel::Status::Error(
         "min_gap_keyframes, candidates >= 1; keyframe counts >= 0; levels in [1, 8]");
-  if (!(radius_m > 0) || !(reach_m > 0) || !(min_window_m > 0) || !(max_window_m >= min_window_m) ||
-      !(candidate_sigmas > 0) || !(max_window_m > 0) || !(window_rad >= 0) ||
-      !(stride_window_m > 0) || !(max_window_rad >= window_rad) || !(sigma_m > 0) ||
-      !(resolution_m > 0))
+  if (!(radius_m > 0) || !(reach_m > 0) || !(min_uncertainty_m >= 0) || !(min_window_m > 0) ||
+      !(max_window_m >= min_window_m) || !(candidate_sigmas > 0) || !(max_window_m > 0) ||
+      !(window_rad >= 0) || !(stride_window_m > 0) || !(wide_window_ratio >= 1) ||
+      !(max_window_rad >= window_rad) || !(sigma_m > 0) || !(resolution_m > 0))
     return kernel::Status::Error("loop radii, windows and sigma must be positive and ordered");
   if (!(min_score > 0 && min_score <= 1) || !(min_overlap > 0 && min_overlap <= 1) ||
       !(ambiguity_ratio > 0 && ambiguity_ratio <= 1) || !(max_rms_m > 0) || !(max_chi2 > 0) ||
