@@ -29,12 +29,12 @@ struct LoopClosureOptions {
   // of the new keyframe relative to them plus reach_m^2 (how far from its keyframe a target
   // still sees what the query sees), is at most candidate_sigmas; the `candidates` most likely
   // (kept min_gap_keyframes apart) are searched. Along a long loop the covariance grows, and so do
-  // the set of candidates and the window; right after a closure both are small. 5 m: a SICK's or a
-  // URG's scans 5 m apart in a building still share walls; the earlier code's candidates lay within
-  // a radius growing with the travel since the last closure, up to 8 m.)
+  // the set of candidates and the window; right after a closure both are small. reach_m = 3 m,
+  // min_window_m: the first window then reaches the candidate (on MIT Killian 5 m made 4,151
+  // searches and 3 m 2,912, finding the same closures: 0.0322 and 0.0319 m).
   int min_gap_keyframes = 60;
   double radius_m = 1.0;
-  double reach_m = 5.0;
+  double reach_m = 3.0;
   double candidate_sigmas = 3.0;
   // A candidate whose position relative to the new keyframe the graph already knows to within
   // min_uncertainty_m (the largest standard deviation) is not searched: a closure, itself
