@@ -384,9 +384,50 @@ void GraphSlam::RebuildSubmap() {
   submap_dirty_ = false;
 }
 
+namespace {
+
+// Of `ranked` ((rank, keyframe), best first), the first `count` keyframes at least `gap` apart.
+std::vector<int> Spread(std::vector<std::pair<double, int>> ranked, int count, int gap) {
+  std::sort(ranked.begin(), ranked.end());
+  std::vector<int> chosen;
+  for (const auto& [rank, i] : ranked) {
+    if (static_cast<int>(chosen.size()) >= count) break;
+    if (std::all_of(chosen.begin(), chosen.end(), [&](int c) { return std::abs(c - i) >= gap; }))
+      chosen.push_back(i);
+  }
+  return chosen;
+}
+
+}  // namespace
+
 void GraphSlam::SearchLoopClosures(int k) {
   const int newest_candidate = k - options_.loop.min_gap_keyframes;
   if (newest_candidate < 0) return;
+  const LoopClosureOptions& o = options_.loop;
+  const kernel::Pose2& pose = keyframes_[static_cast<std::size_t>(k)].pose;
+  // First the nearest keyframes within a radius that grows with the travel since the last
+  // closure, in a window of at most near_window_m.
+  const double since = travelled_m_ - closure_at_m_;
+  const double radius = std::min(o.radius_m + o.radius_per_m * since, o.max_radius_m);
+  std::vector<std::pair<double, int>> near;
+  for (int i = 0; i <= newest_candidate; ++i) {
+    const Keyframe& c = keyframes_[static_cast<std::size_t>(i)];
+    const double d = (c.pose.translation() - pose.translation()).norm();
+    if (!c.trimmed && d <= radius) near.emplace_back(d, i);
+  }
+  const double near_m = std::min(radius, o.near_window_m);
+  const double near_rad = std::min(o.window_rad + o.window_rad_per_m * since, o.max_window_rad);
+  bool any = false;
+  for (int c : Spread(near, o.candidates, o.min_gap_keyframes))
+    any |= AddPending(k, MatchLoop(k, c, near_m, near_rad), true);
+  // Then, when that window was cut short and found nothing, by the pose graph's own uncertainty:
+  // candidates and windows of candidate_sigmas of the relative pose's covariance.
+  if (!any && radius > o.near_window_m) SearchWide(k, near_m);
+  if (unflushed_since_ >= 0 && k - unflushed_since_ >= options_.optimize_every_keyframes)
+    FlushClosures(false);
+}
+
+void GraphSlam::SearchWide(int k, double near_m) {
   const LoopClosureOptions& o = options_.loop;
   const kernel::Pose2& pose = keyframes_[static_cast<std::size_t>(k)].pose;
   // The graph's uncertainty of this keyframe relative to each earlier one, in the world's axes.
@@ -397,7 +438,7 @@ void GraphSlam::SearchLoopClosures(int k) {
   // from its keyframe a target still sees what the query sees), is at most candidate_sigmas;
   // the most likely first.
   std::vector<std::pair<double, int>> plausible;
-  for (int i = 0; i <= newest_candidate; ++i) {
+  for (int i = 0; i <= k - o.min_gap_keyframes; ++i) {
     const Keyframe& c = keyframes_[static_cast<std::size_t>(i)];
     if (c.trimmed || !std::isfinite(relative[static_cast<std::size_t>(i)](0, 0))) continue;
     const Eigen::Matrix2d position =
@@ -409,52 +450,34 @@ void GraphSlam::SearchLoopClosures(int k) {
     if (mahalanobis2 <= o.candidate_sigmas * o.candidate_sigmas)
       plausible.emplace_back(mahalanobis2, i);
   }
-  std::sort(plausible.begin(), plausible.end());
-  std::vector<int> chosen;
-  for (const auto& candidate : plausible) {
-    const int i = candidate.second;
-    if (static_cast<int>(chosen.size()) >= o.candidates) break;
-    if (std::all_of(chosen.begin(), chosen.end(),
-                    [&](int c) { return std::abs(c - i) >= o.min_gap_keyframes; }))
-      chosen.push_back(i);
-  }
-  for (int c : chosen) {
-    // Windows of sigmas standard deviations of the relative pose's uncertainty: the translation
-    // along its largest axis, the heading on its own.
+  for (int c : Spread(plausible, o.candidates, o.min_gap_keyframes)) {
     const Eigen::Matrix3d& covariance = relative[static_cast<std::size_t>(c)];
     const Eigen::Matrix2d position = covariance.topLeftCorner<2, 2>();
+    // The largest eigenvalue: the translation window covers the most uncertain direction.
     const double largest =
         0.5 * (position.trace() + std::sqrt(std::pow(position(0, 0) - position(1, 1), 2) +
                                             4 * position(0, 1) * position(0, 1)));
-    // The graph already knows this relative pose about as well as a closure would tell it.
-    if (std::sqrt(largest) < o.min_uncertainty_m) continue;
-    const auto window = [&](double sigmas) {
-      return std::pair{
-          std::min(o.radius_m + sigmas * std::sqrt(largest), o.max_window_m),
-          std::min(o.window_rad + sigmas * std::sqrt(covariance(2, 2)), o.max_window_rad)};
-    };
-    // The nearer hypothesis first: the best pose of a wide window can be a place that looks
-    // alike (a wrong pose that the tests then refuse) while the right one, within one sigma,
-    // scores a little lower. Only when the one-sigma window finds nothing is the whole window
-    // searched, and a wide one at every stride-th keyframe only: consecutive queries share all
-    // but one keyframe, and a search's cost grows with the window's area, so the cost per
-    // keyframe grows with the window's width instead.
-    const double near_m = std::min(std::max(window(1.0).first, o.min_window_m), o.max_window_m);
-    const double near_rad = window(1.0).second;
-    const auto [window_m, window_rad] = window(o.candidate_sigmas);
-    std::optional<PoseGraphEdge> edge = MatchLoop(k, c, near_m, near_rad);
-    if (!edge && searches_.back().outcome == LoopSearch::Outcome::kScore &&
-        window_m >= o.wide_window_ratio * near_m &&
-        k % static_cast<int>(std::ceil(window_m / o.stride_window_m)) == 0)
-      edge = MatchLoop(k, c, window_m, window_rad);
-    if (edge) {
-      pending_.push_back(*edge);
-      pending_searches_.push_back(static_cast<int>(searches_.size()) - 1);
-      if (unflushed_since_ < 0) unflushed_since_ = k;
-    }
+    const double window_m =
+        std::min(o.radius_m + o.candidate_sigmas * std::sqrt(largest), o.max_window_m);
+    const double window_rad =
+        std::min(o.window_rad + o.candidate_sigmas * std::sqrt(covariance(2, 2)), o.max_window_rad);
+    // A window barely wider than the first finds little more. A wide one is searched at every
+    // stride-th keyframe only: consecutive queries share all but one keyframe, and a search's
+    // cost grows with the window's area, so the cost per keyframe grows with its width instead.
+    if (window_m < o.wide_window_ratio * near_m ||
+        k % static_cast<int>(std::ceil(window_m / o.stride_window_m)) != 0)
+      continue;
+    AddPending(k, MatchLoop(k, c, window_m, window_rad), false);
   }
-  if (unflushed_since_ >= 0 && k - unflushed_since_ >= options_.optimize_every_keyframes)
-    FlushClosures(false);
+}
+
+bool GraphSlam::AddPending(int k, const std::optional<PoseGraphEdge>& edge, bool near) {
+  if (!edge) return false;
+  if (near) closure_at_m_ = travelled_m_;
+  pending_.push_back(*edge);
+  pending_searches_.push_back(static_cast<int>(searches_.size()) - 1);
+  if (unflushed_since_ < 0) unflushed_since_ = k;
+  return true;
 }
 
 bool GraphSlam::Agree(const PoseGraphEdge& a, const PoseGraphEdge& b) const {
@@ -532,6 +555,10 @@ void GraphSlam::FlushClosures(bool final) {
   }
   loops_.accepted +=
       static_cast<long>(graph_.edges().size()) - first - static_cast<long>(disagree.size());
+  // The drift that the first search's radius allows for restarts at a closure that search found
+  // (AddPending) or at one added to the graph: a wide search's closure waits for a second to
+  // confirm it, which only another wide search can find.
+  if (disagree.size() < accepted.size()) closure_at_m_ = travelled_m_;
   if (disagree.empty()) return;
   loops_.rejected_disagreement += static_cast<long>(disagree.size());
   graph_.RemoveEdges(disagree);
@@ -698,25 +725,27 @@ void LoopClosureOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("enabled", &enabled, "search for loop closures");
   v.Field("min_gap_keyframes", &min_gap_keyframes,
           "candidates are at least this many keyframes older");
-  v.Field("radius_m", &radius_m,
-          "the search windows: this plus the relative pose's uncertainty, m");
-  v.Field("reach_m", &reach_m,
-          "a candidate this far from the query still sees the same walls (added to the "
-          "uncertainty when choosing candidates), m");
-  v.Field("min_uncertainty_m", &min_uncertainty_m,
-          "a candidate whose relative position the graph knows better than this (largest "
-          "standard deviation) is not searched, m");
-  v.Field("candidate_sigmas", &candidate_sigmas,
-          "candidates within this many standard deviations of the graph's relative uncertainty");
+  v.Field("radius_m", &radius_m, "candidate radius right after a closure, m");
+  v.Field("radius_per_m", &radius_per_m,
+          "candidate radius growth per metre travelled since the last closure");
+  v.Field("max_radius_m", &max_radius_m, "candidate radius at most, m");
   v.Field("candidates", &candidates, "candidates searched per keyframe");
-  v.Field("min_window_m", &min_window_m, "first search window half-width at least, m");
-  v.Field("max_window_m", &max_window_m, "search window half-width at most, m");
-  v.Field("window_rad", &window_rad, "search heading half-width beyond the uncertainty, rad");
+  v.Field("near_window_m", &near_window_m, "first search window half-width at most, m");
+  v.Field("window_rad", &window_rad, "search heading half-width after a closure, rad");
+  v.Field("window_rad_per_m", &window_rad_per_m,
+          "heading half-width growth per metre travelled, rad/m");
   v.Field("max_window_rad", &max_window_rad, "heading half-width at most, rad");
+  v.Field("reach_m", &reach_m,
+          "wide search: a candidate this far from the query still sees the same walls (added to "
+          "the uncertainty when choosing candidates), m");
+  v.Field("candidate_sigmas", &candidate_sigmas,
+          "wide search: candidates and windows within this many standard deviations of the "
+          "graph's relative uncertainty");
+  v.Field("max_window_m", &max_window_m, "wide search: window half-width at most, m");
   v.Field("wide_window_ratio", &wide_window_ratio,
-          "the wide window is searched only when this many times as wide as the first");
+          "wide search: only when its window is this many times as wide as the first");
   v.Field("stride_window_m", &stride_window_m,
-          "a window of w m is searched every ceil(w / this) keyframes, m");
+          "wide search: a window of w m is searched every ceil(w / this) keyframes, m");
   v.Field("query_keyframes", &query_keyframes, "query: the new keyframe and this many before it");
   v.Field("target_keyframes", &target_keyframes,
           "target: the candidate and this many keyframes either side");
@@ -749,10 +778,11 @@ kernel::Status LoopClosureOptions::Validate() const {
       confirm_keyframes < 0 || levels < 1 || levels > 8)
     return kernel::Status::Error(
         "min_gap_keyframes, candidates >= 1; keyframe counts >= 0; levels in [1, 8]");
-  if (!(radius_m > 0) || !(reach_m > 0) || !(min_uncertainty_m >= 0) || !(min_window_m > 0) ||
-      !(max_window_m >= min_window_m) || !(candidate_sigmas > 0) || !(max_window_m > 0) ||
-      !(window_rad >= 0) || !(stride_window_m > 0) || !(wide_window_ratio >= 1) ||
-      !(max_window_rad >= window_rad) || !(sigma_m > 0) || !(resolution_m > 0))
+  if (!(radius_m > 0) || !(radius_per_m >= 0) || !(max_radius_m >= radius_m) ||
+      !(near_window_m > 0) || !(max_window_m >= near_window_m) || !(window_rad >= 0) ||
+      !(window_rad_per_m >= 0) || !(max_window_rad >= window_rad) || !(reach_m > 0) ||
+      !(candidate_sigmas > 0) || !(wide_window_ratio >= 1) || !(stride_window_m > 0) ||
+      !(sigma_m > 0) || !(resolution_m > 0))
     return kernel::Status::Error("loop radii, windows and sigma must be positive and ordered");
   if (!(min_score > 0 && min_score <= 1) || !(min_overlap > 0 && min_overlap <= 1) ||
       !(ambiguity_ratio > 0 && ambiguity_ratio <= 1) || !(max_rms_m > 0) || !(max_chi2 > 0) ||

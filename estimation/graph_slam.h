@@ -24,46 +24,40 @@ namespace splam::estimation {
 // Loop closure of the graph SLAM (GraphSlamOptions::loop).
 struct LoopClosureOptions {
   bool enabled = true;
-  // Candidates, by the pose graph's own uncertainty (RelativeCovariances): keyframes at least
-  // min_gap_keyframes older than the new one whose distance from it, whitened by the covariance
-  // of the new keyframe relative to them plus reach_m^2 (how far from its keyframe a target
-  // still sees what the query sees), is at most candidate_sigmas; the `candidates` most likely
-  // (kept min_gap_keyframes apart) are searched. Along a long loop the covariance grows, and so do
-  // the set of candidates and the window; right after a closure both are small. reach_m = 3 m,
-  // min_window_m: the first window then reaches the candidate (on MIT Killian 5 m made 4,151
-  // searches and 3 m 2,912, finding the same closures: 0.0322 and 0.0319 m).
+  // Two searches. First the nearest `candidates` keyframes (kept min_gap_keyframes apart, at
+  // least min_gap_keyframes older than the new one) within radius_m + radius_per_m * (distance
+  // travelled since the last closure this search found, or any added to the graph), at most
+  // max_radius_m, in a window of
+  // translations within that radius, at most near_window_m, and headings within window_rad +
+  // window_rad_per_m * that distance, at most max_window_rad.
   int min_gap_keyframes = 60;
   double radius_m = 1.0;
+  double radius_per_m = 0.05;
+  double max_radius_m = 8.0;
+  int candidates = 2;
+  double near_window_m = 3.0;
+  double window_rad = 0.2;
+  double window_rad_per_m = 0.005;
+  double max_window_rad = 0.8;
+  // Then, at a keyframe where that window was cut short by near_window_m and found nothing, a
+  // wide search by the pose graph's own uncertainty (RelativeCovariances, the covariance of the
+  // new keyframe relative to every earlier one): candidates are keyframes whose distance,
+  // whitened by that covariance plus reach_m^2 (how far from its keyframe a target still sees
+  // what the query sees), is at most candidate_sigmas, the most likely first; the window covers
+  // candidate_sigmas standard deviations (radius_m + along the largest axis, window_rad + the
+  // heading's), at most max_window_m and max_window_rad. It runs only when that window is at
+  // least wide_window_ratio times the first, and at every ceil(window / stride_window_m)-th
+  // keyframe. On MIT Killian Court the robot came back to its start after a 200 m loop 6 m off
+  // and every corridor was drawn twice with the first search alone; the wide windows there reached
+  // 11-12 m. Searching by the uncertainty alone (every keyframe) closed Killian as well but made
+  // the explorations of `complex` and `office` worse (0.054 -> 0.083-0.100 m and 0.040 ->
+  // 0.106-0.121 m over seeds 1-10): wider windows near the estimate let look-alike places in
+  // (docs/graph_slam.md).
   double reach_m = 3.0;
   double candidate_sigmas = 3.0;
-  // A candidate whose position relative to the new keyframe the graph already knows to within
-  // min_uncertainty_m (the largest standard deviation) is not searched: a closure, itself
-  // uncertain by a few centimetres (sigma_floor_m and the registration's), would tell the graph
-  // little it does not know. On a log that revisits all the time (intel) most searches were such.
-  double min_uncertainty_m = 0.1;
-  int candidates = 2;
-  // The search windows, two: first translations within radius_m + one standard deviation of
-  // the relative position (its largest axis), at least min_window_m, and headings within
-  // window_rad + candidate_sigmas times the heading's standard deviation; when nothing scores
-  // there, translations within radius_m + candidate_sigmas standard deviations. Translations
-  // at most max_window_m, headings at most max_window_rad. The nearer window goes first: the
-  // best pose of a wide window can be a look-alike place that the tests refuse while the right
-  // pose near the estimate scores a little lower (exploring `complex` with the topological front
-  // end, seed 3, 0.053 -> 0.113 m with the wide window alone). min_window_m = 3 m, the earlier
-  // code's fixed window: with 2.7 m instead the same search found nothing in that run where 3 m
-  // found the closure 0.36 m from the estimate (not explained; docs/graph_slam.md).
-  // 12 m: the MIT Killian Court log came back to its start after a 200 m loop 6 m off, and
-  // its windows there reached 11 m. A window wider than stride_window_m is searched at every
-  // ceil(window / stride_window_m)-th keyframe only (3 m: every 4th for a 12 m window).
-  double min_window_m = 3.0;
   double max_window_m = 12.0;
-  double window_rad = 0.2;
-  double max_window_rad = 0.8;
-  double stride_window_m = 3.0;
-  // The wide window is searched only when it is at least this many times as wide as the first
-  // (a window barely wider finds little more, at the cost of a second search: on intel, 1,735 of
-  // 4,255 searches were such second ones, and loop search took 53 s instead of 12-24 s).
   double wide_window_ratio = 2.0;
+  double stride_window_m = 3.0;
   // Query: the points of the new keyframe and query_keyframes before it; target: the
   // candidate's submap (target_keyframes either side of it).
   int query_keyframes = 10;
@@ -360,6 +354,11 @@ class GraphSlam {
   Eigen::Matrix3d FrontEndCovariance(int to) const;
   // Searches keyframe k against the candidate's target within the windows; records the search.
   std::optional<PoseGraphEdge> MatchLoop(int k, int candidate, double window_m, double window_rad);
+  // The wide search of LoopClosureOptions at keyframe k, whose first window was near_m wide.
+  void SearchWide(int k, double near_m);
+  // A closure found at keyframe k waits in pending_; false when there is none. One found by the
+  // first (`near`) search restarts the travel that widens that search's radius.
+  bool AddPending(int k, const std::optional<PoseGraphEdge>& edge, bool near);
   // Optimises, then moves the current pose with its keyframe.
   void Optimize();
   // A loop target's field and likelihood pyramid, built from these keyframes at their poses of
@@ -399,6 +398,7 @@ class GraphSlam {
   std::vector<PoseGraphEdge> pending_;  // closures found, not yet in the graph
   std::vector<int> pending_searches_;   // their searches_ indices
   std::vector<LoopSearch> searches_;
+  double closure_at_m_ = 0.0;        // travelled when the last closure was found
   std::vector<LoopTarget> targets_;  // the last loop targets built (Target)
   long graph_version_ = 0;           // incremented by every optimisation
   int unflushed_since_ = -1;         // keyframe of the first closure found since the last flush

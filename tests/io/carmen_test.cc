@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <random>
 
 #include <cmath>
@@ -314,22 +315,25 @@ TEST(CarmenLog, WritesAndReadsFiles) {
 namespace splam::io {
 namespace {
 
-// A FLASER log of `scans` scans of 180 beams: ranges drawn from 0.5-20 m, except a share of
-// beams written as `no_return` (plus up to 0.07 m, as MIT Killian's SICK writes them).
-std::string LogWithPile(int scans, double pile_share, double no_return, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+// A FLASER log of `scans` scans of 180 beams, each beam's range from `range`.
+std::string FlaserLog(int scans, const std::function<double()>& range) {
   std::string text;
   for (int s = 0; s < scans; ++s) {
     text += "FLASER 180";
-    for (int b = 0; b < 180; ++b) {
-      const double r = u(gen) < pile_share ? no_return + 0.07 * u(gen) : 0.5 + 19.5 * u(gen);
-      text += " " + std::to_string(r);
-    }
-    text +=
-        " 0 0 0 0 0 0 " + std::to_string(100.0 + s) + " host " + std::to_string(100.0 + s) + "\n";
+    for (int b = 0; b < 180; ++b) text += " " + std::to_string(range());
+    const std::string stamp = std::to_string(100.0 + s);
+    text += " 0 0 0 0 0 0 " + stamp + " host " + stamp + "\n";
   }
   return text;
+}
+
+// Ranges drawn from 0.5-20 m, except a share of beams written as `no_return` (plus up to
+// 0.07 m, as MIT Killian's SICK writes them).
+std::string LogWithPile(int scans, double pile_share, double no_return, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  return FlaserLog(
+      scans, [&] { return u(gen) < pile_share ? no_return + 0.07 * u(gen) : 0.5 + 19.5 * u(gen); });
 }
 
 // Property: over random logs (fixed seeds), a pile of 0.5-5 % of the beams at 51.05 m is found
@@ -355,13 +359,7 @@ TEST(NoReturnPile, PropertyAPileAtTheTopIsFoundAndNothingElse) {
     const CarmenReadResult clean = ParseCarmenLog(LogWithPile(100, 0.0, 51.05, seed), "mem");
     EXPECT_FALSE(FindNoReturnPile(*clean.log.value).has_value()) << "seed " << seed;
   }
-  std::string wall;
-  for (int s = 0; s < 50; ++s) {
-    wall += "FLASER 180";
-    for (int b = 0; b < 180; ++b) wall += " 3.0";
-    wall +=
-        " 0 0 0 0 0 0 " + std::to_string(100.0 + s) + " host " + std::to_string(100.0 + s) + "\n";
-  }
+  const std::string wall = FlaserLog(50, [] { return 3.0; });
   EXPECT_FALSE(FindNoReturnPile(*ParseCarmenLog(wall, "mem").log.value).has_value());
 }
 
