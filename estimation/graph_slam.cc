@@ -390,7 +390,8 @@ namespace {
 std::vector<int> Spread(std::vector<std::pair<double, int>> ranked, int count, int gap) {
   std::sort(ranked.begin(), ranked.end());
   std::vector<int> chosen;
-  for (const auto& [rank, i] : ranked) {
+  for (const auto& entry : ranked) {
+    const int i = entry.second;  // a structured binding cannot be captured by Clang 14
     if (static_cast<int>(chosen.size()) >= count) break;
     if (std::all_of(chosen.begin(), chosen.end(), [&](int c) { return std::abs(c - i) >= gap; }))
       chosen.push_back(i);
