@@ -8,6 +8,7 @@
 
 #include "estimation/pose_graph_uncertainty.h"
 #include "estimation/scan_view.h"
+#include "kernel/angle.h"
 
 namespace splam::estimation {
 namespace {
@@ -465,8 +466,9 @@ void GraphSlam::SearchWide(int k, double near_m) {
     // A window barely wider than the first finds little more. A wide one is searched at every
     // stride-th keyframe only: consecutive queries share all but one keyframe, and a search's
     // cost grows with the window's area, so the cost per keyframe grows with its width instead.
+    // In doubles: a tiny stride_window_m makes a stride beyond any int.
     if (window_m < o.wide_window_ratio * near_m ||
-        k % static_cast<int>(std::ceil(window_m / o.stride_window_m)) != 0)
+        std::fmod(static_cast<double>(k), std::ceil(window_m / o.stride_window_m)) != 0.0)
       continue;
     AddPending(k, MatchLoop(k, c, window_m, window_rad), false);
   }
@@ -783,8 +785,11 @@ kernel::Status LoopClosureOptions::Validate() const {
       !(near_window_m > 0) || !(max_window_m >= near_window_m) || !(window_rad >= 0) ||
       !(window_rad_per_m >= 0) || !(max_window_rad >= window_rad) || !(reach_m > 0) ||
       !(candidate_sigmas > 0) || !(wide_window_ratio >= 1) || !(stride_window_m > 0) ||
-      !(sigma_m > 0) || !(resolution_m > 0))
-    return kernel::Status::Error("loop radii, windows and sigma must be positive and ordered");
+      !(sigma_m > 0) || !(resolution_m > 0) || !(max_window_m <= 1000) ||
+      !(max_window_rad <= kernel::kPi))
+    return kernel::Status::Error(
+        "loop radii, windows and sigma must be positive and ordered, max_window_m at most 1000, "
+        "max_window_rad at most pi");
   if (!(min_score > 0 && min_score <= 1) || !(min_overlap > 0 && min_overlap <= 1) ||
       !(ambiguity_ratio > 0 && ambiguity_ratio <= 1) || !(max_rms_m > 0) || !(max_chi2 > 0) ||
       !(max_misfit_fraction >= 0 && max_misfit_fraction <= 1) || !(sigma_floor_m > 0) ||
