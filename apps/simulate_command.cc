@@ -121,6 +121,7 @@ int RunSimulate(const SimulateArgs& args) {
   }
   const sim::RayCaster caster(*world.value);
   sim::Simulator simulator(caster, options, route.start, args.seed);
+  simulator.SetPeople(world.value->people);
   if (!simulator.IsFree(route.start)) {
     fmt::print(stderr,
                "splam simulate: the start pose ({}, {}) collides with an obstacle of '{}'\n",

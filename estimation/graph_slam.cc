@@ -113,6 +113,40 @@ double SeenFreeMisfitFraction(const DistanceGrid& target, const std::vector<Orie
   return static_cast<double>(misfits) / static_cast<double>(placed.size());
 }
 
+namespace {
+
+// The points of `points` (robot frame, in beam order) that are not part of a moving object:
+// runs of neighbours within max_gap_m, at most max_size_m from end to end, more than half of
+// whose points lie, at `pose`, where `map` saw free space at least min_distance_m from its
+// outline (GraphSlamOptions::moving_max_size_m). Its hit points come in beam order.
+std::vector<OrientedPoint> WithoutMovingObjects(std::vector<OrientedPoint> points,
+                                                const DistanceGrid& map, const kernel::Pose2& pose,
+                                                double max_gap_m, double max_size_m,
+                                                double min_distance_m) {
+  std::vector<OrientedPoint> kept;
+  kept.reserve(points.size());
+  std::size_t begin = 0;
+  while (begin < points.size()) {
+    std::size_t end = begin + 1;
+    while (end < points.size() && (points[end].point - points[end - 1].point).norm() <= max_gap_m)
+      ++end;
+    bool moving = (points[end - 1].point - points[begin].point).norm() <= max_size_m;
+    if (moving) {
+      std::size_t unexplained = 0;
+      for (std::size_t i = begin; i < end; ++i) {
+        const Eigen::Vector2d p = pose * points[i].point;
+        unexplained += map.SeenFree(p) && std::abs(map.Distance(p)) >= min_distance_m;
+      }
+      moving = 2 * unexplained > end - begin;
+    }
+    if (!moving) kept.insert(kept.end(), points.begin() + begin, points.begin() + end);
+    begin = end;
+  }
+  return kept;
+}
+
+}  // namespace
+
 std::vector<int> LargestAgreeingSet(const std::vector<bool>& with_graph,
                                     const std::function<bool(int, int)>& agree) {
   const int n = static_cast<int>(with_graph.size());
@@ -166,6 +200,10 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
     pose_ = *localised;
   } else if (!keyframes_.empty()) {
     if (submap_dirty_) RebuildSubmap();
+    if (options_.moving_max_size_m > 0)
+      points =
+          WithoutMovingObjects(std::move(points), submap_, pose_, options_.normal_max_gap_m,
+                               options_.moving_max_size_m, options_.registration.inlier_distance_m);
     const long recovered_before = recovered_;
     const RegistrationResult r = RegisterScan(points);
     ++registrations_;
@@ -248,6 +286,7 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   Keyframe kf;
   kf.pose = pose_;
   kf.travelled_m = travelled_m_;
+  kf.scan = static_cast<int>(scans_.size());
   for (const auto& curve : kernel::ExtractCurves(scan, options_.extraction)) {
     kf.curves.push_back(kernel::Transformed(curve, robot_T_laser));
     if (!options_.raster_curves) continue;
@@ -369,6 +408,16 @@ std::vector<int> GraphSlam::TargetKeyframes(int candidate, int newest) const {
   gather(candidate - 1, -1);
   gather(candidate + 1, 1);
   return target;
+}
+
+std::vector<int> GraphSlam::AreaKeyframes(const Eigen::Vector2d& center, double radius_m,
+                                          int newest) const {
+  std::vector<int> area;
+  for (int i = 0; i <= newest; ++i) {
+    const Keyframe& kf = keyframes_[static_cast<std::size_t>(i)];
+    if (!kf.trimmed && (kf.pose.translation() - center).norm() <= radius_m) area.push_back(i);
+  }
+  return area;
 }
 
 void GraphSlam::RebuildSubmap() {
@@ -586,6 +635,9 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double w
   const ScopedTimer search_timer(&record.time_ms);
   record.query = k;
   record.target = candidate;
+  record.query_scan = keyframes_[static_cast<std::size_t>(k)].scan;
+  record.target_scan = keyframes_[static_cast<std::size_t>(candidate)].scan;
+  record.searched = keyframes_[static_cast<std::size_t>(k)].pose;
   record.window_m = window_m;
   record.window_rad = window_rad;
   const auto refuse = [&](LoopSearch::Outcome outcome, long* count) {
@@ -603,7 +655,10 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double w
   }
   query = Thinned(query, options_.loop.resolution_m);
   const LoopTarget& loop_target =
-      Target(TargetKeyframes(candidate, k - options_.loop.min_gap_keyframes));
+      Target(window_m > options_.loop.near_window_m
+                 ? AreaKeyframes(kf.pose.translation(), window_m + options_.loop.reach_m,
+                                 k - options_.loop.min_gap_keyframes)
+                 : TargetKeyframes(candidate, k - options_.loop.min_gap_keyframes));
   const DistanceGrid& target = *loop_target.grid;
   const LikelihoodPyramid& pyramid = *loop_target.pyramid;
   const CorrelativeMatch match = SearchCorrelative(
@@ -812,6 +867,9 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("raster_points", &raster_points, "rasterise the scan points");
   v.Field("mask_unseen", &mask_unseen, "points where the submap's scans never saw are ignored");
   v.Field("seen_margin_m", &seen_margin_m, "a scan saw this far behind its hits, m");
+  v.Field("moving_max_size_m", &moving_max_size_m,
+          "a run of scan points at most this long, in the submap's free space, is a moving "
+          "object and is not used (0: off), m");
   v.Field("normal_max_gap_m", &normal_max_gap_m,
           "a scan point's normal from neighbours at most this far, m");
   v.Field("line_tolerance_m", &line_tolerance_m,
@@ -853,9 +911,11 @@ kernel::Status GraphSlamOptions::Validate() const {
     return e;
   if (!(max_range_m >= 0) || !(keyframe_distance_m > 0) || !(keyframe_angle_rad > 0))
     return kernel::Status::Error("max_range_m >= 0, keyframe distance and angle > 0");
-  if (!(seen_margin_m >= 0) || !(normal_max_gap_m > 0) || !(line_tolerance_m >= 0))
+  if (!(seen_margin_m >= 0) || !(normal_max_gap_m > 0) || !(line_tolerance_m >= 0) ||
+      !(moving_max_size_m >= 0 && moving_max_size_m <= 1000))
     return kernel::Status::Error(
-        "seen_margin_m >= 0, normal_max_gap_m > 0 and line_tolerance_m >= 0");
+        "seen_margin_m >= 0, normal_max_gap_m > 0, line_tolerance_m >= 0, moving_max_size_m in "
+        "[0, 1000]");
   if (submap_keyframes < 1 || !(grid_resolution_m > 0) || !(truncation_m > grid_resolution_m))
     return kernel::Status::Error(
         "submap_keyframes >= 1, grid_resolution_m > 0, truncation_m > grid_resolution_m");

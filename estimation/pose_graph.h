@@ -37,6 +37,8 @@ struct LoopSearch {
   };
   int query = 0;                            // the new keyframe
   int target = 0;                           // the candidate keyframe
+  int query_scan = -1, target_scan = -1;    // the scans that made them (0-based, in input order)
+  kernel::Pose2 searched;                   // the query keyframe's pose when it was searched
   double window_m = 0.0, window_rad = 0.0;  // the search's half-widths
   double time_ms = 0.0;                     // the search's wall time (target, search, tests)
   bool matched = false;  // the correlative search found a pose (`match` is then the query's)

@@ -199,16 +199,19 @@ Result<DxfContent> ReadDxf(const std::string& path) {
 
 std::string WriteLoopSearches(const std::string& path, const estimation::SlamMap& map) {
   std::string text =
-      "query,target,query_x,query_y,query_theta,target_x,target_y,target_theta,window_m,"
-      "window_rad,match_x,match_y,match_theta,outcome,ms\n";
+      "query,target,query_scan,target_scan,query_x,query_y,query_theta,target_x,target_y,"
+      "target_theta,window_m,window_rad,searched_x,searched_y,searched_theta,match_x,match_y,"
+      "match_theta,outcome,ms\n";
   const auto pose = [&](int i) -> const kernel::Pose2& {
     return map.keyframes.at(static_cast<std::size_t>(i));
   };
   for (const estimation::LoopSearch& s : map.loop_searches) {
     const kernel::Pose2 &q = pose(s.query), &t = pose(s.target);
-    text += fmt::format("{},{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{:.4f},{:.3f},{:.4f},", s.query,
-                        s.target, q.x(), q.y(), q.theta(), t.x(), t.y(), t.theta(), s.window_m,
-                        s.window_rad);
+    text += fmt::format("{},{},{},{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{:.4f},{:.3f},{:.4f},",
+                        s.query, s.target, s.query_scan, s.target_scan, q.x(), q.y(), q.theta(),
+                        t.x(), t.y(), t.theta(), s.window_m, s.window_rad);
+    text +=
+        fmt::format("{:.3f},{:.3f},{:.4f},", s.searched.x(), s.searched.y(), s.searched.theta());
     text += s.matched
                 ? fmt::format("{:.3f},{:.3f},{:.4f},", s.match.x(), s.match.y(), s.match.theta())
                 : std::string(",,,");

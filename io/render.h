@@ -28,6 +28,7 @@ inline constexpr Rgb kMap{0.75, 0.10, 0.10};       // estimated map: dark red
 inline constexpr Rgb kOnline{0.55, 0.55, 0.55};    // estimate before optimisation: grey
 inline constexpr Rgb kGraph{0.10, 0.60, 0.25};     // keyframe graph and loop closures: green
 inline constexpr Rgb kDropped{0.95, 0.55, 0.0};    // loop closures found, then dropped: amber
+inline constexpr Rgb kPeople{0.45, 0.70, 0.90};    // where people walk: light blue
 }  // namespace palette
 
 struct FigureOptions {

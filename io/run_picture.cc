@@ -50,7 +50,11 @@ std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::str
   io::Figure figure(area, options);
   if (!picture.scan_points.empty())
     figure.DrawPoints(picture.scan_points, io::palette::kScan, 0.9, "laser hits");
-  if (picture.world != nullptr) figure.DrawWorld(*picture.world, picture.world_color);
+  if (picture.world != nullptr) {
+    figure.DrawWorld(*picture.world, picture.world_color);
+    for (const sim::Walker& w : picture.world->people)
+      figure.DrawPolyline(w.path, io::palette::kPeople, 1.0, "people's walks", /*dashed=*/true);
+  }
   for (const auto& [a, b] : picture.map_segments)
     figure.DrawPolyline({a, b}, io::palette::kMap, 2.5, "map lines");
   for (const auto& curve : picture.map_curves)

@@ -95,6 +95,34 @@ void ParseObstacle(const YAML::Node& entry, const std::string& base, sim::World*
   }
 }
 
+// A person: {path: [[x, y], ...], speed: m/s, radius: m, offset: m}; all but path optional.
+sim::Walker ParseWalker(const YAML::Node& entry) {
+  if (!entry.IsMap())
+    Fail(entry, "each person is a map {path: [[x, y], ...], speed, radius, offset}");
+  sim::Walker w;
+  for (const auto& field : entry) {
+    const std::string key = field.first.IsScalar() ? field.first.Scalar() : "";
+    if (key == "path") {
+      w.path = Points(field.second, "person path");
+    } else if (key == "speed") {
+      w.speed_mps = Number(field.second, "person speed");
+    } else if (key == "radius") {
+      w.radius_m = Number(field.second, "person radius");
+    } else if (key == "offset") {
+      w.start_offset_m = Number(field.second, "person offset");
+    } else {
+      Fail(field.first, "a person has path, speed, radius and offset, not '" + key + "'");
+    }
+  }
+  if (w.path.empty()) Fail(entry, "a person needs 'path'");
+  sim::World probe;
+  probe.people.push_back(w);
+  if (kernel::Status problem = probe.Validate(); !problem.ok()) {
+    Fail(entry, problem.message().substr(problem.message().find(':') + 2));
+  }
+  return w;
+}
+
 YAML::Node PointNode(const Eigen::Vector2d& p) {
   YAML::Node node;
   node.SetStyle(YAML::EmitterStyle::Flow);
@@ -144,6 +172,10 @@ Result<sim::World> ParseWorld(const std::string& yaml, const std::string& name,
                                "needs a non-empty list 'obstacles'"));
     }
     for (const YAML::Node& entry : obstacles) ParseObstacle(entry, base_directory, &world);
+    if (const YAML::Node people = root["people"]) {
+      if (!people.IsSequence()) Fail(people, "people must be a list of persons");
+      for (const YAML::Node& entry : people) world.people.push_back(ParseWalker(entry));
+    }
     return R::Ok(std::move(world));
   } catch (const EntryError& e) {
     return R::Fail(FileError(name, e.line, e.message));
@@ -192,7 +224,20 @@ std::string FormatWorld(const sim::World& world) {
     }
     out << node;
   }
-  out << YAML::EndSeq << YAML::EndMap;
+  out << YAML::EndSeq;
+  if (!world.people.empty()) {
+    out << YAML::Key << "people" << YAML::Value << YAML::BeginSeq;
+    for (const sim::Walker& w : world.people) {
+      YAML::Node node;
+      node["path"] = PointsNode(w.path);
+      node["speed"] = FormatDouble(w.speed_mps);
+      node["radius"] = FormatDouble(w.radius_m);
+      node["offset"] = FormatDouble(w.start_offset_m);
+      out << node;
+    }
+    out << YAML::EndSeq;
+  }
+  out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }
 

@@ -129,6 +129,7 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
   }
   const sim::RayCaster caster(world);
   sim::Simulator simulator(caster, sim_options, *world.start, setup.seed);
+  simulator.SetPeople(world.people);
   if (!simulator.IsFree(*world.start)) {
     outcome.error = "the start pose of '" + world.name + "' collides with an obstacle";
     return outcome;

@@ -1,5 +1,6 @@
 #include "sim/laser.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -43,15 +44,28 @@ kernel::Status LaserOptions::Validate() const {
   }
   if (!(noise_fraction >= 0.0) || !(noise_floor_m >= 0.0))
     return kernel::Status::Error("laser noise must be >= 0");
+  if (interlace_phases < 1 || interlace_phases > 100)
+    return kernel::Status::Error("laser interlace_phases must be in [1, 100]");
   if (!(dropout_probability >= 0.0 && dropout_probability <= 1.0)) {
     return kernel::Status::Error("laser dropout_probability must be in [0, 1]");
   }
   return kernel::Status::Ok();
 }
 
+LaserOptions LaserOptions::Sweep(long long sweep) const {
+  LaserOptions o = *this;
+  const long long phase = sweep % interlace_phases;
+  if (phase > 0) {
+    o.start_angle_rad += angular_step_rad * static_cast<double>(phase) / interlace_phases;
+    o.num_beams = std::max(1, num_beams - 1);
+  }
+  return o;
+}
+
 kernel::Scan SimulateLaser(const RayCaster& caster, const LaserOptions& options,
                            const kernel::Pose2& world_T_robot, double timestamp_s,
-                           kernel::Random* random, std::vector<int>* beam_obstacles) {
+                           kernel::Random* random, std::vector<int>* beam_obstacles,
+                           std::span<const kernel::Circle2> people) {
   kernel::Scan scan;
   scan.timestamp_s = timestamp_s;
   scan.start_angle_rad = options.start_angle_rad;
@@ -71,9 +85,18 @@ kernel::Scan SimulateLaser(const RayCaster& caster, const LaserOptions& options,
   Eigen::Vector2d direction(std::cos(first), std::sin(first));
   for (int i = 0; i < options.num_beams; ++i, direction = step * direction) {
     ray.direction = direction;
-    const RayHit hit = caster.Cast(ray, options.max_range_m);
+    RayHit hit = caster.Cast(ray, options.max_range_m);
+    bool person = false;
+    for (const kernel::Circle2& p : people) {
+      const double t = kernel::Intersect(ray, p, 0.0, std::min(hit.range_m, options.max_range_m));
+      if (t < std::min(hit.range_m, options.max_range_m)) {
+        hit.range_m = t;
+        person = true;
+      }
+    }
+    if (person) hit.obstacle = -1;
     double range = kernel::Scan::kNoReturn;
-    if (hit.obstacle >= 0) {
+    if (hit.obstacle >= 0 || person) {
       range = hit.range_m +
               random->Gaussian(options.noise_floor_m + options.noise_fraction * hit.range_m);
       if (options.dropout_probability > 0.0 && random->Uniform() < options.dropout_probability) {
@@ -101,6 +124,8 @@ void LaserOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("noise_floor_m", &noise_floor_m, "range sigma independent of range, m");
   v.Field("dropout_probability", &dropout_probability, "chance that a hit reads no return");
   v.Field("robot_T_laser", &robot_T_laser, "mounting pose [x m, y m, theta rad]");
+  v.Field("interlace_phases", &interlace_phases,
+          "sweeps cycle through this many start angles a step / phases apart (1: none)");
 }
 
 }  // namespace splam::sim

@@ -1,6 +1,7 @@
 #ifndef SPLAM_SIM_LASER_H_
 #define SPLAM_SIM_LASER_H_
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,14 @@ struct LaserOptions {
   double noise_floor_m = 0.0;        // range noise sigma independent of range
   double dropout_probability = 0.0;  // chance that a beam with a hit reads no return
   kernel::Pose2 robot_T_laser;       // mounting pose of the laser on the robot
+  // Sweeps cycle through this many start angles, angular_step_rad / interlace_phases apart, as a
+  // SICK LMS in its interlaced modes (4 phases of 0.25 deg at 1 deg). A shifted sweep drops its
+  // last beam to stay within the field of view (181 beams, then 180, 180, 180). 1: no interlace.
+  int interlace_phases = 1;
+
+  // This sweep's geometry: the start angle shifted by (sweep mod phases) / phases of a step and,
+  // when shifted, one beam fewer.
+  LaserOptions Sweep(long long sweep) const;
 
   // Hokuyo URG-04LX: 240 deg field of view at 0.36 deg (667 beams), 0.02-4 m, sigma 1 % of range.
   static LaserOptions Urg04lx();
@@ -40,10 +49,12 @@ struct LaserOptions {
 };
 
 // Simulates one sweep from the robot at world_T_robot. When `beam_obstacles` is given it
-// receives, per beam, the World obstacle index the beam truly hit (-1 for none).
+// receives, per beam, the World obstacle index the beam truly hit (-1 for none or a person).
+// `people` are discs the beams hit in front of the world's obstacles (people walking).
 kernel::Scan SimulateLaser(const RayCaster& caster, const LaserOptions& options,
                            const kernel::Pose2& world_T_robot, double timestamp_s,
-                           kernel::Random* random, std::vector<int>* beam_obstacles = nullptr);
+                           kernel::Random* random, std::vector<int>* beam_obstacles = nullptr,
+                           std::span<const kernel::Circle2> people = {});
 
 }  // namespace splam::sim
 

@@ -51,8 +51,11 @@ SensorFrame Simulator::Sense() {
   frame.odometry_pose = odometry_pose_;
   frame.linear_velocity_mps = last_v_;
   frame.angular_velocity_radps = last_w_;
-  frame.scan =
-      SimulateLaser(caster_, options_.laser, true_pose_, time_s_, &random_, &frame.beam_obstacles);
+  std::vector<kernel::Circle2> people;
+  people.reserve(people_.size());
+  for (const Walker& w : people_) people.push_back({w.PositionAt(time_s_), w.radius_m});
+  frame.scan = SimulateLaser(caster_, options_.laser.Sweep(sweeps_++), true_pose_, time_s_,
+                             &random_, &frame.beam_obstacles, people);
   if (options_.enable_sonar) {
     frame.sonar_ranges_m = SimulateSonar(caster_, options_.sonar, true_pose_, &random_);
   }

@@ -50,6 +50,9 @@ class Simulator {
   Simulator(const RayCaster& caster, const SimulatorOptions& options, const kernel::Pose2& start,
             std::uint64_t seed);
 
+  // People walking through the world, seen by the laser from now on (World::people).
+  void SetPeople(std::vector<Walker> people) { people_ = std::move(people); }
+
   // True when the robot's disc at `pose` is free of obstacles.
   bool IsFree(const kernel::Pose2& pose) const;
   // Drives at (v, w), clamped to the robot's limits, for one time step. Returns false and leaves
@@ -71,6 +74,8 @@ class Simulator {
   kernel::Pose2 odometry_pose_;
   double time_s_ = 0.0;
   double last_v_ = 0.0, last_w_ = 0.0;
+  long long sweeps_ = 0;  // laser sweeps so far (their interlace phase)
+  std::vector<Walker> people_;
 };
 
 // A simple waypoint follower: turn in place towards the next waypoint when it is far off the

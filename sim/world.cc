@@ -131,6 +131,18 @@ kernel::Status World::Validate() const {
         obstacles[i]);
     if (!problem.empty()) return kernel::Status::Error(where + problem);
   }
+  for (std::size_t i = 0; i < people.size(); ++i) {
+    const Walker& w = people[i];
+    const std::string where = "person " + std::to_string(i) + ": ";
+    if (w.path.size() < 2) return kernel::Status::Error(where + "path needs at least 2 points");
+    if (!AllPlausible(w.path)) return kernel::Status::Error(where + "path " + kNotPlausible);
+    if (!(w.speed_mps >= 0.0 && w.speed_mps <= 10.0))
+      return kernel::Status::Error(where + "speed must be in [0, 10] m/s");
+    if (!(w.radius_m > 0.0 && w.radius_m <= 5.0))
+      return kernel::Status::Error(where + "radius must be in (0, 5] m");
+    if (!(w.start_offset_m >= 0.0 && Plausible(w.start_offset_m)))
+      return kernel::Status::Error(where + "start offset must be in [0, 1e6] m");
+  }
   if (start && (!AllPlausible({start->translation()}) || !std::isfinite(start->theta())))
     return kernel::Status::Error("start pose is not finite or beyond +-1e6 m");
   if (!AllPlausible(route))
@@ -154,6 +166,20 @@ void World::AppendPrimitives(std::size_t index, Primitives* out) const {
                           }
                         }},
              obstacles[index]);
+}
+
+Eigen::Vector2d Walker::PositionAt(double time_s) const {
+  double length = 0.0;
+  for (std::size_t k = 1; k < path.size(); ++k) length += (path[k] - path[k - 1]).norm();
+  if (!(length > 0.0)) return path.front();
+  double s = std::fmod(start_offset_m + speed_mps * std::max(time_s, 0.0), 2.0 * length);
+  if (s > length) s = 2.0 * length - s;  // on the way back
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    const double edge = (path[k] - path[k - 1]).norm();
+    if (s <= edge && edge > 0.0) return path[k - 1] + (s / edge) * (path[k] - path[k - 1]);
+    s -= edge;
+  }
+  return path.back();
 }
 
 kernel::Box2 World::Bounds() const {

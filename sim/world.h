@@ -39,17 +39,32 @@ struct Primitives {
   std::vector<kernel::CubicBezier> beziers;
 };
 
-// A static 2-D world: obstacles (their index is the obstacle id the sensors report), an optional
-// start pose and an optional default route of waypoints.
+// A person walking back and forth along a path at a constant speed: a disc the laser sees but
+// that is no obstacle of the world (not in its map, not in the sensors' ground truth, not in the
+// robot's way: people step aside).
+struct Walker {
+  std::vector<Eigen::Vector2d> path;  // >= 2 points, walked to the end and back, forever
+  double speed_mps = 1.0;             // in [0, 10]
+  double radius_m = 0.25;             // in (0, 5]
+  double start_offset_m = 0.0;        // distance along the out-and-back walk at t = 0, >= 0
+
+  // Where the person is at `time_s`: s = start_offset + speed * t folded into [0, 2 L) of the
+  // out-and-back walk of a path of length L.
+  Eigen::Vector2d PositionAt(double time_s) const;
+};
+
+// A 2-D world: static obstacles (their index is the obstacle id the sensors report), people
+// walking through it, an optional start pose and an optional default route of waypoints.
 struct World {
   std::string name;
   std::vector<Shape> obstacles;
+  std::vector<Walker> people;
   std::optional<kernel::Pose2> start;
   std::vector<Eigen::Vector2d> route;
 
   // Empty when valid, else what is wrong and with which obstacle: polylines need >= 2 vertices
   // (polygons 3) without zero-length edges, circles and ellipses positive radii, open splines
-  // >= 4 and closed splines >= 3 control points; all coordinates finite.
+  // >= 4 and closed splines >= 3 control points; people as Walker says; all coordinates finite.
   kernel::Status Validate() const;
   // Exact primitives of obstacle `index`: segments, circles, ellipses, Bezier pieces.
   void AppendPrimitives(std::size_t index, Primitives* out) const;

@@ -462,15 +462,34 @@ struct LapsRun {
   std::size_t keyframes = 0, keyframes_with_data = 0, map_keyframes = 0;
   double rmse_m = 0.0;
 };
-LapsRun DriveLaps(int laps, const GraphSlamOptions& options = {}) {
+// What a lap sees besides the world: the simulator's options (laser, odometry), people walking
+// and the spacing of the scans given to the SLAM (0: every scan).
+struct LapConditions {
+  sim::SimulatorOptions simulator;
+  std::vector<sim::Walker> people;
+  double scan_spacing_m = 0.0;
+  std::uint64_t seed = 2;
+};
+LapsRun DriveLaps(int laps, const GraphSlamOptions& options = {},
+                  const LapConditions& conditions = {}) {
   const sim::World world = *sim::BuiltinWorld("complex");
   const sim::RayCaster caster(world);
-  sim::Simulator simulator(caster, {}, *world.start, 2);
+  sim::Simulator simulator(caster, conditions.simulator, *world.start, conditions.seed);
+  simulator.SetPeople(conditions.people);
   std::vector<Eigen::Vector2d> route;
   for (int lap = 0; lap < laps; ++lap)
     route.insert(route.end(), world.route.begin(), world.route.end());
-  const sim::RouteRun run = sim::FollowRoute(&simulator, route, {});
+  sim::RouteRun run = sim::FollowRoute(&simulator, route, {});
   EXPECT_TRUE(run.completed);
+  if (conditions.scan_spacing_m > 0.0) {  // keep the scans at least the spacing apart
+    std::vector<sim::SensorFrame> kept = {run.frames.front()};
+    for (const sim::SensorFrame& f : run.frames) {
+      if ((f.true_pose.translation() - kept.back().true_pose.translation()).norm() >=
+          conditions.scan_spacing_m)
+        kept.push_back(f);
+    }
+    run.frames = std::move(kept);
+  }
   const Pose2& robot_T_laser = simulator.options().laser.robot_T_laser;
   GraphSlam slam(run.frames[0].odometry_pose, options);
   for (std::size_t i = 0; i < run.frames.size(); ++i) {
@@ -567,6 +586,64 @@ TEST(GraphSlam, KeyframeDataIsBoundedByTheMappedArea) {
             << three.rmse_m << " m, untrimmed " << three_untrimmed.rmse_m << " m\n";
 }
 
+// What real logs contain (issue 47, item 3), one condition at a time against the same lap of
+// `complex` without it: every run within 0.08 m and at most 0.03 m worse than the plain lap.
+// Measured (plain lap RMSE_PLAIN m): RESULTS.
+class RealConditions : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { plain_ = DriveLaps(1).rmse_m; }
+  static void ExpectAsGood(const LapsRun& run, const char* what) {
+    std::cout << what << ": RMSE " << run.rmse_m << " m, plain lap " << plain_ << " m\n";
+    EXPECT_LT(run.rmse_m, 0.08) << what;
+    EXPECT_LT(run.rmse_m, plain_ + 0.03) << what;
+  }
+  static double plain_;
+};
+double RealConditions::plain_ = 0.0;
+
+// People walking: four discs of 0.25 m crossing the room at 0.8-1.2 m/s, seen by the URG in
+// front of the walls, often a fifth of its 4 m view. Left out as moving objects
+// (GraphSlamOptions::moving_max_size_m) they cost a third of the error they cost kept in.
+// Measured: 0.092 m, 0.259 m without the filter (0.029 m without people): a named gap, the
+// registration still falls back to the odometry 7 times and searches 45 times for its basin.
+TEST(GraphSlam, PeopleWalkingThroughTheRoomAreLeftOut) {
+  LapConditions c;
+  c.people = {{{{6.5, 0.6}, {6.5, 6.0}}, 1.0, 0.25, 0.0},
+              {{{15.0, 8.5}, {18.8, 8.5}, {18.8, 13.5}}, 0.8, 0.25, 2.0},
+              {{{2.0, 13.8}, {7.0, 13.0}}, 1.2, 0.25, 1.0},
+              {{{11.0, 4.5}, {16.5, 4.0}}, 1.0, 0.25, 4.0}};
+  GraphSlamOptions kept_in;
+  kept_in.moving_max_size_m = 0.0;
+  const double with = DriveLaps(1, {}, c).rmse_m, without = DriveLaps(1, kept_in, c).rmse_m;
+  std::cout << "people walking: RMSE " << with << " m, " << without << " m kept in\n";
+  EXPECT_LT(with, 0.12);
+  EXPECT_LT(with, without / 2);
+}
+
+// A SICK at 1 deg that interlaces four start angles a quarter degree apart, 181 beams then 180
+// (the long-range laser of a hospital log): every scan has its own geometry.
+TEST_F(RealConditions, AnInterlacedSick) {
+  LapConditions c;
+  c.simulator.laser = sim::LaserOptions::Lms200(1.0);
+  c.simulator.laser.max_range_m = 80.0;
+  c.simulator.laser.interlace_phases = 4;
+  ExpectAsGood(DriveLaps(1, {}, c), "interlaced SICK");
+}
+
+// Scans half a metre apart (a thinned recording): the odometry between them is the only prior.
+TEST_F(RealConditions, ScansHalfAMetreApart) {
+  LapConditions c;
+  c.scan_spacing_m = 0.5;
+  ExpectAsGood(DriveLaps(1, {}, c), "scans 0.5 m apart");
+}
+
+// A third of the beams that hit something read no return (glass, dark or grazing surfaces).
+TEST_F(RealConditions, AThirdOfTheReturnsMissing) {
+  LapConditions c;
+  c.simulator.laser.dropout_probability = 0.33;
+  ExpectAsGood(DriveLaps(1, {}, c), "a third of the returns missing");
+}
+
 // Without loop closure (the topological SLAM's front end) nothing reads a keyframe once it has
 // left the submap: one lap of `complex` keeps the data of the submap's keyframes and the map's
 // alone, and registers every scan exactly as with all the keyframes kept.
@@ -585,6 +662,63 @@ TEST(GraphSlam, WithoutLoopClosureOnlyTheSubmapAndTheMapKeepTheirData) {
   EXPECT_EQ(run.rmse_m, kept.rmse_m);
   std::cout << "keyframes with data: " << run.keyframes_with_data << " of " << run.keyframes << " ("
             << run.map_keyframes << " in the map); RMSE " << run.rmse_m << " m\n";
+}
+
+// Property: the branch and bound returns the best pose of its discrete search space, the one a
+// brute-force scan of every heading and translation finds, also where the window reaches past
+// the target's grid (a room's corner near the grid's origin, searched from a guess up to 1 m
+// off). The pyramid once bounded a block that started before the grid by 0, and the search
+// returned a pose scoring 0.79 with one scoring 0.95 in its window.
+TEST(CorrelativeMatcher, PropertyFindsTheBruteForceBestAlsoPastTheGridsEdges) {
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int trials = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    std::vector<Eigen::Vector2d> map_points;
+    const auto wall = [&](Eigen::Vector2d a, Eigen::Vector2d b) {
+      const int n = static_cast<int>((b - a).norm() / 0.03);
+      for (int i = 0; i <= n; ++i) map_points.push_back(a + (b - a) * i / std::max(n, 1));
+    };
+    wall({0, 0}, {8, 0});
+    wall({0, 0}, {0, 6});
+    wall({8, 0}, {8, 6});
+    for (int k = 0; k < 3; ++k)
+      wall({4 + 3.5 * u(gen), 3 + 2.5 * u(gen)}, {4 + 3.5 * u(gen), 3 + 2.5 * u(gen)});
+    const DistanceGrid grid = DistanceGrid::Build(map_points, 0.1, 0.5, 0.5);
+    const LikelihoodPyramid pyramid(grid, 0.05, 5);
+    const Pose2 truth(1.0 + 0.5 * u(gen), 1.0 + 0.5 * u(gen), 0.3 * u(gen));
+    std::vector<Eigen::Vector2d> query;
+    for (const auto& p : map_points)
+      if ((p - truth.translation()).norm() < 4.0) query.push_back(truth.Inverse() * p);
+    const Pose2 guess(truth.x() + u(gen), truth.y() + u(gen), truth.theta() + 0.1 * u(gen));
+    const double window_m = 1.5, window_rad = 0.1, step = 0.02;
+    const CorrelativeMatch m = SearchCorrelative(query, pyramid, guess, window_m, window_rad, 0.05,
+                                                 1.0, {.angular_step_rad = step});
+    // Brute force over the same poses: headings guess + a step, translations whole cells.
+    const double res = grid.resolution();
+    const int n_angles = static_cast<int>(std::ceil(window_rad / step));
+    const int window = static_cast<int>(std::ceil(window_m / res));
+    double best = 0.0;
+    for (int a = -n_angles; a <= n_angles; ++a) {
+      const Pose2 turned(guess.translation(), guess.theta() + a * step);
+      std::vector<Eigen::Vector2i> cells;
+      for (const auto& p : query) {
+        const Eigen::Vector2d q = turned * p - grid.origin();
+        cells.emplace_back(static_cast<int>(std::floor(q.y() / res)),
+                           static_cast<int>(std::floor(q.x() / res)));
+      }
+      for (int r = -window; r <= window; ++r)
+        for (int c = -window; c <= window; ++c) {
+          double sum = 0.0;
+          for (const auto& cell : cells) sum += pyramid.At(0, cell.x() + r, cell.y() + c);
+          best = std::max(best, sum / static_cast<double>(query.size()));
+        }
+    }
+    ASSERT_TRUE(m.found) << trial;
+    EXPECT_NEAR(m.score, best, 1e-9) << trial;
+    ++trials;
+  }
+  EXPECT_EQ(trials, 40);
 }
 
 // Two parallel walls without features: every shift along the corridor fits as well, so the
@@ -614,8 +748,10 @@ TEST(CorrelativeMatcher, RefusesASymmetricCorridorAndLocksAnL) {
       EXPECT_GT(m.second_score, 0.0) << "a symmetric corridor must be ambiguous";
     } else {
       EXPECT_EQ(m.second_score, 0.0);
+      // Within a cell and an angular step of the search (0.1 m / 4 m, the step that moves the
+      // farthest points by a cell): the best discrete pose, not the exact one.
       EXPECT_LT((m.pose.translation() - truth.translation()).norm(), 0.1);
-      EXPECT_LT(std::abs(m.pose.theta() - truth.theta()), 0.02);
+      EXPECT_LT(std::abs(m.pose.theta() - truth.theta()), 0.1 / 4.0);
     }
   }
 }

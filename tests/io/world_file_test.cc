@@ -47,6 +47,27 @@ TEST(WorldFile, PropertyBuiltinWorldsRoundTrip) {
   }
 }
 
+TEST(WorldFile, PeopleRoundTrip) {
+  const std::string yaml = R"(
+obstacles:
+  - polyline: [[0, 0], [10, 0]]
+people:
+  - {path: [[1, 1], [5, 1], [5, 4]], speed: 1.2, radius: 0.3, offset: 2}
+  - {path: [[2, 2], [2, 6]]}
+)";
+  const Result<sim::World> w = ParseWorld(yaml, "lab.yaml");
+  ASSERT_TRUE(w.ok()) << w.error;
+  ASSERT_EQ(w.value->people.size(), 2u);
+  EXPECT_EQ(w.value->people[0].path.size(), 3u);
+  EXPECT_EQ(w.value->people[0].speed_mps, 1.2);
+  EXPECT_EQ(w.value->people[0].radius_m, 0.3);
+  EXPECT_EQ(w.value->people[0].start_offset_m, 2.0);
+  EXPECT_EQ(w.value->people[1].speed_mps, sim::Walker().speed_mps);
+  const Result<sim::World> back = ParseWorld(FormatWorld(*w.value), "back.yaml");
+  ASSERT_TRUE(back.ok()) << back.error;
+  EXPECT_EQ(FormatWorld(*back.value), FormatWorld(*w.value));
+}
+
 struct BadWorld {
   std::string yaml;
   std::string expected;
@@ -80,7 +101,17 @@ INSTANTIATE_TEST_SUITE_P(
         BadWorld{"start: [1, 2]\nobstacles:\n  - circle: {center: [1, 1], radius: 2}\n",
                  "bad.yaml:1: start must be [x, y, theta]"},
         BadWorld{"obstacles: [\n", "bad.yaml:2: end of sequence flow not found"},
-        BadWorld{"- 1\n- 2\n", "bad.yaml:1: a world file is a YAML map"}));
+        BadWorld{"- 1\n- 2\n", "bad.yaml:1: a world file is a YAML map"},
+        BadWorld{"obstacles:\n  - polyline: [[0, 0], [1, 0]]\npeople:\n  - {path: [[0, 1]]}\n",
+                 "bad.yaml:4: path needs at least 2 points"},
+        BadWorld{"obstacles:\n  - polyline: [[0, 0], [1, 0]]\npeople:\n"
+                 "  - {path: [[0, 1], [1, 1]], speed: 1e9}\n",
+                 "bad.yaml:4: speed must be in [0, 10] m/s"},
+        BadWorld{"obstacles:\n  - polyline: [[0, 0], [1, 0]]\npeople:\n"
+                 "  - {path: [[0, 1], [1, 1]], legs: 2}\n",
+                 "bad.yaml:4: a person has path, speed, radius and offset, not 'legs'"},
+        BadWorld{"obstacles:\n  - polyline: [[0, 0], [1, 0]]\npeople: 3\n",
+                 "bad.yaml:3: people must be a list of persons"}));
 
 TEST(WorldFile, FloorPlanEntryIsRelativeToTheFile) {
   const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "world_file_test";

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "kernel/angle.h"
 
@@ -60,6 +61,55 @@ TEST(SimulateLaser, NoiselessRangesAreExact) {
     EXPECT_NEAR(scan.ranges_m[i], 3.0, 1e-12);
     EXPECT_EQ(obstacles[i], 0);
   }
+}
+
+// A person in front of a wall: the beams that meet the disc read its near side and report no
+// world obstacle; the others read the wall.
+TEST(SimulateLaser, PeopleAreSeenInFrontOfTheWalls) {
+  const RayCaster caster(RoundRoom(10.0));
+  LaserOptions o = LaserOptions::Lms200(1.0);
+  o.max_range_m = 20.0;
+  o.noise_floor_m = 0.0;
+  kernel::Random random(1);
+  std::vector<int> obstacles;
+  const std::vector<kernel::Circle2> people = {{{4.0, 0.0}, 0.25}};
+  const kernel::Scan scan =
+      SimulateLaser(caster, o, Pose2(0, 0, 0), 0.0, &random, &obstacles, people);
+  const int ahead = 90;  // the beam at 0 rad
+  EXPECT_NEAR(scan.ranges_m[ahead], 3.75, 1e-9);
+  EXPECT_EQ(obstacles[ahead], -1);
+  int on_person = 0;
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    const double bearing = scan.BeamAngle(i);
+    const bool hits = std::abs(4.0 * std::sin(bearing)) < 0.25 && std::cos(bearing) > 0.0;
+    on_person += hits;
+    if (hits) {
+      EXPECT_GE(scan.ranges_m[i], 3.75 - 1e-9) << i;
+      EXPECT_LT(scan.ranges_m[i], 4.0) << i;
+    } else {
+      EXPECT_NEAR(scan.ranges_m[i], 10.0, 1e-9) << i;
+    }
+    EXPECT_EQ(obstacles[i], hits ? -1 : 0) << i;
+  }
+  EXPECT_EQ(on_person, 7);  // |bearing| < asin(0.25 / 4) = 3.6 deg at 1 deg
+}
+
+// An interlacing laser cycles through its phases: sweep k starts (k mod n) / n of a step later,
+// drops a beam when shifted, and every beam stays within the unshifted field of view.
+TEST(LaserOptions, PropertyInterlacedSweepsStayInTheFieldOfView) {
+  LaserOptions o = LaserOptions::Lms200(1.0);
+  o.interlace_phases = 4;
+  ASSERT_TRUE(o.Validate().ok());
+  const double last = o.start_angle_rad + (o.num_beams - 1) * o.angular_step_rad;
+  for (long long k = 0; k < 12; ++k) {
+    const LaserOptions s = o.Sweep(k);
+    EXPECT_NEAR(s.start_angle_rad, o.start_angle_rad + static_cast<double>(k % 4) * DegToRad(0.25),
+                1e-12);
+    EXPECT_EQ(s.num_beams, k % 4 == 0 ? 181 : 180);
+    EXPECT_LE(s.start_angle_rad + (s.num_beams - 1) * s.angular_step_rad, last + 1e-12);
+  }
+  o.interlace_phases = 0;
+  EXPECT_FALSE(o.Validate().ok());
 }
 
 TEST(SimulateLaser, BeamsPointWhereTheScanSays) {

@@ -102,6 +102,49 @@ TEST(World, PrimitivesOfEachShape) {
   EXPECT_EQ(ShapeKindName(w.obstacles[3]), "closed_spline");
 }
 
+// Property: a walker is always on its path, moves at most speed * dt between two instants, and
+// is back where it started after one out-and-back walk (2 L / speed).
+TEST(Walker, PropertyWalksItsPathBackAndForthAtItsSpeed) {
+  kernel::Random random(11);
+  for (int trial = 0; trial < 200; ++trial) {
+    Walker w;
+    const int n = 2 + static_cast<int>(random.Uniform() * 4);
+    double length = 0.0;
+    for (int k = 0; k < n; ++k) {
+      w.path.emplace_back(random.Uniform(-10, 10), random.Uniform(-10, 10));
+      if (k > 0) length += (w.path[k] - w.path[k - 1]).norm();
+    }
+    w.speed_mps = random.Uniform(0.2, 2.0);
+    w.start_offset_m = random.Uniform(0.0, 30.0);
+    World world;
+    world.people = {w};
+    ASSERT_TRUE(world.Validate().ok());
+    const double period = 2.0 * length / w.speed_mps;
+    Eigen::Vector2d last = w.PositionAt(0.0);
+    for (double t = 0.05; t < 2.0 * period; t += 0.05) {
+      const Eigen::Vector2d p = w.PositionAt(t);
+      EXPECT_LE((p - last).norm(), w.speed_mps * 0.05 + 1e-9);
+      double to_path = 1e9;
+      for (int k = 1; k < n; ++k)
+        to_path = std::min(to_path, kernel::Segment2{w.path[k - 1], w.path[k]}.Distance(p));
+      EXPECT_LT(to_path, 1e-9);
+      last = p;
+    }
+    EXPECT_LT((w.PositionAt(period) - w.PositionAt(0.0)).norm(), 1e-6);
+  }
+}
+
+TEST(Walker, ValidateNamesThePerson) {
+  World w;
+  w.people.push_back({{{0, 0}, {1, 0}}, 1.0, 0.25, 0.0});
+  w.people.push_back({{{0, 0}, {1, 0}}, 1.0, 0.0, 0.0});
+  EXPECT_EQ(w.Validate().message(), "person 1: radius must be in (0, 5] m");
+  w.people[1] = {{{0, 0}}, 1.0, 0.25, 0.0};
+  EXPECT_EQ(w.Validate().message(), "person 1: path needs at least 2 points");
+  w.people[1] = {{{0, 0}, {NAN, 0}}, 1.0, 0.25, 0.0};
+  EXPECT_EQ(w.Validate().message(), "person 1: path not finite or beyond +-1e6 m");
+}
+
 TEST(World, BoundsCoverAllShapes) {
   World w;
   w.obstacles = {Polyline{{{0, 0}, {1, 0}}, false}, kernel::Circle2{{5, 5}, 1.0}};
