@@ -96,6 +96,7 @@ CorrelativeMatch SearchCorrelative(const std::vector<Eigen::Vector2d>& points,
       if (d.translation().norm() > options.distinct_m ||
           std::abs(d.theta()) > options.distinct_rad) {
         match.second_score = c.score;
+        match.second_pose = pose;
         break;
       }
       continue;

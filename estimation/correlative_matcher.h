@@ -26,6 +26,7 @@ struct CorrelativeMatch {
   kernel::Pose2 pose;         // world_T_points of the best pose
   double score = 0.0;         // its mean likelihood, in [0, 1]
   double second_score = 0.0;  // the best distinct pose's score (0: none above min_score)
+  kernel::Pose2 second_pose;  // that pose, when second_score > 0
   long evaluated = 0;         // score evaluations (cost)
 };
 

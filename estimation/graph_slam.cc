@@ -676,7 +676,9 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double w
       static_cast<double>(overlapping.size()) / static_cast<double>(query.size());
   if (!match.found || overlap < options_.loop.min_overlap)
     return refuse(LoopSearch::Outcome::kScore, &loops_.rejected_score);
-  if (match.second_score > 0)
+  if (match.second_score > 0 &&
+      !TellsApart(target, query, match.pose, match.second_pose, options_.loop.registration,
+                  options_.normal_max_gap_m, options_.loop.tell_apart_alpha))
     return refuse(LoopSearch::Outcome::kAmbiguous, &loops_.rejected_ambiguous);
   const RegistrationResult fine =
       RegisterPoints(overlapping, target, match.pose, options_.loop.registration);
@@ -815,6 +817,9 @@ void LoopClosureOptions::VisitFields(kernel::FieldVisitor& v) {
           "closure test: fraction of the query's points where the target has seen, at least");
   v.Field("ambiguity_ratio", &ambiguity_ratio,
           "closure refused when a distinct pose scores this fraction of the best");
+  v.Field("tell_apart_alpha", &tell_apart_alpha,
+          "... unless the points fitting only one of the two favour the best at this "
+          "significance (sign test; 0: never)");
   v.Field("max_rms_m", &max_rms_m, "closure test: registration inlier RMS at most, m");
   v.Field("max_chi2", &max_chi2,
           "closure test: whitened squared residual after optimisation at most; also the bound of "
@@ -845,6 +850,8 @@ kernel::Status LoopClosureOptions::Validate() const {
     return kernel::Status::Error(
         "loop radii, windows and sigma must be positive and ordered, max_window_m at most 1000, "
         "max_window_rad at most pi");
+  if (!(tell_apart_alpha >= 0 && tell_apart_alpha <= 1))
+    return kernel::Status::Error("tell_apart_alpha must be in [0, 1]");
   if (!(min_score > 0 && min_score <= 1) || !(min_overlap > 0 && min_overlap <= 1) ||
       !(ambiguity_ratio > 0 && ambiguity_ratio <= 1) || !(max_rms_m > 0) || !(max_chi2 > 0) ||
       !(max_misfit_fraction >= 0 && max_misfit_fraction <= 1) || !(sigma_floor_m > 0) ||

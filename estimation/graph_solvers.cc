@@ -10,7 +10,9 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <set>
 #include <unordered_set>
+#include <utility>
 
 #include "estimation/pose_graph.h"
 #include "estimation/scan_registration.h"
@@ -197,6 +199,34 @@ bool Matchable(const DistanceGrid& grid, const OrientedPoint& placed,
   // An outline seen from both sides (a thin wall) matches a point facing either side.
   const Eigen::Vector2d back = grid.BackNormal(placed.point);
   return !back.isZero() && placed.normal.dot(back) >= min_cos;
+}
+
+bool TellsApart(const DistanceGrid& target, const std::vector<OrientedPoint>& query,
+                const kernel::Pose2& best, const kernel::Pose2& rival,
+                const RegistrationOptions& options, double cell_m, double alpha) {
+  const std::vector<OrientedPoint> at_best = Placed(best, query), at_rival = Placed(rival, query);
+  const auto fits = [&](const OrientedPoint& p) {
+    return Matchable(target, p, options) &&
+           std::abs(target.Distance(p.point)) < options.inlier_distance_m;
+  };
+  const auto cell = [&](const OrientedPoint& p) {
+    return std::pair<long, long>(std::lround(std::floor(p.point.x() / cell_m)),
+                                 std::lround(std::floor(p.point.y() / cell_m)));
+  };
+  std::set<std::pair<long, long>> for_best, for_rival;
+  for (std::size_t i = 0; i < query.size(); ++i) {
+    const bool b = fits(at_best[i]), r = fits(at_rival[i]);
+    if (b && !r) for_best.insert(cell(at_best[i]));
+    if (r && !b) for_rival.insert(cell(at_rival[i]));
+  }
+  // P(X >= k) for X ~ Binomial(n, 1/2), summed in logs.
+  const int k = static_cast<int>(for_best.size());
+  const int n = k + static_cast<int>(for_rival.size());
+  double tail = 0.0;
+  for (int x = k; x <= n; ++x)
+    tail += std::exp(std::lgamma(n + 1.0) - std::lgamma(x + 1.0) - std::lgamma(n - x + 1.0) -
+                     n * std::log(2.0));
+  return 2 * k > n && tail < alpha;
 }
 
 std::vector<OrientedPoint> Placed(const kernel::Pose2& pose,

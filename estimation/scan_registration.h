@@ -107,6 +107,16 @@ struct RegistrationResult {
 // agrees with the piece's within options.max_normal_angle_rad.
 bool Matchable(const DistanceGrid& grid, const OrientedPoint& placed,
                const RegistrationOptions& options);
+// Whether `query` (robot frame) tells `best` from `rival` on `target`. Evidence is what fits
+// one pose and not the other (Matchable, within options.inlier_distance_m); points that fit
+// both, or neither, say nothing (in a corridor most of them). Neighbouring points of one outline
+// move together, so the unit of evidence is a cell of `cell_m` holding such points, not a
+// point: `best` is told apart when so many more cells favour it that as many would come up by
+// chance, each cell going either way with probability 1/2, with probability below alpha (a
+// one-sided sign test).
+bool TellsApart(const DistanceGrid& target, const std::vector<OrientedPoint>& query,
+                const kernel::Pose2& best, const kernel::Pose2& rival,
+                const RegistrationOptions& options, double cell_m, double alpha);
 // `points` (robot frame) placed at `pose`.
 std::vector<OrientedPoint> Placed(const kernel::Pose2& pose,
                                   const std::vector<OrientedPoint>& points);

@@ -722,6 +722,39 @@ TEST(CorrelativeMatcher, PropertyFindsTheBruteForceBestAlsoPastTheGridsEdges) {
   EXPECT_EQ(trials, 40);
 }
 
+// Loop evidence (LoopClosureOptions::tell_apart_alpha): in a 2.5 m corridor with a door recess
+// every 6 m, a pose 3 m along it fits most points as well as the truth, and the recesses' points
+// tell the two apart; with plain walls nothing does, and a pose one recess (6 m) along fits the
+// same points as the truth.
+TEST(LoopEvidence, DoorRecessesTellAPoseAlongACorridorAndPlainWallsDoNot) {
+  const auto corridor = [](bool recesses) {
+    std::vector<Eigen::Vector2d> points;
+    for (double x = -20; x <= 20; x += 0.02) {
+      points.emplace_back(x, -1.25);
+      const double phase = x - 6.0 * std::floor(x / 6.0);  // a recess over [2.4, 3.6) of each 6 m
+      const bool in_recess = recesses && phase >= 2.4 && phase < 3.6;
+      points.emplace_back(x, in_recess ? 1.65 : 1.25);
+      if (recesses && (std::abs(phase - 2.4) < 0.01 || std::abs(phase - 3.6) < 0.01))
+        for (double y = 1.25; y <= 1.65; y += 0.02) points.emplace_back(x, y);
+    }
+    return points;
+  };
+  RegistrationOptions options;
+  for (const bool recesses : {true, false}) {
+    const std::vector<Eigen::Vector2d> map_points = corridor(recesses);
+    const DistanceGrid target = DistanceGrid::Build(map_points, 0.1, 0.5, 0.5);
+    std::vector<OrientedPoint> query;
+    for (std::size_t i = 0; i < map_points.size(); i += 5)  // about 0.1 m apart
+      if (map_points[i].norm() < 8.0) query.push_back({map_points[i], Eigen::Vector2d::Zero()});
+    const bool three_m =
+        TellsApart(target, query, Pose2(0, 0, 0), Pose2(3, 0, 0), options, 0.3, 1e-3);
+    const bool six_m =
+        TellsApart(target, query, Pose2(0, 0, 0), Pose2(6, 0, 0), options, 0.3, 1e-3);
+    EXPECT_EQ(three_m, recesses) << "recesses " << recesses;
+    EXPECT_FALSE(six_m) << "recesses " << recesses;
+  }
+}
+
 // Two parallel walls without features: every shift along the corridor fits as well, so the
 // correlative search finds a distinct second pose as good as the best and the closure is refused;
 // with a cross wall (an L) the match is unique and recovers the shift.
