@@ -118,7 +118,7 @@ namespace {
 // The points of `points` (robot frame, in beam order) that are not part of a moving object:
 // runs of neighbours within max_gap_m, at most max_size_m from end to end, more than half of
 // whose points lie, at `pose`, where `map` saw free space at least min_distance_m from its
-// outline (GraphSlamOptions::moving_max_size_m). Its hit points come in beam order.
+// outline (GraphSlamOptions::moving_max_size_m).
 std::vector<OrientedPoint> WithoutMovingObjects(std::vector<OrientedPoint> points,
                                                 const DistanceGrid& map, const kernel::Pose2& pose,
                                                 double max_gap_m, double max_size_m,

@@ -357,7 +357,7 @@ class GraphSlam {
   // A wide search's target: every keyframe holding data within radius_m of `center`, none newer
   // than `newest`. Around a candidate alone, a target of a few metres of path shares more with a
   // query shifted towards it than with the query where it is, and the correlative score, which
-  // counts every query point, prefers the shift (loop.rival notes in docs/graph_slam.md).
+  // counts every query point, prefers the shift (docs/graph_slam.md, "Large simulated worlds").
   std::vector<int> AreaKeyframes(const Eigen::Vector2d& center, double radius_m, int newest) const;
   void RebuildSubmap();
   // Drops keyframe j's data when an earlier keyframe holding its own is near (trim_spacing_m).
