@@ -20,6 +20,9 @@ int main(int argc, char** argv) {
   world.obstacles.push_back(splam::kernel::Circle2{{3.0, 2.0}, 0.3});
   world.obstacles.push_back(splam::kernel::Ellipse2{{6.0, 4.5}, 0.8, 0.4, 0.3});
   world.obstacles.push_back(sim::Spline{{{1.0, 4.0}, {2.0, 5.2}, {3.5, 3.6}, {4.5, 4.8}}, false});
+  //    A person walking back and forth across the room at 1 m/s: the laser sees a disc of
+  //    0.25 m, but it is no obstacle (no map holds it, and the robot drives through it).
+  world.people.push_back(sim::Walker{{{5.0, 0.5}, {5.0, 3.5}}, 1.0, 0.25, 0.0});
   if (const splam::kernel::Status problem = world.Validate(); !problem.ok()) {
     std::fprintf(stderr, "invalid world: %s\n", problem.message().c_str());
     return 1;
@@ -32,6 +35,7 @@ int main(int argc, char** argv) {
   //    fixes every random draw: the same seed gives the same run.
   sim::SimulatorOptions options;  // defaults: URG-04LX, odometry noise of a few per cent
   sim::Simulator simulator(caster, options, Pose2(1.0, 1.0, 0.0), /*seed=*/42);
+  simulator.SetPeople(world.people);
 
   // 4. Drive a loop of waypoints; a sensor frame is recorded after every 0.1 s step.
   const sim::RouteRun run =
@@ -60,6 +64,8 @@ int main(int argc, char** argv) {
   figure.DrawPoints(last.true_pose * last.scan.HitPoints(), splam::io::palette::kScan, 1.5,
                     "last scan");
   figure.DrawWorld(world);
+  figure.DrawPolyline(world.people[0].path, splam::io::palette::kPeople, 1.0, "a person's walk",
+                      /*dashed=*/true);
   figure.DrawPath(odometry, splam::io::palette::kOdometry, 1.5, "odometry");
   figure.DrawPath(truth, splam::io::palette::kTrue, 1.5, "ground truth");
   figure.DrawRobot(last.true_pose, options.robot.radius_m, splam::io::palette::kTrue);
