@@ -7,6 +7,7 @@
 
 #include "io/trajectory.h"
 #include "sim/builtin_worlds.h"
+#include "sim/ray_caster.h"
 
 namespace splam::io {
 namespace {
@@ -133,6 +134,23 @@ TEST(WorldFile, FloorPlanEntryIsRelativeToTheFile) {
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error.find("bad.yaml:2: "), std::string::npos);
   EXPECT_NE(bad.error.find("nothere.png: no such image file"), std::string::npos);
+}
+
+// The benchmark worlds shipped in bench/worlds load, are valid, and their routes start free of
+// obstacles; the hospital floor's people walk in free space (their paths touch no wall).
+TEST(LoadWorld, BenchWorldsAreValid) {
+  for (const char* name : {"campus_loop", "hospital_floor", "long_corridors"}) {
+    const std::string path = std::string(SPLAM_SOURCE_DIR) + "/bench/worlds/" + name + ".yaml";
+    const Result<sim::World> world = LoadValidWorld(path, {});
+    ASSERT_TRUE(world.ok()) << world.error;
+    ASSERT_TRUE(world.value->start.has_value()) << name;
+    EXPECT_FALSE(world.value->route.empty()) << name;
+    const sim::RayCaster caster(*world.value);
+    EXPECT_FALSE(caster.Collides(world.value->start->translation(), 0.3)) << name;
+    for (const sim::Walker& w : world.value->people)
+      for (double t = 0.0; t < 200.0; t += 0.5)
+        EXPECT_FALSE(caster.Collides(w.PositionAt(t), w.radius_m)) << name << " at " << t << " s";
+  }
 }
 
 TEST(LoadWorld, BuiltinNamesFilesAndErrors) {
