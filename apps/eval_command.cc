@@ -13,6 +13,7 @@
 #include "io/run_picture.h"
 #include "io/trajectory.h"
 #include "kernel/angle.h"
+#include "loop/json_text.h"
 #include "loop/slam_report.h"
 
 namespace splam::apps {
@@ -146,7 +147,7 @@ int RunEval(EvalArgs args) {
   }
   if (!args.out.empty()) {
     std::filesystem::create_directories(args.out);
-    std::ofstream(args.out + "/eval.json") << report.dump(2) << "\n";
+    std::ofstream(args.out + "/eval.json") << loop::JsonText(report, 2) << "\n";
     fmt::print("wrote {}/eval.json{}\n", args.out,
                args.truth.empty() ? "" : " and eval_errors.{svg,png}");
   }

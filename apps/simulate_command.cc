@@ -11,6 +11,7 @@
 #include "io/simulation_log.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
+#include "loop/json_text.h"
 #include "loop/run_html.h"
 #include "sim/ray_caster.h"
 #include "sim/simulator.h"
@@ -185,7 +186,7 @@ int RunSimulate(const SimulateArgs& args) {
       io::WriteWorldFile(out + "/world.yaml", *world.value),
       io::SaveRunPicture(picture, {out + "/run.svg", out + "/run.png"}),
   };
-  std::ofstream(out + "/summary.json") << summary.dump(2) << "\n";
+  std::ofstream(out + "/summary.json") << loop::JsonText(summary, 2) << "\n";
   errors.push_back(
       loop::WriteRunHtml(out, "splam simulate: " + world.value->name + " world").message());
   for (const std::string& e : errors) {

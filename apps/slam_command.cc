@@ -24,6 +24,7 @@
 #include "io/text.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
+#include "loop/json_text.h"
 #include "loop/log_replay.h"
 #include "loop/run_html.h"
 #include "loop/slam_report.h"
@@ -164,7 +165,8 @@ bool PrintSlamSummary(const std::string& label, const estimation::SlamMethod& sl
       summary["time_per_scan_ms"]["mean"].get<double>(),
       summary["time_per_scan_ms"]["median"].get<double>(),
       summary["time_per_scan_ms"]["max"].get<double>(), summary["peak_memory_mb"].get<double>());
-  fmt::print("map: {}; associations: {}\n", slam.MapDescription(), summary["associations"].dump());
+  fmt::print("map: {}; associations: {}\n", slam.MapDescription(),
+             loop::JsonText(summary["associations"]));
   const nlohmann::ordered_json& c = summary["consistency"];
   fmt::print(
       "self-consistency: {:.1f} % of the points of {} scans checked against other passes lie in "
@@ -337,7 +339,7 @@ int RunSlam(const SlamArgs& args) {
                  args.relations);
     }
   }
-  std::ofstream(out + "/summary.json") << summary.dump(2) << "\n";
+  std::ofstream(out + "/summary.json") << loop::JsonText(summary, 2) << "\n";
   errors.push_back(loop::WriteRunHtml(out, "splam slam: " + label + " on " + args.log).message());
   for (const std::string& e : errors) {
     if (!e.empty()) {

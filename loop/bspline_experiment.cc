@@ -19,6 +19,7 @@
 #include "loop/association_scoring.h"
 #include "loop/exit_status.h"
 #include "loop/experiment_trials.h"
+#include "loop/json_text.h"
 #include "loop/run_html.h"
 #include "loop/slam_report.h"
 #include "sim/builtin_worlds.h"
@@ -131,7 +132,7 @@ void WriteBSplineReport(const BSplineExperimentArgs& args, const std::vector<std
                   curvature_wins, args.runs);
   fmt::print("\n{}", table);
   std::ofstream(args.out + "/table.md") << table;
-  std::ofstream(args.out + "/report.json") << report.dump(2) << "\n";
+  std::ofstream(args.out + "/report.json") << JsonText(report, 2) << "\n";
   if (kernel::Status s = WriteRunHtml(args.out, "splam experiment complex-bspline (paper 000)");
       !s.ok())
     fmt::print(stderr, "splam experiment: {}\n", s.message());

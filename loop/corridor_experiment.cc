@@ -18,6 +18,7 @@
 #include "kernel/angle.h"
 #include "loop/exit_status.h"
 #include "loop/experiment_trials.h"
+#include "loop/json_text.h"
 #include "loop/log_replay.h"
 #include "loop/run_html.h"
 #include "sim/builtin_worlds.h"
@@ -326,7 +327,7 @@ int WriteCorridorResult(const CorridorOptions& options, const CorridorResult& re
   }
   report["per_run"] = PerRunJson(result);
   std::ofstream(out + "/table1.md") << table;
-  std::ofstream(out + "/report.json") << report.dump(2) << "\n";
+  std::ofstream(out + "/report.json") << JsonText(report, 2) << "\n";
   if (kernel::Status s = WriteRunHtml(out, "splam experiment corridor-lines (paper 001 Table 1)");
       !s.ok()) {
     fmt::print(stderr, "splam experiment: {}\n", s.message());

@@ -10,6 +10,7 @@
 #include "io/plot.h"
 #include "loop/exit_status.h"
 #include "loop/experiment_trials.h"
+#include "loop/json_text.h"
 #include "loop/run_html.h"
 #include "loop/sweep.h"
 #include "sim/builtin_worlds.h"
@@ -141,7 +142,7 @@ int RunExplorationExperiment(const ExplorationExperimentArgs& args) {
     }
   }
   std::ofstream(args.out + "/table.md") << table;
-  std::ofstream(args.out + "/summary.json") << summary.dump(2) << "\n";
+  std::ofstream(args.out + "/summary.json") << JsonText(summary, 2) << "\n";
   if (kernel::Status s = WriteRunHtml(args.out, "splam experiment exploration (paper 003 Fig. 18)");
       !s.ok()) {
     fmt::print(stderr, "splam experiment: {}\n", s.message());

@@ -15,6 +15,7 @@
 #include "io/render.h"
 #include "io/run_picture.h"
 #include "io/trajectory.h"
+#include "loop/json_text.h"
 #include "loop/slam_report.h"
 #include "loop/step_trace.h"
 #include "sim/ray_caster.h"
@@ -83,7 +84,7 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
       map["curves_per_obstacle"] = CurvesPerObstacle(caster, splines);
     }
     const nlohmann::json statistics =
-        nlohmann::json::parse(StatisticsJson(slam->Statistics()).dump());
+        nlohmann::json::parse(JsonText(StatisticsJson(slam->Statistics())));
     report["slam"] = {
         {"method", setup.localization},
         {"healthy", slam->healthy()},
@@ -93,7 +94,7 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
         {"localization_steps", ms.size()},
         {"ms_per_step", {{"median", Percentile(ms, 0.5)}, {"p95", Percentile(ms, 0.95)}}},
         {"ms_per_step_by_map_curves",
-         nlohmann::json::parse(TimeBinsJson(TimeByMapSize(ms, driver.map_curves())).dump())}};
+         nlohmann::json::parse(JsonText(TimeBinsJson(TimeByMapSize(ms, driver.map_curves()))))}};
     if (statistics.contains("least_squares"))
       report["slam"]["least_squares"] = statistics["least_squares"];
   }
@@ -137,7 +138,7 @@ std::string WriteExplorationRun(const sim::World& world, const ExploreSetup& set
                                 const std::string& dir, std::vector<std::string>* written) {
   const std::string title = RunTitle(world, setup, outcome);
   const Trajectories t = TrajectoriesOf(outcome.run);
-  std::ofstream(dir + "/report.json") << report.dump(2) << "\n";
+  std::ofstream(dir + "/report.json") << JsonText(report, 2) << "\n";
   written->push_back("report.json");
   const auto save = [&](const std::string& name, std::string error) {
     if (error.empty()) written->push_back(name);

@@ -13,6 +13,7 @@
 #include "kernel/angle.h"
 #include "loop/exit_status.h"
 #include "loop/experiment_trials.h"
+#include "loop/json_text.h"
 #include "loop/run_html.h"
 #include "loop/sweep.h"
 #include "sim/builtin_worlds.h"
@@ -272,7 +273,7 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
     for (const auto& [key, field] : SummaryFields()) j[key] = Values(v, field);
   }
   std::ofstream(args.out + "/table.md") << table;
-  std::ofstream(args.out + "/summary.json") << summary.dump(2) << "\n";
+  std::ofstream(args.out + "/summary.json") << JsonText(summary, 2) << "\n";
   if (kernel::Status s = WriteRunHtml(
           args.out, "splam experiment splam (paper 003 Figs. 19-22) in " + args.world_name);
       !s.ok()) {

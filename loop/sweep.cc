@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "io/trajectory.h"
+#include "loop/json_text.h"
 
 extern char** environ;
 
@@ -124,7 +125,7 @@ pid_t SpawnCell(const std::string& dir, const SweepCell& cell, const std::string
     return -1;
   }
   std::ofstream(cell_dir + "/cell.started")
-      << nlohmann::json{{"host", Host()}, {"pid", pid}, {"args", args}}.dump() << "\n";
+      << JsonText(nlohmann::json{{"host", Host()}, {"pid", pid}, {"args", args}}) << "\n";
   return pid;
 }
 
@@ -142,12 +143,13 @@ CellRecord FinishCell(const std::string& cell_dir, int exit_status, double wall_
   record.message = LastLine(cell_dir + "/cell.log");
   if (exit_status > 128 && record.message.empty())
     record.message = "killed by signal " + std::to_string(exit_status - 128);
-  std::ofstream(cell_dir + "/cell.json") << nlohmann::json{{"exit_status", record.exit_status},
-                                                           {"wall_s", record.wall_s},
-                                                           {"message", record.message},
-                                                           {"host", record.host}}
-                                                .dump(2)
-                                         << "\n";
+  std::ofstream(cell_dir + "/cell.json")
+      << JsonText(nlohmann::json{{"exit_status", record.exit_status},
+                                 {"wall_s", record.wall_s},
+                                 {"message", record.message},
+                                 {"host", record.host}},
+                  2)
+      << "\n";
   return record;
 }
 

@@ -423,6 +423,44 @@ TEST(SplamCli, ABadLineHalfwayOrCtrlCStillWritesTheWorkDone) {
   EXPECT_TRUE(fs::exists(dir / "explore" / "graph.png"));
 }
 
+// Issue 48, item 1: bytes that are not UTF-8 (a world's Latin-1 name, a log's Latin-1 file
+// name, a binary junk line quoted in an error) aborted the run with nlohmann's type_error.316
+// and left its JSON empty. They are written as U+FFFD now, and every JSON stays valid.
+TEST(SplamCli, BytesThatAreNotUtf8AreWrittenAsReplacementCharacters) {
+  const fs::path dir = Temp("latin1");
+  fs::create_directories(dir);
+  const std::string replaced = "caf\xef\xbf\xbd";  // "caf" and U+FFFD
+  ASSERT_EQ(io::WriteTextFile((dir / "w.yaml").string(),
+                              "name: caf\xe9\nstart: [1, 1, 0]\nroute: [[4, 1]]\nobstacles:\n"
+                              "  - polyline: [[0, 0], [5, 0], [5, 3], [0, 3], [0, 0]]\n"),
+            "");
+  const Output simulated =
+      Splam("simulate --world " + (dir / "w.yaml").string() + " --out " + (dir / "sim").string());
+  ASSERT_EQ(simulated.status, 0) << simulated.text;
+  EXPECT_EQ(nlohmann::json::parse(Slurp(dir / "sim" / "summary.json"))["world"], replaced);
+
+  const fs::path latin = dir / "caf\xe9.clf";
+  fs::copy_file(dir / "sim" / "log.clf", latin);
+  const Output run =
+      Splam("slam --method graph " + latin.string() + " --out " + (dir / "slam").string());
+  ASSERT_EQ(run.status, 0) << run.text;
+  const auto summary = nlohmann::json::parse(Slurp(dir / "slam" / "summary.json"));
+  EXPECT_NE(summary["log"].get<std::string>().find(replaced + ".clf"), std::string::npos);
+
+  std::string text = Slurp(dir / "sim" / "log.clf");
+  const std::size_t half = text.find("\nROBOTLASER1", text.size() / 2);
+  ASSERT_NE(half, std::string::npos);
+  text.insert(half + 1, "\xff\xfe\x01 junk\n");
+  ASSERT_EQ(io::WriteTextFile((dir / "junk.clf").string(), text), "");
+  const Output junk = Splam("slam --method graph " + (dir / "junk.clf").string() + " --out " +
+                            (dir / "junk").string());
+  EXPECT_EQ(junk.status, 3) << junk.text;
+  const auto stopped = nlohmann::json::parse(Slurp(dir / "junk" / "summary.json"));
+  EXPECT_NE(stopped["stopped_early"].get<std::string>().find("not a CARMEN message"),
+            std::string::npos)
+      << stopped["stopped_early"];
+}
+
 // Issue 19: eval gave "0.0000 +- 0.0000, used 0" and exit 0 for an empty or non-matching
 // relations file, a directory, an empty estimate; a huge estimate wrote null. A metric over
 // nothing, or one that is not finite, is an error (exit 2, the reason in eval.json).

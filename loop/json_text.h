@@ -1,0 +1,21 @@
+#ifndef SPLAM_LOOP_JSON_TEXT_H_
+#define SPLAM_LOOP_JSON_TEXT_H_
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace splam::loop {
+
+// The JSON text of `json` (indented by `indent` spaces, -1: one line). Strings that are not
+// UTF-8 (a Latin-1 file name, a log's binary junk quoted in an error, a world's name) are written
+// with U+FFFD for each invalid byte instead of throwing (nlohmann's type_error.316, which aborted
+// a finished run and left its file empty). Every JSON splam writes goes through here.
+// `Json`: nlohmann::json or nlohmann::ordered_json (whose key order is kept).
+template <class Json>
+std::string JsonText(const Json& json, int indent = -1) {
+  return json.dump(indent, ' ', false, Json::error_handler_t::replace);
+}
+
+}  // namespace splam::loop
+
+#endif  // SPLAM_LOOP_JSON_TEXT_H_
