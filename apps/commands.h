@@ -27,6 +27,7 @@ std::string SplamBinary();
 // Exit statuses of every command: 0 done, 2 bad input, 3 stopped early (results written).
 using loop::kExitBadInput;
 using loop::kExitIncomplete;
+using loop::kExitWriteFailed;
 using loop::kExitOk;
 
 // Number checks for options. CLI::PositiveNumber, NonNegativeNumber and Range let NaN through

@@ -147,7 +147,12 @@ int RunEval(EvalArgs args) {
   }
   if (!args.out.empty()) {
     std::filesystem::create_directories(args.out);
-    std::ofstream(args.out + "/eval.json") << loop::JsonText(report, 2) << "\n";
+    if (const std::string e =
+            io::WriteTextFile(args.out + "/eval.json", loop::JsonText(report, 2) + "\n");
+        !e.empty()) {
+      fmt::print(stderr, "splam eval: {}\n", e);
+      return kExitWriteFailed;
+    }
     fmt::print("wrote {}/eval.json{}\n", args.out,
                args.truth.empty() ? "" : " and eval_errors.{svg,png}");
   }

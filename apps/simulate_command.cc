@@ -186,13 +186,13 @@ int RunSimulate(const SimulateArgs& args) {
       io::WriteWorldFile(out + "/world.yaml", *world.value),
       io::SaveRunPicture(picture, {out + "/run.svg", out + "/run.png"}),
   };
-  std::ofstream(out + "/summary.json") << loop::JsonText(summary, 2) << "\n";
+  errors.push_back(io::WriteTextFile(out + "/summary.json", loop::JsonText(summary, 2) + "\n"));
   errors.push_back(
       loop::WriteRunHtml(out, "splam simulate: " + world.value->name + " world").message());
   for (const std::string& e : errors) {
     if (!e.empty()) {
       fmt::print(stderr, "splam simulate: {}\n", e);
-      return kExitBadInput;
+      return kExitWriteFailed;
     }
   }
   fmt::print(

@@ -339,12 +339,12 @@ int RunSlam(const SlamArgs& args) {
                  args.relations);
     }
   }
-  std::ofstream(out + "/summary.json") << loop::JsonText(summary, 2) << "\n";
+  errors.push_back(io::WriteTextFile(out + "/summary.json", loop::JsonText(summary, 2) + "\n"));
   errors.push_back(loop::WriteRunHtml(out, "splam slam: " + label + " on " + args.log).message());
   for (const std::string& e : errors) {
     if (!e.empty()) {
       fmt::print(stderr, "splam slam: {}\n", e);
-      return kExitBadInput;
+      return kExitWriteFailed;
     }
   }
   const bool finite = PrintSlamSummary(label, slam, run, summary);

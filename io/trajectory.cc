@@ -24,7 +24,9 @@ std::string WriteTextFile(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   if (!out) return FileError(path, 0, "cannot open for writing");
   out << text;
-  return out ? "" : FileError(path, 0, "write failed");
+  // The buffer reaches the disk at close: a full disk fails there, not at the write.
+  out.close();
+  return out ? "" : FileError(path, 0, "write failed (disk full?)");
 }
 
 Result<Trajectory> ParseTrajectory(const std::string& text, const std::string& name) {

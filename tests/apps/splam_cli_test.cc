@@ -461,6 +461,38 @@ TEST(SplamCli, BytesThatAreNotUtf8AreWrittenAsReplacementCharacters) {
       << stopped["stopped_early"];
 }
 
+// Issue 48, item 6: a write that fails when the file is closed (a full disk: here the file is a
+// link to /dev/full) left an empty summary.json, map.txt or eval.json and exit 0. Each now gives
+// exit status 4 (kExitWriteFailed) and names the file.
+TEST(SplamCli, AFullDiskGivesExitStatus4NamingTheFile) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full on this machine";
+  const fs::path dir = Temp("full_disk");
+  ASSERT_EQ(Splam("simulate --world corridor --out " + (dir / "sim").string()).status, 0);
+  const std::string log = (dir / "sim" / "log.clf").string();
+  for (const std::string file : {"summary.json", "map.txt"}) {
+    const fs::path out = dir / ("slam-" + file);
+    fs::create_directories(out);
+    fs::create_symlink("/dev/full", out / file);
+    const Output r = Splam("slam --method graph " + log + " --out " + out.string());
+    EXPECT_EQ(r.status, 4) << r.text;
+    EXPECT_NE(r.text.find((out / file).string() + ": write failed"), std::string::npos) << r.text;
+  }
+  const fs::path sim = dir / "sim-full";
+  fs::create_directories(sim);
+  fs::create_symlink("/dev/full", sim / "summary.json");
+  const Output simulated = Splam("simulate --world corridor --out " + sim.string());
+  EXPECT_EQ(simulated.status, 4) << simulated.text;
+  EXPECT_NE(simulated.text.find("summary.json: write failed"), std::string::npos);
+  const fs::path eval = dir / "eval-full";
+  fs::create_directories(eval);
+  fs::create_symlink("/dev/full", eval / "eval.json");
+  const Output evaluated =
+      Splam("eval --truth " + (dir / "sim" / "truth.txt").string() + " --estimate " +
+            (dir / "sim" / "odometry.txt").string() + " --out " + eval.string());
+  EXPECT_EQ(evaluated.status, 4) << evaluated.text;
+  EXPECT_NE(evaluated.text.find("eval.json: write failed"), std::string::npos) << evaluated.text;
+}
+
 // Issue 19: eval gave "0.0000 +- 0.0000, used 0" and exit 0 for an empty or non-matching
 // relations file, a directory, an empty estimate; a huge estimate wrote null. A metric over
 // nothing, or one that is not finite, is an error (exit 2, the reason in eval.json).
