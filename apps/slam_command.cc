@@ -165,6 +165,11 @@ bool PrintSlamSummary(const std::string& label, const estimation::SlamMethod& sl
       summary["time_per_scan_ms"]["mean"].get<double>(),
       summary["time_per_scan_ms"]["median"].get<double>(),
       summary["time_per_scan_ms"]["max"].get<double>(), summary["peak_memory_mb"].get<double>());
+  if (run.backward_time_stamps() > 0)
+    fmt::print(
+        "{} scans are stamped earlier than the scan before them (not counted in the data's "
+        "time span)\n",
+        run.backward_time_stamps());
   fmt::print("map: {}; associations: {}\n", slam.MapDescription(),
              loop::JsonText(summary["associations"]));
   const nlohmann::ordered_json& c = summary["consistency"];

@@ -96,6 +96,7 @@ nlohmann::ordered_json ReplaySummaryJson(const estimation::SlamMethod& slam,
   nlohmann::ordered_json summary;
   summary["scans"] = run.estimate.size();
   summary["data_duration_s"] = run.data_s();
+  summary["backward_time_stamps"] = run.backward_time_stamps();
   summary["wall_time_s"] = run.wall_s;
   summary["real_time_factor"] = run.wall_s > 0 ? run.data_s() / run.wall_s : 0.0;
   summary["time_per_scan_ms"] = {

@@ -493,6 +493,32 @@ TEST(SplamCli, AFullDiskGivesExitStatus4NamingTheFile) {
   EXPECT_NE(evaluated.text.find("eval.json: write failed"), std::string::npos) << evaluated.text;
 }
 
+// Issue 48, items 2 and 7: time stamps that go backwards gave "-12 s of data, -250x real time".
+// The second half of a log stamped so that its last scan is 12 s before its first: the span is
+// the latest stamp minus the earliest, and the backward step is counted in summary.json.
+TEST(SplamCli, BackwardTimeStampsAreCountedNotANegativeSpan) {
+  const fs::path dir = Temp("backward_time");
+  ASSERT_EQ(Splam("simulate --world corridor --out " + (dir / "sim").string()).status, 0);
+  io::CarmenReadResult read = io::ReadCarmenLog((dir / "sim" / "log.clf").string());
+  ASSERT_TRUE(read.log.ok());
+  io::CarmenLog log = *read.log.value;
+  const double span =
+      log.Lasers().back()->stamp.ipc_timestamp_s - log.Lasers().front()->stamp.ipc_timestamp_s;
+  ASSERT_GT(span, 30.0);
+  for (std::size_t i = log.messages.size() / 2; i < log.messages.size(); ++i)
+    std::visit([&](auto& m) { m.stamp.ipc_timestamp_s -= span + 12.0; }, log.messages[i]);
+  ASSERT_EQ(io::WriteCarmenLog((dir / "back.clf").string(), log), "");
+  const Output r = Splam("slam --method graph " + (dir / "back.clf").string() + " --out " +
+                         (dir / "slam").string());
+  ASSERT_EQ(r.status, 0) << r.text;
+  EXPECT_NE(r.text.find("1 scans are stamped earlier than the scan before them"), std::string::npos)
+      << r.text;
+  const auto summary = nlohmann::json::parse(Slurp(dir / "slam" / "summary.json"));
+  EXPECT_EQ(summary["backward_time_stamps"], 1);
+  EXPECT_NEAR(summary["data_duration_s"].get<double>(), span + 12.0, 0.2);
+  EXPECT_GT(summary["real_time_factor"].get<double>(), 0.0);
+}
+
 // Issue 19: eval gave "0.0000 +- 0.0000, used 0" and exit 0 for an empty or non-matching
 // relations file, a directory, an empty estimate; a huge estimate wrote null. A metric over
 // nothing, or one that is not finite, is an error (exit 2, the reason in eval.json).
