@@ -119,7 +119,7 @@ namespace {
 // runs of neighbours within max_gap_m, at most max_size_m from end to end, more than half of
 // whose points lie, at `pose`, where `map` saw free space at least min_distance_m from its
 // outline (GraphSlamOptions::moving_max_size_m).
-std::vector<OrientedPoint> WithoutMovingObjects(std::vector<OrientedPoint> points,
+std::vector<OrientedPoint> WithoutMovingObjects(const std::vector<OrientedPoint>& points,
                                                 const DistanceGrid& map, const kernel::Pose2& pose,
                                                 double max_gap_m, double max_size_m,
                                                 double min_distance_m) {
@@ -202,7 +202,7 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
     if (submap_dirty_) RebuildSubmap();
     if (options_.moving_max_size_m > 0)
       points =
-          WithoutMovingObjects(std::move(points), submap_, pose_, options_.normal_max_gap_m,
+          WithoutMovingObjects(points, submap_, pose_, options_.normal_max_gap_m,
                                options_.moving_max_size_m, options_.registration.inlier_distance_m);
     const long recovered_before = recovered_;
     const RegistrationResult r = RegisterScan(points);
@@ -461,11 +461,10 @@ void GraphSlam::SearchLoopClosures(int k) {
   const double since = travelled_m_ - closure_at_m_;
   const double radius = std::min(o.radius_m + o.radius_per_m * since, o.max_radius_m);
   std::vector<std::pair<double, int>> near;
-  for (int i = 0; i <= newest_candidate; ++i) {
-    const Keyframe& c = keyframes_[static_cast<std::size_t>(i)];
-    const double d = (c.pose.translation() - pose.translation()).norm();
-    if (!c.trimmed && d <= radius) near.emplace_back(d, i);
-  }
+  for (int i : AreaKeyframes(pose.translation(), radius, newest_candidate))
+    near.emplace_back(
+        (keyframes_[static_cast<std::size_t>(i)].pose.translation() - pose.translation()).norm(),
+        i);
   const double near_m = std::min(radius, o.near_window_m);
   const double near_rad = std::min(o.window_rad + o.window_rad_per_m * since, o.max_window_rad);
   bool any = false;

@@ -86,15 +86,14 @@ kernel::Scan SimulateLaser(const RayCaster& caster, const LaserOptions& options,
   for (int i = 0; i < options.num_beams; ++i, direction = step * direction) {
     ray.direction = direction;
     RayHit hit = caster.Cast(ray, options.max_range_m);
+    // A person in front of the nearest obstacle hides it.
     bool person = false;
     for (const kernel::Circle2& p : people) {
       const double t = kernel::Intersect(ray, p, 0.0, std::min(hit.range_m, options.max_range_m));
-      if (t < std::min(hit.range_m, options.max_range_m)) {
-        hit.range_m = t;
-        person = true;
-      }
+      if (t == kernel::kNoHit) continue;
+      hit = {t, -1};
+      person = true;
     }
-    if (person) hit.obstacle = -1;
     double range = kernel::Scan::kNoReturn;
     if (hit.obstacle >= 0 || person) {
       range = hit.range_m +

@@ -131,6 +131,10 @@ kernel::Status World::Validate() const {
         obstacles[i]);
     if (!problem.empty()) return kernel::Status::Error(where + problem);
   }
+  // Every laser beam meets every person: a bound on the people bounds each sweep's cost.
+  if (people.size() > kMaxPeople)
+    return kernel::Status::Error("at most " + std::to_string(kMaxPeople) + " people, not " +
+                                 std::to_string(people.size()));
   for (std::size_t i = 0; i < people.size(); ++i) {
     const Walker& w = people[i];
     const std::string where = "person " + std::to_string(i) + ": ";

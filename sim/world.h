@@ -2,6 +2,7 @@
 #define SPLAM_SIM_WORLD_H_
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <variant>
@@ -53,6 +54,9 @@ struct Walker {
   Eigen::Vector2d PositionAt(double time_s) const;
 };
 
+// At most this many people walk through a world (World::Validate).
+inline constexpr std::size_t kMaxPeople = 1000;
+
 // A 2-D world: static obstacles (their index is the obstacle id the sensors report), people
 // walking through it, an optional start pose and an optional default route of waypoints.
 struct World {
@@ -64,7 +68,8 @@ struct World {
 
   // Empty when valid, else what is wrong and with which obstacle: polylines need >= 2 vertices
   // (polygons 3) without zero-length edges, circles and ellipses positive radii, open splines
-  // >= 4 and closed splines >= 3 control points; people as Walker says; all coordinates finite.
+  // >= 4 and closed splines >= 3 control points; people as Walker says, at most kMaxPeople;
+  // all coordinates finite.
   kernel::Status Validate() const;
   // Exact primitives of obstacle `index`: segments, circles, ellipses, Bezier pieces.
   void AppendPrimitives(std::size_t index, Primitives* out) const;

@@ -143,6 +143,8 @@ TEST(Walker, ValidateNamesThePerson) {
   EXPECT_EQ(w.Validate().message(), "person 1: path needs at least 2 points");
   w.people[1] = {{{0, 0}, {NAN, 0}}, 1.0, 0.25, 0.0};
   EXPECT_EQ(w.Validate().message(), "person 1: path not finite or beyond +-1e6 m");
+  w.people.assign(kMaxPeople + 1, {{{0, 0}, {1, 0}}, 1.0, 0.25, 0.0});
+  EXPECT_EQ(w.Validate().message(), "at most 1000 people, not 1001");
 }
 
 TEST(World, BoundsCoverAllShapes) {
