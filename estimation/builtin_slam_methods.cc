@@ -249,13 +249,12 @@ void AddGraphStatistics(const GraphSlam& graph, SlamStatistics* s) {
                           {"loop_rejected_registration", l.rejected_registration},
                           {"loop_rejected_misfit", l.rejected_misfit},
                           {"loop_rejected_disagreement", l.rejected_disagreement},
-                          {"loop_rejected_unconfirmed", l.rejected_unconfirmed}});
+                          {"loop_rejected_unconfirmed", l.rejected_unconfirmed},
+                          {"moving_object_beams", graph.moving_beams()}});
   const GraphSlam::Times& t = graph.times();
-  s->time_ms = {{"registration", t.registration_ms},
-                {"keyframes", t.keyframe_ms},
-                {"submaps", t.submap_ms},
-                {"loop_search", t.loop_search_ms},
-                {"optimization", t.optimization_ms}};
+  s->time_ms = {{"registration", t.registration_ms}, {"keyframes", t.keyframe_ms},
+                {"moving_objects", t.moving_ms},     {"submaps", t.submap_ms},
+                {"loop_search", t.loop_search_ms},   {"optimization", t.optimization_ms}};
   s->optimizations = graph.optimizations();
   s->solver_runs += static_cast<long>(s->optimizations.size());
   for (const auto& o : s->optimizations) s->solver_failures += !o.converged;

@@ -113,40 +113,6 @@ double SeenFreeMisfitFraction(const DistanceGrid& target, const std::vector<Orie
   return static_cast<double>(misfits) / static_cast<double>(placed.size());
 }
 
-namespace {
-
-// The points of `points` (robot frame, in beam order) that are not part of a moving object:
-// runs of neighbours within max_gap_m, at most max_size_m from end to end, more than half of
-// whose points lie, at `pose`, where `map` saw free space at least min_distance_m from its
-// outline (GraphSlamOptions::moving_max_size_m).
-std::vector<OrientedPoint> WithoutMovingObjects(const std::vector<OrientedPoint>& points,
-                                                const DistanceGrid& map, const kernel::Pose2& pose,
-                                                double max_gap_m, double max_size_m,
-                                                double min_distance_m) {
-  std::vector<OrientedPoint> kept;
-  kept.reserve(points.size());
-  std::size_t begin = 0;
-  while (begin < points.size()) {
-    std::size_t end = begin + 1;
-    while (end < points.size() && (points[end].point - points[end - 1].point).norm() <= max_gap_m)
-      ++end;
-    bool moving = (points[end - 1].point - points[begin].point).norm() <= max_size_m;
-    if (moving) {
-      std::size_t unexplained = 0;
-      for (std::size_t i = begin; i < end; ++i) {
-        const Eigen::Vector2d p = pose * points[i].point;
-        unexplained += map.SeenFree(p) && std::abs(map.Distance(p)) >= min_distance_m;
-      }
-      moving = 2 * unexplained > end - begin;
-    }
-    if (!moving) kept.insert(kept.end(), points.begin() + begin, points.begin() + end);
-    begin = end;
-  }
-  return kept;
-}
-
-}  // namespace
-
 std::vector<int> LargestAgreeingSet(const std::vector<bool>& with_graph,
                                     const std::function<bool(int, int)>& agree) {
   const int n = static_cast<int>(with_graph.size());
@@ -191,19 +157,13 @@ void GraphSlam::UpdateAt(const kernel::Scan& scan, const kernel::Pose2& robot_T_
 void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_laser,
                      const kernel::Pose2* localised) {
   if (!health_.ok()) return;
-  const kernel::Scan scan = raw_scan.Clipped(UsableRange(raw_scan));
-  std::vector<OrientedPoint> points =
-      OrientTowards(robot_T_laser * scan.HitPoints(), robot_T_laser.translation(),
-                    options_.normal_max_gap_m, options_.line_tolerance_m);
+  if (localised != nullptr) pose_ = *localised;
+  kernel::Scan scan = raw_scan.Clipped(UsableRange(raw_scan));
+  if (options_.moving.enabled) scan = WithoutMovingObjects(scan, robot_T_laser);
+  std::vector<OrientedPoint> points = ScanPoints(scan, robot_T_laser);
   registered_ = false;
-  if (localised != nullptr) {
-    pose_ = *localised;
-  } else if (!keyframes_.empty()) {
+  if (localised == nullptr && !keyframes_.empty()) {
     if (submap_dirty_) RebuildSubmap();
-    if (options_.moving_max_size_m > 0)
-      points =
-          WithoutMovingObjects(points, submap_, pose_, options_.normal_max_gap_m,
-                               options_.moving_max_size_m, options_.registration.inlier_distance_m);
     const long recovered_before = recovered_;
     const RegistrationResult r = RegisterScan(points);
     ++registrations_;
@@ -228,6 +188,39 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
   if (new_keyframe) AddKeyframe(scan, robot_T_laser, std::move(points));
   const int k = static_cast<int>(keyframes_.size()) - 1;
   scans_.push_back({k, keyframes_.back().pose.Between(pose_)});
+}
+
+std::vector<OrientedPoint> GraphSlam::ScanPoints(const kernel::Scan& scan,
+                                                 const kernel::Pose2& robot_T_laser) const {
+  return OrientTowards(robot_T_laser * scan.HitPoints(), robot_T_laser.translation(),
+                       options_.normal_max_gap_m, options_.line_tolerance_m);
+}
+
+kernel::Scan GraphSlam::WithoutMovingObjects(const kernel::Scan& scan,
+                                             const kernel::Pose2& robot_T_laser) {
+  const ScopedTimer timer(&times_.moving_ms);
+  const kernel::Pose2 world_T_laser = pose_ * robot_T_laser;
+  std::vector<std::size_t> moving;
+  const std::size_t n = keyframes_.size();
+  for (std::size_t i = n - std::min<std::size_t>(n, options_.moving_keyframes); i < n; ++i) {
+    Keyframe& kf = keyframes_[i];
+    if (kf.trimmed || kf.reading.size() == 0) continue;
+    const kernel::Pose2 world_T_kf_laser = kf.pose * kf.robot_T_laser;
+    const std::vector<std::size_t> here =
+        SeenThroughBeams(scan, world_T_laser, kf.reading, world_T_kf_laser, options_.moving);
+    moving.insert(moving.end(), here.begin(), here.end());
+    const std::vector<std::size_t> there =
+        SeenThroughBeams(kf.reading, world_T_kf_laser, scan, world_T_laser, options_.moving);
+    if (there.empty()) continue;
+    kf.reading = WithoutBeams(kf.reading, there);
+    FillKeyframe(ScanPoints(kf.reading, kf.robot_T_laser), &kf);
+    moving_beams_ += static_cast<long>(there.size());
+    submap_dirty_ = true;
+  }
+  std::sort(moving.begin(), moving.end());
+  moving.erase(std::unique(moving.begin(), moving.end()), moving.end());
+  moving_beams_ += static_cast<long>(moving.size());
+  return moving.empty() ? scan : WithoutBeams(scan, moving);
 }
 
 RegistrationResult GraphSlam::RegisterScan(const std::vector<OrientedPoint>& points) {
@@ -287,39 +280,18 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   kf.pose = pose_;
   kf.travelled_m = travelled_m_;
   kf.scan = static_cast<int>(scans_.size());
-  for (const auto& curve : kernel::ExtractCurves(scan, options_.extraction)) {
-    kf.curves.push_back(kernel::Transformed(curve, robot_T_laser));
-    if (!options_.raster_curves) continue;
-    const auto samples = OrientTowards(kf.curves.back().samples, robot_T_laser.translation(),
-                                       options_.grid_resolution_m);
-    kf.raster.insert(kf.raster.end(), samples.begin(), samples.end());
-  }
-  if (options_.raster_points || kf.raster.empty()) {
-    kf.raster.insert(kf.raster.end(), points.begin(), points.end());
-    const std::vector<OrientedPoint> fill =
-        FillLinkedGaps(points, options_.normal_max_gap_m, options_.line_tolerance_m,
-                       options_.grid_resolution_m / 2);
-    kf.raster.insert(kf.raster.end(), fill.begin(), fill.end());
-  }
-  // Curves are sampled every centimetre; a few samples per cell place it as well.
-  kf.raster = Thinned(kf.raster, options_.grid_resolution_m / 2);
-  kf.points = std::move(points);
-  kf.seen = ScanView(scan, robot_T_laser, UsableRange(scan), options_.seen_margin_m);
+  kf.reading = scan;
+  kf.robot_T_laser = robot_T_laser;
   kf.in_map = std::none_of(keyframes_.begin(), keyframes_.end(), [&](const Keyframe& o) {
     return o.in_map && Within(o.pose, kf.pose, options_.map_spacing_m, options_.map_spacing_rad);
   });
-
-  if (kf.in_map) {
-    map_curves_ += kf.curves.size();
-    for (const auto& c : kf.curves) map_control_points_ += c.spline.control_points().size();
-  } else {
-    // Rasterised; with their centimetre samples they were most of a keyframe's memory.
-    std::vector<kernel::SplineCurve>().swap(kf.curves);
-  }
+  FillKeyframe(std::move(points), &kf);
   const int k = graph_.AddNode(kf.pose);
   for (NodeAnchor& node : nodes_)
     if (node.keyframe < 0) node = {k, kf.pose.Between(node.pose)};
   keyframes_.push_back(std::move(kf));
+  if (k >= options_.moving_keyframes)
+    keyframes_[static_cast<std::size_t>(k - options_.moving_keyframes)].reading = {};
   if (k > 0) {
     PoseGraphEdge edge;
     edge.from = k - 1;
@@ -339,6 +311,41 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
                       : options_.submap_keyframes));
   timer.reset();
   if (options_.loop.enabled) SearchLoopClosures(k);
+}
+
+void GraphSlam::FillKeyframe(std::vector<OrientedPoint> points, Keyframe* kf) {
+  if (kf->in_map) {
+    map_curves_ -= kf->curves.size();
+    for (const auto& c : kf->curves) map_control_points_ -= c.spline.control_points().size();
+  }
+  kf->curves.clear();
+  kf->raster.clear();
+  for (const auto& curve : kernel::ExtractCurves(kf->reading, options_.extraction)) {
+    kf->curves.push_back(kernel::Transformed(curve, kf->robot_T_laser));
+    if (!options_.raster_curves) continue;
+    const auto samples = OrientTowards(kf->curves.back().samples, kf->robot_T_laser.translation(),
+                                       options_.grid_resolution_m);
+    kf->raster.insert(kf->raster.end(), samples.begin(), samples.end());
+  }
+  if (options_.raster_points || kf->raster.empty()) {
+    kf->raster.insert(kf->raster.end(), points.begin(), points.end());
+    const std::vector<OrientedPoint> fill =
+        FillLinkedGaps(points, options_.normal_max_gap_m, options_.line_tolerance_m,
+                       options_.grid_resolution_m / 2);
+    kf->raster.insert(kf->raster.end(), fill.begin(), fill.end());
+  }
+  // Curves are sampled every centimetre; a few samples per cell place it as well.
+  kf->raster = Thinned(kf->raster, options_.grid_resolution_m / 2);
+  kf->points = std::move(points);
+  kf->seen =
+      ScanView(kf->reading, kf->robot_T_laser, UsableRange(kf->reading), options_.seen_margin_m);
+  if (kf->in_map) {
+    map_curves_ += kf->curves.size();
+    for (const auto& c : kf->curves) map_control_points_ += c.spline.control_points().size();
+  } else {
+    // Rasterised; with their centimetre samples they were most of a keyframe's memory.
+    std::vector<kernel::SplineCurve>().swap(kf->curves);
+  }
 }
 
 Eigen::Matrix3d GraphSlam::FrontEndCovariance(int to) const {
@@ -391,6 +398,7 @@ void GraphSlam::TrimKeyframe(int j) {
   std::vector<OrientedPoint>().swap(kf.points);
   std::vector<OrientedPoint>().swap(kf.raster);
   std::vector<Eigen::Vector2d>().swap(kf.seen);
+  kf.reading = {};
   kf.trimmed = true;
   ++trimmed_;
 }
@@ -873,9 +881,9 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("raster_points", &raster_points, "rasterise the scan points");
   v.Field("mask_unseen", &mask_unseen, "points where the submap's scans never saw are ignored");
   v.Field("seen_margin_m", &seen_margin_m, "a scan saw this far behind its hits, m");
-  v.Field("moving_max_size_m", &moving_max_size_m,
-          "a run of scan points at most this long, in the submap's free space, is a moving "
-          "object and is not used (0: off), m");
+  v.Nested("moving", "moving objects left out", &moving);
+  v.Field("moving_keyframes", &moving_keyframes,
+          "each scan is compared with this many last keyframes' scans");
   v.Field("normal_max_gap_m", &normal_max_gap_m,
           "a scan point's normal from neighbours at most this far, m");
   v.Field("line_tolerance_m", &line_tolerance_m,
@@ -912,16 +920,15 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
 kernel::Status GraphSlamOptions::Validate() const {
   if (kernel::Status e =
           kernel::FirstError(extraction.Validate(), registration.Validate(), odometry.Validate(),
-                             loop.Validate(), pose_graph.Validate());
+                             loop.Validate(), pose_graph.Validate(), moving.Validate());
       !e.ok())
     return e;
   if (!(max_range_m >= 0) || !(keyframe_distance_m > 0) || !(keyframe_angle_rad > 0))
     return kernel::Status::Error("max_range_m >= 0, keyframe distance and angle > 0");
-  if (!(seen_margin_m >= 0) || !(normal_max_gap_m > 0) || !(line_tolerance_m >= 0) ||
-      !(moving_max_size_m >= 0 && moving_max_size_m <= 1000))
-    return kernel::Status::Error(
-        "seen_margin_m >= 0, normal_max_gap_m > 0, line_tolerance_m >= 0, moving_max_size_m in "
-        "[0, 1000]");
+  if (!(seen_margin_m >= 0) || !(normal_max_gap_m > 0) || !(line_tolerance_m >= 0))
+    return kernel::Status::Error("seen_margin_m >= 0, normal_max_gap_m > 0, line_tolerance_m >= 0");
+  if (moving_keyframes < 0 || moving_keyframes > 1000)
+    return kernel::Status::Error("moving_keyframes in [0, 1000]");
   if (submap_keyframes < 1 || !(grid_resolution_m > 0) || !(truncation_m > grid_resolution_m))
     return kernel::Status::Error(
         "submap_keyframes >= 1, grid_resolution_m > 0, truncation_m > grid_resolution_m");

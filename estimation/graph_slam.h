@@ -11,6 +11,7 @@
 #include "estimation/distance_grid.h"
 #include "estimation/map_spline.h"
 #include "estimation/models.h"
+#include "estimation/moving_objects.h"
 #include "estimation/pose_graph.h"
 #include "estimation/scan_registration.h"
 #include "kernel/options.h"
@@ -162,17 +163,15 @@ struct GraphSlamOptions {
   // sideways: along a wall seen to where the range ended, the points beyond must find nothing.
   bool mask_unseen = true;
   double seen_margin_m = 0.2;
-  // Moving objects (people walking): a run of a scan's points (neighbours within
-  // normal_max_gap_m) at most moving_max_size_m long, most of whose points are misfits at the
-  // predicted pose (where the submap saw free space, registration.inlier_distance_m or farther
-  // from its outline), is something that was not there before. It is left out of the
-  // registration and of the keyframe. Kept, a person made the registration contradict the
-  // submap and its recovery search took wrong basins (one lap of `complex` with four people
-  // walking: 187 recovery searches, 0.26 m RMSE; with the filter 45 and 0.09 m; 0.03 m without
-  // people). Off by default (0), a named gap: on the real logs it took static things for moving
-  // ones where the odometry's prediction was off (MIT Killian 0.032 -> 1.82 m, intel 0.0188 ->
-  // 0.0192 m, mit-csail 0.0292 -> 0.0306 m); 1 m for a simulated crowd, m.
-  double moving_max_size_m = 0.0;
+  // Moving objects (people walking, MovingObjectOptions): each scan is compared, at the predicted
+  // pose, with the scans of the last moving_keyframes keyframes. Its objects that one of them saw
+  // through are left out of its registration and of its keyframe; their objects that it sees
+  // through are taken out of those keyframes (and of the submap): a person walking ahead of the
+  // robot stands where no scan has yet seen free space, and is found only once a later scan sees
+  // the place empty. Kept in the keyframes, people walking along a corridor dragged the
+  // registration along its loose axis (docs/graph_slam.md, "Large simulated worlds").
+  MovingObjectOptions moving;
+  int moving_keyframes = 10;
   RegistrationOptions registration;
   // A scan is registered twice: with the registration's wide prior alone, and with the
   // odometry increment since the last scan as the prior (its covariance from this noise model,
@@ -287,6 +286,10 @@ class GraphSlam {
     std::vector<Eigen::Vector2d> seen;        // the scan's view: sensor, then beam ends
     double travelled_m = 0.0;                 // path length at this keyframe
     int scan = 0;                             // the scan that made it (0-based, input order)
+    // That scan, clipped, its moving objects read as NaN, and its mounting; kept while the
+    // keyframe is among the last moving_keyframes (empty after).
+    kernel::Scan reading;
+    kernel::Pose2 robot_T_laser;
     bool in_map = false;
     bool trimmed = false;  // points, raster and view dropped (trim_spacing_m)
   };
@@ -328,12 +331,14 @@ class GraphSlam {
   long recovery_searches() const { return recoveries_; }
   long recovered() const { return recovered_; }
   const LoopClosureCounts& loops() const { return loops_; }
+  // Beams of scans and keyframes left out as moving objects (MovingObjectOptions).
+  long moving_beams() const { return moving_beams_; }
   // Every loop-closure search, in order.
   const std::vector<LoopSearch>& loop_searches() const { return searches_; }
   const std::vector<PoseGraphSummary>& optimizations() const { return optimizations_; }
   // Wall time spent in each part, ms.
   struct Times {
-    double registration_ms = 0, keyframe_ms = 0, submap_ms = 0, loop_search_ms = 0,
+    double registration_ms = 0, keyframe_ms = 0, moving_ms = 0, submap_ms = 0, loop_search_ms = 0,
            optimization_ms = 0;
   };
   const Times& times() const { return times_; }
@@ -346,6 +351,14 @@ class GraphSlam {
   // `scan` is clipped to the usable range.
   void AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                    std::vector<OrientedPoint> points);
+  // The keyframe's points, curves, raster and view from its reading (points: already computed).
+  void FillKeyframe(std::vector<OrientedPoint> points, Keyframe* kf);
+  // The scan's points (robot frame, with normals).
+  std::vector<OrientedPoint> ScanPoints(const kernel::Scan& scan,
+                                        const kernel::Pose2& robot_T_laser) const;
+  // `scan` (clipped, at pose_) without the objects that the last moving_keyframes keyframes' scans
+  // saw through; takes out of those keyframes the objects that `scan` sees through.
+  kernel::Scan WithoutMovingObjects(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser);
   // Beams longer than this are not used: max_range_m, or the laser's range when it is 0.
   double UsableRange(const kernel::Scan& scan) const;
   // The raster and the views of these keyframes in the world frame (trimmed ones add nothing).
@@ -412,6 +425,7 @@ class GraphSlam {
   double travelled_m_ = 0.0;
   kernel::Pose2 since_update_;  // odometry since the last registered scan
   bool registered_ = false;
+  long moving_beams_ = 0;
   struct ScanAnchor {
     int keyframe;
     kernel::Pose2 offset;  // keyframe^-1 * scan pose

@@ -613,9 +613,9 @@ TEST(GraphSlam, PeopleWalkingThroughTheRoomAreLeftOut) {
               {{{15.0, 8.5}, {18.8, 8.5}, {18.8, 13.5}}, 0.8, 0.25, 2.0},
               {{{2.0, 13.8}, {7.0, 13.0}}, 1.2, 0.25, 1.0},
               {{{11.0, 4.5}, {16.5, 4.0}}, 1.0, 0.25, 4.0}};
-  GraphSlamOptions left_out;
-  left_out.moving_max_size_m = 1.0;
-  const double with = DriveLaps(1, left_out, c).rmse_m, without = DriveLaps(1, {}, c).rmse_m;
+  GraphSlamOptions kept;
+  kept.moving.enabled = false;
+  const double with = DriveLaps(1, {}, c).rmse_m, without = DriveLaps(1, kept, c).rmse_m;
   std::cout << "people walking: RMSE " << with << " m, " << without << " m kept in\n";
   EXPECT_LT(with, 0.12);
   EXPECT_LT(with, without / 2);
