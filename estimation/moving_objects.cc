@@ -36,19 +36,21 @@ Eigen::Vector2d HitPoint(const kernel::Scan& scan, std::size_t i) {
 }
 
 // Whether beam `i` (a hit at range r) has, on its side, a neighbour that lies farther than
-// r + max_gap_m or without a return: the object stands in front of it.
+// r + max_gap_m or without a return, or the field of view's edge: the object stands in front of
+// what is beside it. (A person overtaking the robot enters at the edge, close by, and stands
+// half outside the view for several scans.)
 bool FartherBeside(const kernel::Scan& scan, std::size_t i, std::ptrdiff_t side, double max_gap_m) {
   const auto j = static_cast<std::ptrdiff_t>(i) + side;
-  if (j < 0 || j >= static_cast<std::ptrdiff_t>(scan.size())) return false;
+  if (j < 0 || j >= static_cast<std::ptrdiff_t>(scan.size())) return true;
   const auto k = static_cast<std::size_t>(j);
   return scan.IsNoReturn(k) || (scan.IsHit(k) && scan.ranges_m[k] > scan.ranges_m[i] + max_gap_m);
 }
 
 // Whether `other` saw through `point` (its sensor frame): every beam within the bearing of
 // lateral_tolerance_m, and at least the beams either side of it, reached min_displacement_m
-// beyond it. -1: the
-// window is not wholly in its field of view, the point is out of its range, or its beams there
-// carry no reading.
+// beyond it (or read no return). -1: the window is not wholly in its field of view, the point is
+// out of its range, or a beam there carries no reading (an invalid one, or a moving object
+// already left out: what was behind it is unknown).
 int SeenThrough(const kernel::Scan& other, const Eigen::Vector2d& point,
                 const MovingObjectOptions& options) {
   const kernel::Polar polar = kernel::CartesianToPolar(point);
@@ -66,17 +68,12 @@ int SeenThrough(const kernel::Scan& other, const Eigen::Vector2d& point,
   // The whole window in the field of view: at its edge, the beams that would hit the object
   // may be the ones the field cuts off.
   if (lo < 0 || hi > static_cast<double>(other.size() - 1)) return -1;
-  int informative = 0;
   for (auto i = static_cast<std::size_t>(lo); i <= static_cast<std::size_t>(hi); ++i) {
-    if (other.IsNoReturn(i)) {
-      ++informative;
-      continue;
-    }
-    if (!other.IsHit(i)) continue;
+    if (other.IsNoReturn(i)) continue;
+    if (!other.IsHit(i)) return -1;  // no reading, or a moving object already left out
     if (other.ranges_m[i] < polar.range_m + options.min_displacement_m) return 0;
-    ++informative;
   }
-  return informative > 0 ? 1 : -1;
+  return 1;
 }
 
 }  // namespace

@@ -24,7 +24,7 @@ struct MovingObjectOptions {
   bool enabled = true;
   // A candidate: hits whose neighbours in beam order lie within max_gap_m of each other, at most
   // max_size_m from end to end (a person, or the two legs of one, at a laser's height), the beams
-  // on both sides farther by more than max_gap_m or without a return.
+  // on both sides farther by more than max_gap_m, without a return, or past the field of view.
   double max_size_m = 1.0;
   double max_gap_m = 0.3;
   // A point is seen through when every beam of the other scan within the bearing of

@@ -158,5 +158,41 @@ TEST(MovingObjects, PropertyAPersonWhoWalkedOnIsSeenThroughAndNothingElse) {
   EXPECT_GE(found, 0.9 * clear);
 }
 
+// A scan of 1 deg beams whose ranges are `ranges`, the first beam straight ahead.
+kernel::Scan Beams(std::vector<double> ranges) {
+  kernel::Scan scan;
+  scan.angular_step_rad = kernel::DegToRad(1.0);
+  scan.max_range_m = 80.0;
+  scan.ranges_m = std::move(ranges);
+  return scan;
+}
+
+// A person overtaking the robot enters the view at its edge, close by: half outside the field of
+// view, they are a candidate (the edge counts as open); a wall running out of the view is not (it
+// is longer than max_size_m).
+TEST(MovingObjects, APersonHalfOutsideTheViewIsACandidate) {
+  const MovingObjectOptions options;
+  std::vector<double> person(40, 5.0), wall(60, 5.0);
+  for (std::size_t i = 36; i < 40; ++i) person[i] = 0.6;  // 4 beams, 3 deg: 3 cm apart
+  EXPECT_EQ(ForegroundObjects(Beams(person), options),
+            (std::vector<std::pair<std::size_t, std::size_t>>{{36, 40}}));
+  for (std::size_t i = 20; i < 60; ++i) wall[i] = 2.0;  // 39 deg of an arc at 2 m: 1.3 m
+  EXPECT_TRUE(ForegroundObjects(Beams(wall), options).empty());
+}
+
+// Where the other scan left a moving object out (its beams read NaN), what lay behind the object
+// is unknown: a point there is not seen through, though the beams beside it passed.
+TEST(MovingObjects, WhatAMovingObjectHidIsUnknown) {
+  const MovingObjectOptions options;
+  std::vector<double> ranges(60, 10.0);
+  for (std::size_t i = 28; i < 33; ++i) ranges[i] = 3.0;  // an object at 3 m, 5 beams
+  const kernel::Scan scan = Beams(ranges);
+  const kernel::Scan clear = Beams(std::vector<double>(60, 10.0));
+  EXPECT_EQ(SeenThroughBeams(scan, Pose2(), clear, Pose2(), options).size(), 5u);
+  const kernel::Scan hid = WithoutBeams(clear, {27, 28, 29, 30, 31, 32, 33});
+  EXPECT_TRUE(SeenThroughBeams(scan, Pose2(), hid, Pose2(), options).empty());
+  EXPECT_TRUE(SeenThroughBeams(scan, Pose2(), scan, Pose2(), options).empty());  // still there
+}
+
 }  // namespace
 }  // namespace splam::estimation
