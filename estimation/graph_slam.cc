@@ -201,16 +201,17 @@ kernel::Scan GraphSlam::WithoutMovingObjects(const kernel::Scan& scan,
   const ScopedTimer timer(&times_.moving_ms);
   const kernel::Pose2 world_T_laser = pose_ * robot_T_laser;
   std::vector<std::size_t> moving;
+  const BeamRanges candidates = ForegroundObjects(scan, options_.moving);
   const std::size_t n = keyframes_.size();
   for (std::size_t i = n - std::min<std::size_t>(n, options_.moving_keyframes); i < n; ++i) {
     Keyframe& kf = keyframes_[i];
     if (kf.trimmed || kf.reading.size() == 0) continue;
     const kernel::Pose2 world_T_kf_laser = kf.pose * kf.robot_T_laser;
-    const std::vector<std::size_t> here =
-        SeenThroughBeams(scan, world_T_laser, kf.reading, world_T_kf_laser, options_.moving);
+    const std::vector<std::size_t> here = SeenThroughBeams(
+        scan, candidates, world_T_laser, kf.reading, world_T_kf_laser, options_.moving);
     moving.insert(moving.end(), here.begin(), here.end());
-    const std::vector<std::size_t> there =
-        SeenThroughBeams(kf.reading, world_T_kf_laser, scan, world_T_laser, options_.moving);
+    const std::vector<std::size_t> there = SeenThroughBeams(
+        kf.reading, kf.candidates, world_T_kf_laser, scan, world_T_laser, options_.moving);
     if (there.empty()) continue;
     kf.reading = WithoutBeams(kf.reading, there);
     FillKeyframe(ScanPoints(kf.reading, kf.robot_T_laser), &kf);
@@ -290,8 +291,11 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   for (NodeAnchor& node : nodes_)
     if (node.keyframe < 0) node = {k, kf.pose.Between(node.pose)};
   keyframes_.push_back(std::move(kf));
-  if (k >= options_.moving_keyframes)
-    keyframes_[static_cast<std::size_t>(k - options_.moving_keyframes)].reading = {};
+  if (k >= options_.moving_keyframes) {
+    Keyframe& old = keyframes_[static_cast<std::size_t>(k - options_.moving_keyframes)];
+    old.reading = {};
+    BeamRanges().swap(old.candidates);
+  }
   if (k > 0) {
     PoseGraphEdge edge;
     edge.from = k - 1;
@@ -320,6 +324,7 @@ void GraphSlam::FillKeyframe(std::vector<OrientedPoint> points, Keyframe* kf) {
   }
   kf->curves.clear();
   kf->raster.clear();
+  if (options_.moving.enabled) kf->candidates = ForegroundObjects(kf->reading, options_.moving);
   for (const auto& curve : kernel::ExtractCurves(kf->reading, options_.extraction)) {
     kf->curves.push_back(kernel::Transformed(curve, kf->robot_T_laser));
     if (!options_.raster_curves) continue;
@@ -399,6 +404,7 @@ void GraphSlam::TrimKeyframe(int j) {
   std::vector<OrientedPoint>().swap(kf.raster);
   std::vector<Eigen::Vector2d>().swap(kf.seen);
   kf.reading = {};
+  BeamRanges().swap(kf.candidates);
   kf.trimmed = true;
   ++trimmed_;
 }

@@ -289,6 +289,7 @@ class GraphSlam {
     // That scan, clipped, its moving objects read as NaN, and its mounting; kept while the
     // keyframe is among the last moving_keyframes (empty after).
     kernel::Scan reading;
+    BeamRanges candidates;  // the reading's (ForegroundObjects)
     kernel::Pose2 robot_T_laser;
     bool in_map = false;
     bool trimmed = false;  // points, raster and view dropped (trim_spacing_m)

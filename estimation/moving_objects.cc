@@ -78,9 +78,8 @@ int SeenThrough(const kernel::Scan& other, const Eigen::Vector2d& point,
 
 }  // namespace
 
-std::vector<std::pair<std::size_t, std::size_t>> ForegroundObjects(
-    const kernel::Scan& scan, const MovingObjectOptions& options) {
-  std::vector<std::pair<std::size_t, std::size_t>> objects;
+BeamRanges ForegroundObjects(const kernel::Scan& scan, const MovingObjectOptions& options) {
+  BeamRanges objects;
   std::size_t begin = 0;
   while (begin < scan.size()) {
     if (!scan.IsHit(begin)) {
@@ -105,9 +104,18 @@ std::vector<std::size_t> SeenThroughBeams(const kernel::Scan& scan,
                                           const kernel::Scan& other,
                                           const kernel::Pose2& world_T_other_laser,
                                           const MovingObjectOptions& options) {
+  return SeenThroughBeams(scan, ForegroundObjects(scan, options), world_T_laser, other,
+                          world_T_other_laser, options);
+}
+
+std::vector<std::size_t> SeenThroughBeams(const kernel::Scan& scan, const BeamRanges& candidates,
+                                          const kernel::Pose2& world_T_laser,
+                                          const kernel::Scan& other,
+                                          const kernel::Pose2& world_T_other_laser,
+                                          const MovingObjectOptions& options) {
   std::vector<std::size_t> beams;
   const kernel::Pose2 other_T_laser = world_T_other_laser.Inverse() * world_T_laser;
-  for (const auto& [begin, end] : ForegroundObjects(scan, options)) {
+  for (const auto& [begin, end] : candidates) {
     // An object narrower than the other scan's beam spacing may have fallen between its beams.
     const Eigen::Vector2d first = other_T_laser * HitPoint(scan, begin);
     const Eigen::Vector2d last = other_T_laser * HitPoint(scan, end - 1);

@@ -39,15 +39,22 @@ struct MovingObjectOptions {
   kernel::Status Validate() const;
 };
 
-// Beam index ranges [begin, end) of the candidates of `scan` (see MovingObjectOptions).
-std::vector<std::pair<std::size_t, std::size_t>> ForegroundObjects(
-    const kernel::Scan& scan, const MovingObjectOptions& options);
+// Beam index ranges [begin, end) of a scan's candidates, in beam order.
+using BeamRanges = std::vector<std::pair<std::size_t, std::size_t>>;
+// The candidates of `scan` (see MovingObjectOptions).
+BeamRanges ForegroundObjects(const kernel::Scan& scan, const MovingObjectOptions& options);
 
 // The beams of `scan` (taken from world_T_laser) in candidates that `other` (taken from
 // world_T_other_laser) saw through: the object was not there when `other` was taken. A candidate
 // that `other` sees under less than its beam spacing (hit by one beam: a chair's leg, a thin
 // column) is never moving: the other scan's beams may have passed either side of it.
 std::vector<std::size_t> SeenThroughBeams(const kernel::Scan& scan,
+                                          const kernel::Pose2& world_T_laser,
+                                          const kernel::Scan& other,
+                                          const kernel::Pose2& world_T_other_laser,
+                                          const MovingObjectOptions& options);
+// As above, with the candidates of `scan` already found (ForegroundObjects).
+std::vector<std::size_t> SeenThroughBeams(const kernel::Scan& scan, const BeamRanges& candidates,
                                           const kernel::Pose2& world_T_laser,
                                           const kernel::Scan& other,
                                           const kernel::Pose2& world_T_other_laser,
