@@ -158,10 +158,11 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
                      const kernel::Pose2* localised) {
   if (!health_.ok()) return;
   if (localised != nullptr) pose_ = *localised;
-  kernel::Scan scan = raw_scan.Clipped(UsableRange(raw_scan));
-  if (options_.moving.enabled) scan = WithoutMovingObjects(scan, robot_T_laser);
-  std::vector<OrientedPoint> points = ScanPoints(scan, robot_T_laser);
+  const kernel::Scan clipped = raw_scan.Clipped(UsableRange(raw_scan));
+  kernel::Scan scan = clipped;
+  std::vector<OrientedPoint> points = ScanPoints(clipped, robot_T_laser);
   registered_ = false;
+  const kernel::Pose2 predicted = pose_;
   if (localised == nullptr && !keyframes_.empty()) {
     if (submap_dirty_) RebuildSubmap();
     const long recovered_before = recovered_;
@@ -173,6 +174,19 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
       pose_ = r.pose;
     else
       ++fallbacks_;
+  }
+  if (options_.moving.enabled && (localised != nullptr || registered_)) {
+    // At the registered pose: at the prediction, a slip of the odometry puts the view beside
+    // static things in the keyframes' scans.
+    scan = WithoutMovingObjects(clipped, robot_T_laser);
+    points = ScanPoints(scan, robot_T_laser);
+    const auto hits = [](const kernel::Scan& s) { return s.HitIndices().size(); };
+    if (localised == nullptr && hits(scan) < hits(clipped)) {  // registered again without them
+      const kernel::Pose2 first = pose_;
+      pose_ = predicted;
+      const RegistrationResult again = RegisterScan(points);
+      pose_ = again.accepted ? again.pose : first;
+    }
   }
   since_update_ = kernel::Pose2();
   if (!std::isfinite(pose_.x() + pose_.y() + pose_.theta())) {

@@ -163,13 +163,15 @@ struct GraphSlamOptions {
   // sideways: along a wall seen to where the range ended, the points beyond must find nothing.
   bool mask_unseen = true;
   double seen_margin_m = 0.2;
-  // Moving objects (people walking, MovingObjectOptions): each scan is compared, at the predicted
-  // pose, with the scans of the last moving_keyframes keyframes. Its objects that one of them saw
-  // through are left out of its registration and of its keyframe; their objects that it sees
-  // through are taken out of those keyframes (and of the submap): a person walking ahead of the
-  // robot stands where no scan has yet seen free space, and is found only once a later scan sees
-  // the place empty. Kept in the keyframes, people walking along a corridor dragged the
-  // registration along its loose axis (docs/graph_slam.md, "Large simulated worlds").
+  // Moving objects (people walking, MovingObjectOptions): each registered scan is compared, at its
+  // registered pose, with the scans of the last moving_keyframes keyframes. When one of them saw
+  // through some of its objects, it is registered again from the prediction without them, and
+  // its keyframe leaves them out; their objects that it sees through are taken out of those
+  // keyframes (and of the submap): a person walking ahead of the robot stands where no scan has
+  // yet seen free space, and is found only once a later scan sees the place empty. Kept in the
+  // keyframes, people walking along a corridor dragged the registration along its loose axis
+  // (docs/graph_slam.md, "Large simulated worlds"). At the prediction instead, a slip of the
+  // odometry (0.2 rad in a turn) put its view beside static things, taken for moving ones.
   MovingObjectOptions moving;
   int moving_keyframes = 10;
   RegistrationOptions registration;
@@ -357,8 +359,9 @@ class GraphSlam {
   // The scan's points (robot frame, with normals).
   std::vector<OrientedPoint> ScanPoints(const kernel::Scan& scan,
                                         const kernel::Pose2& robot_T_laser) const;
-  // `scan` (clipped, at pose_) without the objects that the last moving_keyframes keyframes' scans
-  // saw through; takes out of those keyframes the objects that `scan` sees through.
+  // `scan` (clipped, at pose_, registered) without the objects that the last moving_keyframes
+  // keyframes' scans saw through; takes out of those keyframes the objects that `scan` sees
+  // through.
   kernel::Scan WithoutMovingObjects(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser);
   // Beams longer than this are not used: max_range_m, or the laser's range when it is 0.
   double UsableRange(const kernel::Scan& scan) const;
