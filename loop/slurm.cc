@@ -33,7 +33,36 @@ std::pair<int, std::string> Capture(const std::string& command) {
   return {status == -1 ? -1 : WEXITSTATUS(status), output};
 }
 
+// `text` with its control characters written as \n, \t or \xNN, for an error message.
+std::string Printable(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n')
+      out += "\\n";
+    else if (c == '\t')
+      out += "\\t";
+    else if (u < 0x20 || u == 0x7f)
+      out += fmt::format("\\x{:02x}", u);
+    else
+      out += c;
+  }
+  return out;
+}
+
 }  // namespace
+
+kernel::Status CheckScriptPath(const std::string& what, const std::string& path) {
+  for (const char c : path) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f || c == '"')
+      return kernel::Status::Error(fmt::format(
+          "{} '{}' holds a control character or a double quote, which a Slurm job script cannot "
+          "carry: choose another path",
+          what, Printable(path)));
+  }
+  return kernel::Status::Ok();
+}
 
 kernel::Status SlurmOptions::Validate() const {
   if (cpus_per_task < 1) return kernel::Status::Error("cpus_per_task must be at least 1");
@@ -49,12 +78,14 @@ std::string SlurmScript(const std::string& dir, const std::string& splam_binary,
   const int tasks = (cells + options.array_chunk - 1) / options.array_chunk;
   std::string script = "#!/bin/bash\n";
   script += "# A splam sweep as a Slurm job array, written by `splam sweep --slurm`.\n";
-  script += fmt::format("#SBATCH --job-name=splam-sweep-{}\n",
+  // sbatch splits an #SBATCH line at whitespace outside double quotes; the paths hold neither
+  // double quotes nor control characters (CheckScriptPath).
+  script += fmt::format("#SBATCH --job-name=\"splam-sweep-{}\"\n",
                         std::filesystem::path(dir).filename().string());
   script += fmt::format("#SBATCH --array=0-{}\n", tasks - 1);
   script += fmt::format("#SBATCH --cpus-per-task={}\n", options.cpus_per_task);
-  script += fmt::format("#SBATCH --output={}/slurm/task-%A_%a.out\n", dir);
-  script += fmt::format("#SBATCH --chdir={}\n", workdir);
+  script += fmt::format("#SBATCH --output=\"{}/slurm/task-%A_%a.out\"\n", dir);
+  script += fmt::format("#SBATCH --chdir=\"{}\"\n", workdir);
   if (!options.partition.empty()) script += "#SBATCH --partition=" + options.partition + "\n";
   if (!options.time.empty()) script += "#SBATCH --time=" + options.time + "\n";
   script += fmt::format(
@@ -77,6 +108,13 @@ kernel::Result<std::string> SubmitSweepToSlurm(const std::string& dir,
   if (kernel::Status s = options.Validate(); !s.ok()) return R::Fail(s.message());
   if (cells.empty()) return R::Fail("every cell has already run: nothing to submit");
   const std::string abs_dir = std::filesystem::absolute(dir).lexically_normal().string();
+  const std::string workdir = std::filesystem::current_path().string();
+  const std::string binary = std::filesystem::absolute(splam_binary).string();
+  if (kernel::Status s = kernel::FirstError(CheckScriptPath("the sweep directory", abs_dir),
+                                            CheckScriptPath("the working directory", workdir),
+                                            CheckScriptPath("the splam binary", binary));
+      !s.ok())
+    return R::Fail(s.message());
   std::error_code ec;
   std::filesystem::create_directories(abs_dir + "/slurm", ec);
   if (ec) return R::Fail("cannot create " + abs_dir + "/slurm: " + ec.message());
@@ -86,9 +124,8 @@ kernel::Result<std::string> SubmitSweepToSlurm(const std::string& dir,
     return R::Fail(error);
   const std::string script_path = abs_dir + "/sweep.sbatch";
   if (std::string error = io::WriteTextFile(
-          script_path, SlurmScript(abs_dir, std::filesystem::absolute(splam_binary).string(),
-                                   static_cast<int>(cells.size()),
-                                   std::filesystem::current_path().string(), options));
+          script_path,
+          SlurmScript(abs_dir, binary, static_cast<int>(cells.size()), workdir, options));
       !error.empty())
     return R::Fail(error);
   const auto [status, output] = Capture(options.sbatch + " --parsable " + ShellQuoted(script_path));

@@ -21,6 +21,11 @@ struct SlurmOptions {
   kernel::Status Validate() const;
 };
 
+// Whether `path` can go into a job script's #SBATCH lines: no control characters (a newline
+// would end the comment and run the rest as a command when the job starts) and no double quotes
+// (the lines quote the paths with them). The error names `what` and the path.
+kernel::Status CheckScriptPath(const std::string& what, const std::string& path);
+
 // The job script running `cells` cells of the sweep in `dir` (absolute paths) from `workdir`
 // (where relative paths in the grid start: the directory the sweep was submitted from).
 std::string SlurmScript(const std::string& dir, const std::string& splam_binary, int cells,
@@ -28,7 +33,8 @@ std::string SlurmScript(const std::string& dir, const std::string& splam_binary,
 
 // Writes <dir>/slurm-cells.txt (the cells to run, one index per line: array task i, cell j of its
 // chunk reads line i*K+j+1) and <dir>/sweep.sbatch, submits it with `sbatch --parsable` and
-// returns the job id. Errors carry sbatch's own message.
+// returns the job id. Errors carry sbatch's own message; a sweep directory, working directory or
+// binary path that fails CheckScriptPath is refused before anything is written.
 kernel::Result<std::string> SubmitSweepToSlurm(const std::string& dir,
                                                const std::string& splam_binary,
                                                const std::vector<int>& cells,

@@ -10,6 +10,7 @@
 #include "loop/corridor_experiment.h"
 #include "loop/exploration_experiment.h"
 #include "loop/run_html.h"
+#include "loop/slurm.h"
 #include "loop/splam_experiment.h"
 #include "loop/sweep_merge.h"
 
@@ -156,6 +157,33 @@ axes:
 
 // The experiments' grids are the ones shipped in experiments/: `splam sweep experiments/X.yaml`
 // runs the trials of `splam experiment X`.
+// A newline in the sweep directory (or the working directory, or the binary's path) would end an
+// #SBATCH comment and run the rest as a shell command when the job starts: such a path is
+// refused, naming it, before anything is written or submitted; every path an #SBATCH line
+// carries is in double quotes (spaces stay one argument).
+TEST(SlurmSweep, APathThatCouldEndAnSbatchLineIsRefusedBeforeAnythingIsWritten) {
+  const fs::path base = fs::temp_directory_path() / "splam_slurm_path_test";
+  fs::remove_all(base);
+  SlurmOptions options;
+  options.sbatch = "false";  // never reached
+  for (const std::string& bad :
+       std::vector<std::string>{"x\ntouch /tmp/pwned #", "x\ry", "a\"b", "t\x01"}) {
+    const std::string dir = (base / bad).string();
+    const kernel::Result<std::string> r = SubmitSweepToSlurm(dir, "/usr/bin/splam", {0}, options);
+    ASSERT_FALSE(r.ok()) << bad;
+    EXPECT_NE(r.error.find("the sweep directory"), std::string::npos) << r.error;
+    EXPECT_EQ(r.error.find('\n'), std::string::npos) << "the path is printed escaped: " << r.error;
+    EXPECT_FALSE(fs::exists(dir)) << bad;
+  }
+  const std::string script = SlurmScript("/data/my sweeps/a", "/opt/splam", 3, "/home/me", options);
+  EXPECT_NE(script.find("#SBATCH --output=\"/data/my sweeps/a/slurm/task-%A_%a.out\"\n"),
+            std::string::npos)
+      << script;
+  EXPECT_NE(script.find("#SBATCH --chdir=\"/home/me\"\n"), std::string::npos) << script;
+  EXPECT_TRUE(CheckScriptPath("a path", "/data/my sweeps/a").ok());
+  fs::remove_all(base);
+}
+
 TEST(SweepExperiments, TheShippedGridIsTheExperimentsGrid) {
   const io::Result<io::Grid> shipped = io::ReadGrid(SPLAM_SOURCE_DIR "/experiments/splam.yaml");
   ASSERT_TRUE(shipped.ok()) << shipped.error;
