@@ -64,8 +64,15 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
     hi = hi.cwiseMax(o.point);
   }
   g.origin_ = lo.array() - margin_m;
-  g.cols_ = static_cast<int>(std::ceil((hi.x() - lo.x() + 2 * margin_m) / resolution_m)) + 1;
-  g.rows_ = static_cast<int>(std::ceil((hi.y() - lo.y() + 2 * margin_m) / resolution_m)) + 1;
+  const Eigen::Vector2d extent = (hi - lo).array() + 2 * margin_m;
+  const double cols = std::ceil(extent.x() / resolution_m) + 1;
+  const double rows = std::ceil(extent.y() / resolution_m) + 1;
+  if (!(cols * rows <= kMaxCells)) {
+    g.extent_ = extent;
+    return g;
+  }
+  g.cols_ = static_cast<int>(cols);
+  g.rows_ = static_cast<int>(rows);
 
   // Occupied cells keep the mean of their points: on a curve sampled densely, a point on it.
   cv::Mat free_cells(g.rows_, g.cols_, CV_8U, cv::Scalar(255));

@@ -81,6 +81,13 @@ class DistanceGrid {
                             const std::vector<std::vector<Eigen::Vector2d>>& seen = {},
                             bool signed_field = false, double seen_margin_m = 0.0);
 
+  // A grid holds at most this many cells (about 1 GB while it is built): points spanning more,
+  // at the resolution asked, give an empty grid whose too_large() is true and whose extent()
+  // says how far they spread (an odometry jump of kilometres, a resolution of a micrometre).
+  static constexpr double kMaxCells = 1 << 24;
+  bool too_large() const { return extent_.x() > 0; }
+  const Eigen::Vector2d& extent() const { return extent_; }
+
   bool empty() const { return values_.empty(); }
   int rows() const { return rows_; }
   int cols() const { return cols_; }
@@ -126,6 +133,7 @@ class DistanceGrid {
   long CellIndex(const Eigen::Vector2d& p) const;
 
   int rows_ = 0, cols_ = 0;
+  Eigen::Vector2d extent_ = Eigen::Vector2d::Zero();  // of a grid too large to build, m
   double resolution_m_ = 0.05, truncation_m_ = 1.0;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   std::vector<double> values_;

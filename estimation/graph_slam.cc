@@ -1,6 +1,8 @@
 #include "estimation/graph_slam.h"
 
+#include <fmt/core.h>
 #include <Eigen/LU>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -165,6 +167,7 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
   const kernel::Pose2 predicted = pose_;
   if (localised == nullptr && !keyframes_.empty()) {
     if (submap_dirty_) RebuildSubmap();
+    if (!health_.ok()) return;
     const long recovered_before = recovered_;
     const RegistrationResult r = RegisterScan(points);
     ++registrations_;
@@ -460,6 +463,12 @@ void GraphSlam::RebuildSubmap() {
       options_.signed_distance, options_.seen_margin_m);
   submap_scores_.reset();
   submap_dirty_ = false;
+  if (submap_.too_large())
+    health_ = kernel::Status::Error(fmt::format(
+        "the submap's keyframes spread over {:.0f} m x {:.0f} m, more than a distance grid of {} "
+        "cells holds at {} m (an odometry jump of that size?)",
+        submap_.extent().x(), submap_.extent().y(), DistanceGrid::kMaxCells,
+        options_.grid_resolution_m));
 }
 
 namespace {
@@ -687,6 +696,7 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double w
                                  k - options_.loop.min_gap_keyframes)
                  : TargetKeyframes(candidate, k - options_.loop.min_gap_keyframes));
   const DistanceGrid& target = *loop_target.grid;
+  if (target.too_large()) return refuse(LoopSearch::Outcome::kScore, &loops_.rejected_score);
   const LikelihoodPyramid& pyramid = *loop_target.pyramid;
   const CorrelativeMatch match = SearchCorrelative(
       Positions(query), pyramid, kf.pose, window_m, window_rad,
@@ -836,7 +846,7 @@ void LoopClosureOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("query_keyframes", &query_keyframes, "query: the new keyframe and this many before it");
   v.Field("target_keyframes", &target_keyframes,
           "target: the candidate and this many keyframes either side");
-  v.Field("resolution_m", &resolution_m, "loop search grid cell size, m");
+  v.Field("resolution_m", &resolution_m, "loop search grid cell size, in [0.01, 1] m");
   v.Field("sigma_m", &sigma_m, "correlative likelihood sigma, m");
   v.Field("levels", &levels, "correlative search resolution levels");
   v.Field("min_score", &min_score, "closure test: correlative score at least");
@@ -872,11 +882,13 @@ kernel::Status LoopClosureOptions::Validate() const {
       !(near_window_m > 0) || !(max_window_m >= near_window_m) || !(window_rad >= 0) ||
       !(window_rad_per_m >= 0) || !(max_window_rad >= window_rad) || !(reach_m > 0) ||
       !(candidate_sigmas > 0) || !(wide_window_ratio >= 1) || !(stride_window_m > 0) ||
-      !(sigma_m > 0) || !(resolution_m > 0) || !(max_window_m <= 1000) ||
-      !(max_window_rad <= kernel::kPi))
+      !(sigma_m > 0) || !(max_window_m <= 1000) || !(max_window_rad <= kernel::kPi))
     return kernel::Status::Error(
         "loop radii, windows and sigma must be positive and ordered, max_window_m at most 1000, "
         "max_window_rad at most pi");
+  // Cells finer than a centimetre resolve nothing a laser measures and make the grid huge.
+  if (!(resolution_m >= 0.01 && resolution_m <= 1))
+    return kernel::Status::Error("loop resolution_m must be in [0.01, 1] m");
   if (!(tell_apart_alpha >= 0 && tell_apart_alpha <= 1))
     return kernel::Status::Error("tell_apart_alpha must be in [0, 1]");
   if (!(min_score > 0 && min_score <= 1) || !(min_overlap > 0 && min_overlap <= 1) ||
@@ -894,8 +906,8 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("keyframe_distance_m", &keyframe_distance_m, "a keyframe every this much travel, m");
   v.Field("keyframe_angle_rad", &keyframe_angle_rad, "or this much turn, rad");
   v.Field("submap_keyframes", &submap_keyframes, "keyframes in the registration submap");
-  v.Field("grid_resolution_m", &grid_resolution_m, "distance field cell size, m");
-  v.Field("truncation_m", &truncation_m, "distance field truncation, m");
+  v.Field("grid_resolution_m", &grid_resolution_m, "distance field cell size, in [0.01, 1] m");
+  v.Field("truncation_m", &truncation_m, "distance field truncation, at most 10 m");
   v.Field("raster_curves", &raster_curves, "rasterise the curves' samples");
   v.Field("signed_distance", &signed_distance, "signed distance (needs smooth outlines)");
   v.Field("raster_points", &raster_points, "rasterise the scan points");
@@ -949,9 +961,11 @@ kernel::Status GraphSlamOptions::Validate() const {
     return kernel::Status::Error("seen_margin_m >= 0, normal_max_gap_m > 0, line_tolerance_m >= 0");
   if (moving_keyframes < 0 || moving_keyframes > 1000)
     return kernel::Status::Error("moving_keyframes in [0, 1000]");
-  if (submap_keyframes < 1 || !(grid_resolution_m > 0) || !(truncation_m > grid_resolution_m))
+  if (submap_keyframes < 1 || !(grid_resolution_m >= 0.01 && grid_resolution_m <= 1) ||
+      !(truncation_m > grid_resolution_m && truncation_m <= 10))
     return kernel::Status::Error(
-        "submap_keyframes >= 1, grid_resolution_m > 0, truncation_m > grid_resolution_m");
+        "submap_keyframes >= 1, grid_resolution_m in [0.01, 1] m, truncation_m above it and at "
+        "most 10 m");
   if (!(odometry_outlier_probability > 0 && odometry_outlier_probability < 1))
     return kernel::Status::Error("odometry_outlier_probability must be in (0, 1)");
   if (!(recovery_window_m >= 0) || !(recovery_window_rad >= 0) || !(recovery_step_rad > 0))

@@ -199,6 +199,8 @@ class YamlReader : public kernel::FieldVisitor {
   void CheckUnknown() {
     if (allow_unknown_ || !status_->ok()) return;
     for (const auto& entry : map_) {
+      if (!entry.first.IsScalar())
+        return Fail(entry.first, "[...]", "a key must be a plain word, not a list or a map");
       const std::string key = entry.first.as<std::string>();
       if (!seen_.contains(key)) return Fail(entry.first, key, "unknown key");
     }

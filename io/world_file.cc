@@ -56,6 +56,8 @@ void ParseObstacle(const YAML::Node& entry, const std::string& base, sim::World*
          "each obstacle is a map with one key: polyline, polygon, circle, ellipse, spline, "
          "closed_spline or floor_plan");
   }
+  if (!entry.begin()->first.IsScalar())
+    Fail(entry.begin()->first, "an obstacle's key must be a plain word, not a list or a map");
   const std::string kind = entry.begin()->first.as<std::string>();
   const YAML::Node value = entry.begin()->second;
   if (kind == "polyline" || kind == "polygon") {

@@ -846,5 +846,57 @@ TEST(GraphSlam, AQuerySlidAlongACorridorContradictsWhatTheTargetSawFree) {
             << least_slid << " slid 0.8-1.5 m along the corridor\n";
 }
 
+// Points 500 km apart (an odometry jump in a log) at 0.1 m cells would take 2.5e13 cells: the
+// grid is not built, says so, and says how far the points spread.
+TEST(DistanceGrid, PointsKilometresApartGiveAnEmptyGridThatSaysSo) {
+  const DistanceGrid far =
+      DistanceGrid::Build(std::vector<Eigen::Vector2d>{{0, 0}, {500000, 3}}, 0.1, 0.5, 0.5);
+  EXPECT_TRUE(far.too_large());
+  EXPECT_TRUE(far.empty());
+  EXPECT_NEAR(far.extent().x(), 500001.0, 1e-6);
+  EXPECT_FALSE(far.Known({0, 0}));
+  const DistanceGrid near = DistanceGrid::Build(std::vector<Eigen::Vector2d>{{0, 0}, {300, 3}}, 0.1,
+                                                0.5, 0.5);  // 3e4 x 40 cells: built
+  EXPECT_FALSE(near.too_large());
+  EXPECT_FALSE(near.empty());
+}
+
+// The same jump in the odometry: the graph SLAM stops with an error naming the spread, instead of
+// allocating a grid over both places (bad_alloc after 7 GB before).
+TEST(GraphSlam, AnOdometryJumpOfKilometresStopsWithAnErrorNotAnAllocation) {
+  const sim::World world = *sim::BuiltinWorld("complex");
+  const sim::RayCaster caster(world);
+  const sim::LaserOptions laser;
+  kernel::Random random(5);
+  GraphSlam slam(*world.start, {});
+  const auto sense = [&] {
+    slam.Update(sim::SimulateLaser(caster, laser, *world.start * laser.robot_T_laser, 0.0, &random),
+                laser.robot_T_laser);
+  };
+  sense();
+  slam.Predict(Pose2(500000.0, 0.0, 0.0));
+  for (int i = 0; i < 3 && slam.health().ok(); ++i) sense();
+  ASSERT_FALSE(slam.health().ok());
+  EXPECT_NE(slam.health().message().find("spread over 500"), std::string::npos)
+      << slam.health().message();
+}
+
+// Cells finer than a centimetre or a truncation beyond 10 m are refused by Validate (a 1e-6 m
+// cell asked OpenCV for 40 TB; a 1e6 m truncation for 400 TB).
+TEST(GraphSlamOptions, GridCellsAndTruncationHaveABoundedDomain) {
+  EXPECT_TRUE(GraphSlamOptions{}.Validate().ok());
+  for (const double resolution : {1e-6, 0.005, 2.0}) {
+    GraphSlamOptions o;
+    o.grid_resolution_m = resolution;
+    EXPECT_FALSE(o.Validate().ok()) << resolution;
+    o = {};
+    o.loop.resolution_m = resolution;
+    EXPECT_FALSE(o.Validate().ok()) << resolution;
+  }
+  GraphSlamOptions o;
+  o.truncation_m = 1e6;
+  EXPECT_FALSE(o.Validate().ok());
+}
+
 }  // namespace
 }  // namespace splam::estimation

@@ -100,6 +100,11 @@ TEST(Config, BadInputNamesFileLineAndKey) {
   EXPECT_EQ(Problem("method: a\nslam:\n  corection_gain: 0.5\n"),
             "bad.yaml:3: slam.corection_gain: unknown key");
   EXPECT_EQ(Problem("unknown: 1\n"), "bad.yaml:1: unknown: unknown key");
+  // A list as a key (YAML's `? [a, b]`), at the top or nested: yaml-cpp's bad conversion aborted.
+  EXPECT_EQ(Problem("? [a, b]\n: 1\n"),
+            "bad.yaml:1: [...]: a key must be a plain word, not a list or a map");
+  EXPECT_EQ(Problem("slam:\n  ? {a: 1}\n  : 1\n"),
+            "bad.yaml:2: slam.[...]: a key must be a plain word, not a list or a map");
   EXPECT_EQ(Problem("slam:\n  correction_gain: fast\n"),
             "bad.yaml:2: slam.correction_gain: 'fast' is not a number");
   EXPECT_EQ(Problem("slam:\n  correction_gain: .nan\n"),

@@ -112,7 +112,9 @@ INSTANTIATE_TEST_SUITE_P(
                  "  - {path: [[0, 1], [1, 1]], legs: 2}\n",
                  "bad.yaml:4: a person has path, speed, radius and offset, not 'legs'"},
         BadWorld{"obstacles:\n  - polyline: [[0, 0], [1, 0]]\npeople: 3\n",
-                 "bad.yaml:3: people must be a list of persons"}));
+                 "bad.yaml:3: people must be a list of persons"},
+        BadWorld{"obstacles:\n  - ? [a, b]\n    : 1\n",
+                 "bad.yaml:2: an obstacle's key must be a plain word, not a list or a map"}));
 
 TEST(WorldFile, FloorPlanEntryIsRelativeToTheFile) {
   const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "world_file_test";
