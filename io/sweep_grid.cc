@@ -31,6 +31,12 @@ std::string Scalar(const YAML::Node& node, const std::string& what) {
   return node.Scalar();
 }
 
+// A map's key: a plain word (YAML allows lists and maps as keys; their Scalar() is empty).
+std::string Key(const YAML::Node& key) {
+  if (!key.IsScalar()) Fail(key, "a key must be a plain word, not a list or a map");
+  return key.Scalar();
+}
+
 // The option `key` (`set.KEY` for a --set value) with the scalar `value`.
 GridOption OptionOf(const std::string& key, const YAML::Node& value) {
   GridOption option;
@@ -61,7 +67,7 @@ std::vector<GridValue> RangeValues(const std::string& axis, const YAML::Node& no
     return *v;
   };
   for (const auto& entry : node) {
-    const std::string key = entry.first.Scalar();
+    const std::string key = Key(entry.first);
     if (key != "from" && key != "to" && key != "step")
       Fail(entry.first, axis + ": a range has from, to and step, not '" + key + "'");
   }
@@ -96,7 +102,7 @@ GridAxis AxisOf(const std::string& name, const YAML::Node& node) {
         if (!v["name"]) Fail(v, name + ": a value that sets several options needs a 'name'");
         value.label = Scalar(v["name"], name + ".name");
         for (const auto& entry : v) {
-          const std::string key = entry.first.Scalar();
+          const std::string key = Key(entry.first);
           if (key != "name") value.options.push_back(OptionOf(key, entry.second));
         }
       } else {
@@ -118,7 +124,7 @@ Grid GridOf(const YAML::Node& root) {
   if (!root.IsMap()) Fail(root, "a grid is a map with command, options, set and axes");
   Grid grid;
   for (const auto& entry : root) {
-    const std::string key = entry.first.Scalar();
+    const std::string key = Key(entry.first);
     const YAML::Node& v = entry.second;
     if (key == "command") {
       std::istringstream words(Scalar(v, "command"));
@@ -127,12 +133,12 @@ Grid GridOf(const YAML::Node& root) {
       if (!v.IsMap() && !v.IsNull()) Fail(v, key + " is a map of option names to values");
       for (const auto& option : v)
         grid.options.push_back(
-            OptionOf((key == "set" ? kSetPrefix : "") + option.first.Scalar(), option.second));
+            OptionOf((key == "set" ? kSetPrefix : "") + Key(option.first), option.second));
     } else if (key == "axes") {
       if (!v.IsMap()) Fail(v, "axes is a map of axis names to values");
       std::set<std::string> names;
       for (const auto& axis : v) {
-        const std::string name = axis.first.Scalar();
+        const std::string name = Key(axis.first);
         if (!names.insert(name).second) Fail(axis.first, "the axis '" + name + "' is given twice");
         grid.axes.push_back(AxisOf(name, axis.second));
       }

@@ -83,6 +83,13 @@ TEST(SweepGrid, ProblemsNameTheFileAndLine) {
   EXPECT_EQ(error("command: slam\nbogus: 1\n"),
             "g.yaml:2: unknown key 'bogus' (a grid has command, options, set, axes, replicate, "
             "figures)");
+  // Lists as keys (YAML's `?`) read as empty names before, and the grid ran.
+  EXPECT_EQ(error("command: slam\n? [a, b]\n: 1\n"),
+            "g.yaml:2: a key must be a plain word, not a list or a map");
+  EXPECT_EQ(error("command: slam\naxes:\n  ? [a]\n  : [1]\n"),
+            "g.yaml:3: a key must be a plain word, not a list or a map");
+  EXPECT_EQ(error("command: slam\noptions:\n  ? [a]\n  : 1\naxes:\n  seed: [1]\n"),
+            "g.yaml:3: a key must be a plain word, not a list or a map");
   EXPECT_EQ(error("command: slam\naxes:\n  seed: []\n"), "g.yaml:3: seed: an axis without values");
   EXPECT_EQ(error("command: slam\naxes:\n  seed: {from: 1, to: 1e9}\n"),
             "g.yaml:3: seed: a range of more than 100000 values");
