@@ -2,7 +2,23 @@
 // per job; `splam <command> --help` documents each.
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <system_error>
+
 #include "apps/commands.h"
+
+namespace {
+
+// Standard output or error that cannot be written (a full disk) is a failed write like any
+// file's: said on standard error (if it can be), exit status 4 (kExitWriteFailed).
+int StreamFailed(const char* why) {
+  std::fprintf(stderr, "splam: writing to standard output or error failed: %s\n", why);
+  return splam::apps::kExitWriteFailed;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"splam: B-spline SLAM and exploration for 2-D laser robots"};
@@ -17,11 +33,17 @@ int main(int argc, char** argv) {
   splam::apps::AddConfigCommand(&app, &exit_code);
   splam::apps::AddConvertCommand(&app, &exit_code);
   splam::apps::AddSweepCommand(&app, &exit_code);
+  int status = exit_code;
   try {
     app.parse(argc, argv);
+    status = exit_code;
   } catch (const CLI::ParseError& e) {
-    const int status = app.exit(e);
-    return status == 0 ? 0 : splam::apps::kExitBadInput;
+    status = app.exit(e) == 0 ? 0 : splam::apps::kExitBadInput;
+  } catch (const std::system_error& e) {  // fmt::print to a stream that refused the bytes
+    return StreamFailed(e.code().message().c_str());
   }
-  return exit_code;
+  errno = 0;
+  if (std::fflush(stdout) != 0 || std::ferror(stdout))
+    return status != 0 ? status : StreamFailed(errno != 0 ? std::strerror(errno) : "stream error");
+  return status;
 }

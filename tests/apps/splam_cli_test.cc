@@ -493,6 +493,32 @@ TEST(SplamCli, AFullDiskGivesExitStatus4NamingTheFile) {
   EXPECT_NE(evaluated.text.find("eval.json: write failed"), std::string::npos) << evaluated.text;
 }
 
+// Issue 48, item 6: standard output on a full disk (`config print > /dev/full`) aborted with
+// std::system_error; `--help` and `slam` lost their output and exited 0. Now exit 4, said on
+// standard error.
+TEST(SplamCli, AFullStandardOutputGivesExitStatus4) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full on this machine";
+  const fs::path dir = Temp("full_stdout");
+  ASSERT_EQ(Splam("simulate --world corridor --out " + (dir / "sim").string()).status, 0);
+  for (const std::string& args : {std::string("config print --method graph"), std::string("--help"),
+                                  "slam --method graph " + (dir / "sim" / "log.clf").string() +
+                                      " --out " + (dir / "slam").string()}) {
+    // Standard error to the pipe, standard output to /dev/full.
+    FILE* pipe = popen((std::string(SPLAM_BINARY) + " " + args + " 2>&1 >/dev/full").c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string text;
+    std::array<char, 4096> buffer;
+    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
+      text.append(buffer.data(), n);
+    const int status = pclose(pipe);
+    ASSERT_TRUE(WIFEXITED(status)) << args << ": ended by a signal";
+    EXPECT_EQ(WEXITSTATUS(status), 4) << args << "\n" << text;
+    EXPECT_NE(text.find("writing to standard output or error failed"), std::string::npos)
+        << args << "\n"
+        << text;
+  }
+}
+
 // Issue 48, items 2 and 7: time stamps that go backwards gave "-12 s of data, -250x real time".
 // The second half of a log stamped so that its last scan is 12 s before its first: the span is
 // the latest stamp minus the earliest, and the backward step is counted in summary.json.
