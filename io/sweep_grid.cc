@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <iomanip>
 #include <set>
 #include <sstream>
 
@@ -13,6 +14,7 @@ namespace splam::io {
 namespace {
 
 constexpr int kMaxRangeValues = 100000;
+constexpr int kMaxCells = 1000000;
 constexpr char kSetPrefix[] = "set.";
 
 int LineOf(const YAML::Node& node) { return node.Mark().line + 1; }
@@ -153,6 +155,19 @@ Grid GridOf(const YAML::Node& root) {
     }
   }
   if (grid.command.empty()) Fail(root, "a grid needs a command (slam, explore, experiment NAME)");
+  // A cell runs one splam command that writes figures; `sweep` would start sweeps of itself.
+  static const std::set<std::string> kCommands = {"slam", "explore", "simulate", "experiment"};
+  if (!kCommands.contains(grid.command.front()))
+    Fail(root["command"], "a cell runs slam, explore, simulate or experiment NAME, not '" +
+                              grid.command.front() + "'");
+  double cells = 1;
+  for (const GridAxis& a : grid.axes) cells *= static_cast<double>(a.values.size());
+  if (cells > kMaxCells) {
+    std::ostringstream message;
+    message << "the axes make " << std::fixed << std::setprecision(0) << cells
+            << " cells, more than " << kMaxCells << " (split the grid)";
+    Fail(root["axes"], message.str());
+  }
   if (!grid.replicate.empty()) {
     bool found = false;
     for (const GridAxis& a : grid.axes) found = found || a.name == grid.replicate;

@@ -59,7 +59,8 @@ struct Grid {
 // Reads a grid file. Errors start with "path:line: " and name the key: an unknown top-level key,
 // a missing or empty command, an axis without values, a range that is not finite or has more
 // than 100000 values, a bundle without a name, two axes of one name, an option value that is a
-// list or a map, a replicate that is no axis.
+// list or a map, a replicate that is no axis, a key that is a list or a map, a command other than
+// slam, explore, simulate or experiment, axes that make more than 10^6 cells.
 Result<Grid> ReadGrid(const std::string& path);
 Result<Grid> ParseGrid(const std::string& text, const std::string& path);
 

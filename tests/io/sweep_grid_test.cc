@@ -83,6 +83,12 @@ TEST(SweepGrid, ProblemsNameTheFileAndLine) {
   EXPECT_EQ(error("command: slam\nbogus: 1\n"),
             "g.yaml:2: unknown key 'bogus' (a grid has command, options, set, axes, replicate, "
             "figures)");
+  // A grid of 10^9 cells was built in memory; `command: sweep` started a sweep in every cell.
+  EXPECT_EQ(error("command: slam\naxes:\n  a: {from: 1, to: 1000}\n  b: {from: 1, to: 1000}\n"
+                  "  c: {from: 1, to: 1000}\n"),
+            "g.yaml:3: the axes make 1000000000 cells, more than 1000000 (split the grid)");
+  EXPECT_EQ(error("command: sweep g.yaml\naxes:\n  seed: [1]\n"),
+            "g.yaml:1: a cell runs slam, explore, simulate or experiment NAME, not 'sweep'");
   // Lists as keys (YAML's `?`) read as empty names before, and the grid ran.
   EXPECT_EQ(error("command: slam\n? [a, b]\n: 1\n"),
             "g.yaml:2: a key must be a plain word, not a list or a map");
