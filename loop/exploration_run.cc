@@ -1,5 +1,7 @@
 #include "loop/exploration_run.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -13,6 +15,9 @@ namespace splam::loop {
 namespace {
 
 constexpr double kCoverageCell = 0.1;  // m
+// A larger world gets coarser coverage cells (its grid would take 1.6e13 cells of 0.1 m over 400
+// km): 2^22 cells, 4 MB a mask and a flood of that many clearance queries (seconds).
+constexpr double kMaxCoverageCells = 1 << 22;
 
 std::shared_ptr<exploration::Localization> MakeLocalization(const ExploreSetup& setup) {
   const std::string& name = setup.localization;
@@ -29,12 +34,14 @@ std::shared_ptr<exploration::Localization> MakeLocalization(const ExploreSetup& 
 // The free space reachable from the world's start (ExploreOutcome::reachable_area_m2), on a grid
 // over the obstacles' bounds and 0.5 m beyond.
 exploration::CoverageGrid ReachableSpace(const sim::World& world, const sim::RayCaster& caster) {
-  const double half_diagonal = kCoverageCell * std::sqrt(0.5);
   kernel::Box2 bounds = world.Bounds();
   bounds.min -= Eigen::Vector2d::Constant(0.5);
   bounds.max += Eigen::Vector2d::Constant(0.5);
+  const double cell =
+      std::max(kCoverageCell, std::sqrt(bounds.Size().x() * bounds.Size().y() / kMaxCoverageCells));
+  const double half_diagonal = cell * std::sqrt(0.5);
   return exploration::CoverageGrid(
-      bounds, kCoverageCell, world.start->translation(), [&](const Eigen::Vector2d& c) {
+      bounds, cell, world.start->translation(), [&](const Eigen::Vector2d& c) {
         return !caster.IsInsideObstacle(c) && caster.Nearest(c, half_diagonal).obstacle < 0;
       });
 }
@@ -43,7 +50,7 @@ exploration::CoverageGrid ReachableSpace(const sim::World& world, const sim::Ray
 // space reachable from the start.
 void EvaluateCoverage(exploration::CoverageGrid grid, const exploration::RobotDescription& robot,
                       double lsr_radius_m, ExploreOutcome* outcome) {
-  outcome->reachable_area_m2 = grid.reachable_cells() * kCoverageCell * kCoverageCell;
+  outcome->reachable_area_m2 = grid.reachable_cells() * grid.cell_m() * grid.cell_m();
   for (const exploration::NodeRecord& node : outcome->run.nodes) {
     grid.Cover(
         exploration::SafeRegionAt(node.safe_region_scan, node.true_pose, robot, lsr_radius_m));
@@ -139,6 +146,12 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
   if (reachable.reachable_cells() == 0) {
     outcome.error = "the start pose of '" + world.name +
                     "' lies outside the world (beyond its obstacles' bounds) or in no free space";
+    if (reachable.cell_m() > kCoverageCell)
+      outcome.error += fmt::format(
+          " of the coverage grid, whose cells are {:.3g} m in a world of {:.0f} m x {:.0f} m (at "
+          "most {:.0f} cells)",
+          reachable.cell_m(), world.Bounds().Size().x(), world.Bounds().Size().y(),
+          kMaxCoverageCells);
     return outcome;
   }
   if (reachable.reaches_border()) {

@@ -349,7 +349,14 @@ TEST(SplamCli, WorldsThatCannotBeRunAreRefusedAndAFloorPlanTakesAStart) {
            write("away.yaml",
                  "start: [100, 100, 0]\nobstacles:\n  - polyline: [[0, 0], [10, 0], [10, 8], [0, "
                  "8], [0, 0]]\n"),
-       "lies outside the world"}};
+       "lies outside the world"},
+      // Issue 48, item 2: a 200 km world's coverage grid of 0.1 m cells (4e12) was allocated;
+      // it now has at most 2^22 cells, and says so when the start is lost in one.
+      {"explore --localization ground-truth --world " +
+           write("huge.yaml",
+                 "start: [10, 10, 0]\nobstacles:\n  - polyline: [[0, 0], [200000, 0], [200000, "
+                 "200000], [0, 200000], [0, 0]]\n  - circle: {center: [14, 10], radius: 1}\n"),
+       "whose cells are 97.7 m in a world of 200000 m x 200000 m"}};
   for (const auto& [args, message] : refused) {
     const Output r = Splam(args + " --out " + (dir / "out").string());
     EXPECT_EQ(r.status, 2) << args;
