@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "loop/exit_status.h"
+#include "loop/json_text.h"
 #include "loop/sweep.h"
 
 namespace splam::loop {
@@ -41,7 +42,7 @@ int RunExperimentTrials(const std::string& dir, const io::Grid& grid,
 std::optional<nlohmann::json> TrialReport(const std::string& cell_dir) {
   const std::optional<CellRecord> record = ReadCellRecord(cell_dir);
   std::ifstream in(cell_dir + "/report.json");
-  nlohmann::json report = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  nlohmann::json report = ReadJson(in);
   if (!record || !record->ok() || report.is_discarded()) {
     fmt::print(stderr, "splam experiment: the trial in {} failed: {}\n", cell_dir,
                record ? record->message : "it has no result");

@@ -11,6 +11,7 @@
 #include "io/html.h"
 #include "io/trajectory.h"
 #include "kernel/version.h"
+#include "loop/json_text.h"
 
 namespace splam::loop {
 namespace {
@@ -35,7 +36,7 @@ std::map<std::string, double> RunFigures(const std::string& run_dir) {
   for (const char* name : {"report.json", "summary.json"}) {
     std::ifstream in(run_dir + "/" + name);
     if (!in) continue;
-    const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+    const nlohmann::json j = ReadJson(in);
     if (j.is_discarded()) continue;
     Flatten(j, "", &figures);
     break;

@@ -277,14 +277,23 @@ kernel::Result<SweepPlan> ReadSweepPlan(const std::string& dir) {
 std::optional<CellRecord> ReadCellRecord(const std::string& cell_dir) {
   std::ifstream in(cell_dir + "/cell.json");
   if (!in) return std::nullopt;
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (!j.is_object() || !j.contains("exit_status") || !j["exit_status"].is_number_integer())
+  // A record of other types than splam writes (a hand-edited or damaged file) is no record: the
+  // cell runs again. `message` a number or `wall_s` a string aborted status, resume and merge.
+  const nlohmann::json j = ReadJson(in);
+  const auto is = [&](const char* key, bool (nlohmann::json::*type)() const noexcept) {
+    return j.contains(key) && (j[key].*type)();
+  };
+  if (!j.is_object() || !is("exit_status", &nlohmann::json::is_number_integer) ||
+      !is("wall_s", &nlohmann::json::is_number) || !is("message", &nlohmann::json::is_string) ||
+      !is("host", &nlohmann::json::is_string))
     return std::nullopt;
+  const auto status = j["exit_status"].get<long long>();
+  if (status < 0 || status > 255) return std::nullopt;
   CellRecord r;
-  r.exit_status = j["exit_status"];
-  r.wall_s = j.value("wall_s", 0.0);
-  r.message = j.value("message", "");
-  r.host = j.value("host", "");
+  r.exit_status = static_cast<int>(status);
+  r.wall_s = j["wall_s"].get<double>();
+  r.message = j["message"].get<std::string>();
+  r.host = j["host"].get<std::string>();
   return r;
 }
 

@@ -51,6 +51,8 @@ struct CellRecord {
   // are results; anything else is a failure.
   bool ok() const { return exit_status == 0 || exit_status == 3; }
 };
+// A record whose fields are missing or of other types than splam writes (a number as the
+// message, a string as the wall time), or whose exit status is not in [0, 255], is none.
 std::optional<CellRecord> ReadCellRecord(const std::string& cell_dir);
 
 // The indices of the plan's cells that have no successful cell.json in `dir`: what a run (local

@@ -4,11 +4,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "io/trajectory.h"
 #include "loop/bspline_experiment.h"
 #include "loop/corridor_experiment.h"
 #include "loop/exploration_experiment.h"
+#include "loop/json_text.h"
 #include "loop/run_html.h"
 #include "loop/slurm.h"
 #include "loop/splam_experiment.h"
@@ -157,6 +159,41 @@ axes:
 
 // The experiments' grids are the ones shipped in experiments/: `splam sweep experiments/X.yaml`
 // runs the trials of `splam experiment X`.
+// Issue 48, item 4: sweep state is read with a schema. A cell.json whose message is a number or
+// wall time a string aborted `sweep status`, resume and merge; such a record is now none (the cell
+// runs again). A summary.json nested 10^6 deep segfaulted `merge`; values deeper than
+// kMaxJsonDepth are now left out.
+TEST(SweepState, RecordsOfOtherTypesAreNoneAndDeepDocumentsAreCut) {
+  const fs::path dir = fs::temp_directory_path() / "splam_sweep_state_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto record = [&](const std::string& text) {
+    std::ofstream(dir / "cell.json") << text;
+    return ReadCellRecord(dir.string());
+  };
+  const std::optional<CellRecord> good =
+      record(R"({"exit_status": 3, "wall_s": 1.5, "message": "stopped", "host": "h"})");
+  ASSERT_TRUE(good.has_value());
+  EXPECT_EQ(good->exit_status, 3);
+  EXPECT_EQ(good->message, "stopped");
+  for (const std::string bad :
+       {R"({"exit_status": 0, "wall_s": 1.5, "message": 7, "host": "h"})",
+        R"({"exit_status": 0, "wall_s": "slow", "message": "", "host": "h"})",
+        R"({"exit_status": 0, "wall_s": 1, "message": ""})",
+        R"({"exit_status": 1e300, "wall_s": 1, "message": "", "host": ""})",
+        R"({"exit_status": -4, "wall_s": 1, "message": "", "host": ""})", R"([1, 2])", "{"})
+    EXPECT_FALSE(record(bad).has_value()) << bad;
+  std::string deep = std::string(1000000, '[') + std::string(1000000, ']');
+  std::istringstream in("{\"a\": 1, \"b\": " + deep + "}");
+  const nlohmann::json j = ReadJson(in);
+  ASSERT_TRUE(j.is_object());
+  EXPECT_EQ(j["a"], 1);
+  int depth = 0;
+  for (const nlohmann::json* v = &j["b"]; v->is_array() && !v->empty(); v = &(*v)[0]) ++depth;
+  EXPECT_LE(depth, kMaxJsonDepth);
+  fs::remove_all(dir);
+}
+
 // A newline in the sweep directory (or the working directory, or the binary's path) would end an
 // #SBATCH comment and run the rest as a shell command when the job starts: such a path is
 // refused, naming it, before anything is written or submitted; every path an #SBATCH line
