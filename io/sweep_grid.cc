@@ -28,14 +28,25 @@ struct GridError {
   throw GridError{LineOf(at), message};
 }
 
+// A value becomes one argument of a cell's command line and one field of cells.tsv: a tab or a
+// line break in it would read back as more (a `log:` value "small.clf\t--method\tgraph" ran
+// graph).
+void CheckPlain(const YAML::Node& node, const std::string& what, const std::string& text) {
+  for (const char c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      Fail(node, what + " must not hold a tab, a line break or another control character");
+}
+
 std::string Scalar(const YAML::Node& node, const std::string& what) {
   if (!node.IsScalar()) Fail(node, what + " must be a single value, not a list or a map");
+  CheckPlain(node, what, node.Scalar());
   return node.Scalar();
 }
 
 // A map's key: a plain word (YAML allows lists and maps as keys; their Scalar() is empty).
 std::string Key(const YAML::Node& key) {
   if (!key.IsScalar()) Fail(key, "a key must be a plain word, not a list or a map");
+  CheckPlain(key, "a key", key.Scalar());
   return key.Scalar();
 }
 

@@ -249,11 +249,10 @@ kernel::Result<SweepPlan> ReadSweepPlan(const std::string& dir) {
   io::Result<io::Grid> grid = io::ReadGrid(dir + "/grid.yaml");
   if (!grid.ok()) return R::Fail(grid.error + " (is " + dir + " a sweep directory?)");
   SweepPlan plan{std::move(*grid.value), {}};
-  const std::map<std::string, std::vector<std::pair<std::string, std::string>>> values = [&] {
-    std::map<std::string, std::vector<std::pair<std::string, std::string>>> v;
-    for (SweepCell& c : GridCells(plan.grid)) v[c.name] = std::move(c.values);
-    return v;
-  }();
+  // The cells and their command lines come from grid.yaml; cells.tsv, the record of what the
+  // sweep runs, must say the same (a truncated or edited one ran other command lines than
+  // grid.yaml, and filed their figures under other cells).
+  std::vector<SweepCell> cells = GridCells(plan.grid);
   std::string text;
   const std::string path = dir + "/cells.tsv";
   if (std::string error = io::ReadTextFile(path, &text); !error.empty()) return R::Fail(error);
@@ -262,15 +261,23 @@ kernel::Result<SweepPlan> ReadSweepPlan(const std::string& dir) {
   for (std::string line; std::getline(lines, line);) {
     ++number;
     if (line.empty() || line[0] == '#') continue;
+    const std::size_t i = plan.cells.size();
+    std::vector<std::string> expected{std::to_string(i)};
+    if (i < cells.size()) {
+      expected.push_back(cells[i].name);
+      expected.insert(expected.end(), cells[i].args.begin(), cells[i].args.end());
+    }
     std::vector<std::string> fields;
     std::istringstream split(line);
     for (std::string f; std::getline(split, f, '\t');) fields.push_back(f);
-    if (fields.size() < 3 || fields[0] != std::to_string(plan.cells.size()) ||
-        !values.contains(fields[1]))
-      return R::Fail(path + ":" + std::to_string(number) + ": not a cell of " + dir + "/grid.yaml");
-    SweepCell cell{fields[1], values.at(fields[1]), {fields.begin() + 2, fields.end()}};
-    plan.cells.push_back(std::move(cell));
+    if (i >= cells.size() || fields != expected)
+      return R::Fail(path + ":" + std::to_string(number) + ": not cell " + std::to_string(i) +
+                     " of " + dir + "/grid.yaml");
+    plan.cells.push_back(std::move(cells[i]));
   }
+  if (plan.cells.size() != cells.size())
+    return R::Fail(fmt::format("{} lists {} cells, {}/grid.yaml makes {}", path, plan.cells.size(),
+                               dir, cells.size()));
   return R::Ok(std::move(plan));
 }
 

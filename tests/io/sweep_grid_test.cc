@@ -89,6 +89,9 @@ TEST(SweepGrid, ProblemsNameTheFileAndLine) {
             "g.yaml:3: the axes make 1000000000 cells, more than 1000000 (split the grid)");
   EXPECT_EQ(error("command: sweep g.yaml\naxes:\n  seed: [1]\n"),
             "g.yaml:1: a cell runs slam, explore, simulate or experiment NAME, not 'sweep'");
+  // A tab in a value became more arguments (this ran graph); a line break broke cells.tsv.
+  EXPECT_EQ(error("command: slam\noptions:\n  log: \"small.clf\\t--method\\tgraph\"\n"),
+            "g.yaml:3: log must not hold a tab, a line break or another control character");
   // Lists as keys (YAML's `?`) read as empty names before, and the grid ran.
   EXPECT_EQ(error("command: slam\n? [a, b]\n: 1\n"),
             "g.yaml:2: a key must be a plain word, not a list or a map");

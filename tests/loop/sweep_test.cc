@@ -159,6 +159,31 @@ axes:
 
 // The experiments' grids are the ones shipped in experiments/: `splam sweep experiments/X.yaml`
 // runs the trials of `splam experiment X`.
+// Issue 48, item 4: a truncated or edited cells.tsv ran other command lines than grid.yaml says
+// and filed their figures under other cells; the cells now come from grid.yaml and cells.tsv
+// must match it.
+TEST(SweepState, CellsTsvMustSayWhatGridYamlSays) {
+  const fs::path dir = fs::temp_directory_path() / "splam_sweep_tsv_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const io::Grid grid = Parse("command: simulate\naxes:\n  seed: [1, 2, 3]\n");
+  ASSERT_TRUE(WriteSweepPlan(dir.string(), grid).ok());
+  const std::string tsv = (dir / "cells.tsv").string();
+  std::string text;
+  ASSERT_EQ(io::ReadTextFile(tsv, &text), "");
+  const kernel::Result<SweepPlan> plan = ReadSweepPlan(dir.string());
+  ASSERT_TRUE(plan.ok()) << plan.error;
+  EXPECT_EQ(plan.value->cells.size(), 3u);
+  std::ofstream(tsv) << text.substr(0, text.rfind('\n', text.size() - 2) + 1);  // the last cell cut
+  EXPECT_NE(ReadSweepPlan(dir.string()).error.find("lists 2 cells"), std::string::npos);
+  std::string edited = text;
+  edited.replace(edited.find("--seed\t2"), 9, "--seed\t9");
+  std::ofstream(tsv) << edited;
+  EXPECT_NE(ReadSweepPlan(dir.string()).error.find("not cell 1 of"), std::string::npos)
+      << ReadSweepPlan(dir.string()).error;
+  fs::remove_all(dir);
+}
+
 // Issue 48, item 4: sweep state is read with a schema. A cell.json whose message is a number or
 // wall time a string aborted `sweep status`, resume and merge; such a record is now none (the cell
 // runs again). A summary.json nested 10^6 deep segfaulted `merge`; values deeper than
