@@ -27,8 +27,8 @@ std::string SplamBinary();
 // Exit statuses of every command: 0 done, 2 bad input, 3 stopped early (results written).
 using loop::kExitBadInput;
 using loop::kExitIncomplete;
-using loop::kExitWriteFailed;
 using loop::kExitOk;
+using loop::kExitWriteFailed;
 
 // Number checks for options. CLI::PositiveNumber, NonNegativeNumber and Range let NaN through
 // (every comparison with it is false), and CLI11 reads "-1" as 2^64 - 1 for an unsigned option.
@@ -38,6 +38,9 @@ CLI::Validator FinitePositive();
 CLI::Validator FiniteNonNegative();
 // A finite number in [lo, hi].
 CLI::Validator FiniteRange(double lo, double hi);
+// A scale of the default odometry noise: a finite number in [0, 100]. At 1e308 `simulate` wrote
+// poses of 1e304 m, a log its own readers refuse.
+CLI::Validator OdometryNoiseScale();
 // A floor-plan image's metres per pixel, within io::FloorPlanOptions' range.
 CLI::Validator FloorPlanResolution();
 // A seed: an integer from 0 to 2^64 - 1 written without a sign.

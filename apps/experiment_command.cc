@@ -106,6 +106,7 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--odometry-noise", args->odometry_noise_scale,
                   "complex-bspline: scale of the odometry noise (simulated and modelled)")
       ->check(FinitePositive())
+      ->check(OdometryNoiseScale())
       ->capture_default_str();
   cmd->add_option("--max-correspondence", args->max_correspondence_distance_m,
                   "complex-bspline: largest distance (m) between a beam's predicted hit and the "

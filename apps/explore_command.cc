@@ -252,7 +252,7 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
   flag("odometry-noise",
        cmd->add_option("--odometry-noise", setup.odometry_noise_scale,
                        "Scale of the default odometry noise (0 = perfect odometry)"))
-      ->check(FiniteNonNegative())
+      ->check(OdometryNoiseScale())
       ->capture_default_str();
   flag("lsr-radius", cmd->add_option("--lsr-radius", setup.region.radius_m,
                                      "LSR radius r, m (also the topological SLAM's region)"))

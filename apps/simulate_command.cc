@@ -244,7 +244,7 @@ void AddSimulateCommand(CLI::App* app, int* exit_code) {
   flags.emplace_back("odometry-noise",
                      cmd->add_option("--odometry-noise", args->odometry_noise_scale,
                                      "Scale of the default odometry noise (0 = perfect odometry)"));
-  flags.back().second->check(FiniteNonNegative())->capture_default_str();
+  flags.back().second->check(OdometryNoiseScale())->capture_default_str();
   cmd->add_option("--resolution", args->resolution_m_per_px,
                   "Metres per pixel of a floor-plan image world")
       ->check(FloorPlanResolution())

@@ -411,7 +411,7 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--odometry-noise", args->noise.odometry_noise_scale,
                   "Scale of the default odometry noise model (3 % of distance and rotation); "
                   "default 1 for simulated logs and 3 for real FLASER logs")
-      ->check(FiniteNonNegative());
+      ->check(OdometryNoiseScale());
   cmd->callback([args, exit_code, method] {
     args->method_given = method->count() > 0;
     *exit_code = RunSlam(*args);

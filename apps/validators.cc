@@ -36,6 +36,8 @@ CLI::Validator FiniteRange(double lo, double hi) {
       lo, hi, false);
 }
 
+CLI::Validator OdometryNoiseScale() { return FiniteRange(0.0, 100.0); }
+
 CLI::Validator FloorPlanResolution() {
   return FiniteRange(io::FloorPlanOptions::kMinResolutionM, io::FloorPlanOptions::kMaxResolutionM);
 }

@@ -306,13 +306,17 @@ TEST(SplamCli, OptionValuesMustBeFiniteAndInRange) {
       {"explore --seed -3", "--seed: must be an integer from 0"},
       {"experiment exploration --seed x1", "--seed: must be an integer from 0"},
       {"slam --range-sigma nan x.clf", "--range-sigma: must be a finite number at least 0"},
-      {"slam --odometry-noise nan x.clf", "--odometry-noise: must be a finite number at least 0"},
+      {"slam --odometry-noise nan x.clf", "--odometry-noise: must be a finite number in [0, 100]"},
       {"slam --flaser-step-deg nan x.clf", "--flaser-step-deg: must be a finite number at least 0"},
       {"slam --flaser-max-range inf x.clf", "--flaser-max-range: must be a finite number above 0"},
       {"simulate --resolution 1e-9", "--resolution: must be a finite number in [0.0001, 10]"},
       {"simulate --resolution 1e300", "--resolution: must be a finite number in [0.0001, 10]"},
       {"explore --alpha nan", "--alpha: must be a finite number in [0, 1]"},
-      {"explore --odometry-noise inf", "--odometry-noise: must be a finite number at least 0"},
+      {"explore --odometry-noise inf", "--odometry-noise: must be a finite number in [0, 100]"},
+      // Issue 48, item 7: wrote poses of 1e304 m, a log its own readers refuse.
+      {"simulate --odometry-noise 1e308", "--odometry-noise: must be a finite number in [0, 100]"},
+      {"experiment complex-bspline --odometry-noise 1e308",
+       "--odometry-noise: must be a finite number in [0, 100]"},
       // Said "alpha must be below -30.700000".
       {"explore --lsr-radius 0.01", "the LSR radius r = 0.01 m leaves no room for the robot"}};
   for (const auto& [args, message] : cases) {
