@@ -15,6 +15,9 @@ std::string ScanGeometryProblem(const kernel::Scan& s) {
     return "start angle " + FormatDouble(s.start_angle_rad) + " rad is not in [-2 pi, 2 pi]";
   if (s.size() > 1 && !(s.angular_step_rad > 0.0))
     return "angular resolution " + FormatDouble(s.angular_step_rad) + " rad is not positive";
+  if (s.size() > 1 && s.angular_step_rad < kMinAngularStepRad)
+    return "angular resolution " + FormatDouble(s.angular_step_rad) +
+           " rad is below 1e-4 rad (0.006 deg): no laser resolves that";
   const double span =
       s.angular_step_rad * static_cast<double>(std::max<std::size_t>(s.size(), 1) - 1);
   if (span > 2.0 * kernel::kPi + 1e-9)

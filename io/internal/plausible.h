@@ -14,6 +14,9 @@ namespace splam::io::internal {
 using kernel::kMaxCoordinateM;
 inline constexpr double kMaxHeadingRad = 1e4;
 inline constexpr double kMaxRangeM = 1e4;
+// The finest angular step between beams a log may state (the finest 2-D lasers: 0.0625 deg,
+// 1.1e-3 rad); a step of 1e-30 rad put every beam of a scan at one bearing.
+inline constexpr double kMinAngularStepRad = 1e-4;
 
 // Empty when the beams' geometry is plausible: a maximum range in (0, 10 km], a start angle in
 // [-2 pi, 2 pi], a positive step and beams within one turn (an angular resolution written in

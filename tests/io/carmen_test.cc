@@ -245,6 +245,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadLine{"FLASER 2 1 2 1e300 0 0 0 0 0 1 h 1", "laser pose 1e+300"},
         BadLine{"ROBOTLASER1 0 -1.5 3 0 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
                 "angular resolution 0 rad is not positive"},
+        // Issue 48, item 7: passed, every beam at one bearing.
+        BadLine{"ROBOTLASER1 0 -1.5 3 1e-30 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
+                "angular resolution 1e-30 rad is below 1e-4 rad"},
         BadLine{"ROBOTLASER1 0 -1.5 3 0.01 0 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
                 "maximum range 0 m"},
         BadLine{"ROBOTLASER1 0 1e300 3 0.01 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
