@@ -161,7 +161,7 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
   if (!health_.ok()) return;
   if (localised != nullptr) pose_ = *localised;
   const kernel::Scan clipped = raw_scan.Clipped(UsableRange(raw_scan));
-  kernel::Scan scan = clipped;
+  std::optional<kernel::Scan> without_moving;  // when the scan has moving objects
   std::vector<OrientedPoint> points = ScanPoints(clipped, robot_T_laser);
   registered_ = false;
   const kernel::Pose2 predicted = pose_;
@@ -181,14 +181,16 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
   if (options_.moving.enabled && (localised != nullptr || registered_)) {
     // At the registered pose: at the prediction, a slip of the odometry puts the view beside
     // static things in the keyframes' scans.
-    scan = WithoutMovingObjects(clipped, robot_T_laser);
-    points = ScanPoints(scan, robot_T_laser);
-    const auto hits = [](const kernel::Scan& s) { return s.HitIndices().size(); };
-    if (localised == nullptr && hits(scan) < hits(clipped)) {  // registered again without them
-      const kernel::Pose2 first = pose_;
-      pose_ = predicted;
-      const RegistrationResult again = RegisterScan(points);
-      pose_ = again.accepted ? again.pose : first;
+    const std::vector<std::size_t> moving = MovingBeams(clipped, robot_T_laser);
+    if (!moving.empty()) {
+      without_moving = WithoutBeams(clipped, moving);
+      points = ScanPoints(*without_moving, robot_T_laser);
+      if (localised == nullptr) {  // registered again from the prediction without them
+        const kernel::Pose2 first = pose_;
+        pose_ = predicted;
+        const RegistrationResult again = RegisterScan(points);
+        pose_ = again.accepted ? again.pose : first;
+      }
     }
   }
   since_update_ = kernel::Pose2();
@@ -202,7 +204,8 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
     new_keyframe = motion.translation().norm() >= options_.keyframe_distance_m ||
                    std::abs(motion.theta()) >= options_.keyframe_angle_rad;
   }
-  if (new_keyframe) AddKeyframe(scan, robot_T_laser, std::move(points));
+  if (new_keyframe)
+    AddKeyframe(without_moving ? *without_moving : clipped, robot_T_laser, std::move(points));
   const int k = static_cast<int>(keyframes_.size()) - 1;
   scans_.push_back({k, keyframes_.back().pose.Between(pose_)});
 }
@@ -213,8 +216,8 @@ std::vector<OrientedPoint> GraphSlam::ScanPoints(const kernel::Scan& scan,
                        options_.normal_max_gap_m, options_.line_tolerance_m);
 }
 
-kernel::Scan GraphSlam::WithoutMovingObjects(const kernel::Scan& scan,
-                                             const kernel::Pose2& robot_T_laser) {
+std::vector<std::size_t> GraphSlam::MovingBeams(const kernel::Scan& scan,
+                                                const kernel::Pose2& robot_T_laser) {
   const ScopedTimer timer(&times_.moving_ms);
   const kernel::Pose2 world_T_laser = pose_ * robot_T_laser;
   std::vector<std::size_t> moving;
@@ -222,7 +225,7 @@ kernel::Scan GraphSlam::WithoutMovingObjects(const kernel::Scan& scan,
   const std::size_t n = keyframes_.size();
   for (std::size_t i = n - std::min<std::size_t>(n, options_.moving_keyframes); i < n; ++i) {
     Keyframe& kf = keyframes_[i];
-    if (kf.trimmed || kf.reading.size() == 0) continue;
+    if (kf.trimmed || kf.reading.ranges_m.empty()) continue;
     const kernel::Pose2 world_T_kf_laser = kf.pose * kf.robot_T_laser;
     const std::vector<std::size_t> here = SeenThroughBeams(
         scan, candidates, world_T_laser, kf.reading, world_T_kf_laser, options_.moving);
@@ -238,7 +241,7 @@ kernel::Scan GraphSlam::WithoutMovingObjects(const kernel::Scan& scan,
   std::sort(moving.begin(), moving.end());
   moving.erase(std::unique(moving.begin(), moving.end()), moving.end());
   moving_beams_ += static_cast<long>(moving.size());
-  return moving.empty() ? scan : WithoutBeams(scan, moving);
+  return moving;
 }
 
 RegistrationResult GraphSlam::RegisterScan(const std::vector<OrientedPoint>& points) {
@@ -308,11 +311,8 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   for (NodeAnchor& node : nodes_)
     if (node.keyframe < 0) node = {k, kf.pose.Between(node.pose)};
   keyframes_.push_back(std::move(kf));
-  if (k >= options_.moving_keyframes) {
-    Keyframe& old = keyframes_[static_cast<std::size_t>(k - options_.moving_keyframes)];
-    old.reading = {};
-    BeamRanges().swap(old.candidates);
-  }
+  if (k >= options_.moving_keyframes)
+    ForgetReading(&keyframes_[static_cast<std::size_t>(k - options_.moving_keyframes)]);
   if (k > 0) {
     PoseGraphEdge edge;
     edge.from = k - 1;
@@ -370,6 +370,11 @@ void GraphSlam::FillKeyframe(std::vector<OrientedPoint> points, Keyframe* kf) {
   }
 }
 
+void GraphSlam::ForgetReading(Keyframe* kf) {
+  kf->reading = {};
+  BeamRanges().swap(kf->candidates);
+}
+
 Eigen::Matrix3d GraphSlam::FrontEndCovariance(int to) const {
   const Keyframe& prev = keyframes_[static_cast<std::size_t>(to - 1)];
   const Keyframe& kf = keyframes_[static_cast<std::size_t>(to)];
@@ -420,8 +425,7 @@ void GraphSlam::TrimKeyframe(int j) {
   std::vector<OrientedPoint>().swap(kf.points);
   std::vector<OrientedPoint>().swap(kf.raster);
   std::vector<Eigen::Vector2d>().swap(kf.seen);
-  kf.reading = {};
-  BeamRanges().swap(kf.candidates);
+  ForgetReading(&kf);
   kf.trimmed = true;
   ++trimmed_;
 }

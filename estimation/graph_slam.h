@@ -359,10 +359,13 @@ class GraphSlam {
   // The scan's points (robot frame, with normals).
   std::vector<OrientedPoint> ScanPoints(const kernel::Scan& scan,
                                         const kernel::Pose2& robot_T_laser) const;
-  // `scan` (clipped, at pose_, registered) without the objects that the last moving_keyframes
-  // keyframes' scans saw through; takes out of those keyframes the objects that `scan` sees
-  // through.
-  kernel::Scan WithoutMovingObjects(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser);
+  // The beams of `scan` (clipped, at pose_, registered) on objects that the last
+  // moving_keyframes keyframes' scans saw through, sorted; takes out of those keyframes the
+  // objects that `scan` sees through.
+  std::vector<std::size_t> MovingBeams(const kernel::Scan& scan,
+                                       const kernel::Pose2& robot_T_laser);
+  // Drops the keyframe's reading: it has left the last moving_keyframes, or was trimmed.
+  static void ForgetReading(Keyframe* kf);
   // Beams longer than this are not used: max_range_m, or the laser's range when it is 0.
   double UsableRange(const kernel::Scan& scan) const;
   // The raster and the views of these keyframes in the world frame (trimmed ones add nothing).
