@@ -87,6 +87,12 @@ int RunGrid(const SweepArgs& args) {
   const std::string dir = args.out.empty()
                               ? "runs/sweep-" + std::filesystem::path(args.grid).stem().string()
                               : args.out;
+  if (args.slurm) {  // before the plan is written: a path a job script cannot carry
+    if (kernel::Status s = loop::CheckSlurmPaths(dir, SplamBinary()); !s.ok()) {
+      fmt::print(stderr, "splam sweep: {}\n", s.message());
+      return kExitBadInput;
+    }
+  }
   if (kernel::Status s = loop::WriteSweepPlan(dir, *grid.value); !s.ok()) {
     fmt::print(stderr, "splam sweep: {}\n", s.message());
     return kExitBadInput;

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "io/text.h"
 #include "io/trajectory.h"
 
 namespace splam::loop {
@@ -33,23 +34,6 @@ std::pair<int, std::string> Capture(const std::string& command) {
   return {status == -1 ? -1 : WEXITSTATUS(status), output};
 }
 
-// `text` with its control characters written as \n, \t or \xNN, for an error message.
-std::string Printable(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    const auto u = static_cast<unsigned char>(c);
-    if (c == '\n')
-      out += "\\n";
-    else if (c == '\t')
-      out += "\\t";
-    else if (u < 0x20 || u == 0x7f)
-      out += fmt::format("\\x{:02x}", u);
-    else
-      out += c;
-  }
-  return out;
-}
-
 }  // namespace
 
 kernel::Status CheckScriptPath(const std::string& what, const std::string& path) {
@@ -57,11 +41,19 @@ kernel::Status CheckScriptPath(const std::string& what, const std::string& path)
     const auto u = static_cast<unsigned char>(c);
     if (u < 0x20 || u == 0x7f || c == '"')
       return kernel::Status::Error(fmt::format(
-          "{} '{}' holds a control character or a double quote, which a Slurm job script cannot "
+          "{} {} holds a control character or a double quote, which a Slurm job script cannot "
           "carry: choose another path",
-          what, Printable(path)));
+          what, io::Quoted(path)));
   }
   return kernel::Status::Ok();
+}
+
+kernel::Status CheckSlurmPaths(const std::string& dir, const std::string& splam_binary) {
+  return kernel::FirstError(
+      CheckScriptPath("the sweep directory",
+                      std::filesystem::absolute(dir).lexically_normal().string()),
+      CheckScriptPath("the working directory", std::filesystem::current_path().string()),
+      CheckScriptPath("the splam binary", std::filesystem::absolute(splam_binary).string()));
 }
 
 kernel::Status SlurmOptions::Validate() const {
@@ -107,14 +99,10 @@ kernel::Result<std::string> SubmitSweepToSlurm(const std::string& dir,
   using R = kernel::Result<std::string>;
   if (kernel::Status s = options.Validate(); !s.ok()) return R::Fail(s.message());
   if (cells.empty()) return R::Fail("every cell has already run: nothing to submit");
+  if (kernel::Status s = CheckSlurmPaths(dir, splam_binary); !s.ok()) return R::Fail(s.message());
   const std::string abs_dir = std::filesystem::absolute(dir).lexically_normal().string();
   const std::string workdir = std::filesystem::current_path().string();
   const std::string binary = std::filesystem::absolute(splam_binary).string();
-  if (kernel::Status s = kernel::FirstError(CheckScriptPath("the sweep directory", abs_dir),
-                                            CheckScriptPath("the working directory", workdir),
-                                            CheckScriptPath("the splam binary", binary));
-      !s.ok())
-    return R::Fail(s.message());
   std::error_code ec;
   std::filesystem::create_directories(abs_dir + "/slurm", ec);
   if (ec) return R::Fail("cannot create " + abs_dir + "/slurm: " + ec.message());

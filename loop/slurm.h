@@ -25,6 +25,9 @@ struct SlurmOptions {
 // would end the comment and run the rest as a command when the job starts) and no double quotes
 // (the lines quote the paths with them). The error names `what` and the path.
 kernel::Status CheckScriptPath(const std::string& what, const std::string& path);
+// CheckScriptPath of the sweep directory, the working directory and the binary (absolute): what
+// `sweep --slurm` checks before it writes the sweep's plan.
+kernel::Status CheckSlurmPaths(const std::string& dir, const std::string& splam_binary);
 
 // The job script running `cells` cells of the sweep in `dir` (absolute paths) from `workdir`
 // (where relative paths in the grid start: the directory the sweep was submitted from).
@@ -33,8 +36,8 @@ std::string SlurmScript(const std::string& dir, const std::string& splam_binary,
 
 // Writes <dir>/slurm-cells.txt (the cells to run, one index per line: array task i, cell j of its
 // chunk reads line i*K+j+1) and <dir>/sweep.sbatch, submits it with `sbatch --parsable` and
-// returns the job id. Errors carry sbatch's own message; a sweep directory, working directory or
-// binary path that fails CheckScriptPath is refused before anything is written.
+// returns the job id. Errors carry sbatch's own message; paths that fail CheckSlurmPaths are
+// refused before anything is written.
 kernel::Result<std::string> SubmitSweepToSlurm(const std::string& dir,
                                                const std::string& splam_binary,
                                                const std::vector<int>& cells,

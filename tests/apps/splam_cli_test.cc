@@ -530,6 +530,19 @@ TEST(SplamCli, AFullStandardOutputGivesExitStatus4) {
   }
 }
 
+// Issue 48, item 5: `sweep --slurm` with a newline in its sweep directory is refused before the
+// sweep's plan is written (it made the directory, grid.yaml and cells.tsv, then refused).
+TEST(SplamCli, SweepSlurmRefusesANewlineInItsDirectoryBeforeWritingIt) {
+  const fs::path dir = Temp("slurm_path");
+  fs::create_directories(dir);
+  const std::string grid = WriteIn(dir, "g.yaml", "command: simulate\naxes:\n  seed: [1]\n");
+  const fs::path out = dir / "a\nb";
+  const Output r = Splam("sweep " + grid + " --slurm --out '" + out.string() + "'");
+  EXPECT_EQ(r.status, 2) << r.text;
+  EXPECT_NE(r.text.find("holds a control character"), std::string::npos) << r.text;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 // Issue 48, items 2 and 7: time stamps that go backwards gave "-12 s of data, -250x real time".
 // The second half of a log stamped so that its last scan is 12 s before its first: the span is
 // the latest stamp minus the earliest, and the backward step is counted in summary.json.
