@@ -16,7 +16,8 @@ namespace {
 
 constexpr double kCoverageCell = 0.1;  // m
 // A larger world gets coarser coverage cells (its grid would take 1.6e13 cells of 0.1 m over 400
-// km): 2^22 cells, 4 MB a mask and a flood of that many clearance queries (seconds).
+// km): about 2^22 cells (at most twice), 4 MB a mask and a flood of that many clearance queries
+// (seconds).
 constexpr double kMaxCoverageCells = 1 << 22;
 
 std::shared_ptr<exploration::Localization> MakeLocalization(const ExploreSetup& setup) {
@@ -37,8 +38,11 @@ exploration::CoverageGrid ReachableSpace(const sim::World& world, const sim::Ray
   kernel::Box2 bounds = world.Bounds();
   bounds.min -= Eigen::Vector2d::Constant(0.5);
   bounds.max += Eigen::Vector2d::Constant(0.5);
-  const double cell =
-      std::max(kCoverageCell, std::sqrt(bounds.Size().x() * bounds.Size().y() / kMaxCoverageCells));
+  // (w/c + 1)(h/c + 1) <= 2 kMaxCoverageCells + 1 with c^2 >= w h / max and c >= (w + h) / max:
+  // the second keeps a long thin world (200 km x 1 m) bounded too.
+  const Eigen::Vector2d size = bounds.Size();
+  const double cell = std::max({kCoverageCell, std::sqrt(size.x() * size.y() / kMaxCoverageCells),
+                                (size.x() + size.y()) / kMaxCoverageCells});
   const double half_diagonal = cell * std::sqrt(0.5);
   return exploration::CoverageGrid(
       bounds, cell, world.start->translation(), [&](const Eigen::Vector2d& c) {
