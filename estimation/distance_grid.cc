@@ -53,7 +53,8 @@ DistanceGrid DistanceGrid::Build(const std::vector<Eigen::Vector2d>& points, dou
 DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, double resolution_m,
                                  double truncation_m, double margin_m,
                                  const std::vector<std::vector<Eigen::Vector2d>>& seen,
-                                 bool signed_field, double seen_margin_m) {
+                                 bool signed_field, double seen_margin_m,
+                                 const std::vector<std::vector<Eigen::Vector2d>>& seen_by_hits) {
   DistanceGrid g;
   g.resolution_m_ = resolution_m;
   g.truncation_m_ = truncation_m;
@@ -156,10 +157,10 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
     for (const auto& p : polygon) add_vertex(&outer, cell(p));
     cv::fillPoly(known, std::vector<std::vector<cv::Point>>{outer}, cv::Scalar(1));
   }
-  if (seen_margin_m <= 0) {
-    known.setTo(cv::Scalar(2), known == 1);
-  } else {
-    for (const auto& polygon : seen) {
+  // The polygons pulled back by seen_margin_m towards the sensor (their first vertex).
+  const auto fill_inner = [&](const std::vector<std::vector<Eigen::Vector2d>>& polygons,
+                              int value) {
+    for (const auto& polygon : polygons) {
       std::vector<cv::Point> inner;
       for (const auto& p : polygon) {
         const Eigen::Vector2d ray = p - polygon.front();
@@ -168,10 +169,15 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
                                     ? polygon.front()
                                     : Eigen::Vector2d(p - seen_margin_m / length * ray)));
       }
-      cv::fillPoly(known, std::vector<std::vector<cv::Point>>{inner}, cv::Scalar(2));
+      cv::fillPoly(known, std::vector<std::vector<cv::Point>>{inner}, cv::Scalar(value));
     }
-  }
+  };
+  if (seen_margin_m <= 0)
+    known.setTo(cv::Scalar(2), known == 1);
+  else
+    fill_inner(seen, 2);
   known.setTo(cv::Scalar(2), free_cells == 0);
+  fill_inner(seen_by_hits, 3);
   g.known_.assign(known.datastart, known.dataend);
   return g;
 }
@@ -190,7 +196,12 @@ bool DistanceGrid::Known(const Eigen::Vector2d& p) const {
 
 bool DistanceGrid::SeenFree(const Eigen::Vector2d& p) const {
   const long i = CellIndex(p);
-  return i >= 0 && (known_.empty() || known_[static_cast<std::size_t>(i)] == 2);
+  return i >= 0 && (known_.empty() || known_[static_cast<std::size_t>(i)] >= 2);
+}
+
+bool DistanceGrid::SeenFreeByHits(const Eigen::Vector2d& p) const {
+  const long i = CellIndex(p);
+  return i >= 0 && !known_.empty() && known_[static_cast<std::size_t>(i)] == 3;
 }
 
 double DistanceGrid::Distance(const Eigen::Vector2d& p, Eigen::Vector2d* gradient) const {
@@ -323,13 +334,17 @@ std::vector<OrientedPoint> FillLinkedGaps(const std::vector<OrientedPoint>& orie
   return fill;
 }
 
-LikelihoodPyramid::LikelihoodPyramid(const DistanceGrid& grid, double sigma_m, int levels)
+LikelihoodPyramid::LikelihoodPyramid(const DistanceGrid& grid, double sigma_m, int levels,
+                                     double seen_free_score, double free_distance_m)
     : grid_(&grid) {
   const std::size_t n = grid.values().size();
   levels_.emplace_back(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double d = grid.values()[i];
-    levels_[0][i] = static_cast<float>(std::exp(-d * d / (2 * sigma_m * sigma_m)));
+    const bool seen_free =
+        seen_free_score != 0.0 && d >= free_distance_m && !grid.known_.empty() && grid.known_[i] == 3;
+    levels_[0][i] = static_cast<float>(seen_free ? seen_free_score
+                                                 : std::exp(-d * d / (2 * sigma_m * sigma_m)));
   }
   for (int k = 1; k < levels; ++k) {
     const int h = 1 << (k - 1);

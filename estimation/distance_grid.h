@@ -75,11 +75,14 @@ class DistanceGrid {
   // that are right (smooth outlines), and a wrong sign on clutter makes false zero crossings.
   // `seen_margin_m`: how far the `seen` polygons reach behind their hits (their vertices after
   // the first, the sensor); the cells inside the polygons pulled back by it towards the sensor
-  // were seen free (SeenFree).
+  // were seen free (SeenFree). `seen_by_hits`: the same views of the beams that returned
+  // (ScanView without no-returns), whose cells pulled back alike were crossed by a beam that
+  // returned from farther (SeenFreeByHits).
   static DistanceGrid Build(const std::vector<OrientedPoint>& points, double resolution_m,
                             double truncation_m, double margin_m,
                             const std::vector<std::vector<Eigen::Vector2d>>& seen = {},
-                            bool signed_field = false, double seen_margin_m = 0.0);
+                            bool signed_field = false, double seen_margin_m = 0.0,
+                            const std::vector<std::vector<Eigen::Vector2d>>& seen_by_hits = {});
 
   // A grid holds at most this many cells (about 1 GB while it is built): points spanning more,
   // at the resolution asked, give an empty grid whose too_large() is true and whose extent()
@@ -104,6 +107,9 @@ class DistanceGrid {
   // Whether a beam crossed the cell holding p, or an outline lies in it: known, and not only as
   // the margin behind a hit (true everywhere without `seen`, false outside the grid).
   bool SeenFree(const Eigen::Vector2d& p) const;
+  // Whether a beam that returned from farther crossed the cell holding p (Build's
+  // `seen_by_hits`; false without them).
+  bool SeenFreeByHits(const Eigen::Vector2d& p) const;
   // The exact distance from p to the outline piece of the occupied cell nearest to p's cell
   // (the piece the field's value at that cell measures to), signed by the side of the piece's
   // normal (its sign only orients the gradient: |Distance| is the distance), and its gradient
@@ -129,6 +135,7 @@ class DistanceGrid {
   }
 
  private:
+  friend class LikelihoodPyramid;
   // Row-major index of the cell holding p; -1 outside the grid.
   long CellIndex(const Eigen::Vector2d& p) const;
 
@@ -137,7 +144,8 @@ class DistanceGrid {
   double resolution_m_ = 0.05, truncation_m_ = 1.0;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   std::vector<double> values_;
-  std::vector<unsigned char> known_;   // 0 unseen, 1 behind a hit, 2 seen free; empty: all 2
+  // 0 unseen, 1 behind a hit, 2 seen free, 3 seen free by a beam that returned; empty: all 2.
+  std::vector<unsigned char> known_;
   std::vector<int> nearest_;           // per cell: index into pieces_ of its nearest piece
   std::vector<OrientedPoint> pieces_;  // the occupied cells' outline pieces
   std::vector<Eigen::Vector2d> back_normals_;  // per piece: BackNormal, or zero
@@ -149,7 +157,12 @@ class DistanceGrid {
 // on a coarse 2^k grid bounds the score of every finer translation inside its block.
 class LikelihoodPyramid {
  public:
-  LikelihoodPyramid(const DistanceGrid& grid, double sigma_m, int levels);
+  // `seen_free_score` (<= 0) replaces the likelihood of cells that a beam which returned from
+  // farther crossed (SeenFreeByHits) at `free_distance_m` or more from the outline: a point there
+  // is evidence against the pose, which a likelihood of zero does not tell from a point where the
+  // grid never looked.
+  LikelihoodPyramid(const DistanceGrid& grid, double sigma_m, int levels,
+                    double seen_free_score = 0.0, double free_distance_m = 0.0);
   int levels() const { return static_cast<int>(levels_.size()); }
   const DistanceGrid& grid() const { return *grid_; }
   // Likelihood (level 0) or the maximum over the block of 2^level x 2^level cells from integer

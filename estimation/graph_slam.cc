@@ -361,6 +361,9 @@ void GraphSlam::FillKeyframe(std::vector<OrientedPoint> points, Keyframe* kf) {
   kf->points = std::move(points);
   kf->seen =
       ScanView(kf->reading, kf->robot_T_laser, UsableRange(kf->reading), options_.seen_margin_m);
+  if (options_.loop.enabled)
+    kf->seen_by_hits = ScanView(kf->reading, kf->robot_T_laser, UsableRange(kf->reading),
+                                options_.seen_margin_m, false);
   if (kf->in_map) {
     map_curves_ += kf->curves.size();
     for (const auto& c : kf->curves) map_control_points_ += c.spline.control_points().size();
@@ -398,12 +401,12 @@ std::vector<OrientedPoint> GraphSlam::WorldRaster(const std::vector<int>& keyfra
   return raster;
 }
 
-std::vector<std::vector<Eigen::Vector2d>> GraphSlam::WorldViews(
-    const std::vector<int>& keyframes) const {
+std::vector<std::vector<Eigen::Vector2d>> GraphSlam::WorldViews(const std::vector<int>& keyframes,
+                                                                bool by_hits) const {
   std::vector<std::vector<Eigen::Vector2d>> views;
   for (int i : keyframes) {
     const Keyframe& kf = keyframes_[static_cast<std::size_t>(i)];
-    if (!kf.trimmed) views.push_back(kf.pose * kf.seen);
+    if (!kf.trimmed) views.push_back(kf.pose * (by_hits ? kf.seen_by_hits : kf.seen));
   }
   return views;
 }
@@ -425,6 +428,7 @@ void GraphSlam::TrimKeyframe(int j) {
   std::vector<OrientedPoint>().swap(kf.points);
   std::vector<OrientedPoint>().swap(kf.raster);
   std::vector<Eigen::Vector2d>().swap(kf.seen);
+  std::vector<Eigen::Vector2d>().swap(kf.seen_by_hits);
   ForgetReading(&kf);
   kf.trimmed = true;
   ++trimmed_;
@@ -678,6 +682,7 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double w
   record.query_scan = keyframes_[static_cast<std::size_t>(k)].scan;
   record.target_scan = keyframes_[static_cast<std::size_t>(candidate)].scan;
   record.searched = keyframes_[static_cast<std::size_t>(k)].pose;
+  record.target_searched = keyframes_[static_cast<std::size_t>(candidate)].pose;
   record.window_m = window_m;
   record.window_rad = window_rad;
   const auto refuse = [&](LoopSearch::Outcome outcome, long* count) {
@@ -757,9 +762,12 @@ const GraphSlam::LoopTarget& GraphSlam::Target(const std::vector<int>& keyframes
   t.graph_version = graph_version_;
   t.grid = std::make_unique<DistanceGrid>(DistanceGrid::Build(
       WorldRaster(keyframes), options_.loop.resolution_m, options_.truncation_m,
-      options_.truncation_m, WorldViews(keyframes), false, options_.seen_margin_m));
+      options_.truncation_m, WorldViews(keyframes), false, options_.seen_margin_m,
+      WorldViews(keyframes, true)));
   t.pyramid =
-      std::make_unique<LikelihoodPyramid>(*t.grid, options_.loop.sigma_m, options_.loop.levels);
+      std::make_unique<LikelihoodPyramid>(*t.grid, options_.loop.sigma_m, options_.loop.levels,
+                                          options_.loop.seen_free_score,
+                                          options_.loop.registration.inlier_distance_m);
   // Consecutive keyframes search the same few candidates: a handful of targets is enough.
   constexpr std::size_t kCachedTargets = 4;
   if (targets_.size() >= kCachedTargets) targets_.erase(targets_.begin());
@@ -865,6 +873,9 @@ void LoopClosureOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("max_chi2", &max_chi2,
           "closure test: whitened squared residual after optimisation at most; also the bound of "
           "a closure's agreement with the graph and with another closure");
+  v.Field("seen_free_score", &seen_free_score,
+          "correlative score of a point where the target saw free space, away from its outline "
+          "(<= 0; 0: as where it never looked)");
   v.Field("max_misfit_fraction", &max_misfit_fraction,
           "closure test: fraction of the query's points where the target saw free space, away "
           "from its outline, at most");
@@ -897,7 +908,7 @@ kernel::Status LoopClosureOptions::Validate() const {
     return kernel::Status::Error("tell_apart_alpha must be in [0, 1]");
   if (!(min_score > 0 && min_score <= 1) || !(min_overlap > 0 && min_overlap <= 1) ||
       !(ambiguity_ratio > 0 && ambiguity_ratio <= 1) || !(max_rms_m > 0) || !(max_chi2 > 0) ||
-      !(max_misfit_fraction >= 0 && max_misfit_fraction <= 1) || !(sigma_floor_m > 0) ||
+      !(max_misfit_fraction >= 0 && max_misfit_fraction <= 1) || !(seen_free_score <= 0) || !(sigma_floor_m > 0) ||
       !(sigma_floor_rad > 0))
     return kernel::Status::Error(
         "loop tests: score and ratio in (0, 1], misfit fraction in [0, 1], bounds positive");

@@ -99,6 +99,17 @@ struct LoopClosureOptions {
   // its points in the target's open doors and free corridor; 1 % at the true pose), and four
   // such closures confirmed each other.
   double max_misfit_fraction = 0.1;
+  // The correlative search scores a point where a beam of the target that returned from farther
+  // passed (DistanceGrid::SeenFreeByHits), farther than the registration's inlier_distance_m from
+  // its outline, at this (<= 0; a point on an outline scores up to 1, one where the target never
+  // looked its likelihood, about 0). Scored as unseen (0), such points did not count against a
+  // pose: back at the hospital floor's start from the side the start's keyframes never saw, the
+  // search took the ward one period (6.2 m) along the corridor, where nearly all the query's
+  // points fell on the target's walls and 34 of 346 where its beams had passed, over the truth,
+  // where a third fell where it never looked and 2 where its beams had passed. What only
+  // no-returns crossed does not count (glass, dark or grazing surfaces return nothing too:
+  // counted, MIT Killian ended 0.33 m off instead of 0.03 m).
+  double seen_free_score = -1.0;
   // Agreement between closures. A closure that would move the graph (its whitened residual at
   // the current poses above max_chi2) is added only with another closure found within
   // confirm_keyframes keyframes of it that moves it the same way: both closures put the newer of
@@ -286,6 +297,7 @@ class GraphSlam {
     std::vector<OrientedPoint> raster;        // curve samples (+ points), robot frame
     std::vector<kernel::SplineCurve> curves;  // robot frame; map keyframes only
     std::vector<Eigen::Vector2d> seen;        // the scan's view: sensor, then beam ends
+    std::vector<Eigen::Vector2d> seen_by_hits;  // the view of its beams that returned
     double travelled_m = 0.0;                 // path length at this keyframe
     int scan = 0;                             // the scan that made it (0-based, input order)
     // That scan, clipped, its moving objects read as NaN, and its mounting; kept while the
@@ -368,9 +380,11 @@ class GraphSlam {
   static void ForgetReading(Keyframe* kf);
   // Beams longer than this are not used: max_range_m, or the laser's range when it is 0.
   double UsableRange(const kernel::Scan& scan) const;
-  // The raster and the views of these keyframes in the world frame (trimmed ones add nothing).
+  // The raster and the views (or those of the beams that returned) of these keyframes in the
+  // world frame (trimmed ones add nothing).
   std::vector<OrientedPoint> WorldRaster(const std::vector<int>& keyframes) const;
-  std::vector<std::vector<Eigen::Vector2d>> WorldViews(const std::vector<int>& keyframes) const;
+  std::vector<std::vector<Eigen::Vector2d>> WorldViews(const std::vector<int>& keyframes,
+                                                       bool by_hits = false) const;
   // A loop target: the candidate and up to loop.target_keyframes keyframes holding data on
   // either side of it, none newer than `newest`.
   std::vector<int> TargetKeyframes(int candidate, int newest) const;

@@ -43,6 +43,7 @@ struct LoopSearch {
   double time_ms = 0.0;                     // the search's wall time (target, search, tests)
   bool matched = false;  // the correlative search found a pose (`match` is then the query's)
   kernel::Pose2 match;   // world pose of the query keyframe the search proposed
+  kernel::Pose2 target_searched;  // the target keyframe's pose when it was searched
   Outcome outcome = Outcome::kPending;
 };
 const char* OutcomeName(LoopSearch::Outcome outcome);

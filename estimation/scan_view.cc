@@ -6,13 +6,14 @@
 namespace splam::estimation {
 
 std::vector<Eigen::Vector2d> ScanView(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
-                                      double range, double seen_margin_m) {
+                                      double range, double seen_margin_m, bool no_returns) {
   std::vector<std::pair<double, double>> ends;  // (range, angle) of each usable beam's end
   for (std::size_t i = 0; i < scan.size(); ++i) {
     if (scan.IsHit(i))
       ends.emplace_back(std::min(scan.ranges_m[i] + seen_margin_m, range), scan.BeamAngle(i));
     else if (scan.IsNoReturn(i))
-      ends.emplace_back(std::min(range, scan.max_range_m) - seen_margin_m, scan.BeamAngle(i));
+      ends.emplace_back(no_returns ? std::min(range, scan.max_range_m) - seen_margin_m : 0.0,
+                        scan.BeamAngle(i));
   }
   std::vector<Eigen::Vector2d> view{robot_T_laser.translation()};
   const auto add = [&](double r, double angle) {

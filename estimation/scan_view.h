@@ -21,8 +21,11 @@ namespace splam::estimation {
 // last outline piece the submap had there, by the pull of points on "seen free" wall (a 60 m
 // corridor with 1 deg beams clipped at 30 m: the front end stopped for metres at each
 // opening).
+// Without `no_returns`, the view of the beams that returned: a no-return ends at the sensor.
+// What a no-return crossed is less sure to be free than what a returning beam crossed (glass,
+// a dark or grazing surface returns nothing too).
 std::vector<Eigen::Vector2d> ScanView(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
-                                      double range, double seen_margin_m);
+                                      double range, double seen_margin_m, bool no_returns = true);
 
 }  // namespace splam::estimation
 

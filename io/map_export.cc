@@ -201,7 +201,7 @@ std::string WriteLoopSearches(const std::string& path, const estimation::SlamMap
   std::string text =
       "query,target,query_scan,target_scan,query_x,query_y,query_theta,target_x,target_y,"
       "target_theta,window_m,window_rad,searched_x,searched_y,searched_theta,match_x,match_y,"
-      "match_theta,outcome,ms\n";
+      "match_theta,relative_x,relative_y,relative_theta,outcome,ms\n";
   const auto pose = [&](int i) -> const kernel::Pose2& {
     return map.keyframes.at(static_cast<std::size_t>(i));
   };
@@ -212,9 +212,11 @@ std::string WriteLoopSearches(const std::string& path, const estimation::SlamMap
                         t.x(), t.y(), t.theta(), s.window_m, s.window_rad);
     text +=
         fmt::format("{:.3f},{:.3f},{:.4f},", s.searched.x(), s.searched.y(), s.searched.theta());
-    text += s.matched
-                ? fmt::format("{:.3f},{:.3f},{:.4f},", s.match.x(), s.match.y(), s.match.theta())
-                : std::string(",,,");
+    const kernel::Pose2 relative = s.target_searched.Between(s.match);
+    text += s.matched ? fmt::format("{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{:.4f},", s.match.x(),
+                                    s.match.y(), s.match.theta(), relative.x(), relative.y(),
+                                    relative.theta())
+                      : std::string(",,,,,,");
     text += fmt::format("{},{:.2f}\n", estimation::OutcomeName(s.outcome), s.time_ms);
   }
   return WriteTextFile(path, text);
