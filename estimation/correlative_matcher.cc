@@ -34,11 +34,12 @@ CorrelativeMatch SearchCorrelative(const std::vector<Eigen::Vector2d>& points,
   for (const auto& p : points) ranges.push_back(p.norm());
   std::nth_element(ranges.begin(), ranges.begin() + ranges.size() * 9 / 10, ranges.end());
   const double max_range = ranges[ranges.size() * 9 / 10];
+  const double cell_step =
+      std::acos(1.0 - res * res / (2.0 * std::max(max_range, res) * std::max(max_range, res)));
+  // A step finer than a sixteenth of that moves no point to another cell: it would only
+  // multiply the headings (1e-12 rad made 10^11 of them).
   const double step =
-      options.angular_step_rad > 0
-          ? options.angular_step_rad
-          : std::acos(1.0 -
-                      res * res / (2.0 * std::max(max_range, res) * std::max(max_range, res)));
+      options.angular_step_rad > 0 ? std::max(options.angular_step_rad, cell_step / 16) : cell_step;
   const int n_angles = static_cast<int>(std::ceil(angular_window_rad / step));
   const int window = static_cast<int>(std::ceil(linear_window_m / res));
   const int top = map.levels() - 1;

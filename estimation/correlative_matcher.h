@@ -15,7 +15,9 @@ namespace splam::estimation {
 // pose in a window around a guess that maximises the mean likelihood of the points on a
 // LikelihoodPyramid. It needs no good initial guess inside its window, so loop closures use it.
 struct CorrelativeOptions {
-  double angular_step_rad = 0.0;  // 0: the step that moves the 90 % farthest point by a cell
+  // 0: the step that moves the 90 % farthest point by a cell; a step below a sixteenth of that is
+  // raised to it.
+  double angular_step_rad = 0.0;
   // A second peak counts as distinct from the best when it is this far from it (m or rad).
   double distinct_m = 0.5;
   double distinct_rad = 0.2;

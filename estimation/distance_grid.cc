@@ -341,8 +341,8 @@ LikelihoodPyramid::LikelihoodPyramid(const DistanceGrid& grid, double sigma_m, i
   levels_.emplace_back(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double d = grid.values()[i];
-    const bool seen_free =
-        seen_free_score != 0.0 && d >= free_distance_m && !grid.known_.empty() && grid.known_[i] == 3;
+    const bool seen_free = seen_free_score != 0.0 && d >= free_distance_m && !grid.known_.empty() &&
+                           grid.known_[i] == 3;
     levels_[0][i] = static_cast<float>(seen_free ? seen_free_score
                                                  : std::exp(-d * d / (2 * sigma_m * sigma_m)));
   }

@@ -146,8 +146,8 @@ class DistanceGrid {
   std::vector<double> values_;
   // 0 unseen, 1 behind a hit, 2 seen free, 3 seen free by a beam that returned; empty: all 2.
   std::vector<unsigned char> known_;
-  std::vector<int> nearest_;           // per cell: index into pieces_ of its nearest piece
-  std::vector<OrientedPoint> pieces_;  // the occupied cells' outline pieces
+  std::vector<int> nearest_;                   // per cell: index into pieces_ of its nearest piece
+  std::vector<OrientedPoint> pieces_;          // the occupied cells' outline pieces
   std::vector<Eigen::Vector2d> back_normals_;  // per piece: BackNormal, or zero
 };
 

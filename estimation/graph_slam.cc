@@ -361,7 +361,7 @@ void GraphSlam::FillKeyframe(std::vector<OrientedPoint> points, Keyframe* kf) {
   kf->points = std::move(points);
   kf->seen =
       ScanView(kf->reading, kf->robot_T_laser, UsableRange(kf->reading), options_.seen_margin_m);
-  if (options_.loop.enabled)
+  if (options_.loop.enabled && options_.loop.seen_free_score < 0)
     kf->seen_by_hits = ScanView(kf->reading, kf->robot_T_laser, UsableRange(kf->reading),
                                 options_.seen_margin_m, false);
   if (kf->in_map) {
@@ -763,11 +763,11 @@ const GraphSlam::LoopTarget& GraphSlam::Target(const std::vector<int>& keyframes
   t.grid = std::make_unique<DistanceGrid>(DistanceGrid::Build(
       WorldRaster(keyframes), options_.loop.resolution_m, options_.truncation_m,
       options_.truncation_m, WorldViews(keyframes), false, options_.seen_margin_m,
-      WorldViews(keyframes, true)));
-  t.pyramid =
-      std::make_unique<LikelihoodPyramid>(*t.grid, options_.loop.sigma_m, options_.loop.levels,
-                                          options_.loop.seen_free_score,
-                                          options_.loop.registration.inlier_distance_m);
+      options_.loop.seen_free_score < 0 ? WorldViews(keyframes, true)
+                                        : std::vector<std::vector<Eigen::Vector2d>>{}));
+  t.pyramid = std::make_unique<LikelihoodPyramid>(
+      *t.grid, options_.loop.sigma_m, options_.loop.levels, options_.loop.seen_free_score,
+      3 * options_.loop.resolution_m);
   // Consecutive keyframes search the same few candidates: a handful of targets is enough.
   constexpr std::size_t kCachedTargets = 4;
   if (targets_.size() >= kCachedTargets) targets_.erase(targets_.begin());
@@ -908,10 +908,12 @@ kernel::Status LoopClosureOptions::Validate() const {
     return kernel::Status::Error("tell_apart_alpha must be in [0, 1]");
   if (!(min_score > 0 && min_score <= 1) || !(min_overlap > 0 && min_overlap <= 1) ||
       !(ambiguity_ratio > 0 && ambiguity_ratio <= 1) || !(max_rms_m > 0) || !(max_chi2 > 0) ||
-      !(max_misfit_fraction >= 0 && max_misfit_fraction <= 1) || !(seen_free_score <= 0) || !(sigma_floor_m > 0) ||
+      !(max_misfit_fraction >= 0 && max_misfit_fraction <= 1) || !(sigma_floor_m > 0) ||
       !(sigma_floor_rad > 0))
     return kernel::Status::Error(
         "loop tests: score and ratio in (0, 1], misfit fraction in [0, 1], bounds positive");
+  if (!(seen_free_score >= -10 && seen_free_score <= 0))
+    return kernel::Status::Error("loop seen_free_score must be in [-10, 0]");
   return kernel::Status::Ok();
 }
 
@@ -983,8 +985,12 @@ kernel::Status GraphSlamOptions::Validate() const {
         "most 10 m");
   if (!(odometry_outlier_probability > 0 && odometry_outlier_probability < 1))
     return kernel::Status::Error("odometry_outlier_probability must be in (0, 1)");
-  if (!(recovery_window_m >= 0) || !(recovery_window_rad >= 0) || !(recovery_step_rad > 0))
-    return kernel::Status::Error("recovery windows >= 0 and recovery_step_rad > 0");
+  if (!(recovery_window_m >= 0 && recovery_window_m <= 100) ||
+      !(recovery_window_rad >= 0 && recovery_window_rad <= kernel::kPi) ||
+      !(recovery_step_rad > 0 && recovery_step_rad <= kernel::kPi))
+    return kernel::Status::Error(
+        "recovery_window_m must be in [0, 100], recovery_window_rad in [0, pi] and "
+        "recovery_step_rad in (0, pi]");
   if (!(verify_misfit_fraction >= 0 && verify_misfit_fraction <= 1))
     return kernel::Status::Error("verify_misfit_fraction must be in [0, 1]");
   if (!(edge_sigma_m > 0) || !(edge_sigma_rad > 0) || !(edge_sigma_per_m >= 0) ||

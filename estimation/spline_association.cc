@@ -57,7 +57,9 @@ kernel::Status SplineAssociationOptions::Validate() const {
     return kernel::Status::Error("association needs d_min_m > 0 and mu_min >= 1");
   if (!(curvature_tolerance >= 0.0) || !(max_feature_distance_m > 0.0))
     return kernel::Status::Error("bad feature pairing tolerances");
-  if (!(epsilon_m > 0.0)) return kernel::Status::Error("epsilon_m must be positive");
+  // Correspondences every epsilon_m along the overlap: a micrometre is 10^6 per metre.
+  if (!(epsilon_m >= 1e-3 && epsilon_m <= 10.0))
+    return kernel::Status::Error("epsilon_m must be in [0.001, 10] m");
   return kernel::Status::Ok();
 }
 

@@ -117,9 +117,9 @@ kernel::Status TopologicalSlamOptions::Validate() const {
   if (kernel::Status e = extraction.Validate(); !e.ok()) return e;
   if (kernel::Status e = association.Validate(); !e.ok()) return e;
   if (!(max_curve_range_m >= 0.0)) return kernel::Status::Error("max_curve_range_m must be >= 0");
-  if (!(region_margin_m >= 0.0) || !region.Validate().ok())
+  if (!(region_margin_m >= 0.0 && region_margin_m <= 100.0) || !region.Validate().ok())
     return kernel::Status::Error(
-        "the local region needs margin >= 0, radius > 0 and 0 < alpha < 1");
+        "the local region needs a margin in [0, 100] m, a radius in (0, 100] m and 0 < alpha < 1");
   if (!(min_information >= 0.0)) return kernel::Status::Error("min_information must be >= 0");
   if (!(point_sigma_m > 0.0)) return kernel::Status::Error("point_sigma_m must be positive");
   if (kernel::Status e = odometry.Validate(); !e.ok()) return e;
@@ -150,7 +150,10 @@ kernel::Status TopologicalSlamOptions::Validate() const {
     return kernel::Status::Error("bad extension thresholds");
   if (dense_min_points < 3 || !(dense_max_angle_rad > 0.0))
     return kernel::Status::Error("dense_min_points must be >= 3 and dense_max_angle_rad positive");
-  if (!(index_cell_m > 0.0)) return kernel::Status::Error("index_cell_m must be positive");
+  // The curve index is walked cell by cell over the region: cells of a micrometre, or a region
+  // of kilometres, would be 10^12 cells.
+  if (!(index_cell_m >= 0.01 && index_cell_m <= 100.0))
+    return kernel::Status::Error("index_cell_m must be in [0.01, 100] m");
   return kernel::Status::Ok();
 }
 

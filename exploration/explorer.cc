@@ -8,21 +8,34 @@
 namespace splam::exploration {
 
 kernel::Status ExplorerOptions::Validate() const {
-  if (!(lsr_radius_m > 0.0) || !std::isfinite(lsr_radius_m))
-    return kernel::Status::Error("lsr_radius_m must be positive");
+  // Every option bounded both ways: lengths by what a robot meets indoors and what the planners'
+  // grids (5 cm cells over the LSR) hold, counts and caps by what a run can use.
+  if (!(lsr_radius_m > 0.0 && lsr_radius_m <= 100.0))
+    return kernel::Status::Error("lsr_radius_m must be in (0, 100] m");
   if (!(alpha > 0.0 && alpha < 1.0)) return kernel::Status::Error("alpha must lie in (0, 1)");
-  if (!(clearance_margin_m >= 0.0)) return kernel::Status::Error("clearance_margin_m must be >= 0");
-  if (!(min_frontier_m >= 0.0)) return kernel::Status::Error("min_frontier_m must be >= 0");
-  if (!(min_doorway_arc_m >= 0.0)) return kernel::Status::Error("min_doorway_arc_m must be >= 0");
-  if (!(arc_sampling_rad > 0.0)) return kernel::Status::Error("arc_sampling_rad must be positive");
-  if (!(frontier_view_depth_m >= 0.0) || !(shadow_edge_m > 0.0))
-    return kernel::Status::Error("frontier_view_depth_m must be >= 0 and shadow_edge_m positive");
-  if (retry_nodes < 0) return kernel::Status::Error("retry_nodes must be >= 0");
-  if (srt_max_attempts < 1) return kernel::Status::Error("srt_max_attempts must be at least 1");
-  if (!(reg_piece_factor > 0.0)) return kernel::Status::Error("reg_piece_factor must be positive");
-  if (max_nodes < 1) return kernel::Status::Error("max_nodes must be at least 1");
-  if (!(max_time_s > 0.0)) return kernel::Status::Error("max_time_s must be positive");
-  if (max_failed_moves < 1) return kernel::Status::Error("max_failed_moves must be at least 1");
+  if (!(clearance_margin_m >= 0.0 && clearance_margin_m <= 10.0))
+    return kernel::Status::Error("clearance_margin_m must be in [0, 10] m");
+  if (!(min_frontier_m >= 0.0 && min_frontier_m <= 100.0) ||
+      !(min_doorway_arc_m >= 0.0 && min_doorway_arc_m <= 100.0))
+    return kernel::Status::Error("min_frontier_m and min_doorway_arc_m must be in [0, 100] m");
+  if (!(arc_sampling_rad >= 1e-4 && arc_sampling_rad <= 1.0))
+    return kernel::Status::Error("arc_sampling_rad must be in [1e-4, 1] rad");
+  if (!(frontier_view_depth_m >= 0.0 && frontier_view_depth_m <= 100.0) ||
+      !(shadow_edge_m > 0.0 && shadow_edge_m <= 100.0))
+    return kernel::Status::Error(
+        "frontier_view_depth_m must be in [0, 100] m and shadow_edge_m in (0, 100] m");
+  if (retry_nodes < 0 || retry_nodes > 10000)
+    return kernel::Status::Error("retry_nodes must be in [0, 10000]");
+  if (srt_max_attempts < 1 || srt_max_attempts > 10000)
+    return kernel::Status::Error("srt_max_attempts must be in [1, 10000]");
+  if (!(reg_piece_factor > 0.0 && reg_piece_factor <= 100.0))
+    return kernel::Status::Error("reg_piece_factor must be in (0, 100]");
+  if (max_nodes < 1 || max_nodes > 1000000)
+    return kernel::Status::Error("max_nodes must be in [1, 1000000]");
+  if (!(max_time_s > 0.0 && max_time_s <= 1e7))
+    return kernel::Status::Error("max_time_s must be in (0, 1e7] s");
+  if (max_failed_moves < 1 || max_failed_moves > 1000000)
+    return kernel::Status::Error("max_failed_moves must be in [1, 1000000]");
   if (const kernel::Status problem = motion.Validate(); !problem.ok())
     return problem.Prefixed("motion");
   return kernel::Status::Ok();

@@ -29,22 +29,31 @@ kernel::Status MotionOptions::Validate() const {
                                     [](double w) { return w != 0.0; });
   if (!any_forward || !any_turn)
     return kernel::Status::Error("list_U needs a positive linear and a nonzero angular speed");
+  // Bounds: a robot, not a projectile; each judged input is simulated over the horizon.
   for (double v : linear_speeds_mps) {
-    if (!std::isfinite(v)) return kernel::Status::Error("linear speeds must be finite");
+    if (!(std::abs(v) <= 10.0))
+      return kernel::Status::Error("linear speeds must be in [-10, 10] m/s");
   }
   for (double w : angular_speeds_radps) {
-    if (!std::isfinite(w)) return kernel::Status::Error("angular speeds must be finite");
+    if (!(std::abs(w) <= 10.0))
+      return kernel::Status::Error("angular speeds must be in [-10, 10] rad/s");
   }
-  if (!(horizon_s > 0.0)) return kernel::Status::Error("horizon_s must be positive");
+  if (linear_speeds_mps.size() * angular_speeds_radps.size() > 10000)
+    return kernel::Status::Error("list_U has at most 10000 inputs");
+  if (!(horizon_s > 0.0 && horizon_s <= 100.0))
+    return kernel::Status::Error("horizon_s must be in (0, 100] s");
   if (!(turn_in_place_above_rad > 0.0))
     return kernel::Status::Error("turn_in_place_above_rad must be positive");
-  if (back_off_steps < 0) return kernel::Status::Error("back_off_steps must be >= 0");
+  if (back_off_steps < 0 || back_off_steps > 1000)
+    return kernel::Status::Error("back_off_steps must be in [0, 1000]");
   if (!(heading_weight_m_per_rad >= 0.0) || !(cross_track_weight >= 0.0))
     return kernel::Status::Error("cost weights must be >= 0");
   if (!(goal_tolerance_m > 0.0) || !(waypoint_tolerance_m > 0.0))
     return kernel::Status::Error("tolerances must be positive");
-  if (!(timeout_base_s > 0.0) || !(timeout_per_meter_s >= 0.0))
-    return kernel::Status::Error("timeouts must be positive");
+  if (!(timeout_base_s > 0.0 && timeout_base_s <= 1e5) ||
+      !(timeout_per_meter_s >= 0.0 && timeout_per_meter_s <= 1e4))
+    return kernel::Status::Error(
+        "timeout_base_s must be in (0, 1e5] s and timeout_per_meter_s in [0, 1e4] s/m");
   return kernel::Status::Ok();
 }
 
@@ -141,8 +150,9 @@ MoveResult MoveTo(const std::vector<Eigen::Vector2d>& waypoints, const Eigen::Ve
     previous = w;
   }
   const double dt = robot->description().time_step_s;
-  const int max_steps = static_cast<int>(
-      std::ceil((options.timeout_base_s + options.timeout_per_meter_s * length) / dt));
+  // In doubles, saturated: a path of kilometres at a long timeout is more steps than an int.
+  const int max_steps = static_cast<int>(std::min(
+      std::ceil((options.timeout_base_s + options.timeout_per_meter_s * length) / dt), 1e9));
   Eigen::Vector2d leg_start = start;
   std::size_t next = 0;
   const auto localize = [&] { Localize(robot, localization, estimate, trace); };

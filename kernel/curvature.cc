@@ -5,8 +5,11 @@
 namespace splam::kernel {
 
 Status CurvatureOptions::Validate() const {
-  if (!(sigma_m > 0.0)) return Status::Error("curvature sigma_m must be positive");
-  if (!(padding_fwhm >= 0.0)) return Status::Error("curvature padding_fwhm must be >= 0");
+  // The kernels span 3 sigma either side in samples: a sigma of kilometres would ask for 10^9.
+  if (!(sigma_m > 0.0 && sigma_m <= 10.0))
+    return Status::Error("curvature sigma_m must be in (0, 10] m");
+  if (!(padding_fwhm >= 0.0 && padding_fwhm <= 10.0))
+    return Status::Error("curvature padding_fwhm must be in [0, 10]");
   return Status::Ok();
 }
 

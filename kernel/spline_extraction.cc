@@ -9,7 +9,9 @@ Status SplineExtractionOptions::Validate() const {
                             features.Validate());
       !s.ok())
     return s;
-  if (!(epsilon_m > 0.0)) return Status::Error("epsilon_m must be positive");
+  // Finer than 0.1 mm a metre of curve is 10^4 samples and more; coarser than 1 m no feature.
+  if (!(epsilon_m >= 1e-4 && epsilon_m <= 1.0))
+    return Status::Error("epsilon_m must be in [1e-4, 1] m");
   return Status::Ok();
 }
 

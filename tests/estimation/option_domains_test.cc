@@ -1,0 +1,103 @@
+// Option values that passed Validate and then crashed, hung or allocated without bound, found by
+// tests/fuzz/fuzz_option_values.cc (issue 48, item 3): each is refused now, or made harmless
+// where it is used.
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <vector>
+
+#include "estimation/correlative_matcher.h"
+#include "estimation/distance_grid.h"
+#include "estimation/spline_association.h"
+#include "estimation/topological_slam.h"
+#include "exploration/explorer.h"
+#include "exploration/motion.h"
+#include "kernel/curvature.h"
+#include "kernel/local_safe_region.h"
+#include "kernel/spline_extraction.h"
+
+namespace splam::estimation {
+namespace {
+
+// Each option, defaults otherwise: the value the fuzzer found (or one like it) is refused, the
+// default and a sensible other value pass.
+template <class Options, class Field>
+void ExpectDomain(Field Options::*field, std::vector<Field> refused, std::vector<Field> accepted,
+                  const char* name) {
+  EXPECT_TRUE(Options{}.Validate().ok()) << name;
+  for (const Field& value : refused) {
+    Options o;
+    o.*field = value;
+    EXPECT_FALSE(o.Validate().ok()) << name << " = " << value;
+  }
+  for (const Field& value : accepted) {
+    Options o;
+    o.*field = value;
+    EXPECT_TRUE(o.Validate().ok()) << name << " = " << value;
+  }
+}
+
+TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
+  const double nan = std::nan("");
+  // The topological SLAM walked its curve index cell by cell: 1e-300 m cells, a region of 1e212 m
+  // (UBSan: a double beyond `long`).
+  ExpectDomain(&TopologicalSlamOptions::index_cell_m, {1e-300, 0.0, 1e6, nan}, {0.5, 5.0},
+               "index_cell_m");
+  ExpectDomain(&TopologicalSlamOptions::region_margin_m, {1e12, -1.0, nan}, {0.0, 2.0},
+               "region_margin_m");
+  ExpectDomain(&kernel::LocalRegionOptions::radius_m, {1000.0, 1e21, 0.0, nan}, {1.0, 80.0},
+               "local region radius_m");
+  // Correspondences every 1e-12 m along a curve: a hang.
+  ExpectDomain(&SplineAssociationOptions::epsilon_m, {1e-12, 0.0, 100.0, nan}, {0.005, 0.1},
+               "association epsilon_m");
+  // Kernels of 3 sigma in samples, samples every epsilon: 10^11 of them.
+  ExpectDomain(&kernel::CurvatureOptions::sigma_m, {1e9, 0.0, nan}, {0.01, 1.0}, "sigma_m");
+  ExpectDomain(&kernel::CurvatureOptions::padding_fwhm, {1e9, -1.0, nan}, {0.0, 4.0},
+               "padding_fwhm");
+  ExpectDomain(&kernel::SplineExtractionOptions::epsilon_m, {1e-9, 10.0, nan}, {0.001, 0.05},
+               "extraction epsilon_m");
+  // The explorer: a move's step budget of 8e13 (UBSan: beyond `int`), an LSR of 1000 m (a
+  // 6.4e9-cell planner grid).
+  ExpectDomain(&exploration::MotionOptions::timeout_base_s, {1e12, 0.0, nan}, {1.0, 600.0},
+               "timeout_base_s");
+  ExpectDomain(&exploration::MotionOptions::timeout_per_meter_s, {1e12, -1.0, nan}, {0.0, 30.0},
+               "timeout_per_meter_s");
+  ExpectDomain(&exploration::MotionOptions::horizon_s, {1e6, 0.0, nan}, {0.5, 10.0}, "horizon_s");
+  ExpectDomain(&exploration::ExplorerOptions::lsr_radius_m, {1000.0, 0.0, nan}, {2.0, 30.0},
+               "lsr_radius_m");
+  ExpectDomain(&exploration::ExplorerOptions::arc_sampling_rad, {1e-12, 0.0, 10.0, nan},
+               {0.001, 0.1}, "arc_sampling_rad");
+  ExpectDomain(&exploration::ExplorerOptions::max_nodes, {0, -1, 2000000000}, {1, 1000},
+               "max_nodes");
+  ExpectDomain(&exploration::ExplorerOptions::srt_max_attempts, {0, 1 << 30}, {1, 100},
+               "srt_max_attempts");
+  ExpectDomain(&exploration::ExplorerOptions::max_time_s, {1e308, 0.0, nan}, {60.0, 1e6},
+               "max_time_s");
+}
+
+// A heading step of 1e-12 rad (graph.recovery_step_rad) made 10^11 headings (a segfault as the
+// count overflowed `int`): a step finer than a sixteenth of the one that moves the 90 % farthest
+// point by a cell moves no point to another cell, and is raised to it.
+TEST(OptionDomains, AHeadingStepFinerThanAnyCellChangeIsRaised) {
+  std::vector<Eigen::Vector2d> points;
+  for (double x = -3; x <= 3; x += 0.05) {
+    points.emplace_back(x, 2.0);
+    points.emplace_back(x, -2.0);
+  }
+  for (double y = -2; y <= 2; y += 0.05) points.emplace_back(3.0, y);
+  const DistanceGrid grid = DistanceGrid::Build(points, 0.1, 0.5, 0.5);
+  const LikelihoodPyramid pyramid(grid, 0.05, 5);
+  const auto search = [&](double step) {
+    return SearchCorrelative(points, pyramid, kernel::Pose2(0.1, 0.05, 0.02), 0.5, 0.1, 0.1, 0.9,
+                             {.angular_step_rad = step});
+  };
+  const CorrelativeMatch tiny = search(1e-12), fine = search(1e-3);
+  ASSERT_TRUE(tiny.found);
+  EXPECT_LT(tiny.evaluated, 10 * fine.evaluated + 100000);
+  EXPECT_LT(tiny.pose.translation().norm(), 0.15);
+  EXPECT_LT(std::abs(tiny.pose.theta()), 0.01);
+}
+
+}  // namespace
+}  // namespace splam::estimation
