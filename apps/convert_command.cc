@@ -39,7 +39,7 @@ int RunConvert(const ConvertArgs& args) {
   } else {
     if (std::string error = io::WriteCarmenLog(args.out, log); !error.empty()) {
       fmt::print(stderr, "splam convert: {}\n", error);
-      return kExitBadInput;
+      return kExitWriteFailed;
     }
     fmt::print("wrote {}: {} scans, {} odometry poses, {} true poses\n", args.out,
                log.Lasers().size(), log.Odometry().size(), log.TruePoses().size());

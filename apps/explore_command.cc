@@ -179,7 +179,7 @@ int RunExplore(const ExploreArgs& args) {
           loop::WriteExplorationRun(*world.value, setup, outcome, report, out, &written);
       !error.empty()) {
     fmt::print(stderr, "splam explore: {}\n", error);
-    return kExitBadInput;
+    return kExitWriteFailed;
   }
   fmt::print(
       "{} nodes, {} edges, {:.1f} m, {:.1f} s simulated, {:.1f} % of {:.0f} m^2 reachable free "

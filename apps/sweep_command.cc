@@ -93,9 +93,10 @@ int RunGrid(const SweepArgs& args) {
       return kExitBadInput;
     }
   }
-  if (kernel::Status s = loop::WriteSweepPlan(dir, *grid.value); !s.ok()) {
+  bool write_failed = false;
+  if (kernel::Status s = loop::WriteSweepPlan(dir, *grid.value, &write_failed); !s.ok()) {
     fmt::print(stderr, "splam sweep: {}\n", s.message());
-    return kExitBadInput;
+    return write_failed ? kExitWriteFailed : kExitBadInput;
   }
   if (args.slurm) {
     kernel::Result<loop::SweepPlan> plan = loop::ReadSweepPlan(dir);

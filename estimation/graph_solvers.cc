@@ -376,8 +376,9 @@ void RegistrationOptions::VisitFields(kernel::FieldVisitor& v) {
 kernel::Status RegistrationOptions::Validate() const {
   if (!(point_sigma_m > 0) || !(loss_scale_m > 0) || !(prior_sigma_m > 0) || !(prior_sigma_rad > 0))
     return kernel::Status::Error("registration sigmas and loss scale must be positive");
-  if (max_iterations < 1 || min_points < 3)
-    return kernel::Status::Error("registration needs max_iterations >= 1 and min_points >= 3");
+  if (max_iterations < 1 || max_iterations > 1000 || min_points < 3)
+    return kernel::Status::Error(
+        "registration needs max_iterations in [1, 1000] and min_points >= 3");
   if (!(inlier_distance_m > 0) || !(min_inlier_fraction >= 0 && min_inlier_fraction <= 1) ||
       !(max_correction_m > 0) || !(max_correction_rad > 0) ||
       !(max_normal_angle_rad > 0 && max_normal_angle_rad <= M_PI))
@@ -485,8 +486,8 @@ void PoseGraphOptions::VisitFields(kernel::FieldVisitor& v) {
 }
 
 kernel::Status PoseGraphOptions::Validate() const {
-  if (!(loop_loss_scale > 0) || max_iterations < 1)
-    return kernel::Status::Error("pose graph: loop_loss_scale > 0 and max_iterations >= 1");
+  if (!(loop_loss_scale > 0) || max_iterations < 1 || max_iterations > 1000)
+    return kernel::Status::Error("pose graph: loop_loss_scale > 0 and max_iterations in [1, 1000]");
   return kernel::Status::Ok();
 }
 

@@ -128,7 +128,8 @@ kernel::Status TopologicalSlamOptions::Validate() const {
     if (!(scan_matching_noise_scale > 0.0))
       return kernel::Status::Error("scan_matching_noise_scale must be > 0");
   }
-  if (correction_rounds < 1) return kernel::Status::Error("correction_rounds must be >= 1");
+  if (correction_rounds < 1 || correction_rounds > 100)
+    return kernel::Status::Error("correction_rounds must be in [1, 100]");
   if (!(correction_gain > 0.0 && correction_gain <= 1.0))
     return kernel::Status::Error("correction_gain must be in (0, 1]");
   if (!(end_trim_m >= 0.0) || !(min_chord_length_m > 0.0) || !(point_spacing_m >= 0.0))

@@ -9,6 +9,7 @@
 
 #include "io/internal/plausible.h"
 #include "io/text.h"
+#include "io/trajectory.h"
 
 namespace splam::io {
 namespace {
@@ -385,10 +386,7 @@ std::string FormatCarmenLog(const CarmenLog& log) {
 }
 
 std::string WriteCarmenLog(const std::string& path, const CarmenLog& log) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) return FileError(path, 0, "cannot open for writing");
-  out << FormatCarmenLog(log);
-  return out ? "" : FileError(path, 0, "write failed");
+  return WriteTextFile(path, FormatCarmenLog(log));
 }
 
 }  // namespace splam::io

@@ -278,9 +278,8 @@ std::string ConfigToYaml(const ConfigRoot& root, const std::string& header) {
 
 kernel::Status WriteConfig(const std::string& path, const ConfigRoot& root,
                            const std::string& header) {
-  std::ofstream file(path);
-  file << ConfigToYaml(root, header);
-  if (!file.good()) return kernel::Status::Error("cannot write " + path);
+  if (std::string error = WriteTextFile(path, ConfigToYaml(root, header)); !error.empty())
+    return kernel::Status::Error(error);
   return kernel::Status::Ok();
 }
 

@@ -219,6 +219,8 @@ constexpr char kIndexDataOp = 0x04;
 constexpr char kChunkOp = 0x05;
 constexpr char kChunkInfoOp = 0x06;
 constexpr char kConnectionOp = 0x07;
+// The largest uncompressed size a compressed chunk may claim (rosbag writes 768 KiB chunks).
+constexpr std::uint64_t kMaxChunkBytes = 256u << 20;
 
 // The data of a connection record is the connection's own header (topic, type, md5sum,
 // definition): rosbag reads the record's data length as that header's length. Empty when its
@@ -268,7 +270,16 @@ std::string RecordFramingProblem(const ReadBytes& read, std::uint64_t size, std:
       const auto compression = r.fields.find("compression");
       if (compression == r.fields.end()) return where + ": a chunk without compression field";
       messages.reset();
-      if (compression->second != "none") continue;
+      if (compression->second != "none") {
+        // rosbag allocates what the chunk claims before it decompresses (4 GiB: an abort when
+        // the allocation failed); its writer makes chunks of 768 KiB.
+        const auto claimed = FieldInteger(r, "size", 4);
+        if (!claimed || *claimed > kMaxChunkBytes)
+          return where + ": a compressed chunk claiming " +
+                 (claimed ? std::to_string(*claimed) : std::string("no")) +
+                 " bytes uncompressed (at most 256 MiB)";
+        continue;
+      }
       if (FieldInteger(r, "size", 4) != r.data_len)
         return where + ": an uncompressed chunk whose size is not its length";
       const std::string chunk = read(r.data_at, r.data_len);

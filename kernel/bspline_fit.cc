@@ -12,13 +12,13 @@ Status BSplineFitOptions::Validate() const {
   if (!(control_point_spacing_m > 0.0))
     return Status::Error("control_point_spacing_m must be positive");
   if (min_control_points < 4) return Status::Error("min_control_points must be at least 4");
-  if (max_control_points < min_control_points)
-    return Status::Error("max_control_points must be >= min_control_points");
+  if (max_control_points < min_control_points || max_control_points > 10000)
+    return Status::Error("max_control_points must be in [min_control_points, 10000]");
   if (!(max_length_ratio >= 1.0)) return Status::Error("max_length_ratio must be at least 1");
   if (!(points_per_control_point >= 1.0))
     return Status::Error("points_per_control_point must be at least 1");
-  if (parameter_smoothing_half_window < 0)
-    return Status::Error("parameter_smoothing_half_window must be >= 0");
+  if (parameter_smoothing_half_window < 0 || parameter_smoothing_half_window > 1000)
+    return Status::Error("parameter_smoothing_half_window must be in [0, 1000]");
   return Status::Ok();
 }
 

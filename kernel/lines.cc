@@ -73,7 +73,9 @@ Status LineExtractionOptions::Validate() const {
   }
   if (!(inlier_sigmas > 0.0)) return Status::Error("inlier_sigmas must be positive");
   if (!(max_residual_sigmas > 0.0)) return Status::Error("max_residual_sigmas must be positive");
-  if (ransac_iterations < 1) return Status::Error("ransac_iterations must be at least 1");
+  // Each draw scores every remaining point: 2e9 draws per line was a hang.
+  if (ransac_iterations < 1 || ransac_iterations > 10000)
+    return Status::Error("ransac_iterations must be in [1, 10000]");
   if (min_points < 2) return Status::Error("min_points must be at least 2");
   if (!(min_length_m >= 0.0) || !(max_point_gap_m > 0.0))
     return Status::Error("line lengths and gaps must be positive");

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -15,6 +14,7 @@
 #include "io/plot.h"
 #include "io/render.h"
 #include "io/run_picture.h"
+#include "io/trajectory.h"
 #include "kernel/angle.h"
 #include "loop/association_scoring.h"
 #include "loop/exit_status.h"
@@ -75,10 +75,9 @@ std::string SaveMethodMap(const sim::World& world, const std::string& method, st
 }
 
 // table.md and report.json: mean +- std per method over the seeds, and the seeds in which the
-// curvature association had the lower position RMSE.
-void WriteBSplineReport(const BSplineExperimentArgs& args, const std::vector<std::string>& methods,
-                        std::map<std::string, Summary>& summaries,
-                        const Summary& odometry_summary) {
+// curvature association had the lower position RMSE. Returns the exit status.
+int WriteBSplineReport(const BSplineExperimentArgs& args, const std::vector<std::string>& methods,
+                       std::map<std::string, Summary>& summaries, const Summary& odometry_summary) {
   const double scale = args.odometry_noise_scale;
   nlohmann::ordered_json report;
   report["experiment"] = "complex-bspline (paper 000 Figs. 15-17)";
@@ -131,8 +130,13 @@ void WriteBSplineReport(const BSplineExperimentArgs& args, const std::vector<std
       fmt::format("\nThe curvature association has the lower position RMSE in {} of {} seeds.\n",
                   curvature_wins, args.runs);
   fmt::print("\n{}", table);
-  std::ofstream(args.out + "/table.md") << table;
-  std::ofstream(args.out + "/report.json") << JsonText(report, 2) << "\n";
+  for (const std::string& error :
+       {io::WriteTextFile(args.out + "/table.md", table),
+        io::WriteTextFile(args.out + "/report.json", JsonText(report, 2) + "\n")}) {
+    if (error.empty()) continue;
+    fmt::print(stderr, "splam experiment: {}\n", error);
+    return kExitWriteFailed;
+  }
   if (kernel::Status s = WriteRunHtml(args.out, "splam experiment complex-bspline (paper 000)");
       !s.ok())
     fmt::print(stderr, "splam experiment: {}\n", s.message());
@@ -140,6 +144,7 @@ void WriteBSplineReport(const BSplineExperimentArgs& args, const std::vector<std
       "wrote {}/{{table.md, report.json, report.html, errors.svg, errors.png, map_pedraza.svg/png, "
       "map_curvature.svg/png}}\n",
       args.out);
+  return kExitOk;
 }
 
 // Runs the seeds in this process, one after the other, and writes the report.
@@ -214,8 +219,7 @@ int RunSeedsHere(const BSplineExperimentArgs& args) {
     }
   }
 
-  WriteBSplineReport(args, methods, summaries, odometry_summary);
-  return kExitOk;
+  return WriteBSplineReport(args, methods, summaries, odometry_summary);
 }
 
 // A summary of one method (or odometry) read back from a one-seed run's report.json.
@@ -277,8 +281,7 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
       return kExitBadInput;
     }
   }
-  WriteBSplineReport(args, methods, summaries, odometry_summary);
-  return kExitOk;
+  return WriteBSplineReport(args, methods, summaries, odometry_summary);
 }
 
 }  // namespace splam::loop

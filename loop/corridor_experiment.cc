@@ -6,7 +6,6 @@
 #include <fmt/core.h>
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "estimation/chi_square.h"
@@ -15,6 +14,7 @@
 #include "io/plot.h"
 #include "io/render.h"
 #include "io/run_picture.h"
+#include "io/trajectory.h"
 #include "kernel/angle.h"
 #include "loop/exit_status.h"
 #include "loop/experiment_trials.h"
@@ -326,8 +326,13 @@ int WriteCorridorResult(const CorridorOptions& options, const CorridorResult& re
     return kExitBadInput;
   }
   report["per_run"] = PerRunJson(result);
-  std::ofstream(out + "/table1.md") << table;
-  std::ofstream(out + "/report.json") << JsonText(report, 2) << "\n";
+  for (const std::string& error :
+       {io::WriteTextFile(out + "/table1.md", table),
+        io::WriteTextFile(out + "/report.json", JsonText(report, 2) + "\n")}) {
+    if (error.empty()) continue;
+    fmt::print(stderr, "splam experiment: {}\n", error);
+    return kExitWriteFailed;
+  }
   if (kernel::Status s = WriteRunHtml(out, "splam experiment corridor-lines (paper 001 Table 1)");
       !s.ok()) {
     fmt::print(stderr, "splam experiment: {}\n", s.message());

@@ -2,12 +2,12 @@
 
 #include <fmt/core.h>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <vector>
 
 #include "estimation/metrics.h"
 #include "io/plot.h"
+#include "io/trajectory.h"
 #include "loop/exit_status.h"
 #include "loop/experiment_trials.h"
 #include "loop/json_text.h"
@@ -141,8 +141,13 @@ int RunExplorationExperiment(const ExplorationExperimentArgs& args) {
       return kExitBadInput;
     }
   }
-  std::ofstream(args.out + "/table.md") << table;
-  std::ofstream(args.out + "/summary.json") << JsonText(summary, 2) << "\n";
+  for (const std::string& error :
+       {io::WriteTextFile(args.out + "/table.md", table),
+        io::WriteTextFile(args.out + "/summary.json", JsonText(summary, 2) + "\n")}) {
+    if (error.empty()) continue;
+    fmt::print(stderr, "splam experiment: {}\n", error);
+    return kExitWriteFailed;
+  }
   if (kernel::Status s = WriteRunHtml(args.out, "splam experiment exploration (paper 003 Fig. 18)");
       !s.ok()) {
     fmt::print(stderr, "splam experiment: {}\n", s.message());

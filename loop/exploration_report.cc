@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 
 #include "estimation/metrics.h"
 #include "exploration/coverage.h"
@@ -138,13 +137,12 @@ std::string WriteExplorationRun(const sim::World& world, const ExploreSetup& set
                                 const std::string& dir, std::vector<std::string>* written) {
   const std::string title = RunTitle(world, setup, outcome);
   const Trajectories t = TrajectoriesOf(outcome.run);
-  std::ofstream(dir + "/report.json") << JsonText(report, 2) << "\n";
-  written->push_back("report.json");
   const auto save = [&](const std::string& name, std::string error) {
     if (error.empty()) written->push_back(name);
     return error;
   };
   std::vector<std::string> errors = {
+      save("report.json", io::WriteTextFile(dir + "/report.json", JsonText(report, 2) + "\n")),
       save("graph.svg/png",
            SaveExplorationPicture(world, outcome, title, {dir + "/graph.svg", dir + "/graph.png"})),
       save("explored.svg/png",

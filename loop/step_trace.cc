@@ -2,16 +2,16 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
+#include <sstream>
 
+#include "io/trajectory.h"
 #include "kernel/angle.h"
 
 namespace splam::loop {
 
 std::string WriteStepTrace(const std::string& path, const std::vector<StepRecord>& steps,
                            const std::vector<double>& times, const kernel::Trajectory& truth) {
-  std::ofstream out(path);
-  if (!out) return fmt::format("cannot write {}", path);
+  std::ostringstream out;
   std::vector<std::string> names;
   for (const StepRecord& s : steps) {
     if (s.values.empty()) continue;
@@ -48,7 +48,7 @@ std::string WriteStepTrace(const std::string& path, const std::vector<StepRecord
     }
     out << '\n';
   }
-  return out ? "" : fmt::format("error writing {}", path);
+  return io::WriteTextFile(path, out.str());
 }
 
 }  // namespace splam::loop

@@ -124,8 +124,10 @@ pid_t SpawnCell(const std::string& dir, const SweepCell& cell, const std::string
     std::ofstream(log) << "cannot start " << binary << ": " << std::strerror(error) << "\n";
     return -1;
   }
-  std::ofstream(cell_dir + "/cell.started")
-      << JsonText(nlohmann::json{{"host", Host()}, {"pid", pid}, {"args", args}}) << "\n";
+  // A record for `sweep status`; the run goes on without it (it only says where the cell runs).
+  static_cast<void>(io::WriteTextFile(
+      cell_dir + "/cell.started",
+      JsonText(nlohmann::json{{"host", Host()}, {"pid", pid}, {"args", args}}) + "\n"));
   return pid;
 }
 
@@ -143,13 +145,16 @@ CellRecord FinishCell(const std::string& cell_dir, int exit_status, double wall_
   record.message = LastLine(cell_dir + "/cell.log");
   if (exit_status > 128 && record.message.empty())
     record.message = "killed by signal " + std::to_string(exit_status - 128);
-  std::ofstream(cell_dir + "/cell.json")
-      << JsonText(nlohmann::json{{"exit_status", record.exit_status},
-                                 {"wall_s", record.wall_s},
-                                 {"message", record.message},
-                                 {"host", record.host}},
-                  2)
-      << "\n";
+  // Unwritten, the cell counts as not finished and runs again on resume: say why.
+  if (std::string error = io::WriteTextFile(
+          cell_dir + "/cell.json", JsonText(nlohmann::json{{"exit_status", record.exit_status},
+                                                           {"wall_s", record.wall_s},
+                                                           {"message", record.message},
+                                                           {"host", record.host}},
+                                            2) +
+                                       "\n");
+      !error.empty())
+    record.message = error + "; " + record.message;
   return record;
 }
 
@@ -218,7 +223,7 @@ std::string CellDir(const std::string& dir, const SweepCell& cell) {
   return dir + "/cells/" + cell.name;
 }
 
-kernel::Status WriteSweepPlan(const std::string& dir, const io::Grid& grid) {
+kernel::Status WriteSweepPlan(const std::string& dir, const io::Grid& grid, bool* write_failed) {
   std::error_code ec;
   std::filesystem::create_directories(dir + "/cells", ec);
   if (ec) return kernel::Status::Error("cannot create " + dir + ": " + ec.message());
@@ -230,8 +235,7 @@ kernel::Status WriteSweepPlan(const std::string& dir, const io::Grid& grid) {
       return kernel::Status::Error(dir + " holds the cells of another grid (" + grid_path +
                                    "): give another --out, or remove it");
   }
-  std::ofstream(grid_path) << io::GridToYaml(grid);
-  std::ofstream tsv(dir + "/cells.tsv");
+  std::ostringstream tsv;
   tsv << "# index\tname\tsplam command line (arguments separated by tabs; --out <dir>/cells/<name>"
          " follows)\n";
   const std::vector<SweepCell> cells = GridCells(grid);
@@ -240,7 +244,12 @@ kernel::Status WriteSweepPlan(const std::string& dir, const io::Grid& grid) {
     for (const std::string& a : cells[i].args) tsv << "\t" << a;
     tsv << "\n";
   }
-  if (!tsv) return kernel::Status::Error("cannot write " + dir + "/cells.tsv");
+  for (const std::string& error : {io::WriteTextFile(grid_path, io::GridToYaml(grid)),
+                                   io::WriteTextFile(dir + "/cells.tsv", tsv.str())}) {
+    if (error.empty()) continue;
+    if (write_failed != nullptr) *write_failed = true;
+    return kernel::Status::Error(error);
+  }
   return kernel::Status::Ok();
 }
 

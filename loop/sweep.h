@@ -35,8 +35,10 @@ struct SweepPlan {
 };
 
 // Writes grid.yaml and cells.tsv into `dir` (created). When `dir` already holds a plan, it must
-// be the same grid: a sweep resumes, it never mixes two grids in one directory.
-kernel::Status WriteSweepPlan(const std::string& dir, const io::Grid& grid);
+// be the same grid: a sweep resumes, it never mixes two grids in one directory. A file that
+// cannot be written sets *write_failed (when given) besides the error naming it.
+kernel::Status WriteSweepPlan(const std::string& dir, const io::Grid& grid,
+                              bool* write_failed = nullptr);
 kernel::Result<SweepPlan> ReadSweepPlan(const std::string& dir);
 
 std::string CellDir(const std::string& dir, const SweepCell& cell);

@@ -9,8 +9,15 @@
 namespace splam::io::internal {
 
 std::string ScanGeometryProblem(const kernel::Scan& s) {
+  if (s.size() == 0) return "a scan without beams";
+  if (s.size() > kMaxBeams)
+    return std::to_string(s.size()) + " beams: more than the " + std::to_string(kMaxBeams) +
+           " of any 2-D laser";
   if (!(s.max_range_m > 0.0 && s.max_range_m <= kMaxRangeM))
     return "maximum range " + FormatDouble(s.max_range_m) + " m is not in (0, 1e4]";
+  if (!(s.min_range_m >= 0.0 && s.min_range_m < s.max_range_m))
+    return "minimum range " + FormatDouble(s.min_range_m) + " m is not in [0, " +
+           FormatDouble(s.max_range_m) + ") (the maximum range)";
   if (!(std::abs(s.start_angle_rad) <= 2.0 * kernel::kPi))
     return "start angle " + FormatDouble(s.start_angle_rad) + " rad is not in [-2 pi, 2 pi]";
   if (s.size() > 1 && !(s.angular_step_rad > 0.0))

@@ -1,6 +1,7 @@
 #ifndef SPLAM_IO_INTERNAL_PLAUSIBLE_H_
 #define SPLAM_IO_INTERNAL_PLAUSIBLE_H_
 
+#include <cstddef>
 #include <string>
 
 #include "kernel/pose2.h"
@@ -17,9 +18,13 @@ inline constexpr double kMaxRangeM = 1e4;
 // The finest angular step between beams a log may state (the finest 2-D lasers: 0.0625 deg,
 // 1.1e-3 rad); a step of 1e-30 rad put every beam of a scan at one bearing.
 inline constexpr double kMinAngularStepRad = 1e-4;
+// The most beams a scan may hold: a full turn at 0.018 deg (the densest 2-D lasers give 3,600 a
+// turn); one scan of 200,000 beams took 30-60 s through a SLAM step.
+inline constexpr std::size_t kMaxBeams = 20000;
 
-// Empty when the beams' geometry is plausible: a maximum range in (0, 10 km], a start angle in
-// [-2 pi, 2 pi], a positive step and beams within one turn (an angular resolution written in
+// Empty when the beams' geometry is plausible: at least one beam, a maximum range in (0, 10 km]
+// above a minimum range of 0 or more, a start angle in [-2 pi, 2 pi], a positive step and beams
+// within one turn (an angular resolution written in
 // degrees, 0.36 for 0.36 deg, wrapped the scan 360 times and made the curve fits run out of
 // memory); else what is wrong.
 std::string ScanGeometryProblem(const kernel::Scan& scan);

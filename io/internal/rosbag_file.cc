@@ -200,9 +200,10 @@ RosBagMessages RosBagFile::Messages(const std::string& scan_topic, const std::st
 
 void WriteMessages(const std::string& path, const std::string& scan_topic,
                    const std::string& odom_topic, const std::string& truth_topic,
-                   const RosBagMessages& messages) {
+                   const RosBagMessages& messages, bool bz2) {
   KeepEncryptorPluginsLoaded();
   rosbag::Bag bag(path, rosbag::bagmode::Write);
+  if (bz2) bag.setCompression(rosbag::compression::BZ2);
   const auto write_transform = [&](const char* topic, const RosPose& p) {
     tf2_msgs::TFMessage tf;
     geometry_msgs::TransformStamped t;

@@ -62,9 +62,10 @@ class RosBagFile {
 
 // Writes a bag: each scan on scan_topic, each odometry pose on odom_topic and each truth pose on
 // truth_topic (nav_msgs/Odometry), the transforms on /tf and /tf_static. Throws std::exception.
+// `bz2`: chunks compressed with bzip2 (rosbag's default is none).
 void WriteMessages(const std::string& path, const std::string& scan_topic,
                    const std::string& odom_topic, const std::string& truth_topic,
-                   const RosBagMessages& messages);
+                   const RosBagMessages& messages, bool bz2 = false);
 
 }  // namespace splam::io::internal
 

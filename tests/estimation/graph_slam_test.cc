@@ -637,9 +637,10 @@ double RealConditions::plain_ = 0.0;
 
 // People walking: four discs of 0.25 m crossing the room at 0.8-1.2 m/s, seen by the URG in
 // front of the walls, often a fifth of its 4 m view. Left out as moving objects (seen through
-// by an earlier or a later scan, GraphSlamOptions::moving) they cost less than half the error
-// they cost kept in.
-// Measured: 0.059 m, 0.259 m kept in (0.029 m without people): a named gap.
+// by an earlier or a later scan, GraphSlamOptions::moving) they cost much less than kept in.
+// Measured: 0.059 m, 0.106 m kept in (0.259 m before the loop search counted seen free space
+// against a pose: people kept in the map no longer lead it to wrong closures as often; 0.029 m
+// without people): a named gap.
 TEST(GraphSlam, PeopleWalkingThroughTheRoomAreLeftOut) {
   LapConditions c;
   c.people = {{{{6.5, 0.6}, {6.5, 6.0}}, 1.0, 0.25, 0.0},
@@ -651,7 +652,7 @@ TEST(GraphSlam, PeopleWalkingThroughTheRoomAreLeftOut) {
   const double with = DriveLaps(1, {}, c).rmse_m, without = DriveLaps(1, kept, c).rmse_m;
   std::cout << "people walking: RMSE " << with << " m, " << without << " m kept in\n";
   EXPECT_LT(with, 0.12);
-  EXPECT_LT(with, without / 2);
+  EXPECT_LT(with, 0.75 * without);
 }
 
 // The hospital floor (bench/worlds/hospital_floor.yaml: wards 6.2 m wide along both corridors,

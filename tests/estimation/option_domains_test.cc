@@ -9,11 +9,15 @@
 
 #include "estimation/correlative_matcher.h"
 #include "estimation/distance_grid.h"
+#include "estimation/pose_graph.h"
+#include "estimation/scan_registration.h"
 #include "estimation/spline_association.h"
 #include "estimation/topological_slam.h"
 #include "exploration/explorer.h"
 #include "exploration/motion.h"
+#include "kernel/bspline_fit.h"
 #include "kernel/curvature.h"
+#include "kernel/lines.h"
 #include "kernel/local_safe_region.h"
 #include "kernel/spline_extraction.h"
 
@@ -74,6 +78,15 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
                "srt_max_attempts");
   ExpectDomain(&exploration::ExplorerOptions::max_time_s, {1e308, 0.0, nan}, {60.0, 1e6},
                "max_time_s");
+  // ekf-lines: 1.9e9 RANSAC draws per line, a hang; counts of iterations and control points.
+  ExpectDomain(&kernel::LineExtractionOptions::ransac_iterations, {0, 1885693042}, {1, 500},
+               "ransac_iterations");
+  ExpectDomain(&RegistrationOptions::max_iterations, {0, 1 << 30}, {1, 100}, "max_iterations");
+  ExpectDomain(&PoseGraphOptions::max_iterations, {0, 1 << 30}, {1, 100}, "max_iterations");
+  ExpectDomain(&kernel::BSplineFitOptions::max_control_points, {3, 1 << 30}, {8, 500},
+               "max_control_points");
+  ExpectDomain(&TopologicalSlamOptions::correction_rounds, {0, 1 << 30}, {1, 10},
+               "correction_rounds");
 }
 
 // A heading step of 1e-12 rad (graph.recovery_step_rad) made 10^11 headings (a segfault as the

@@ -35,7 +35,7 @@ TEST(SlamRegistry, ErrorsAreValues) {
       0;
   auto invalid = registry.Make("topological", options.get(), {});
   ASSERT_FALSE(invalid.ok());
-  EXPECT_EQ(invalid.error, "topological options: correction_rounds must be >= 1");
+  EXPECT_EQ(invalid.error, "topological options: correction_rounds must be in [1, 100]");
   // Options of one method given to another.
   auto lines = registry.Find("ekf-lines")->default_options({});
   auto mismatch = registry.Make("topological", lines.get(), {});

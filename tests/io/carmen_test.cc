@@ -250,6 +250,15 @@ INSTANTIATE_TEST_SUITE_P(
                 "angular resolution 1e-30 rad is below 1e-4 rad"},
         BadLine{"ROBOTLASER1 0 -1.5 3 0.01 0 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
                 "maximum range 0 m"},
+        BadLine{"ROBOTLASER1 0 -1.5 3 0.01 8 0.01 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
+                "a scan without beams"},
+        BadLine{"FLASER 0 0 0 0 0 0 0 1 h 1", "a scan without beams"},
+        BadLine{[] {
+                  std::string line = "FLASER 20001";
+                  for (int i = 0; i < 20001; ++i) line += " 1";
+                  return line + " 0 0 0 0 0 0 1 h 1";
+                }(),
+                "20001 beams: more than the 20000 of any 2-D laser"},
         BadLine{"ROBOTLASER1 0 1e300 3 0.01 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
                 "start angle 1e+300"},
         BadLine{"ROBOTLASER1 0 -1.5 -3 0.01 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",

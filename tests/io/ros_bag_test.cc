@@ -116,6 +116,27 @@ TEST(RosBag, OdometryFromTfAndTheMountingThroughAChainOfStaticTransforms) {
   EXPECT_EQ(lasers[0]->scan.min_range_m, static_cast<float>(0.05));
 }
 
+// A LaserScan whose range_min lies above its range_max, or without ranges (issue 48, item 7):
+// refused, naming the scan and the topic, instead of running as if valid.
+TEST(RosBag, ScansWithoutBeamsOrWithRangesUpsideDownAreRefused) {
+  for (const bool empty : {false, true}) {
+    internal::RosBagMessages bag;
+    for (int i = 0; i < 3; ++i) {
+      bag.odometry.push_back({1.0 + i, "odom", "base_link", 0.1 * i, 0.0, 0.0, 0.0, 0.0});
+      bag.scans.push_back({1.5 + i, "base_link", -1.0, 0.01, i == 1 && !empty ? 40.0 : 0.05, 30.0,
+                           std::vector<float>(i == 1 && empty ? 0 : 201, 2.0f)});
+    }
+    const std::string path = TempBag(empty ? "no_beams" : "range_min");
+    internal::WriteMessages(path, "/scan", "/odom", "/ground_truth", bag);
+    const RosBagReadResult read = ReadRosBag(path);
+    ASSERT_FALSE(read.log.ok());
+    EXPECT_NE(read.log.error.find(empty ? "scan 2 on /scan: a scan without beams"
+                                        : "scan 2 on /scan: minimum range 40 m is not in [0, 30)"),
+              std::string::npos)
+        << read.log.error;
+  }
+}
+
 TEST(RosBag, TopicsAndMountingThatCannotBeChosenAreNamed) {
   internal::RosBagMessages bag;
   bag.scans.push_back({1.0, "laser", -1.0, 0.01, 0.05, 30.0, std::vector<float>(201, 2.0f)});
@@ -224,6 +245,30 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
   EXPECT_NE(read.log.error.find(": an index entry that is not a message of its chunk"),
             std::string::npos)
       << read.log.error;
+  // Issue 48, item 2: a bzip2 chunk claiming 4 GiB uncompressed made rosbag allocate it (an
+  // abort where the allocation failed). The size field of the first chunk gets 0xf0000000.
+  {
+    internal::RosBagMessages small;
+    small.scans.push_back(
+        {1.0, "base_link", -1.0, 0.01, 0.05, 30.0, std::vector<float>(181, 2.0f)});
+    small.odometry.push_back({1.0, "odom", "base_link", 0.0, 0.0, 0.0, 0.0, 0.0});
+    const std::string compressed = TempBag("bz2");
+    internal::WriteMessages(compressed, "/scan", "/odom", "/ground_truth", small, true);
+    ASSERT_TRUE(ReadRosBag(compressed).log.ok());
+    std::string raw;
+    ASSERT_EQ(ReadTextFile(compressed, &raw), "");
+    const std::size_t bz2 = raw.find("compression=bz2");
+    ASSERT_NE(bz2, std::string::npos);
+    const std::size_t size = raw.find("size=", bz2 > 40 ? bz2 - 40 : 0);
+    ASSERT_LT(size, bz2 + 40);
+    raw.replace(size + 5, 4, std::string("\x00\x00\x00\xf0", 4));
+    ASSERT_EQ(WriteTextFile(broken, raw), "");
+    read = ReadRosBag(broken);
+    ASSERT_FALSE(read.log.ok());
+    EXPECT_NE(read.log.error.find("a compressed chunk claiming 4026531840 bytes uncompressed"),
+              std::string::npos)
+        << read.log.error;
+  }
   // A scan whose beams wrap the circle (a resolution in degrees) is refused at the reader.
   internal::RosBagMessages bag;
   bag.scans.push_back({1.0, "base_link", -1.0, 0.36, 0.05, 30.0, std::vector<float>(181, 2.0f)});
