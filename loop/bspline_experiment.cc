@@ -14,7 +14,6 @@
 #include "io/plot.h"
 #include "io/render.h"
 #include "io/run_picture.h"
-#include "io/trajectory.h"
 #include "kernel/angle.h"
 #include "loop/association_scoring.h"
 #include "loop/exit_status.h"
@@ -130,13 +129,11 @@ int WriteBSplineReport(const BSplineExperimentArgs& args, const std::vector<std:
       fmt::format("\nThe curvature association has the lower position RMSE in {} of {} seeds.\n",
                   curvature_wins, args.runs);
   fmt::print("\n{}", table);
-  for (const std::string& error :
-       {io::WriteTextFile(args.out + "/table.md", table),
-        io::WriteTextFile(args.out + "/report.json", JsonText(report, 2) + "\n")}) {
-    if (error.empty()) continue;
-    fmt::print(stderr, "splam experiment: {}\n", error);
-    return kExitWriteFailed;
-  }
+  if (const int status =
+          WriteExperimentFiles({{args.out + "/table.md", table},
+                                {args.out + "/report.json", JsonText(report, 2) + "\n"}});
+      status != kExitOk)
+    return status;
   if (kernel::Status s = WriteRunHtml(args.out, "splam experiment complex-bspline (paper 000)");
       !s.ok())
     fmt::print(stderr, "splam experiment: {}\n", s.message());

@@ -14,7 +14,6 @@
 #include "io/plot.h"
 #include "io/render.h"
 #include "io/run_picture.h"
-#include "io/trajectory.h"
 #include "kernel/angle.h"
 #include "loop/exit_status.h"
 #include "loop/experiment_trials.h"
@@ -326,13 +325,10 @@ int WriteCorridorResult(const CorridorOptions& options, const CorridorResult& re
     return kExitBadInput;
   }
   report["per_run"] = PerRunJson(result);
-  for (const std::string& error :
-       {io::WriteTextFile(out + "/table1.md", table),
-        io::WriteTextFile(out + "/report.json", JsonText(report, 2) + "\n")}) {
-    if (error.empty()) continue;
-    fmt::print(stderr, "splam experiment: {}\n", error);
-    return kExitWriteFailed;
-  }
+  if (const int status = WriteExperimentFiles(
+          {{out + "/table1.md", table}, {out + "/report.json", JsonText(report, 2) + "\n"}});
+      status != kExitOk)
+    return status;
   if (kernel::Status s = WriteRunHtml(out, "splam experiment corridor-lines (paper 001 Table 1)");
       !s.ok()) {
     fmt::print(stderr, "splam experiment: {}\n", s.message());

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/sweep_grid.h"
@@ -16,7 +17,8 @@ namespace splam::loop {
 // Writes the plan of `grid` into `dir` and runs its cells there, `jobs` at once (0: one per
 // core), with `splam_binary`; cells finished before are skipped. Prints progress and a summary.
 // kExitOk when every cell has run; else the exit status to stop with, the problem printed:
-// kExitBadInput (no plan, another grid in `dir`), kExitIncomplete (interrupted by `stop`).
+// kExitBadInput (another grid in `dir`), kExitWriteFailed (the plan could not be written),
+// kExitIncomplete (interrupted by `stop`).
 int RunExperimentTrials(const std::string& dir, const io::Grid& grid,
                         const std::string& splam_binary, int jobs,
                         const std::function<bool()>& stop);
@@ -24,6 +26,10 @@ int RunExperimentTrials(const std::string& dir, const io::Grid& grid,
 // The report.json of a trial that succeeded; nullopt, the problem printed, when it failed or
 // wrote none.
 std::optional<nlohmann::json> TrialReport(const std::string& cell_dir);
+
+// Writes each (path, text) of an experiment's results: kExitOk, or kExitWriteFailed with the
+// first file that could not be written printed.
+int WriteExperimentFiles(const std::vector<std::pair<std::string, std::string>>& files);
 
 // Copies each of `names` from a trial's directory to <out>/<prefix><name> (a figure of the
 // experiment from one of its trials); the first error, or empty.

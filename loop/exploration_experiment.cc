@@ -7,7 +7,6 @@
 
 #include "estimation/metrics.h"
 #include "io/plot.h"
-#include "io/trajectory.h"
 #include "loop/exit_status.h"
 #include "loop/experiment_trials.h"
 #include "loop/json_text.h"
@@ -141,13 +140,11 @@ int RunExplorationExperiment(const ExplorationExperimentArgs& args) {
       return kExitBadInput;
     }
   }
-  for (const std::string& error :
-       {io::WriteTextFile(args.out + "/table.md", table),
-        io::WriteTextFile(args.out + "/summary.json", JsonText(summary, 2) + "\n")}) {
-    if (error.empty()) continue;
-    fmt::print(stderr, "splam experiment: {}\n", error);
-    return kExitWriteFailed;
-  }
+  if (const int status =
+          WriteExperimentFiles({{args.out + "/table.md", table},
+                                {args.out + "/summary.json", JsonText(summary, 2) + "\n"}});
+      status != kExitOk)
+    return status;
   if (kernel::Status s = WriteRunHtml(args.out, "splam experiment exploration (paper 003 Fig. 18)");
       !s.ok()) {
     fmt::print(stderr, "splam experiment: {}\n", s.message());

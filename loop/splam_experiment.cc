@@ -9,7 +9,6 @@
 
 #include "estimation/metrics.h"
 #include "io/plot.h"
-#include "io/trajectory.h"
 #include "kernel/angle.h"
 #include "loop/exit_status.h"
 #include "loop/experiment_trials.h"
@@ -272,13 +271,11 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
     j["explored_and_healthy"] = explored;
     for (const auto& [key, field] : SummaryFields()) j[key] = Values(v, field);
   }
-  for (const std::string& error :
-       {io::WriteTextFile(args.out + "/table.md", table),
-        io::WriteTextFile(args.out + "/summary.json", JsonText(summary, 2) + "\n")}) {
-    if (error.empty()) continue;
-    fmt::print(stderr, "splam experiment: {}\n", error);
-    return kExitWriteFailed;
-  }
+  if (const int status =
+          WriteExperimentFiles({{args.out + "/table.md", table},
+                                {args.out + "/summary.json", JsonText(summary, 2) + "\n"}});
+      status != kExitOk)
+    return status;
   if (kernel::Status s = WriteRunHtml(
           args.out, "splam experiment splam (paper 003 Figs. 19-22) in " + args.world_name);
       !s.ok()) {
