@@ -874,8 +874,8 @@ void LoopClosureOptions::VisitFields(kernel::FieldVisitor& v) {
           "closure test: whitened squared residual after optimisation at most; also the bound of "
           "a closure's agreement with the graph and with another closure");
   v.Field("seen_free_score", &seen_free_score,
-          "correlative score of a point where the target saw free space, away from its outline "
-          "(<= 0; 0: as where it never looked)");
+          "correlative score of a point where the target's returning beams passed, three cells or "
+          "more from its outline (in [-10, 0]; 0: as where it never looked)");
   v.Field("max_misfit_fraction", &max_misfit_fraction,
           "closure test: fraction of the query's points where the target saw free space, away "
           "from its outline, at most");
