@@ -28,7 +28,7 @@ int RunConvert(const ConvertArgs& args) {
     if (std::string error = io::WriteRosBag(log, args.out, args.input.bag, &stats);
         !error.empty()) {
       fmt::print(stderr, "splam convert: {}\n", error);
-      return kExitBadInput;
+      return stats.write_failed ? kExitWriteFailed : kExitBadInput;
     }
     fmt::print("wrote {}: {} scans, {} odometry poses, {} true poses", args.out, stats.scans,
                stats.odometry, stats.true_poses);

@@ -520,6 +520,7 @@ std::string WriteRosBag(const CarmenLog& log, const std::string& path, const Ros
                             options.odom_topic.empty() ? "/odom" : options.odom_topic,
                             options.truth_topic, bag);
   } catch (const std::exception& e) {
+    if (stats) stats->write_failed = true;
     return FileError(path, 0, std::string("cannot write the bag: ") + e.what());
   }
   if (stats) *stats = counts;

@@ -55,8 +55,10 @@ RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& option
 struct RosBagWriteStats {
   int scans = 0, odometry = 0, true_poses = 0;
   int sonar_skipped = 0;
+  bool write_failed = false;  // the error is the file's (a full disk), not the log's
 };
-// Empty on success, else why the bag could not be written.
+// Empty on success, else why the bag could not be written (*stats then says whether the log or
+// the file was at fault).
 std::string WriteRosBag(const CarmenLog& log, const std::string& path,
                         const RosBagOptions& options = {}, RosBagWriteStats* stats = nullptr);
 

@@ -527,6 +527,12 @@ TEST(SplamCli, AFullDiskGivesExitStatus4NamingTheFile) {
   EXPECT_EQ(converted.status, 4) << converted.text;
   EXPECT_NE(converted.text.find("converted.clf: write failed"), std::string::npos)
       << converted.text;
+  // A bag: rosbag's exception (an abort before issue 48) is caught and named.
+  fs::create_symlink("/dev/full", dir / "converted.bag");
+  const Output bagged = Splam("convert " + log + " " + (dir / "converted.bag").string());
+  EXPECT_EQ(bagged.status, 4) << bagged.text;
+  EXPECT_NE(bagged.text.find("converted.bag: cannot write the bag"), std::string::npos)
+      << bagged.text;
 }
 
 // Issue 48, item 6: standard output on a full disk (`config print > /dev/full`) aborted with
