@@ -59,8 +59,16 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
   ExpectDomain(&kernel::CurvatureOptions::sigma_m, {1e9, 0.0, nan}, {0.01, 1.0}, "sigma_m");
   ExpectDomain(&kernel::CurvatureOptions::padding_fwhm, {1e9, -1.0, nan}, {0.0, 4.0},
                "padding_fwhm");
-  ExpectDomain(&kernel::SplineExtractionOptions::epsilon_m, {1e-9, 10.0, nan}, {0.001, 0.05},
-               "extraction epsilon_m");
+  ExpectDomain(&kernel::SplineExtractionOptions::epsilon_m, {1e-9, 1e-4, 10.0, nan},
+               {0.001, 0.05}, "extraction epsilon_m");
+  // 0.1 mm samples under a 5 cm smoothing: 3,000 taps at every sample of every curve, a hang
+  // (found in the long run); a sigma of more than 1000 samples is refused with it.
+  kernel::SplineExtractionOptions wide;
+  wide.epsilon_m = 0.001;
+  wide.curvature.sigma_m = 2.0;
+  EXPECT_FALSE(wide.Validate().ok());
+  wide.curvature.sigma_m = 0.5;
+  EXPECT_TRUE(wide.Validate().ok());
   // The explorer: a move's step budget of 8e13 (UBSan: beyond `int`), an LSR of 1000 m (a
   // 6.4e9-cell planner grid).
   ExpectDomain(&exploration::MotionOptions::timeout_base_s, {1e12, 0.0, nan}, {1.0, 600.0},

@@ -67,7 +67,7 @@ int FuzzedInt(Bytes* in, int current) {
   const std::uint8_t pick = in->Byte();
   if (pick < 128) return kValues[pick % std::size(kValues)];
   if (pick < 192)
-    return static_cast<int>(std::clamp<long>(current + in->Byte() - 128L,
+    return static_cast<int>(std::clamp<long>(static_cast<long>(current) + in->Byte() - 128L,
                                              std::numeric_limits<int>::min(),
                                              std::numeric_limits<int>::max()));
   return static_cast<int>(static_cast<std::uint32_t>(in->U16()) << 16 | in->U16());
