@@ -121,7 +121,9 @@ kernel::Status TopologicalSlamOptions::Validate() const {
     return kernel::Status::Error(
         "the local region needs a margin in [0, 100] m, a radius in (0, 100] m and 0 < alpha < 1");
   if (!(min_information >= 0.0)) return kernel::Status::Error("min_information must be >= 0");
-  if (!(point_sigma_m > 0.0)) return kernel::Status::Error("point_sigma_m must be positive");
+  // Weights are 1 / sigma^2: 1e308 m underflowed them and the solve returned NaN.
+  if (!(point_sigma_m > 0.0 && point_sigma_m <= 10.0))
+    return kernel::Status::Error("point_sigma_m must be in (0, 10] m");
   if (kernel::Status e = odometry.Validate(); !e.ok()) return e;
   if (prediction == TopologicalPrediction::kScanMatching) {
     if (kernel::Status e = scan_matching.Validate(); !e.ok()) return e.Prefixed("scan_matching");
@@ -567,6 +569,8 @@ std::optional<TopologicalSlam::DenseResult> TopologicalSlam::RefineDense(
     if (static_cast<int>(result.pairs.size()) < options_.dense_min_points) return std::nullopt;
     const Pose2 next = SolvePoseCorrection(result.pairs, {}, current, options_.min_information,
                                            options_.loss, solver);
+    // A degenerate solve (weights that underflow) is no correction.
+    if (!next.translation().allFinite() || !std::isfinite(next.theta())) return std::nullopt;
     const bool settled = (next.translation() - current.translation()).norm() < 1e-4 &&
                          std::abs(kernel::WrapAngle(next.theta() - current.theta())) < 1e-5;
     current = next;

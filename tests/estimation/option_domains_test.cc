@@ -59,8 +59,8 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
   ExpectDomain(&kernel::CurvatureOptions::sigma_m, {1e9, 0.0, nan}, {0.01, 1.0}, "sigma_m");
   ExpectDomain(&kernel::CurvatureOptions::padding_fwhm, {1e9, -1.0, nan}, {0.0, 4.0},
                "padding_fwhm");
-  ExpectDomain(&kernel::SplineExtractionOptions::epsilon_m, {1e-9, 1e-4, 10.0, nan},
-               {0.001, 0.05}, "extraction epsilon_m");
+  ExpectDomain(&kernel::SplineExtractionOptions::epsilon_m, {1e-9, 1e-4, 10.0, nan}, {0.001, 0.05},
+               "extraction epsilon_m");
   // 0.1 mm samples under a 5 cm smoothing: 3,000 taps at every sample of every curve, a hang
   // (found in the long run); a sigma of more than 1000 samples is refused with it.
   kernel::SplineExtractionOptions wide;
@@ -95,6 +95,11 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
                "max_control_points");
   ExpectDomain(&TopologicalSlamOptions::correction_rounds, {0, 1 << 30}, {1, 10},
                "correction_rounds");
+  // A point sigma of 1e308 m: weights of 1e-616, a NaN pose (UBSan, found in the long run).
+  ExpectDomain(&TopologicalSlamOptions::point_sigma_m, {1e308, 0.0, nan}, {0.01, 1.0},
+               "topological point_sigma_m");
+  ExpectDomain(&RegistrationOptions::point_sigma_m, {1e308, 0.0, nan}, {0.01, 1.0},
+               "registration point_sigma_m");
 }
 
 // A heading step of 1e-12 rad (graph.recovery_step_rad) made 10^11 headings (a segfault as the
