@@ -30,12 +30,14 @@ Eigen::Matrix3d OdometryNoiseModel::Covariance(const kernel::Pose2& u) const {
 }
 
 kernel::Status OdometryNoiseModel::Validate() const {
-  if (!(forward_per_m >= 0) || !(lateral_per_m >= 0) || !(rotation_per_rad >= 0) ||
-      !(rotation_per_m >= 0)) {
-    return kernel::Status::Error("odometry noise coefficients must be >= 0");
-  }
-  if (!(translation_floor_m > 0) || !(rotation_floor_rad > 0))
-    return kernel::Status::Error("odometry noise floors must be positive");
+  // Bounded above too: a variance of (1e200)^2 overflows to infinity, and the filters' and
+  // solvers' weights with it (a sigma of 10 per metre already says "no odometry").
+  for (const double c : {forward_per_m, lateral_per_m, rotation_per_rad, rotation_per_m})
+    if (!(c >= 0 && c <= 10))
+      return kernel::Status::Error("odometry noise coefficients must be in [0, 10]");
+  for (const double floor : {translation_floor_m, rotation_floor_rad})
+    if (!(floor > 0 && floor <= 10))
+      return kernel::Status::Error("odometry noise floors must be in (0, 10]");
   return kernel::Status::Ok();
 }
 

@@ -9,6 +9,7 @@
 
 #include "estimation/correlative_matcher.h"
 #include "estimation/distance_grid.h"
+#include "estimation/models.h"
 #include "estimation/pose_graph.h"
 #include "estimation/scan_registration.h"
 #include "estimation/spline_association.h"
@@ -100,6 +101,10 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
                "topological point_sigma_m");
   ExpectDomain(&RegistrationOptions::point_sigma_m, {1e308, 0.0, nan}, {0.01, 1.0},
                "registration point_sigma_m");
+  // The odometry model's sigmas likewise (a variance of 1e400 is infinite).
+  ExpectDomain(&OdometryNoiseModel::forward_per_m, {1e200, -0.1, nan}, {0.0, 0.3}, "forward_per_m");
+  ExpectDomain(&OdometryNoiseModel::translation_floor_m, {1e200, 0.0, nan}, {1e-4, 0.1},
+               "translation_floor_m");
 }
 
 // A heading step of 1e-12 rad (graph.recovery_step_rad) made 10^11 headings (a segfault as the
