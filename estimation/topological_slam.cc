@@ -134,9 +134,14 @@ kernel::Status TopologicalSlamOptions::Validate() const {
     return kernel::Status::Error("correction_rounds must be in [1, 100]");
   if (!(correction_gain > 0.0 && correction_gain <= 1.0))
     return kernel::Status::Error("correction_gain must be in (0, 1]");
-  if (!(end_trim_m >= 0.0) || !(min_chord_length_m > 0.0) || !(point_spacing_m >= 0.0))
+  // point_spacing_m: 0 (the fit's spacing) or at least a millimetre: 1e-20 m put 10^20 points
+  // on a metre of curve.
+  if (!(end_trim_m >= 0.0 && end_trim_m <= 100.0) ||
+      !(min_chord_length_m > 0.0 && min_chord_length_m <= 100.0) ||
+      !(point_spacing_m == 0.0 || (point_spacing_m >= 1e-3 && point_spacing_m <= 10.0)))
     return kernel::Status::Error(
-        "end_trim_m and point_spacing_m must be >= 0 and min_chord_length_m positive");
+        "end_trim_m must be in [0, 100] m, min_chord_length_m in (0, 100] m and point_spacing_m "
+        "0 or in [0.001, 10] m");
   if (!(feature_weight > 0.0) || !(line_weight > 0.0) || !(curve_weight > 0.0) ||
       !(line_flatness_m >= 0.0))
     return kernel::Status::Error("reliability weights must be positive");

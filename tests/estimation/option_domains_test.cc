@@ -101,6 +101,9 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
                "topological point_sigma_m");
   ExpectDomain(&RegistrationOptions::point_sigma_m, {1e308, 0.0, nan}, {0.01, 1.0},
                "registration point_sigma_m");
+  // Correction points every 1e-20 m along the curves: out of memory (found in the long run).
+  ExpectDomain(&TopologicalSlamOptions::point_spacing_m, {1e-20, 1e-4, -1.0, nan}, {0.0, 0.05},
+               "point_spacing_m");
   // The odometry model's sigmas likewise (a variance of 1e400 is infinite).
   ExpectDomain(&OdometryNoiseModel::forward_per_m, {1e200, -0.1, nan}, {0.0, 0.3}, "forward_per_m");
   ExpectDomain(&OdometryNoiseModel::translation_floor_m, {1e200, 0.0, nan}, {1e-4, 0.1},
