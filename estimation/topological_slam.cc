@@ -119,7 +119,7 @@ kernel::Status TopologicalSlamOptions::Validate() const {
   if (!(max_curve_range_m >= 0.0)) return kernel::Status::Error("max_curve_range_m must be >= 0");
   if (!(region_margin_m >= 0.0 && region_margin_m <= 100.0) || !region.Validate().ok())
     return kernel::Status::Error(
-        "the local region needs a margin in [0, 100] m, a radius in (0, 100] m and 0 < alpha < 1");
+        "the local region needs a margin in [0, 100] m, a radius in (0, 30] m and 0 < alpha < 1");
   if (!(min_information >= 0.0)) return kernel::Status::Error("min_information must be >= 0");
   // Weights are 1 / sigma^2: 1e308 m underflowed them and the solve returned NaN.
   if (!(point_sigma_m > 0.0 && point_sigma_m <= 10.0))

@@ -10,8 +10,8 @@ namespace splam::exploration {
 kernel::Status ExplorerOptions::Validate() const {
   // Every option bounded both ways: lengths by what a robot meets indoors and what the planners'
   // grids (5 cm cells over the LSR) hold, counts and caps by what a run can use.
-  if (!(lsr_radius_m > 0.0 && lsr_radius_m <= 100.0))
-    return kernel::Status::Error("lsr_radius_m must be in (0, 100] m");
+  if (!(lsr_radius_m > 0.0 && lsr_radius_m <= 30.0))
+    return kernel::Status::Error("lsr_radius_m must be in (0, 30] m");
   if (!(alpha > 0.0 && alpha < 1.0)) return kernel::Status::Error("alpha must lie in (0, 1)");
   if (!(clearance_margin_m >= 0.0 && clearance_margin_m <= 10.0))
     return kernel::Status::Error("clearance_margin_m must be in [0, 10] m");

@@ -51,7 +51,7 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
                "index_cell_m");
   ExpectDomain(&TopologicalSlamOptions::region_margin_m, {1e12, -1.0, nan}, {0.0, 2.0},
                "region_margin_m");
-  ExpectDomain(&kernel::LocalRegionOptions::radius_m, {1000.0, 1e21, 0.0, nan}, {1.0, 80.0},
+  ExpectDomain(&kernel::LocalRegionOptions::radius_m, {100.0, 1000.0, 1e21, 0.0, nan}, {1.0, 30.0},
                "local region radius_m");
   // Correspondences every 1e-12 m along a curve: a hang.
   ExpectDomain(&SplineAssociationOptions::epsilon_m, {1e-12, 0.0, 100.0, nan}, {0.005, 0.1},
@@ -77,7 +77,7 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
   ExpectDomain(&exploration::MotionOptions::timeout_per_meter_s, {1e12, -1.0, nan}, {0.0, 30.0},
                "timeout_per_meter_s");
   ExpectDomain(&exploration::MotionOptions::horizon_s, {1e6, 0.0, nan}, {0.5, 10.0}, "horizon_s");
-  ExpectDomain(&exploration::ExplorerOptions::lsr_radius_m, {1000.0, 0.0, nan}, {2.0, 30.0},
+  ExpectDomain(&exploration::ExplorerOptions::lsr_radius_m, {100.0, 1000.0, 0.0, nan}, {2.0, 30.0},
                "lsr_radius_m");
   ExpectDomain(&exploration::ExplorerOptions::arc_sampling_rad, {1e-12, 0.0, 10.0, nan},
                {0.001, 0.1}, "arc_sampling_rad");
