@@ -48,8 +48,12 @@ Status FeatureOptions::Validate() const {
   if (!(corner_max_angle_rad > 0.0 && corner_max_angle_rad <= kPi)) {
     return Status::Error("corner_max_angle_rad must be in (0, pi]");
   }
-  if (!(corner_arm_length_m > 0.0) || !(corner_end_margin_m >= 0.0)) {
-    return Status::Error("corner_arm_length_m must be positive and corner_end_margin_m >= 0");
+  // In samples (lengths / epsilon) they become counts: 1e308 m overflowed them (UBSan).
+  if (!(corner_arm_length_m > 0.0 && corner_arm_length_m <= 100.0) ||
+      !(corner_end_margin_m >= 0.0 && corner_end_margin_m <= 100.0)) {
+    return Status::Error(
+        "corner_arm_length_m must be in (0, 100] m and corner_end_margin_m in "
+        "[0, 100] m");
   }
   return Status::Ok();
 }

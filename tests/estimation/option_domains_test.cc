@@ -18,6 +18,7 @@
 #include "exploration/motion.h"
 #include "kernel/bspline_fit.h"
 #include "kernel/curvature.h"
+#include "kernel/curve_features.h"
 #include "kernel/lines.h"
 #include "kernel/local_safe_region.h"
 #include "kernel/spline_extraction.h"
@@ -101,6 +102,11 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
                "topological point_sigma_m");
   ExpectDomain(&RegistrationOptions::point_sigma_m, {1e308, 0.0, nan}, {0.01, 1.0},
                "registration point_sigma_m");
+  // A corner margin of 1e308 m in samples: beyond size_t (UBSan, found in the long run).
+  ExpectDomain(&kernel::FeatureOptions::corner_end_margin_m, {1e308, -1.0, nan}, {0.0, 0.5},
+               "corner_end_margin_m");
+  ExpectDomain(&kernel::FeatureOptions::corner_arm_length_m, {1e308, 0.0, nan}, {0.1, 1.0},
+               "corner_arm_length_m");
   // Correction points every 1e-20 m along the curves: out of memory (found in the long run).
   ExpectDomain(&TopologicalSlamOptions::point_spacing_m, {1e-20, 1e-4, -1.0, nan}, {0.0, 0.05},
                "point_spacing_m");
