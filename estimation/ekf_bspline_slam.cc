@@ -80,8 +80,13 @@ kernel::Status EkfBSplineSlamOptions::Validate() const {
       candidate_max_age_scans < 1)
     return kernel::Status::Error("bad new-curve limits");
   if (!(max_curve_range_m >= 0)) return kernel::Status::Error("max_curve_range_m must be >= 0");
-  if (!(min_extension_length_m > 0) || !(end_tolerance_m >= 0) || !(extension_sample_spacing_m > 0))
-    return kernel::Status::Error("bad extension parameters");
+  // A curve is resampled every extension_sample_spacing_m to extend it: 1e-29 m made 1.7e29
+  // samples (UBSan, found by the option fuzzer).
+  if (!(min_extension_length_m > 0) || !(end_tolerance_m >= 0) ||
+      !(extension_sample_spacing_m >= 1e-3 && extension_sample_spacing_m <= 10))
+    return kernel::Status::Error(
+        "min_extension_length_m must be positive, end_tolerance_m >= 0 and "
+        "extension_sample_spacing_m in [0.001, 10] m");
   if (!(control_point_sigma_floor_m >= 0))
     return kernel::Status::Error("control_point_sigma_floor_m must be >= 0");
   return kernel::Status::Ok();

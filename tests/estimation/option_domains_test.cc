@@ -9,6 +9,7 @@
 
 #include "estimation/correlative_matcher.h"
 #include "estimation/distance_grid.h"
+#include "estimation/ekf_bspline_slam.h"
 #include "estimation/models.h"
 #include "estimation/pose_graph.h"
 #include "estimation/scan_registration.h"
@@ -107,6 +108,8 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
                "corner_end_margin_m");
   ExpectDomain(&kernel::FeatureOptions::corner_arm_length_m, {1e308, 0.0, nan}, {0.1, 1.0},
                "corner_arm_length_m");
+  ExpectDomain(&EkfBSplineSlamOptions::extension_sample_spacing_m, {1e-29, 0.0, 100.0, nan},
+               {0.01, 0.1}, "extension_sample_spacing_m");
   // Correction points every 1e-20 m along the curves: out of memory (found in the long run).
   ExpectDomain(&TopologicalSlamOptions::point_spacing_m, {1e-20, 1e-4, -1.0, nan}, {0.0, 0.05},
                "point_spacing_m");
