@@ -36,12 +36,12 @@ void ExpectDomain(Field Options::*field, std::vector<Field> refused, std::vector
   for (const Field& value : refused) {
     Options o;
     o.*field = value;
-    EXPECT_FALSE(o.Validate().ok()) << name << " = " << value;
+    EXPECT_FALSE(o.Validate().ok()) << name << " = " << ::testing::PrintToString(value);
   }
   for (const Field& value : accepted) {
     Options o;
     o.*field = value;
-    EXPECT_TRUE(o.Validate().ok()) << name << " = " << value;
+    EXPECT_TRUE(o.Validate().ok()) << name << " = " << ::testing::PrintToString(value);
   }
 }
 
@@ -79,6 +79,11 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
   ExpectDomain(&exploration::MotionOptions::timeout_per_meter_s, {1e12, -1.0, nan}, {0.0, 30.0},
                "timeout_per_meter_s");
   ExpectDomain(&exploration::MotionOptions::horizon_s, {1e6, 0.0, nan}, {0.5, 10.0}, "horizon_s");
+  // A slowest turn rate of 1e-6 rad/s: TurnTowards' bound of a full turn at it was 1.3e8 steps,
+  // an out-of-memory trace.
+  ExpectDomain(&exploration::MotionOptions::angular_speeds_radps,
+               {{1e-6, 0.8}, {0.0, -1e-9}, {20.0}, {nan}}, {{0.0, 0.001, -0.5}, {-10.0, 10.0}},
+               "angular_speeds_radps");
   ExpectDomain(&exploration::ExplorerOptions::lsr_radius_m, {100.0, 1000.0, 0.0, nan}, {2.0, 30.0},
                "lsr_radius_m");
   ExpectDomain(&exploration::ExplorerOptions::arc_sampling_rad, {1e-12, 0.0, 10.0, nan},
