@@ -38,8 +38,7 @@ kernel::Status MotionOptions::Validate() const {
   // a full turn at the slowest rate, 10^8 steps and more.
   for (double w : angular_speeds_radps) {
     if (!(std::abs(w) <= 10.0) || (w != 0.0 && std::abs(w) < 1e-3))
-      return kernel::Status::Error(
-          "angular speeds must be 0 or of magnitude in [0.001, 10] rad/s");
+      return kernel::Status::Error("angular speeds must be 0 or of magnitude in [0.001, 10] rad/s");
   }
   if (linear_speeds_mps.size() * angular_speeds_radps.size() > 10000)
     return kernel::Status::Error("list_U has at most 10000 inputs");
