@@ -597,8 +597,8 @@ void GraphSlam::FlushClosures(bool final) {
   const std::size_t n = pending_.size();
   std::vector<int> best;
   std::vector<bool> chosen(n, options_.loop.confirm_keyframes <= 0);
+  std::vector<bool> with_graph;
   if (options_.loop.confirm_keyframes > 0) {
-    std::vector<bool> with_graph;
     for (const PoseGraphEdge& e : pending_)
       with_graph.push_back(graph_.EdgeChi2(e) <= options_.loop.max_chi2);
     best = LargestAgreeingSet(with_graph, [&](int i, int j) {
@@ -613,13 +613,16 @@ void GraphSlam::FlushClosures(bool final) {
     const PoseGraphEdge& e = pending_[i];
     const bool young = newest - e.to < options_.loop.confirm_keyframes;
     // At the end of the data a young closure had no keyframes left to be confirmed by: it stands
-    // alone, as without confirmation, unless it disagrees with the set added.
+    // alone when it agrees with the graph as it is and with the set added. One that would move
+    // the graph still needs a second: in `complex` with glass walls (seed 2) the last keyframe's
+    // search, after six refused as ambiguous, closed 1.3 m off at the glass corner where the
+    // loop began, and stood alone (1.56 m RMSE; the online estimate was 0.06 m off).
     const auto agrees_with_set = [&] {
       return std::all_of(best.begin(), best.end(),
                          [&](int j) { return Agree(e, pending_[static_cast<std::size_t>(j)]); });
     };
     const int search = pending_searches_[i];
-    if (chosen[i] || (final && young && agrees_with_set())) {
+    if (chosen[i] || (final && young && with_graph[i] && agrees_with_set())) {
       accepted.push_back(e);
       accepted_searches.push_back(search);
     } else if (!final && young) {

@@ -150,6 +150,7 @@ Figure::~Figure() {
 void Figure::DrawWorld(const sim::World& world, Rgb color, const std::string& legend) {
   cairo_t* cr = impl_->cr;
   for (std::size_t i = 0; i < world.obstacles.size(); ++i) {
+    const bool glass = std::find(world.glass.begin(), world.glass.end(), i) != world.glass.end();
     sim::Primitives p;
     world.AppendPrimitives(i, &p);
     // Chained segments and Bezier pieces continue the current sub-path, so closed outlines fill.
@@ -187,16 +188,19 @@ void Figure::DrawWorld(const sim::World& world, Rgb color, const std::string& le
             return true;
         },
         world.obstacles[i]);
+    const Rgb drawn = glass ? palette::kGlass : color;
     if (closed) {
       cairo_close_path(cr);
-      SetColor(cr, color, 0.15);
+      SetColor(cr, drawn, 0.15);
       cairo_fill_preserve(cr);
     }
-    SetColor(cr, color);
-    cairo_set_line_width(cr, 2.0);
+    SetColor(cr, drawn);
+    cairo_set_line_width(cr, glass ? 3.0 : 2.0);
     cairo_stroke(cr);
   }
   impl_->AddLegend(legend, color, LegendKind::kLine);
+  if (!world.glass.empty())
+    impl_->AddLegend("glass (no laser returns)", palette::kGlass, LegendKind::kLine);
 }
 
 void Figure::DrawPath(const std::vector<kernel::Pose2>& poses, Rgb color, double width_px,

@@ -29,6 +29,7 @@ inline constexpr Rgb kOnline{0.55, 0.55, 0.55};    // estimate before optimisati
 inline constexpr Rgb kGraph{0.10, 0.60, 0.25};     // keyframe graph and loop closures: green
 inline constexpr Rgb kDropped{0.95, 0.55, 0.0};    // loop closures found, then dropped: amber
 inline constexpr Rgb kPeople{0.45, 0.70, 0.90};    // where people walk: light blue
+inline constexpr Rgb kGlass{0.20, 0.75, 0.75};     // glass the laser reads no return from: teal
 }  // namespace palette
 
 struct FigureOptions {
@@ -50,6 +51,7 @@ class Figure {
   Figure(const Figure&) = delete;
   Figure& operator=(const Figure&) = delete;
 
+  // Glass obstacles (World::glass) are drawn in palette::kGlass, with a legend of their own.
   void DrawWorld(const sim::World& world, Rgb color = palette::kWorld,
                  const std::string& legend = "world");
   // A polyline through the poses' positions.

@@ -51,15 +51,28 @@ const YAML::Node Required(const YAML::Node& map, const char* key, const std::str
 }
 
 void ParseObstacle(const YAML::Node& entry, const std::string& base, sim::World* world) {
-  if (!entry.IsMap() || entry.size() != 1) {
-    Fail(entry,
-         "each obstacle is a map with one key: polyline, polygon, circle, ellipse, spline, "
-         "closed_spline or floor_plan");
+  const char* const kShapes =
+      "each obstacle is a map with one shape key (polyline, polygon, circle, ellipse, spline, "
+      "closed_spline or floor_plan) and optionally glass: true";
+  if (!entry.IsMap()) Fail(entry, kShapes);
+  std::string kind;
+  YAML::Node value;
+  bool glass = false;
+  for (const auto& field : entry) {
+    if (!field.first.IsScalar())
+      Fail(field.first, "an obstacle's key must be a plain word, not a list or a map");
+    if (field.first.Scalar() == "glass") {
+      if (!field.second.IsScalar() || !YAML::convert<bool>::decode(field.second, glass))
+        Fail(field.second, "glass must be true or false");
+    } else if (kind.empty()) {
+      kind = field.first.Scalar();
+      value = field.second;
+    } else {
+      Fail(entry, kShapes);
+    }
   }
-  if (!entry.begin()->first.IsScalar())
-    Fail(entry.begin()->first, "an obstacle's key must be a plain word, not a list or a map");
-  const std::string kind = entry.begin()->first.as<std::string>();
-  const YAML::Node value = entry.begin()->second;
+  if (kind.empty()) Fail(entry, kShapes);
+  const std::size_t first = world->obstacles.size();
   if (kind == "polyline" || kind == "polygon") {
     world->obstacles.push_back(sim::Polyline{Points(value, kind), kind == "polygon"});
   } else if (kind == "spline" || kind == "closed_spline") {
@@ -89,6 +102,8 @@ void ParseObstacle(const YAML::Node& entry, const std::string& base, sim::World*
   } else {
     Fail(entry, "unknown obstacle kind '" + kind + "'");
   }
+  if (glass)
+    for (std::size_t i = first; i < world->obstacles.size(); ++i) world->glass.push_back(i);
   // Validate the new obstacles now, while the line is known.
   sim::World probe;
   probe.obstacles.assign(world->obstacles.end() - 1, world->obstacles.end());
@@ -207,7 +222,8 @@ std::string FormatWorld(const sim::World& world) {
   }
   if (!world.route.empty()) out << YAML::Key << "route" << YAML::Value << PointsNode(world.route);
   out << YAML::Key << "obstacles" << YAML::Value << YAML::BeginSeq;
-  for (const sim::Shape& shape : world.obstacles) {
+  for (std::size_t i = 0; i < world.obstacles.size(); ++i) {
+    const sim::Shape& shape = world.obstacles[i];
     YAML::Node node;
     const std::string kind = sim::ShapeKindName(shape);
     if (const auto* p = std::get_if<sim::Polyline>(&shape)) {
@@ -224,6 +240,8 @@ std::string FormatWorld(const sim::World& world) {
       node[kind]["angle"] = FormatDouble(e->angle_rad);
       node[kind].SetStyle(YAML::EmitterStyle::Flow);
     }
+    if (std::find(world.glass.begin(), world.glass.end(), i) != world.glass.end())
+      node["glass"] = true;
     out << node;
   }
   out << YAML::EndSeq;

@@ -95,7 +95,7 @@ kernel::Scan SimulateLaser(const RayCaster& caster, const LaserOptions& options,
       person = true;
     }
     double range = kernel::Scan::kNoReturn;
-    if (hit.obstacle >= 0 || person) {
+    if ((hit.obstacle >= 0 && !caster.IsGlass(hit.obstacle)) || person) {
       range = hit.range_m +
               random->Gaussian(options.noise_floor_m + options.noise_fraction * hit.range_m);
       if (options.dropout_probability > 0.0 && random->Uniform() < options.dropout_probability) {

@@ -49,7 +49,8 @@ struct LaserOptions {
 };
 
 // Simulates one sweep from the robot at world_T_robot. When `beam_obstacles` is given it
-// receives, per beam, the World obstacle index the beam truly hit (-1 for none or a person).
+// receives, per beam, the World obstacle index the beam truly hit (-1 for none, a person or
+// glass, from which the beam reads no return).
 // `people` are discs the beams hit in front of the world's obstacles (people walking).
 kernel::Scan SimulateLaser(const RayCaster& caster, const LaserOptions& options,
                            const kernel::Pose2& world_T_robot, double timestamp_s,

@@ -56,6 +56,8 @@ kernel::Status RayCasterOptions::Validate() const {
 RayCaster::RayCaster(const World& world, const RayCasterOptions& options) : options_(options) {
   assert(options.Validate().ok());
   assert(world.Validate().ok());
+  glass_.assign(world.obstacles.size(), false);
+  for (const std::size_t g : world.glass) glass_[g] = true;
   // At most kMaxCells cells (a building 500 m square has 10^6): a world hundreds of kilometres wide
   // (a coordinate from a fuzzed world file) gets coarser cells, not gigabytes of them.
   constexpr double kMaxCells = 1 << 20;

@@ -47,6 +47,11 @@ class RayCaster {
   // True when p lies inside a solid obstacle: a polygon, circle, ellipse or closed spline (the
   // closed splines sampled at 32 points per piece; open polylines have no inside).
   bool IsInsideObstacle(const Eigen::Vector2d& p) const;
+  // True when obstacle `obstacle` is of glass (World::glass): the laser reads no return from it.
+  bool IsGlass(int obstacle) const {
+    return obstacle >= 0 && static_cast<std::size_t>(obstacle) < glass_.size() &&
+           glass_[static_cast<std::size_t>(obstacle)];
+  }
 
  private:
   enum class Kind : std::uint8_t { kSegment, kCircle, kEllipse, kBezier };
@@ -76,6 +81,7 @@ class RayCaster {
   std::vector<std::uint32_t> cell_items_;
   // Closed obstacles as polygons (closed splines sampled densely) for IsInsideObstacle.
   std::vector<std::vector<Eigen::Vector2d>> closed_polygons_;
+  std::vector<bool> glass_;  // per obstacle
 };
 
 }  // namespace splam::sim

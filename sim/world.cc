@@ -147,6 +147,10 @@ kernel::Status World::Validate() const {
     if (!(w.start_offset_m >= 0.0 && Plausible(w.start_offset_m)))
       return kernel::Status::Error(where + "start offset must be in [0, 1e6] m");
   }
+  for (const std::size_t g : glass)
+    if (g >= obstacles.size())
+      return kernel::Status::Error("glass obstacle " + std::to_string(g) + " does not exist (" +
+                                   std::to_string(obstacles.size()) + " obstacles)");
   if (start && (!AllPlausible({start->translation()}) || !std::isfinite(start->theta())))
     return kernel::Status::Error("start pose is not finite or beyond +-1e6 m");
   if (!AllPlausible(route))

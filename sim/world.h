@@ -63,13 +63,17 @@ struct World {
   std::string name;
   std::vector<Shape> obstacles;
   std::vector<Walker> people;
+  // Indices of obstacles of glass: a wall for the robot and the sonar, but the laser reads no
+  // return where its beam meets one (the light passes or is reflected away), as from the glass
+  // doors, windows and partitions of real buildings.
+  std::vector<std::size_t> glass;
   std::optional<kernel::Pose2> start;
   std::vector<Eigen::Vector2d> route;
 
   // Empty when valid, else what is wrong and with which obstacle: polylines need >= 2 vertices
   // (polygons 3) without zero-length edges, circles and ellipses positive radii, open splines
   // >= 4 and closed splines >= 3 control points; people as Walker says, at most kMaxPeople;
-  // all coordinates finite.
+  // glass indices those of obstacles; all coordinates finite.
   kernel::Status Validate() const;
   // Exact primitives of obstacle `index`: segments, circles, ellipses, Bezier pieces.
   void AppendPrimitives(std::size_t index, Primitives* out) const;

@@ -499,6 +499,7 @@ struct LapConditions {
   std::string world = "complex";  // a built-in world, or a world file's path
   sim::SimulatorOptions simulator;
   std::vector<sim::Walker> people;
+  std::vector<std::size_t> glass;  // obstacles of the world made glass (sim::World::glass)
   double scan_spacing_m = 0.0;
   std::uint64_t seed = 2;
 };
@@ -506,7 +507,8 @@ LapsRun DriveLaps(int laps, const GraphSlamOptions& options = {},
                   const LapConditions& conditions = {}) {
   const io::Result<sim::World> loaded = io::LoadWorld(conditions.world);
   if (!loaded.ok()) ADD_FAILURE() << loaded.error;
-  const sim::World world = loaded.ok() ? *loaded.value : *sim::BuiltinWorld("complex");
+  sim::World world = loaded.ok() ? *loaded.value : *sim::BuiltinWorld("complex");
+  world.glass.insert(world.glass.end(), conditions.glass.begin(), conditions.glass.end());
   const sim::RayCaster caster(world);
   sim::Simulator simulator(caster, conditions.simulator, *world.start, conditions.seed);
   simulator.SetPeople(conditions.people.empty() ? world.people : conditions.people);
@@ -693,7 +695,18 @@ TEST_F(RealConditions, ScansHalfAMetreApart) {
   ExpectAsGood(DriveLaps(1, {}, c), "scans 0.5 m apart");
 }
 
-// A third of the beams that hit something read no return (glass, dark or grazing surfaces).
+// Glass: the room's straight south and west walls and the S-shaped partition in its middle return
+// nothing (sim::World::glass); the lap starts and ends in the corner of the two glass walls. The
+// last keyframe's loop search closed 1.3 m off there, and the closure stood alone because the
+// data ended before a second could confirm it: 1.56 m (the online estimate 0.06 m off). At the
+// end of the data a lone closure now stands only when it agrees with the graph. Measured: 0.046 m.
+TEST_F(RealConditions, GlassWallsReturnNothing) {
+  LapConditions c;
+  c.glass = {0, 3, 11};
+  ExpectAsGood(DriveLaps(1, {}, c), "glass walls");
+}
+
+// A third of the beams that hit something read no return (dark or grazing surfaces).
 TEST_F(RealConditions, AThirdOfTheReturnsMissing) {
   LapConditions c;
   c.simulator.laser.dropout_probability = 0.33;

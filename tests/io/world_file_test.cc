@@ -69,6 +69,25 @@ people:
   EXPECT_EQ(FormatWorld(*back.value), FormatWorld(*w.value));
 }
 
+// `glass: true` beside an obstacle's shape makes it glass (sim::World::glass), a floor plan's
+// every obstacle; written back the same.
+TEST(WorldFile, GlassRoundTrip) {
+  const std::string yaml = R"(
+obstacles:
+  - polyline: [[0, 0], [10, 0]]
+  - {polyline: [[0, 2], [10, 2]], glass: true}
+  - circle: {center: [5, 5], radius: 1}
+    glass: false
+)";
+  const Result<sim::World> w = ParseWorld(yaml, "lab.yaml");
+  ASSERT_TRUE(w.ok()) << w.error;
+  EXPECT_EQ(w.value->glass, std::vector<std::size_t>{1});
+  const Result<sim::World> back = ParseWorld(FormatWorld(*w.value), "back.yaml");
+  ASSERT_TRUE(back.ok()) << back.error;
+  EXPECT_EQ(back.value->glass, std::vector<std::size_t>{1});
+  EXPECT_EQ(FormatWorld(*back.value), FormatWorld(*w.value));
+}
+
 struct BadWorld {
   std::string yaml;
   std::string expected;
@@ -114,7 +133,17 @@ INSTANTIATE_TEST_SUITE_P(
         BadWorld{"obstacles:\n  - polyline: [[0, 0], [1, 0]]\npeople: 3\n",
                  "bad.yaml:3: people must be a list of persons"},
         BadWorld{"obstacles:\n  - ? [a, b]\n    : 1\n",
-                 "bad.yaml:2: an obstacle's key must be a plain word, not a list or a map"}));
+                 "bad.yaml:2: an obstacle's key must be a plain word, not a list or a map"},
+        BadWorld{"obstacles:\n  - {polyline: [[0, 0], [1, 0]], glass: maybe}\n",
+                 "bad.yaml:2: glass must be true or false"},
+        BadWorld{
+            "obstacles:\n  - {polyline: [[0, 0], [1, 0]], circle: {center: [0, 0], radius: 1}}\n",
+            "bad.yaml:2: each obstacle is a map with one shape key (polyline, polygon, circle, "
+            "ellipse, spline, closed_spline or floor_plan) and optionally glass: true"},
+        BadWorld{
+            "obstacles:\n  - glass: true\n",
+            "bad.yaml:2: each obstacle is a map with one shape key (polyline, polygon, circle, "
+            "ellipse, spline, closed_spline or floor_plan) and optionally glass: true"}));
 
 TEST(WorldFile, FloorPlanEntryIsRelativeToTheFile) {
   const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "world_file_test";

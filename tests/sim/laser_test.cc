@@ -94,6 +94,41 @@ TEST(SimulateLaser, PeopleAreSeenInFrontOfTheWalls) {
   EXPECT_EQ(on_person, 7);  // |bearing| < asin(0.25 / 4) = 3.6 deg at 1 deg
 }
 
+// A pane of glass across the room: the beams that meet it read no return (not the wall behind
+// it) and report no obstacle; the robot still collides with it; the others read the wall.
+TEST(SimulateLaser, GlassReadsNoReturnButStopsTheRobot) {
+  World w = RoundRoom(10.0);
+  w.obstacles.push_back(Polyline{{{4.0, -1.0}, {4.0, 1.0}}, false});
+  w.glass = {1};
+  ASSERT_TRUE(w.Validate().ok());
+  const RayCaster caster(w);
+  EXPECT_TRUE(caster.IsGlass(1));
+  EXPECT_FALSE(caster.IsGlass(0));
+  EXPECT_TRUE(caster.Collides({4.1, 0.0}, 0.2));
+  LaserOptions o = LaserOptions::Lms200(1.0);
+  o.max_range_m = 20.0;
+  o.noise_floor_m = 0.0;
+  kernel::Random random(1);
+  std::vector<int> obstacles;
+  const kernel::Scan scan = SimulateLaser(caster, o, Pose2(0, 0, 0), 0.0, &random, &obstacles);
+  int on_glass = 0;
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    const double bearing = scan.BeamAngle(i);
+    const bool glass = std::cos(bearing) > 0.0 && std::abs(4.0 * std::tan(bearing)) <= 1.0;
+    on_glass += glass;
+    if (glass) {
+      EXPECT_TRUE(scan.IsNoReturn(i)) << i;
+      EXPECT_EQ(obstacles[i], -1) << i;
+    } else {
+      EXPECT_NEAR(scan.ranges_m[i], 10.0, 1e-9) << i;
+      EXPECT_EQ(obstacles[i], 0) << i;
+    }
+  }
+  EXPECT_EQ(on_glass, 29);  // |bearing| <= atan(1 / 4) = 14.04 deg at 1 deg
+  w.glass = {2};
+  EXPECT_EQ(w.Validate().message(), "glass obstacle 2 does not exist (2 obstacles)");
+}
+
 // An interlacing laser cycles through its phases: sweep k starts (k mod n) / n of a step later,
 // drops a beam when shifted, and every beam stays within the unshifted field of view.
 TEST(LaserOptions, PropertyInterlacedSweepsStayInTheFieldOfView) {
