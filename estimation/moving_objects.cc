@@ -67,7 +67,8 @@ int SeenThrough(const kernel::Scan& other, const Eigen::Vector2d& point,
   const double lo = std::ceil(at - half_width / step), hi = std::floor(at + half_width / step);
   // The whole window in the field of view: at its edge, the beams that would hit the object
   // may be the ones the field cuts off.
-  if (lo < 0 || hi > static_cast<double>(other.size() - 1)) return -1;
+  // (Negated: a point that is not finite has a NaN window, which is no window.)
+  if (!(lo >= 0 && hi <= static_cast<double>(other.size() - 1))) return -1;
   for (auto i = static_cast<std::size_t>(lo); i <= static_cast<std::size_t>(hi); ++i) {
     if (other.IsNoReturn(i)) continue;
     if (!other.IsHit(i)) return -1;  // no reading, or a moving object already left out

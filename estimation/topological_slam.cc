@@ -127,8 +127,9 @@ kernel::Status TopologicalSlamOptions::Validate() const {
   if (kernel::Status e = odometry.Validate(); !e.ok()) return e;
   if (prediction == TopologicalPrediction::kScanMatching) {
     if (kernel::Status e = scan_matching.Validate(); !e.ok()) return e.Prefixed("scan_matching");
-    if (!(scan_matching_noise_scale > 0.0))
-      return kernel::Status::Error("scan_matching_noise_scale must be > 0");
+    // 1.8e200 squared is infinite: the prediction's covariance, then the pose, became NaN.
+    if (!(scan_matching_noise_scale > 0.0 && scan_matching_noise_scale <= 100.0))
+      return kernel::Status::Error("scan_matching_noise_scale must be in (0, 100]");
   }
   if (correction_rounds < 1 || correction_rounds > 100)
     return kernel::Status::Error("correction_rounds must be in [1, 100]");

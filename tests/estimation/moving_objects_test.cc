@@ -194,5 +194,18 @@ TEST(MovingObjects, WhatAMovingObjectHidIsUnknown) {
   EXPECT_TRUE(SeenThroughBeams(scan, Pose2(), scan, Pose2(), options).empty());  // still there
 }
 
+// A pose that is not finite (a NaN from an option the option fuzzer made huge) puts every point
+// nowhere: nothing is seen through, and no NaN becomes a beam index (UBSan).
+TEST(MovingObjects, APoseThatIsNotFiniteSeesNothingThrough) {
+  const MovingObjectOptions options;
+  std::vector<double> ranges(60, 10.0);
+  for (std::size_t i = 28; i < 33; ++i) ranges[i] = 3.0;
+  const kernel::Scan scan = Beams(ranges);
+  const kernel::Scan clear = Beams(std::vector<double>(60, 10.0));
+  const double nan = std::nan("");
+  EXPECT_TRUE(SeenThroughBeams(scan, Pose2(nan, 0, 0), clear, Pose2(), options).empty());
+  EXPECT_TRUE(SeenThroughBeams(scan, Pose2(), clear, Pose2(0, 0, nan), options).empty());
+}
+
 }  // namespace
 }  // namespace splam::estimation

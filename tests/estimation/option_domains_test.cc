@@ -118,6 +118,10 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
   // Correction points every 1e-20 m along the curves: out of memory (found in the long run).
   ExpectDomain(&TopologicalSlamOptions::point_spacing_m, {1e-20, 1e-4, -1.0, nan}, {0.0, 0.05},
                "point_spacing_m");
+  // A scale of 1.8e200: its square is infinite, the prediction's covariance and then the pose
+  // NaN, cast to a beam index in the moving-object test (UBSan, found in the 10^5 run).
+  ExpectDomain(&TopologicalSlamOptions::scan_matching_noise_scale, {1.8e200, 1e3, 0.0, nan},
+               {0.1, 100.0}, "scan_matching_noise_scale");
   // The odometry model's sigmas likewise (a variance of 1e400 is infinite).
   ExpectDomain(&OdometryNoiseModel::forward_per_m, {1e200, -0.1, nan}, {0.0, 0.3}, "forward_per_m");
   ExpectDomain(&OdometryNoiseModel::translation_floor_m, {1e200, 0.0, nan}, {1e-4, 0.1},
