@@ -53,8 +53,9 @@ std::optional<CurveMatch> EndPointMatch(const SplineCurve& observed, const Splin
 }  // namespace
 
 kernel::Status SplineAssociationOptions::Validate() const {
-  if (!(d_min_m > 0.0) || mu_min < 1)
-    return kernel::Status::Error("association needs d_min_m > 0 and mu_min >= 1");
+  // An infinite d_min_m put the topological SLAM's index lookups at -inf (UBSan).
+  if (!(d_min_m > 0.0 && d_min_m <= 10.0) || mu_min < 1)
+    return kernel::Status::Error("association needs d_min_m in (0, 10] m and mu_min >= 1");
   if (!(curvature_tolerance >= 0.0) || !(max_feature_distance_m > 0.0))
     return kernel::Status::Error("bad feature pairing tolerances");
   // Correspondences every epsilon_m along the overlap: a micrometre is 10^6 per metre.

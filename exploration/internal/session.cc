@@ -411,7 +411,8 @@ std::vector<GivenUpFrontier> Session::UnseenStretches(const LaserHits& hits) con
     }
     std::vector<Eigen::Vector2d> stretch;
     const auto close = [&] {
-      if (kernel::PolylineLength(stretch) >= options_.min_frontier_m) {
+      // Not empty: with min_frontier_m 0 an empty stretch is as long as it.
+      if (!stretch.empty() && kernel::PolylineLength(stretch) >= options_.min_frontier_m) {
         GivenUpFrontier f;
         f.node = static_cast<int>(v);
         f.midpoint = stretch[stretch.size() / 2];

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "estimation/correlative_matcher.h"
@@ -122,6 +123,9 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
   // NaN, cast to a beam index in the moving-object test (UBSan, found in the 10^5 run).
   ExpectDomain(&TopologicalSlamOptions::scan_matching_noise_scale, {1.8e200, 1e3, 0.0, nan},
                {0.1, 100.0}, "scan_matching_noise_scale");
+  // Related control points at most infinitely far apart: the index lookups at -inf (UBSan).
+  ExpectDomain(&SplineAssociationOptions::d_min_m,
+               {std::numeric_limits<double>::infinity(), 100.0, 0.0, nan}, {0.4, 10.0}, "d_min_m");
   // The odometry model's sigmas likewise (a variance of 1e400 is infinite).
   ExpectDomain(&OdometryNoiseModel::forward_per_m, {1e200, -0.1, nan}, {0.0, 0.3}, "forward_per_m");
   ExpectDomain(&OdometryNoiseModel::translation_floor_m, {1e200, 0.0, nan}, {1e-4, 0.1},

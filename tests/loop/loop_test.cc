@@ -280,6 +280,26 @@ TEST(RunExploration, TheLsrRadiusIsTheExplorersToo) {
     EXPECT_EQ(outcome.run.graph[v].lsr.radius(), 2.0);
 }
 
+// min_frontier_m 0 keeps every frontier, but a stretch that only the sonars saw is never empty:
+// with 0 an empty one was as long as the minimum and was read at its middle (UBSan: an element
+// of an empty vector; found by the option fuzzer with REG, an LSR of 30 m and -0).
+TEST(RunExploration, AZeroMinimumFrontierGivesUpNoEmptyStretch) {
+  const sim::World world = *sim::BuiltinWorld("complex");
+  for (const char* explorer : {"reg", "srt"}) {
+    ExploreSetup setup;
+    setup.explorer = explorer;
+    setup.options.min_frontier_m = 0.0;
+    setup.region.radius_m = 30.0;
+    setup.options.max_nodes = 2;
+    const ExploreOutcome outcome = RunExploration(world, setup);
+    ASSERT_TRUE(outcome.error.empty()) << outcome.error;
+    for (const exploration::GivenUpFrontier& f : outcome.run.given_up)
+      EXPECT_TRUE(f.unseen.empty() ? f.reason.find("sonars") == std::string::npos
+                                   : f.midpoint.allFinite())
+          << explorer << ": " << f.reason;
+  }
+}
+
 // With the graph SLAM as localisation the explorer plans on the optimised graph: after the run
 // (and its closures) every node sits where the pose graph puts it, and every stored path still
 // joins its two nodes.
