@@ -23,6 +23,10 @@ int main(int argc, char** argv) {
   //    A person walking back and forth across the room at 1 m/s: the laser sees a disc of
   //    0.25 m, but it is no obstacle (no map holds it, and the robot drives through it).
   world.people.push_back(sim::Walker{{{5.0, 0.5}, {5.0, 3.5}}, 1.0, 0.25, 0.0});
+  //    A glass partition (obstacle 4): a wall for the robot, but the laser reads no return where
+  //    it meets glass, as real lasers do at windows and glass doors.
+  world.obstacles.push_back(sim::Polyline{{{7.0, 5.9}, {7.0, 5.0}}, false});
+  world.glass.push_back(4);
   if (const splam::kernel::Status problem = world.Validate(); !problem.ok()) {
     std::fprintf(stderr, "invalid world: %s\n", problem.message().c_str());
     return 1;
