@@ -265,6 +265,8 @@ int RunSlam(const SlamArgs& args) {
     fmt::print(stderr, "splam slam: cannot create {}: {}\n", out, ec.message());
     return kExitBadInput;
   }
+  // From here a Ctrl-C stops the run with what is done written (config.yaml marks the moment).
+  CatchInterrupts();
   std::vector<std::string> errors = {io::WriteConfig(out + "/config.yaml", SlamConfigRoot(&config),
                                                      "splam slam " + args.log +
                                                          "\nrepeat with: splam slam --config " +
@@ -281,7 +283,6 @@ int RunSlam(const SlamArgs& args) {
     std::fflush(stdout);
   };
   replay_options.stop = Interrupted;
-  CatchInterrupts();
   const loop::ReplayResult run = loop::ReplayLog(log, &driver, replay_options);
   if (run.stopped_at) {
     fmt::print(stderr,
