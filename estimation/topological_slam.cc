@@ -143,11 +143,15 @@ kernel::Status TopologicalSlamOptions::Validate() const {
     return kernel::Status::Error(
         "end_trim_m must be in [0, 100] m, min_chord_length_m in (0, 100] m and point_spacing_m "
         "0 or in [0.001, 10] m");
-  if (!(feature_weight > 0.0) || !(line_weight > 0.0) || !(curve_weight > 0.0) ||
-      !(line_flatness_m >= 0.0))
-    return kernel::Status::Error("reliability weights must be positive");
-  if (!(loss.heading_scale_rad > 0.0) || !(loss.translation_scale_m > 0.0))
-    return kernel::Status::Error("loss scales must be positive");
+  // A weight of 1e308 made the correction's cost infinite and its pose NaN (UBSan).
+  const auto weight = [](double w) { return w > 0.0 && w <= 1000.0; };
+  if (!weight(feature_weight) || !weight(line_weight) || !weight(curve_weight) ||
+      !(line_flatness_m >= 0.0 && line_flatness_m <= 10.0))
+    return kernel::Status::Error(
+        "reliability weights must be in (0, 1000] and line_flatness_m in [0, 10] m");
+  if (!(loss.heading_scale_rad > 0.0 && loss.heading_scale_rad <= 10.0) ||
+      !(loss.translation_scale_m > 0.0 && loss.translation_scale_m <= 100.0))
+    return kernel::Status::Error("loss scales must be in (0, 10] rad and (0, 100] m");
   if (!(verify_threshold_m > 0.0) || !(max_heading_correction_rad > 0.0) ||
       !(max_translation_correction_m > 0.0))
     return kernel::Status::Error("verify_threshold_m and the correction bounds must be positive");

@@ -126,6 +126,9 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
   // Related control points at most infinitely far apart: the index lookups at -inf (UBSan).
   ExpectDomain(&SplineAssociationOptions::d_min_m,
                {std::numeric_limits<double>::infinity(), 100.0, 0.0, nan}, {0.4, 10.0}, "d_min_m");
+  // A curve weight of 1e308: an infinite correction cost, a NaN pose cast to a cell (UBSan).
+  ExpectDomain(&TopologicalSlamOptions::curve_weight, {1e308, 1e4, 0.0, nan}, {1.0, 1000.0},
+               "curve_weight");
   // The odometry model's sigmas likewise (a variance of 1e400 is infinite).
   ExpectDomain(&OdometryNoiseModel::forward_per_m, {1e200, -0.1, nan}, {0.0, 0.3}, "forward_per_m");
   ExpectDomain(&OdometryNoiseModel::translation_floor_m, {1e200, 0.0, nan}, {1e-4, 0.1},
