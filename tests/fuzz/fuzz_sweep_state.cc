@@ -27,14 +27,15 @@ void Write(const std::string& path, const std::string& text) {
 // A directory of this process's own, removed at exit (the path outlives the static destructors).
 const std::string& Scratch() {
   static const std::string* const dir = [] {
-    // In memory where there is a tmpfs: creating files on a disk took half the time.
-    const std::filesystem::path base = std::filesystem::is_directory("/dev/shm")
-                                           ? "/dev/shm"
-                                           : std::filesystem::temp_directory_path();
-    std::string pattern = base / "splam-fuzz-sweep-XXXXXX";
-    if (!mkdtemp(pattern.data())) std::abort();
-    std::atexit([] { std::filesystem::remove_all(Scratch()); });
-    return new std::string(pattern);
+    // In memory where there is a writable tmpfs: creating files on a disk took half the time.
+    for (const std::filesystem::path& base :
+         {std::filesystem::path("/dev/shm"), std::filesystem::temp_directory_path()}) {
+      std::string pattern = base / "splam-fuzz-sweep-XXXXXX";
+      if (!mkdtemp(pattern.data())) continue;
+      std::atexit([] { std::filesystem::remove_all(Scratch()); });
+      return new std::string(pattern);
+    }
+    std::abort();
   }();
   return *dir;
 }
