@@ -150,7 +150,7 @@ Figure::~Figure() {
 void Figure::DrawWorld(const sim::World& world, Rgb color, const std::string& legend) {
   cairo_t* cr = impl_->cr;
   for (std::size_t i = 0; i < world.obstacles.size(); ++i) {
-    const bool glass = std::find(world.glass.begin(), world.glass.end(), i) != world.glass.end();
+    const bool glass = world.IsGlass(i);
     sim::Primitives p;
     world.AppendPrimitives(i, &p);
     // Chained segments and Bezier pieces continue the current sub-path, so closed outlines fill.

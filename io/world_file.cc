@@ -240,8 +240,7 @@ std::string FormatWorld(const sim::World& world) {
       node[kind]["angle"] = FormatDouble(e->angle_rad);
       node[kind].SetStyle(YAML::EmitterStyle::Flow);
     }
-    if (std::find(world.glass.begin(), world.glass.end(), i) != world.glass.end())
-      node["glass"] = true;
+    if (world.IsGlass(i)) node["glass"] = true;
     out << node;
   }
   out << YAML::EndSeq;

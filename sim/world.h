@@ -2,6 +2,7 @@
 #define SPLAM_SIM_WORLD_H_
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -75,6 +76,10 @@ struct World {
   // >= 4 and closed splines >= 3 control points; people as Walker says, at most kMaxPeople;
   // glass indices those of obstacles; all coordinates finite.
   kernel::Status Validate() const;
+  // Whether obstacle `index` is of glass (listed in `glass`).
+  bool IsGlass(std::size_t index) const {
+    return std::find(glass.begin(), glass.end(), index) != glass.end();
+  }
   // Exact primitives of obstacle `index`: segments, circles, ellipses, Bezier pieces.
   void AppendPrimitives(std::size_t index, Primitives* out) const;
   kernel::Box2 Bounds() const;
