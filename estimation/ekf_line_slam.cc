@@ -152,7 +152,7 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
         if (gap > options_.max_extension_gap_m) continue;
         const Eigen::Vector2d h =
             PredictLine(x, {ekf_.state()(i), ekf_.state()(i + 1)}, &h_r, &h_l);
-        nu = {obs.z(0) - h(0), WrapAngle(obs.z(1) - h(1))};
+        nu = LineInnovation(obs.z, h, &h_r, &h_l);
       } else {
         if ((x * obs.z - ekf_.state().segment<2>(i)).norm() > options_.corner_max_distance_m)
           continue;
@@ -187,8 +187,8 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
     if (obs.is_line) {
       const Eigen::Vector2d h =
           PredictLine(pose(), {ekf_.state()(i), ekf_.state()(i + 1)}, &h_r, &h_l);
-      ekf_.Correct(h_r, {JacobianBlock{i, h_l}},
-                   Eigen::Vector2d(obs.z(0) - h(0), WrapAngle(obs.z(1) - h(1))), obs.r);
+      const Eigen::Vector2d nu = LineInnovation(obs.z, h, &h_r, &h_l);
+      ekf_.Correct(h_r, {JacobianBlock{i, h_l}}, nu, obs.r);
       LineLandmark& lm = lines_[c.landmark];
       NormaliseLine(&lm);
       ExtendLine(&lm, pose() * obs.a, pose() * obs.b);

@@ -73,6 +73,15 @@ Eigen::Vector2d PredictLine(const kernel::Pose2& x, const Line& l, Matrix23* h_r
   return {rho, WrapAngle(theta)};
 }
 
+Eigen::Vector2d LineInnovation(const Eigen::Vector2d& z, const Eigen::Vector2d& h, Matrix23* h_r,
+                               Eigen::Matrix2d* h_l) {
+  const double angle = WrapAngle(z(1) - h(1));
+  if (std::abs(angle) <= kPi / 2) return {z(0) - h(0), angle};
+  if (h_r != nullptr) h_r->row(0) *= -1.0;
+  if (h_l != nullptr) h_l->row(0) *= -1.0;
+  return {z(0) + h(0), WrapAngle(angle - kPi)};
+}
+
 Line InitializeLine(const kernel::Pose2& x, const Line& z, Matrix23* g_r, Eigen::Matrix2d* g_z) {
   const double a = x.theta() + z.theta;
   const double c = std::cos(a), s = std::sin(a);

@@ -68,6 +68,15 @@ Line TransformLine(const kernel::Pose2& a_T_b, const Line& line_b);
 Eigen::Vector2d PredictLine(const kernel::Pose2& x, const Line& world_line, Matrix23* h_r = nullptr,
                             Eigen::Matrix2d* h_l = nullptr);
 
+// The innovation z - h of a line z observed in normal form against its prediction h
+// (PredictLine), with h taken in whichever of its two forms, (rho, theta) or (-rho, theta + pi),
+// lies nearer z in angle (|theta innovation| <= pi/2); when h is turned, the rho rows of its
+// Jacobians h_r, h_l (may be null) are negated with it. For a line through the sensor (rho near
+// 0) the sign of either rho is set by noise: compared as they come, the two forms of one line
+// differ by pi in angle, and the filter would take its own wall for a new one.
+Eigen::Vector2d LineInnovation(const Eigen::Vector2d& z, const Eigen::Vector2d& h,
+                               Matrix23* h_r = nullptr, Eigen::Matrix2d* h_l = nullptr);
+
 // A new world line from a line z = (rho_o, theta_o) observed in the robot frame at pose x
 // (SPEC §4, 001 eq. 29-38): g = [rho_o + x cos(th + theta_o) + y sin(th + theta_o); th + theta_o],
 // normalised to rho >= 0; G_r = dg/dx, G_z = dg/dz.

@@ -4,7 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <vector>
 
 #include "estimation/metrics.h"
 #include "kernel/angle.h"
@@ -67,36 +71,63 @@ TEST(EkfLineSlam, FirstScanCreatesLandmarksThenReobservationsAssociate) {
   }
 }
 
-TEST(EkfLineSlam, CorrectsOdometryDriftAgainstTheMap) {
-  // The robot drives loops inside the room; its odometry errors are drawn from the filter's own
-  // noise model (scaled up 3x to make drift visible, and told to the filter). Seeing the walls
-  // keeps the estimate on the truth while dead reckoning drifts away.
-  EkfLineSlamOptions options = Immediate();
-  options.odometry = options.odometry.Scaled(3);
-  EkfLineSlam slam(Pose2(2, 1, 0), Eigen::Matrix3d::Identity() * 1e-6, options);
-  kernel::Random random(121);
-  Pose2 truth(2, 1, 0), dead_reckoning(2, 1, 0);
-  slam.Update(SeeRoom(truth, &random, 0.005), Pose2());
-  for (int step = 0; step < 400; ++step) {
-    const Pose2 u(0.05, 0.0, step % 50 < 10 ? 0.15 : 0.0);
-    truth = truth * u;
-    const Eigen::Matrix3d cov = options.odometry.Covariance(u);
-    const Pose2 measured(u.x() + random.Gaussian(std::sqrt(cov(0, 0))),
-                         u.y() + random.Gaussian(std::sqrt(cov(1, 1))),
-                         u.theta() + random.Gaussian(std::sqrt(cov(2, 2))));
-    dead_reckoning = dead_reckoning * measured;
-    slam.Predict(measured);
+TEST(EkfLineSlam, PropertyCorrectsOdometryDriftAgainstTheMap) {
+  // The robot drives 400 steps of loops inside the room (2 m straight, then a turn of 86 deg:
+  // x in [1.3, 4.7] m, y in [0.8, 4.1] m); its odometry errors are drawn from the
+  // filter's own noise model (scaled up 3x to make drift visible, and told to the filter), with
+  // the default options. Seeing the walls keeps the estimate on the truth while dead reckoning
+  // drifts away. Over 100 seeds the classic filter's known weakness shows: a heading draw of
+  // 3.5 sigma or more in a turn puts every wall beyond the association gate at once, and the
+  // walls seen again become new landmarks (a doubled map): 3 of these 100 seeds (measured
+  // median error of the others 0.009 m, dead reckoning beyond 0.2 m in 73).
+  constexpr int kSeeds = 100;
+  int right_maps = 0, drifted = 0;
+  std::vector<double> errors;
+  for (int seed = 1; seed <= kSeeds; ++seed) {
+    EkfLineSlamOptions options;
+    options.odometry = options.odometry.Scaled(3);
+    EkfLineSlam slam(Pose2(2, 1, 0), Eigen::Matrix3d::Identity() * 1e-6, options);
+    kernel::Random random(static_cast<std::uint64_t>(seed));
+    Pose2 truth(2, 1, 0), dead_reckoning(2, 1, 0);
     slam.Update(SeeRoom(truth, &random, 0.005), Pose2());
-    ASSERT_TRUE(slam.healthy()) << slam.health();
+    for (int step = 0; step < 400; ++step) {
+      const Pose2 u(0.05, 0.0, step % 50 >= 40 ? 0.15 : 0.0);
+      truth = truth * u;
+      const Eigen::Matrix3d cov = options.odometry.Covariance(u);
+      // Drawn one statement each: the order in which a call's arguments are evaluated is
+      // unspecified (GCC and Clang differ), and the noise must not depend on the compiler.
+      const double ex = random.Gaussian(std::sqrt(cov(0, 0)));
+      const double ey = random.Gaussian(std::sqrt(cov(1, 1)));
+      const double et = random.Gaussian(std::sqrt(cov(2, 2)));
+      const Pose2 measured(u.x() + ex, u.y() + ey, u.theta() + et);
+      dead_reckoning = dead_reckoning * measured;
+      slam.Predict(measured);
+      slam.Update(SeeRoom(truth, &random, 0.005), Pose2());
+      ASSERT_TRUE(slam.healthy()) << slam.health();
+    }
+    const double error = (slam.pose().translation() - truth.translation()).norm();
+    drifted += (dead_reckoning.translation() - truth.translation()).norm() > 0.2;
+    if (slam.num_lines() != 4u) continue;
+    ++right_maps;
+    errors.push_back(error);
+    EXPECT_LT(error, 0.1) << "seed " << seed;
+    // The heading within four of the filter's own standard deviations: the run ends in a turn,
+    // where a large draw may still be held off by the gate.
+    EXPECT_LT(std::abs(kernel::WrapAngle(slam.pose().theta() - truth.theta())),
+              4.0 * std::sqrt(slam.covariance()(2, 2)))
+        << "seed " << seed;
+    // The covariance stays symmetric and positive definite.
+    const Eigen::MatrixXd& p = slam.covariance();
+    EXPECT_LT((p - p.transpose()).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(p).eigenvalues().minCoeff(), 0.0);
   }
-  EXPECT_EQ(slam.num_lines(), 4u);
-  EXPECT_LT((slam.pose().translation() - truth.translation()).norm(), 0.05);
-  EXPECT_GT((dead_reckoning.translation() - truth.translation()).norm(), 0.2);
-  EXPECT_LT(std::abs(kernel::WrapAngle(slam.pose().theta() - truth.theta())), 0.01);
-  // The covariance stays symmetric and positive definite.
-  const Eigen::MatrixXd& p = slam.covariance();
-  EXPECT_LT((p - p.transpose()).cwiseAbs().maxCoeff(), 1e-12);
-  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(p).eigenvalues().minCoeff(), 0.0);
+  ASSERT_FALSE(errors.empty());
+  std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(errors.size() / 2),
+                   errors.end());
+  const double median = errors[errors.size() / 2];
+  EXPECT_GE(right_maps, 95);
+  EXPECT_GE(drifted, 60);
+  EXPECT_LT(median, 0.015);
 }
 
 TEST(EkfLineSlam, PredictionGrowsOnlyTheRobotUncertainty) {

@@ -28,11 +28,24 @@ namespace {
 
 using kernel::Pose2;
 
+// N draws in order (not as one call's arguments, whose order of evaluation is unspecified:
+// GCC and Clang differ, and a test's sample must not depend on the compiler).
+template <int N, typename Distribution>
+Eigen::Matrix<double, N, 1> Draw(Distribution& d, std::mt19937* gen) {
+  Eigen::Matrix<double, N, 1> v;
+  for (int i = 0; i < N; ++i) v(i) = d(*gen);
+  return v;
+}
+Pose2 Scaled(double sx, double sy, double sth, const Eigen::Vector3d& v) {
+  return Pose2(sx * v(0), sy * v(1), sth * v(2));
+}
+
 // A free pose of `world` drawn uniformly (fixed generator).
 Pose2 FreePose(const sim::Simulator& simulator, std::mt19937* gen) {
   std::uniform_real_distribution<double> x(-1.0, 1.0);
   for (;;) {
-    const Pose2 p(8.0 + 7.0 * x(*gen), 8.0 + 7.0 * x(*gen), M_PI * x(*gen));
+    const Eigen::Vector3d v = Draw<3>(x, gen);
+    const Pose2 p(8.0 + 7.0 * v(0), 8.0 + 7.0 * v(1), M_PI * v(2));
     if (simulator.IsFree(p)) return p;
   }
 }
@@ -87,12 +100,12 @@ TEST_F(ComplexWorld, RegistrationRecoversKnownTransforms) {
   int trials = 0, recovered = 0, within_covariance = 0;
   while (trials < 100) {
     const Pose2 a = FreePose(simulator_, &gen);
-    const Pose2 b = a * Pose2(0.2 * u(gen), 0.2 * u(gen), 0.1 * u(gen));
+    const Pose2 b = a * Scaled(0.2, 0.2, 0.1, Draw<3>(u, &gen));
     const std::optional<MapAndScan> pair = MapAt(a, b);
     if (!pair) continue;
     ++trials;
     const auto& [grid, scan] = *pair;
-    const Pose2 prior = b * Pose2(0.15 * u(gen), 0.15 * u(gen), 0.1 * u(gen));
+    const Pose2 prior = b * Scaled(0.15, 0.15, 0.1, Draw<3>(u, &gen));
     const RegistrationResult r = RegisterPoints(scan, grid, prior, RegistrationOptions{});
     const Pose2 error = b.Between(r.pose);
     const Eigen::Vector3d e(r.pose.x() - b.x(), r.pose.y() - b.y(), error.theta());
@@ -130,8 +143,7 @@ TEST_F(ComplexWorld, PropertyOdometryTestKeepsTheOdometryAndRefusesASlip) {
       const RegistrationResult alone = RegisterPoints(scan, grid, prediction, {});
       return OdometryIsInlier(RegisterPoints(scan, grid, prediction, {}, &odometry), alone, 0.01);
     };
-    const Eigen::Vector3d e =
-        odometry_sqrt * Eigen::Vector3d(normal(gen), normal(gen), normal(gen));
+    const Eigen::Vector3d e = odometry_sqrt * Draw<3>(normal, &gen);
     const double phi = M_PI * u(gen);
     kept += inlier(b * Pose2(e.x(), e.y(), e.z()));
     refused += !inlier(b * Pose2(0.1 * std::cos(phi), 0.1 * std::sin(phi), 0.03 * u(gen)));
@@ -313,9 +325,8 @@ TEST(PoseGraph, SyntheticLoopRecoversTruePoses) {
                         1 / (sigma_rad * sigma_rad))
             .asDiagonal();
     for (std::size_t i = 1; i < truth.size(); ++i) {
-      const Pose2 measured =
-          truth[i - 1].Between(truth[i]) *
-          Pose2(sigma_m * noise(gen), sigma_m * noise(gen), sigma_rad * noise(gen));
+      const Pose2 measured = truth[i - 1].Between(truth[i]) *
+                             Scaled(sigma_m, sigma_m, sigma_rad, Draw<3>(noise, &gen));
       dead_reckoning = dead_reckoning * measured;
       graph.AddNode(dead_reckoning);
       graph.AddEdge({static_cast<int>(i) - 1, static_cast<int>(i), measured, information, false});
@@ -402,14 +413,14 @@ TEST(LoopConsensus, PropertyTrueClosuresAgreeAndAWrongOneDoesNot) {
       Eigen::Vector3d(0.03 * 0.03, 0.03 * 0.03, 0.01 * 0.01).asDiagonal();
   const auto draw = [&](const Pose2& pose, const Eigen::Matrix3d& covariance) {
     const Eigen::Matrix3d l = covariance.llt().matrixL();
-    const Eigen::Vector3d xi = l * Eigen::Vector3d(noise(gen), noise(gen), noise(gen));
+    const Eigen::Vector3d xi = l * Draw<3>(noise, &gen);
     return pose * Pose2(xi.x(), xi.y(), xi.z());
   };
   int agreed = 0, wrong_agreed = 0;
   const int trials = 2000;
   for (int t = 0; t < trials; ++t) {
-    const Pose2 b(10 * uniform(gen), 10 * uniform(gen), M_PI * uniform(gen));
-    const Pose2 chain(3 * uniform(gen), 3 * uniform(gen), M_PI * uniform(gen));
+    const Pose2 b = Scaled(10, 10, M_PI, Draw<3>(uniform, &gen));
+    const Pose2 chain = Scaled(3, 3, M_PI, Draw<3>(uniform, &gen));
     const Pose2 c = b * chain;
     const double chi2 =
         ClosureDisagreementChi2(draw(b, closure), closure, draw(chain, chain_covariance),
@@ -462,7 +473,7 @@ TEST(DistanceGrid, PropertyAThinWallSeenFromBothSidesMatchesEitherSide) {
   for (int trial = 0; trial < 50; ++trial) {
     const double angle = M_PI * u(gen);
     const Eigen::Vector2d along(std::cos(angle), std::sin(angle)), n(-along.y(), along.x());
-    const Eigen::Vector2d origin(u(gen), u(gen));
+    const Eigen::Vector2d origin = Draw<2>(u, &gen);
     std::vector<OrientedPoint> map, one_sided;
     for (double s = -2; s <= 2; s += 0.01) {
       for (int k = 0; k < 3; ++k) map.push_back({origin + s * along, n});  // the room's side
@@ -552,11 +563,10 @@ LapsRun DriveLaps(int laps, const GraphSlamOptions& options = {},
 // timestamp late by 0.1 s at 2 rad/s, as on mit-csail) is corrected. The robot turns on the spot
 // 0.3 rad per scan at a free pose of `complex`, then drives on; the graph SLAM (loop closure off)
 // must end within 0.02 rad of the true heading. The registration's basin does not reach 0.2 rad:
-// from the odometry's pose it converges to a local minimum, which passes the inlier test with
-// many of its points away from what the map saw there; the recovery search then finds the right
-// pose (GraphSlamOptions::verify_misfit_fraction). Measured: 99 of 100 within 0.02 rad with the
-// check, 96 without (the simulated scans are clean: most wrong minima fail the inlier test and
-// were searched before; mit-csail's clutter let one pass, GraphSlamClosesTheMitLoopsToCentimetres).
+// from the odometry's pose it may converge to a local minimum; the recovery search then finds the
+// right pose. Measured over 500 trials: 485 within 0.02 rad, 488 with the misfit check off
+// (`verify_misfit_fraction`): on the simulator's clean scans that check does not matter (its
+// case is mit-csail's clutter, GraphSlamClosesTheMitLoopsToCentimetres); over these 100, 96.
 TEST_F(ComplexWorld, PropertyAFastTurnsHeadingErrorIsCorrected) {
   std::mt19937 gen(13);
   const sim::LaserOptions& laser = simulator_.options().laser;
@@ -589,16 +599,10 @@ TEST_F(ComplexWorld, PropertyAFastTurnsHeadingErrorIsCorrected) {
   };
   GraphSlamOptions options;
   options.loop.enabled = false;
-  const std::vector<double> with = heading_errors(options, 100);
-  options.verify_misfit_fraction = 1.0;
-  const std::vector<double> without = heading_errors(options, 100);
-  const auto within = [](const std::vector<double>& e) {
-    return std::count_if(e.begin(), e.end(), [](double x) { return x < 0.02; });
-  };
-  std::cout << "within 0.02 rad: " << within(with) << " with the check, " << within(without)
-            << " without\n";
-  EXPECT_GE(within(with), 99);
-  EXPECT_LT(within(without), within(with));
+  const std::vector<double> errors = heading_errors(options, 100);
+  const auto within =
+      std::count_if(errors.begin(), errors.end(), [](double x) { return x < 0.02; });
+  EXPECT_GE(within, 95);
 }
 
 // Memory follows the mapped area, not the path: driven three times round the `complex` route,
@@ -776,8 +780,10 @@ TEST(CorrelativeMatcher, PropertyFindsTheBruteForceBestAlsoPastTheGridsEdges) {
     wall({0, 0}, {8, 0});
     wall({0, 0}, {0, 6});
     wall({8, 0}, {8, 6});
-    for (int k = 0; k < 3; ++k)
-      wall({4 + 3.5 * u(gen), 3 + 2.5 * u(gen)}, {4 + 3.5 * u(gen), 3 + 2.5 * u(gen)});
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector4d v = Draw<4>(u, &gen);
+      wall({4 + 3.5 * v(0), 3 + 2.5 * v(1)}, {4 + 3.5 * v(2), 3 + 2.5 * v(3)});
+    }
     // Seen from a corner (a view's first vertex is its sensor): the room is known, its free
     // space seen by returning beams.
     const std::vector<std::vector<Eigen::Vector2d>> view = {{{0, 0}, {8, 0}, {8, 6}, {0, 6}}};
@@ -804,11 +810,13 @@ TEST(CorrelativeMatcher, PropertyFindsTheBruteForceBestAlsoPastTheGridsEdges) {
       }
     EXPECT_GT(free_cells, 3000);
     EXPECT_EQ(scored_below, seen_free_score < 0 ? free_cells : 0);
-    const Pose2 truth(1.0 + 0.5 * u(gen), 1.0 + 0.5 * u(gen), 0.3 * u(gen));
+    const Pose2 truth = Pose2(1.0, 1.0, 0.0) * Scaled(0.5, 0.5, 0.3, Draw<3>(u, &gen));
     std::vector<Eigen::Vector2d> query;
     for (const auto& p : map_points)
       if ((p - truth.translation()).norm() < 4.0) query.push_back(truth.Inverse() * p);
-    const Pose2 guess(truth.x() + u(gen), truth.y() + u(gen), truth.theta() + 0.1 * u(gen));
+    const Eigen::Vector3d offset = Draw<3>(u, &gen);
+    const Pose2 guess(truth.x() + offset(0), truth.y() + offset(1),
+                      truth.theta() + 0.1 * offset(2));
     const double window_m = 1.5, window_rad = 0.1, step = 0.02;
     const CorrelativeMatch m = SearchCorrelative(query, pyramid, guess, window_m, window_rad, 0.05,
                                                  1.0, {.angular_step_rad = step});
