@@ -45,6 +45,9 @@ CLI::Validator OdometryNoiseScale();
 CLI::Validator FloorPlanResolution();
 // A seed: an integer from 0 to 2^64 - 1 written without a sign.
 CLI::Validator Seed();
+// A picture's path: ending in .svg or .png (a picture that then cannot be written is a failed
+// write, exit 4, not bad input).
+CLI::Validator PicturePath();
 // An option "X,Y,THETA" (m, m, rad) into *pose (three numbers, or empty when not given).
 CLI::Option* AddPoseOption(CLI::App* cmd, const std::string& name, std::vector<double>* pose,
                            const std::string& help);

@@ -75,7 +75,7 @@ int RunRender(const RenderArgs& args) {
   }
   if (std::string error = io::SaveRunPicture(picture, args.out); !error.empty()) {
     fmt::print(stderr, "splam render: {}\n", error);
-    return kExitBadInput;
+    return kExitWriteFailed;
   }
   for (const std::string& path : args.out) fmt::print("wrote {}\n", path);
   return kExitOk;
@@ -93,7 +93,9 @@ void AddRenderCommand(CLI::App* app, int* exit_code) {
                   "CARMEN log or ROS bag: ground truth, odometry and scan points");
   cmd->add_option("--trajectory", args->trajectories,
                   "Trajectory file(s) 'time x y theta' to draw as estimates");
-  cmd->add_option("--out", args->out, "Output picture(s), .svg or .png")->capture_default_str();
+  cmd->add_option("--out", args->out, "Output picture(s), .svg or .png")
+      ->check(PicturePath())
+      ->capture_default_str();
   cmd->add_option("--title", args->title, "Title above the picture");
   cmd->add_option("--scan-every", args->scan_every, "Draw the points of every N-th scan")
       ->check(FinitePositive())

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <new>
 #include <system_error>
 
 #include "apps/commands.h"
@@ -41,6 +42,9 @@ int main(int argc, char** argv) {
     status = app.exit(e) == 0 ? 0 : splam::apps::kExitBadInput;
   } catch (const std::system_error& e) {  // fmt::print to a stream that refused the bytes
     return StreamFailed(e.code().message().c_str());
+  } catch (const std::bad_alloc&) {  // what no bound caught: said, not a signal
+    std::fprintf(stderr, "splam: out of memory: the input asks for more than this machine has\n");
+    return splam::apps::kExitBadInput;
   }
   errno = 0;
   if (std::fflush(stdout) != 0 || std::ferror(stdout))

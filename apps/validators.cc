@@ -53,6 +53,15 @@ CLI::Validator Seed() {
       "SEED");
 }
 
+CLI::Validator PicturePath() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (text.ends_with(".svg") || text.ends_with(".png")) return "";
+        return "must name a .svg or .png picture, not '" + text + "'";
+      },
+      "PICTURE");
+}
+
 CLI::Option* AddPoseOption(CLI::App* cmd, const std::string& name, std::vector<double>* pose,
                            const std::string& help) {
   return cmd->add_option(name, *pose, help)

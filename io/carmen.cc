@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
 #include "io/internal/plausible.h"
 #include "io/text.h"
@@ -313,18 +311,16 @@ CarmenReadResult ParseCarmenLog(const std::string& text, const std::string& name
 }
 
 CarmenReadResult ReadCarmenLog(const std::string& path, const CarmenReadOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path)) {
+  std::string text;
+  std::string error = std::filesystem::is_directory(path)
+                          ? FileError(path, 0, "is a directory, not a log")
+                          : ReadTextFile(path, &text);
+  if (!error.empty()) {
     CarmenReadResult result;
-    result.log = Result<CarmenLog>::Fail(FileError(path, 0,
-                                                   std::filesystem::is_directory(path)
-                                                       ? "is a directory, not a log"
-                                                       : "cannot open the log for reading"));
+    result.log = Result<CarmenLog>::Fail(std::move(error));
     return result;
   }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return ParseCarmenLog(buffer.str(), path, options);
+  return ParseCarmenLog(text, path, options);
 }
 
 std::string FormatCarmenLog(const CarmenLog& log) {

@@ -3,20 +3,35 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "io/text.h"
 
 namespace splam::io {
 
-std::string ReadTextFile(const std::string& path, std::string* text) {
+std::string ReadTextFile(const std::string& path, std::string* text, std::size_t max_bytes) {
   // A directory opens as an empty stream: it read as an empty file.
   if (std::filesystem::is_directory(path)) return FileError(path, 0, "is a directory, not a file");
+  // /dev/zero or /dev/full (a result file linked to it and read back) would never end.
+  if (std::filesystem::is_character_file(path) || std::filesystem::is_block_file(path))
+    return FileError(path, 0, "is a device, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) return FileError(path, 0, "cannot open for reading");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  *text = buffer.str();
+  // In pieces, counting: a pipe or a device has no size to check first.
+  text->clear();
+  std::string piece(std::size_t{1} << 20, '\0');
+  while (in) {
+    in.read(piece.data(), static_cast<std::streamsize>(piece.size()));
+    const auto got = static_cast<std::size_t>(in.gcount());
+    if (text->size() + got > max_bytes) {
+      text->clear();
+      text->shrink_to_fit();
+      return FileError(
+          path, 0,
+          "holds more than " + std::to_string(max_bytes) + " bytes, the most a text file may hold");
+    }
+    text->append(piece, 0, got);
+  }
+  if (in.bad()) return FileError(path, 0, "read failed");
   return "";
 }
 

@@ -1,6 +1,7 @@
 #ifndef SPLAM_IO_TRAJECTORY_H_
 #define SPLAM_IO_TRAJECTORY_H_
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -24,8 +25,15 @@ std::string FormatTrajectory(const Trajectory& trajectory, const std::string& co
 std::string WriteTrajectory(const std::string& path, const Trajectory& trajectory,
                             const std::string& comment = "");
 
-// Reads a whole file into *text; empty on success, else "path: cannot open ...".
-std::string ReadTextFile(const std::string& path, std::string* text);
+// The most a text file (a log, a world, options, a trajectory) may hold: 1 GiB, about 100
+// hours of a SICK logged at 75 Hz as CARMEN text. A larger file, or a device that never ends
+// (/dev/zero, /dev/full read back), is refused rather than read until memory runs out.
+inline constexpr std::size_t kMaxTextFileBytes = std::size_t{1} << 30;
+
+// Reads a whole file (or a pipe) into *text; empty on success, else "path: cannot open ...",
+// "is a device", or, past max_bytes, "holds more than N bytes".
+std::string ReadTextFile(const std::string& path, std::string* text,
+                         std::size_t max_bytes = kMaxTextFileBytes);
 // Writes text to a file; empty on success.
 std::string WriteTextFile(const std::string& path, const std::string& text);
 

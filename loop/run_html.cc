@@ -77,14 +77,17 @@ kernel::Status WriteRunHtml(const std::string& dir, const std::string& title) {
   for (const std::string& f : files)
     if (f != "report.html") rows.push_back({io::HtmlCell(f, f)});
   page.Table({"file"}, rows);
+  // Shown in the page when they are small; a file that failed to be written may be anything
+  // (config.yaml a link to /dev/full read back without end before this bound).
+  constexpr std::size_t kMaxShownBytes = std::size_t{1} << 20;
   for (const char* table_file : {"table.md", "table1.md"}) {
     std::string table;
-    if (!io::ReadTextFile(dir + "/" + table_file, &table).empty()) continue;
+    if (!io::ReadTextFile(dir + "/" + table_file, &table, kMaxShownBytes).empty()) continue;
     page.Heading(std::string("Table (") + table_file + ")");
     page.Preformatted(table);
   }
   std::string config;
-  if (io::ReadTextFile(dir + "/config.yaml", &config).empty()) {
+  if (io::ReadTextFile(dir + "/config.yaml", &config, kMaxShownBytes).empty()) {
     page.Heading("Options (config.yaml)");
     page.Preformatted(config);
   }

@@ -487,7 +487,8 @@ TEST(SplamCli, AFullDiskGivesExitStatus4NamingTheFile) {
   const fs::path dir = Temp("full_disk");
   ASSERT_EQ(Splam("simulate --world corridor --out " + (dir / "sim").string()).status, 0);
   const std::string log = (dir / "sim" / "log.clf").string();
-  for (const std::string file : {"summary.json", "map.txt"}) {
+  // config.yaml: read back for report.html, /dev/full grew the page to 24 GB (issue 48, item 6).
+  for (const std::string file : {"summary.json", "map.txt", "config.yaml"}) {
     const fs::path out = dir / ("slam-" + file);
     fs::create_directories(out);
     fs::create_symlink("/dev/full", out / file);
@@ -529,6 +530,12 @@ TEST(SplamCli, AFullDiskGivesExitStatus4NamingTheFile) {
   EXPECT_EQ(experimented.status, 4) << experimented.text;
   EXPECT_NE(experimented.text.find("report.json: write failed"), std::string::npos)
       << experimented.text;
+  fs::create_symlink("/dev/full", dir / "render.png");
+  const Output rendered = Splam("render --world corridor --out " + (dir / "render.png").string());
+  EXPECT_EQ(rendered.status, 4) << rendered.text;
+  EXPECT_NE(rendered.text.find("render.png: cannot write picture"), std::string::npos)
+      << rendered.text;
+  EXPECT_EQ(Splam("render --world corridor --out " + (dir / "render.jpg").string()).status, 2);
   fs::create_symlink("/dev/full", dir / "converted.clf");
   const Output converted = Splam("convert " + log + " " + (dir / "converted.clf").string());
   EXPECT_EQ(converted.status, 4) << converted.text;
@@ -662,6 +669,12 @@ TEST(SplamCli, SlamAndEvalRejectBadInput) {
   EXPECT_NE(r.text.find("no laser scans"), std::string::npos) << r.text;
   r = Splam("slam --method magic " + (dir / "empty.clf").string());
   EXPECT_EQ(r.status, 2);
+  // A device never ends: read, it aborted with bad_alloc (issue 48).
+  if (fs::exists("/dev/zero")) {
+    r = Splam("slam /dev/zero --out " + (dir / "zero").string());
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.text.find("/dev/zero: is a device, not a file"), std::string::npos) << r.text;
+  }
   ASSERT_EQ(io::WriteTextFile((dir / "t.txt").string(), "0 0 0 0\n"), "");
   ASSERT_EQ(io::WriteTextFile((dir / "r.relations").string(), "0 1 2\n"), "");
   r = Splam("eval --estimate " + (dir / "t.txt").string() + " --relations " +

@@ -306,7 +306,7 @@ TEST(CarmenLog, FlaserStepThatWrapsTheScanIsRefused) {
 TEST(CarmenLog, MissingFileIsAnError) {
   const CarmenReadResult r = ReadCarmenLog("/nonexistent/log.clf");
   ASSERT_FALSE(r.log.ok());
-  EXPECT_EQ(r.log.error, "/nonexistent/log.clf: cannot open the log for reading");
+  EXPECT_EQ(r.log.error, "/nonexistent/log.clf: cannot open for reading");
 }
 
 TEST(CarmenLog, WritesAndReadsFiles) {

@@ -1,6 +1,11 @@
 #include "io/trajectory.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <thread>
 
 #include "kernel/random.h"
 
@@ -44,6 +49,32 @@ TEST(Trajectory, FileRoundTrip) {
   const auto back = ReadTrajectory(path);
   ASSERT_TRUE(back.ok());
   EXPECT_EQ(back.value->at(0).pose.x(), 1.0);
+}
+
+// Issue 48, item 6: a result file linked to /dev/full, read back for the report, grew to 24 GB
+// (killed). A device is no text file, and no text file is read past its bound, which holds
+// byte for byte up to it, through a pipe too.
+TEST(ReadTextFile, DevicesAreRefusedAndFilesAreBounded) {
+  std::string text = "left over";
+  for (const char* device : {"/dev/zero", "/dev/full", "/dev/null"}) {
+    if (!std::filesystem::exists(device)) continue;
+    EXPECT_EQ(ReadTextFile(device, &text), std::string(device) + ": is a device, not a file");
+  }
+  const std::string path = ::testing::TempDir() + "/read_text_file_test.txt";
+  ASSERT_EQ(WriteTextFile(path, std::string(3'000'000, 'x') + "end"), "");
+  ASSERT_EQ(ReadTextFile(path, &text, 3'000'003), "");
+  EXPECT_EQ(text.size(), 3'000'003u);
+  EXPECT_TRUE(text.ends_with("xend"));
+  EXPECT_EQ(ReadTextFile(path, &text, 3'000'002),
+            path + ": holds more than 3000002 bytes, the most a text file may hold");
+  EXPECT_TRUE(text.empty());
+  const std::string fifo = ::testing::TempDir() + "/read_text_file_test.fifo";
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  std::thread writer([&] { std::ofstream(fifo) << "0 1 2 3\n"; });
+  EXPECT_EQ(ReadTextFile(fifo, &text), "");
+  writer.join();
+  EXPECT_EQ(text, "0 1 2 3\n");
 }
 
 }  // namespace
