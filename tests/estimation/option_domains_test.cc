@@ -129,6 +129,18 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
   // A curve weight of 1e308: an infinite correction cost, a NaN pose cast to a cell (UBSan).
   ExpectDomain(&TopologicalSlamOptions::curve_weight, {1e308, 1e4, 0.0, nan}, {1.0, 1000.0},
                "curve_weight");
+  // ekf-bspline: a control point floor of 1e6 m with 52 beams per match: the corrections threw
+  // control points kilometres and resampling the curves took 100 s for 30 scans (a hang).
+  ExpectDomain(&EkfBSplineSlamOptions::control_point_sigma_floor_m, {1e6, 11.0, -1.0, nan},
+               {0.0, 10.0}, "control_point_sigma_floor_m");
+  ExpectDomain(&EkfBSplineSlamOptions::model_sigma_m, {1e308, 11.0, -1.0, nan}, {0.0, 1.0},
+               "model_sigma_m");
+  ExpectDomain(&EkfBSplineSlamOptions::range_sigma_fraction, {1e308, 1.5, nan}, {0.0, 0.1},
+               "range_sigma_fraction");
+  ExpectDomain(&EkfBSplineSlamOptions::max_beams_per_match, {0, 1 << 30}, {1, 10000},
+               "max_beams_per_match");
+  ExpectDomain(&EkfBSplineSlamOptions::max_correspondence_distance_m, {1e308, 0.0, nan},
+               {0.01, 10.0}, "max_correspondence_distance_m");
   // The odometry model's sigmas likewise (a variance of 1e400 is infinite).
   ExpectDomain(&OdometryNoiseModel::forward_per_m, {1e200, -0.1, nan}, {0.0, 0.3}, "forward_per_m");
   ExpectDomain(&OdometryNoiseModel::translation_floor_m, {1e200, 0.0, nan}, {1e-4, 0.1},
