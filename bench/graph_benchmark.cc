@@ -1,5 +1,6 @@
-// Graph SLAM parts (issue 16): one scan-to-submap registration, one loop-closure search and one
-// optimisation of a 1,000-keyframe pose graph. Run with --benchmark_repetitions=5 for medians.
+// Graph SLAM parts (issues 16 and 49): one scan-to-submap registration, one submap build, one
+// loop-closure search and one optimisation of a 1,000- and a 5,000-keyframe pose graph. Run with
+// --benchmark_repetitions=5 for medians.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "estimation/graph_slam.h"
 #include "estimation/pose_graph.h"
 #include "estimation/scan_registration.h"
+#include "estimation/scan_view.h"
 #include "kernel/random.h"
 #include "sim/builtin_worlds.h"
 #include "sim/laser.h"
@@ -24,9 +26,9 @@ using kernel::Pose2;
 // Scans of the simulated LMS-200 (361 beams, 8 m) in `complex` from poses along x.
 struct Scans {
   Scans() : world(*sim::BuiltinWorld("complex")), caster(world) {}
-  std::vector<Eigen::Vector2d> At(const Pose2& pose) {
-    const sim::LaserOptions laser = sim::LaserOptions::Lms200();
-    return sim::SimulateLaser(caster, laser, pose, 0.0, &random).HitPoints();
+  std::vector<Eigen::Vector2d> At(const Pose2& pose) { return ScanAt(pose).HitPoints(); }
+  kernel::Scan ScanAt(const Pose2& pose) {
+    return sim::SimulateLaser(caster, sim::LaserOptions::Lms200(), pose, 0.0, &random);
   }
   std::vector<OrientedPoint> WorldAt(const Pose2& pose) {
     std::vector<OrientedPoint> points = OrientTowards(At(pose), Eigen::Vector2d::Zero(), 0.3);
@@ -56,6 +58,28 @@ void BM_GraphRegistration(benchmark::State& state) {
   state.counters["points"] = static_cast<double>(scan.size());
 }
 BENCHMARK(BM_GraphRegistration)->Unit(benchmark::kMillisecond);
+
+// One submap as the graph SLAM builds it after a new keyframe (GraphSlam::RebuildSubmap): the
+// points of 30 keyframes 0.3 m apart, with their views (the part of the plane they saw), into a
+// 10 cm field truncated at 0.5 m.
+void BM_GraphSubmap(benchmark::State& state) {
+  Scans scans;
+  std::vector<OrientedPoint> points;
+  std::vector<std::vector<Eigen::Vector2d>> views;
+  for (int i = 0; i < 30; ++i) {
+    const Pose2 at(2.0 + 0.3 * i, 3.0 + 0.1 * std::sin(i), 0.1 * std::sin(i));
+    const auto part = scans.WorldAt(at);
+    points.insert(points.end(), part.begin(), part.end());
+    const kernel::Scan scan = scans.ScanAt(at);
+    views.push_back(at * ScanView(scan, Pose2(), scan.max_range_m, 0.2));
+  }
+  for (auto _ : state) {
+    const DistanceGrid grid = DistanceGrid::Build(points, 0.1, 0.5, 0.5, views, false, 0.2);
+    benchmark::DoNotOptimize(grid.values().data());
+  }
+  state.counters["points"] = static_cast<double>(points.size());
+}
+BENCHMARK(BM_GraphSubmap)->Unit(benchmark::kMillisecond);
 
 // A loop-closure search as the graph SLAM runs it: target grid and pyramid built from 31
 // keyframes, query of 11, a 3 m x 3 m x +-0.35 rad window, down to the score a closure needs
@@ -87,13 +111,14 @@ void BM_GraphLoopSearch(benchmark::State& state) {
 }
 BENCHMARK(BM_GraphLoopSearch)->Unit(benchmark::kMillisecond);
 
-// 1,000 keyframes on a random walk with 2 cm / 0.3 deg edges and 200 loop closures, optimised
+// N keyframes on a random walk with 2 cm / 0.3 deg edges and N / 5 loop closures, optimised
 // from the dead-reckoning poses.
-void BM_PoseGraph1000(benchmark::State& state) {
+void BM_PoseGraph(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
   std::mt19937 gen(11);
   std::normal_distribution<double> noise(0.0, 1.0);
   std::vector<Pose2> truth = {Pose2()};
-  for (int i = 1; i < 1000; ++i)
+  for (int i = 1; i < n; ++i)
     truth.push_back(truth.back() * Pose2(0.3, 0.0, 0.3 * std::sin(0.05 * i)));
   const Eigen::Matrix3d information = Eigen::Vector3d(2500, 2500, 40000).asDiagonal();
   PoseGraph base;
@@ -106,8 +131,8 @@ void BM_PoseGraph1000(benchmark::State& state) {
     base.AddNode(dead);
     base.AddEdge({static_cast<int>(i) - 1, static_cast<int>(i), m, information, false});
   }
-  std::uniform_int_distribution<int> node(0, 999);
-  for (int k = 0; k < 200; ++k) {
+  std::uniform_int_distribution<int> node(0, n - 1);
+  for (int k = 0; k < n / 5; ++k) {
     const int a = node(gen), b = node(gen);
     if (std::abs(a - b) < 50) continue;
     base.AddEdge({a, b,
@@ -120,7 +145,7 @@ void BM_PoseGraph1000(benchmark::State& state) {
     benchmark::DoNotOptimize(s.final_cost);
   }
 }
-BENCHMARK(BM_PoseGraph1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PoseGraph)->Arg(1000)->Arg(5000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace splam::estimation

@@ -254,7 +254,8 @@ void AddGraphStatistics(const GraphSlam& graph, SlamStatistics* s) {
   const GraphSlam::Times& t = graph.times();
   s->time_ms = {{"registration", t.registration_ms}, {"keyframes", t.keyframe_ms},
                 {"moving_objects", t.moving_ms},     {"submaps", t.submap_ms},
-                {"loop_search", t.loop_search_ms},   {"optimization", t.optimization_ms}};
+                {"loop_search", t.loop_search_ms},   {"loop_search_wait", t.loop_wait_ms},
+                {"optimization", t.optimization_ms}};
   s->optimizations = graph.optimizations();
   s->solver_runs += static_cast<long>(s->optimizations.size());
   for (const auto& o : s->optimizations) s->solver_failures += !o.converged;

@@ -76,66 +76,85 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
   g.rows_ = static_cast<int>(rows);
 
   // Occupied cells keep the mean of their points: on a curve sampled densely, a point on it.
+  // Their sums live in one slot per occupied cell (a grid spans far more cells than its points
+  // occupy: an accumulator per cell made most of a submap's build time), filled in the points'
+  // order.
+  struct Occupied {
+    std::size_t cell = 0;
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero(), normal = Eigen::Vector2d::Zero();
+    // The normals turned more than 90 deg from the cell's first normal (`reference`), summed: an
+    // outline seen from both sides (normals point towards the sensor that saw the point).
+    Eigen::Vector2d reference = Eigen::Vector2d::Zero(), opposed = Eigen::Vector2d::Zero();
+    int count = 0;
+  };
+  const std::size_t cells = static_cast<std::size_t>(g.rows_) * g.cols_;
   cv::Mat free_cells(g.rows_, g.cols_, CV_8U, cv::Scalar(255));
-  std::vector<Eigen::Vector2d> sum(static_cast<std::size_t>(g.rows_) * g.cols_,
-                                   Eigen::Vector2d::Zero());
-  std::vector<Eigen::Vector2d> normal(sum.size(), Eigen::Vector2d::Zero());
-  // The normals turned more than 90 deg from the cell's first normal (`reference`), summed: an
-  // outline seen from both sides (normals point towards the sensor that saw the point).
-  std::vector<Eigen::Vector2d> reference(sum.size(), Eigen::Vector2d::Zero());
-  std::vector<Eigen::Vector2d> opposed(sum.size(), Eigen::Vector2d::Zero());
-  std::vector<int> count(sum.size(), 0);
+  std::vector<int> slot_of(cells, -1);
+  std::vector<Occupied> occupied;
   for (const auto& [p, n] : oriented) {
     const int c = static_cast<int>((p.x() - g.origin_.x()) / resolution_m);
     const int r = static_cast<int>((p.y() - g.origin_.y()) / resolution_m);
     const std::size_t i = static_cast<std::size_t>(r) * g.cols_ + c;
-    sum[i] += p;
-    normal[i] += n;
-    if (reference[i].isZero()) reference[i] = n;
-    if (n.dot(reference[i]) < 0) opposed[i] += n;
-    ++count[i];
-    free_cells.at<unsigned char>(r, c) = 0;
+    if (slot_of[i] < 0) {
+      slot_of[i] = static_cast<int>(occupied.size());
+      occupied.push_back({.cell = i});
+      free_cells.at<unsigned char>(r, c) = 0;
+    }
+    Occupied& o = occupied[static_cast<std::size_t>(slot_of[i])];
+    o.sum += p;
+    o.normal += n;
+    if (o.reference.isZero()) o.reference = n;
+    if (n.dot(o.reference) < 0) o.opposed += n;
+    ++o.count;
   }
   cv::Mat distance, labels;
   cv::distanceTransform(free_cells, distance, labels, cv::DIST_L2, cv::DIST_MASK_5,
                         cv::DIST_LABEL_PIXEL);
   // label -> the piece of that occupied cell.
-  for (int r = 0; r < g.rows_; ++r)
-    for (int c = 0; c < g.cols_; ++c) {
-      const std::size_t i = static_cast<std::size_t>(r) * g.cols_ + c;
-      if (count[i] == 0) continue;
-      const auto label = static_cast<std::size_t>(labels.at<int>(r, c));
-      if (g.pieces_.size() <= label) {
-        g.pieces_.resize(label + 1);
-        g.back_normals_.resize(label + 1, Eigen::Vector2d::Zero());
-      }
-      g.pieces_[label] = {sum[i] / count[i], normal[i]};
-      if (opposed[i].isZero()) continue;
-      // Two-sided: the back is the side the summed normal does not point to.
-      const Eigen::Vector2d same_as_reference = normal[i] - opposed[i];
-      const Eigen::Vector2d back =
-          normal[i].dot(same_as_reference) >= 0 ? opposed[i] : same_as_reference;
-      if (back.dot(normal[i]) >= 0 || back.norm() < 1e-12) continue;
-      g.back_normals_[label] = back.normalized();
+  for (const Occupied& o : occupied) {
+    const auto label = static_cast<std::size_t>(labels.at<int>(static_cast<int>(o.cell)));
+    if (g.pieces_.size() <= label) {
+      g.pieces_.resize(label + 1);
+      g.back_normals_.resize(label + 1, Eigen::Vector2d::Zero());
     }
+    g.pieces_[label] = {o.sum / o.count, o.normal};
+    if (o.opposed.isZero()) continue;
+    // Two-sided: the back is the side the summed normal does not point to.
+    const Eigen::Vector2d same_as_reference = o.normal - o.opposed;
+    const Eigen::Vector2d back =
+        o.normal.dot(same_as_reference) >= 0 ? o.opposed : same_as_reference;
+    if (back.dot(o.normal) >= 0 || back.norm() < 1e-12) continue;
+    g.back_normals_[label] = back.normalized();
+  }
   for (auto& piece : g.pieces_)
     if (piece.normal.norm() > 1e-12) piece.normal.normalize();
   const double half = kSegmentHalfLength * resolution_m;
-  g.values_.resize(sum.size());
-  g.nearest_.assign(sum.size(), -1);
+  // A cell whose centre lies at least `far` cells from the centre of its nearest occupied cell
+  // reads the truncation: that cell's piece lies within sqrt(1/2) + kSegmentHalfLength cells of
+  // its centre, and the 5x5 chamfer distance (the distance transform's) is within 2 % of the
+  // Euclidean one (at most 1.9 % above it, midway between the (1, 0) and (2, 1) moves).
+  const double far = (truncation_m / resolution_m + std::sqrt(0.5) + kSegmentHalfLength) / 0.95;
+  g.values_.resize(cells);
+  g.nearest_.assign(cells, -1);
   for (int r = 0; r < g.rows_; ++r)
     for (int c = 0; c < g.cols_; ++c) {
+      const std::size_t i = static_cast<std::size_t>(r) * g.cols_ + c;
       const Eigen::Vector2d centre = g.origin_ + resolution_m * Eigen::Vector2d(c + 0.5, r + 0.5);
       const auto label = static_cast<std::size_t>(labels.at<int>(r, c));
-      double d = distance.at<float>(r, c) * resolution_m;
+      const float cells_away = distance.at<float>(r, c);
+      double d = cells_away * resolution_m;
       if (label < g.pieces_.size()) {
         const OrientedPoint& piece = g.pieces_[label];
-        d = PieceDistance(centre - piece.point, piece.normal, half, nullptr);
-        if (!signed_field) d = std::abs(d);
-        g.nearest_[static_cast<std::size_t>(r) * g.cols_ + c] = static_cast<int>(label);
+        if (cells_away >= far) {
+          d = signed_field && piece.normal.dot(centre - piece.point) < 0 ? -truncation_m
+                                                                         : truncation_m;
+        } else {
+          d = PieceDistance(centre - piece.point, piece.normal, half, nullptr);
+          if (!signed_field) d = std::abs(d);
+        }
+        g.nearest_[i] = static_cast<int>(label);
       }
-      g.values_[static_cast<std::size_t>(r) * g.cols_ + c] =
-          std::clamp(d, -truncation_m, truncation_m);
+      g.values_[i] = std::clamp(d, -truncation_m, truncation_m);
     }
   if (seen.empty()) return g;
   cv::Mat known(g.rows_, g.cols_, CV_8U, cv::Scalar(0));

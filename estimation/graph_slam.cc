@@ -141,6 +141,10 @@ std::vector<int> LargestAgreeingSet(const std::vector<bool>& with_graph,
 GraphSlam::GraphSlam(const kernel::Pose2& start, const GraphSlamOptions& options)
     : options_(options), pose_(start) {}
 
+GraphSlam::~GraphSlam() {
+  if (loop_run_.valid()) loop_run_.wait();
+}
+
 void GraphSlam::Predict(const kernel::Pose2& odometry_increment) {
   pose_ = pose_ * odometry_increment;
   since_update_ = since_update_ * odometry_increment;
@@ -293,6 +297,9 @@ RegistrationResult GraphSlam::RegisterScan(const std::vector<OrientedPoint>& poi
 
 void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                             std::vector<OrientedPoint> points) {
+  // The previous keyframe's closures go in first: their optimisation moves pose_ with that
+  // keyframe, and the new keyframe then stands where the corrected graph puts it.
+  CollectLoopSearch();
   force_keyframe_ = false;
   const bool robust_edge = options_.robust_recovery_edges && recovered_since_keyframe_;
   recovered_since_keyframe_ = false;
@@ -331,7 +338,7 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
                                   options_.loop.min_gap_keyframes + options_.loop.target_keyframes})
                       : options_.submap_keyframes));
   timer.reset();
-  if (options_.loop.enabled) SearchLoopClosures(k);
+  if (options_.loop.enabled) StartLoopSearch(k);
 }
 
 void GraphSlam::FillKeyframe(std::vector<OrientedPoint> points, Keyframe* kf) {
@@ -496,33 +503,85 @@ std::vector<int> Spread(std::vector<std::pair<double, int>> ranked, int count, i
 
 }  // namespace
 
-void GraphSlam::SearchLoopClosures(int k) {
+void GraphSlam::StartLoopSearch(int k) {
+  if (k < options_.loop.min_gap_keyframes) return;  // no candidate yet
+  const bool background = options_.background_loop_search &&
+                          options_.loop.min_gap_keyframes > options_.moving_keyframes;
+  // The query's keyframes are copied now: the front end may take moving objects out of them
+  // while the search runs.
+  std::vector<std::pair<kernel::Pose2, std::vector<OrientedPoint>>> query_keyframes;
+  for (int i = std::max(0, k - options_.loop.query_keyframes); i <= k; ++i) {
+    const Keyframe& q = keyframes_[static_cast<std::size_t>(i)];
+    query_keyframes.emplace_back(q.pose, q.points);
+  }
+  auto search = [this, k, travelled = travelled_m_, since = travelled_m_ - closure_at_m_,
+                 query_keyframes = std::move(query_keyframes)] {
+    // The query: the keyframes' points in keyframe k's frame, thinned to the loop grid's cells.
+    const kernel::Pose2 kf_inverse = query_keyframes.back().first.Inverse();
+    std::vector<OrientedPoint> query;
+    for (const auto& [pose, points] : query_keyframes) {
+      const std::vector<OrientedPoint> placed = Placed(kf_inverse * pose, points);
+      query.insert(query.end(), placed.begin(), placed.end());
+    }
+    return SearchLoopClosures(k, travelled, since, Thinned(query, options_.loop.resolution_m));
+  };
+  if (background) {
+    loop_run_ = std::async(std::launch::async, std::move(search));
+  } else {
+    std::packaged_task<LoopSearchRun()> task(std::move(search));
+    loop_run_ = task.get_future();
+    task();
+  }
+}
+
+void GraphSlam::CollectLoopSearch() {
+  if (!loop_run_.valid()) return;
+  LoopSearchRun run;
+  {
+    const ScopedTimer timer(&times_.loop_wait_ms);
+    run = loop_run_.get();
+  }
+  times_.loop_search_ms += run.time_ms;
+  const int k = run.keyframe;
+  for (LoopFinding& finding : run.findings) AddFinding(k, std::move(finding), run.travelled_m);
+  if (unflushed_since_ >= 0 && k - unflushed_since_ >= options_.optimize_every_keyframes)
+    FlushClosures(false, run.travelled_m);
+}
+
+GraphSlam::LoopSearchRun GraphSlam::SearchLoopClosures(int k, double travelled_m, double since_m,
+                                                       const std::vector<OrientedPoint>& query) {
+  LoopSearchRun run;
+  run.keyframe = k;
+  run.travelled_m = travelled_m;
+  const ScopedTimer timer(&run.time_ms);
   const int newest_candidate = k - options_.loop.min_gap_keyframes;
-  if (newest_candidate < 0) return;
   const LoopClosureOptions& o = options_.loop;
   const kernel::Pose2& pose = keyframes_[static_cast<std::size_t>(k)].pose;
   // First the nearest keyframes within a radius that grows with the travel since the last
   // closure, in a window of at most near_window_m.
-  const double since = travelled_m_ - closure_at_m_;
-  const double radius = std::min(o.radius_m + o.radius_per_m * since, o.max_radius_m);
+  const double radius = std::min(o.radius_m + o.radius_per_m * since_m, o.max_radius_m);
   std::vector<std::pair<double, int>> near;
   for (int i : AreaKeyframes(pose.translation(), radius, newest_candidate))
     near.emplace_back(
         (keyframes_[static_cast<std::size_t>(i)].pose.translation() - pose.translation()).norm(),
         i);
   const double near_m = std::min(radius, o.near_window_m);
-  const double near_rad = std::min(o.window_rad + o.window_rad_per_m * since, o.max_window_rad);
+  const double near_rad = std::min(o.window_rad + o.window_rad_per_m * since_m, o.max_window_rad);
   bool any = false;
-  for (int c : Spread(near, o.candidates, o.min_gap_keyframes))
-    any |= AddPending(k, MatchLoop(k, c, near_m, near_rad), true);
+  for (int c : Spread(near, o.candidates, o.min_gap_keyframes)) {
+    LoopFinding& finding = run.findings.emplace_back();
+    finding.near = true;
+    finding.edge = MatchLoop(k, query, c, near_m, near_rad, &finding.record);
+    any |= finding.edge.has_value();
+  }
   // Then, when that window was cut short and found nothing, by the pose graph's own uncertainty:
   // candidates and windows of candidate_sigmas of the relative pose's covariance.
-  if (!any && radius > o.near_window_m) SearchWide(k, near_m);
-  if (unflushed_since_ >= 0 && k - unflushed_since_ >= options_.optimize_every_keyframes)
-    FlushClosures(false);
+  if (!any && radius > o.near_window_m) SearchWide(k, query, near_m, &run.findings);
+  return run;
 }
 
-void GraphSlam::SearchWide(int k, double near_m) {
+void GraphSlam::SearchWide(int k, const std::vector<OrientedPoint>& query, double near_m,
+                           std::vector<LoopFinding>* findings) {
   const LoopClosureOptions& o = options_.loop;
   const kernel::Pose2& pose = keyframes_[static_cast<std::size_t>(k)].pose;
   // The graph's uncertainty of this keyframe relative to each earlier one, in the world's axes.
@@ -563,17 +622,35 @@ void GraphSlam::SearchWide(int k, double near_m) {
     if (window_m < o.wide_window_ratio * near_m ||
         std::fmod(static_cast<double>(k), std::ceil(window_m / o.stride_window_m)) != 0.0)
       continue;
-    AddPending(k, MatchLoop(k, c, window_m, window_rad), false);
+    LoopFinding& finding = findings->emplace_back();
+    finding.edge = MatchLoop(k, query, c, window_m, window_rad, &finding.record);
   }
 }
 
-bool GraphSlam::AddPending(int k, const std::optional<PoseGraphEdge>& edge, bool near) {
-  if (!edge) return false;
-  if (near) closure_at_m_ = travelled_m_;
-  pending_.push_back(*edge);
+void GraphSlam::AddFinding(int k, LoopFinding finding, double travelled_m) {
+  ++loops_.searches;
+  switch (finding.record.outcome) {
+    case LoopSearch::Outcome::kScore:
+      ++loops_.rejected_score;
+      break;
+    case LoopSearch::Outcome::kAmbiguous:
+      ++loops_.rejected_ambiguous;
+      break;
+    case LoopSearch::Outcome::kRegistration:
+      ++loops_.rejected_registration;
+      break;
+    case LoopSearch::Outcome::kMisfit:
+      ++loops_.rejected_misfit;
+      break;
+    default:
+      break;
+  }
+  searches_.push_back(finding.record);
+  if (!finding.edge) return;
+  if (finding.near) closure_at_m_ = travelled_m;
+  pending_.push_back(*finding.edge);
   pending_searches_.push_back(static_cast<int>(searches_.size()) - 1);
   if (unflushed_since_ < 0) unflushed_since_ = k;
-  return true;
 }
 
 bool GraphSlam::Agree(const PoseGraphEdge& a, const PoseGraphEdge& b) const {
@@ -591,7 +668,7 @@ bool GraphSlam::Agree(const PoseGraphEdge& a, const PoseGraphEdge& b) const {
                                  newer.information.inverse()) <= options_.loop.max_chi2;
 }
 
-void GraphSlam::FlushClosures(bool final) {
+void GraphSlam::FlushClosures(bool final, double travelled_m) {
   unflushed_since_ = -1;
   if (pending_.empty()) return;
   const std::size_t n = pending_.size();
@@ -613,9 +690,10 @@ void GraphSlam::FlushClosures(bool final) {
     std::vector<bool> left_out(n, false);
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n && wide(i) && !left_out[i]; ++j)
-        left_out[i] = !wide(j) && std::abs(pending_[i].to - pending_[j].to) <=
-                                      options_.loop.confirm_keyframes &&
-                      !Agree(pending_[i], pending_[j]);
+        left_out[i] =
+            !wide(j) &&
+            std::abs(pending_[i].to - pending_[j].to) <= options_.loop.confirm_keyframes &&
+            !Agree(pending_[i], pending_[j]);
     for (std::size_t i = 0; i < n; ++i)
       with_graph.push_back(!left_out[i] && graph_.EdgeChi2(pending_[i]) <= options_.loop.max_chi2);
     best = LargestAgreeingSet(with_graph, [&](int i, int j) {
@@ -675,7 +753,7 @@ void GraphSlam::FlushClosures(bool final) {
   // The drift that the first search's radius allows for restarts at a closure that search found
   // (AddPending) or at one added to the graph: a wide search's closure waits for a second to
   // confirm it, which only another wide search can find.
-  if (disagree.size() < accepted.size()) closure_at_m_ = travelled_m_;
+  if (disagree.size() < accepted.size()) closure_at_m_ = travelled_m;
   if (disagree.empty()) return;
   loops_.rejected_disagreement += static_cast<long>(disagree.size());
   graph_.RemoveEdges(disagree);
@@ -688,15 +766,15 @@ void GraphSlam::FlushClosures(bool final) {
 }
 
 void GraphSlam::Finish() {
-  FlushClosures(true);
+  CollectLoopSearch();
+  FlushClosures(true, travelled_m_);
   if (loops_.accepted > 0) Optimize();
 }
 
-std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double window_m,
-                                                  double window_rad) {
-  const ScopedTimer timer(&times_.loop_search_ms);
-  ++loops_.searches;
-  LoopSearch& record = searches_.emplace_back();
+std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, const std::vector<OrientedPoint>& query,
+                                                  int candidate, double window_m, double window_rad,
+                                                  LoopSearch* found) {
+  LoopSearch& record = *found;
   const ScopedTimer search_timer(&record.time_ms);
   record.query = k;
   record.target = candidate;
@@ -706,27 +784,18 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double w
   record.target_searched = keyframes_[static_cast<std::size_t>(candidate)].pose;
   record.window_m = window_m;
   record.window_rad = window_rad;
-  const auto refuse = [&](LoopSearch::Outcome outcome, long* count) {
+  const auto refuse = [&](LoopSearch::Outcome outcome) {
     record.outcome = outcome;
-    ++*count;
     return std::nullopt;
   };
   const Keyframe& kf = keyframes_[static_cast<std::size_t>(k)];
-  const kernel::Pose2 kf_inverse = kf.pose.Inverse();
-  std::vector<OrientedPoint> query;
-  for (int i = std::max(0, k - options_.loop.query_keyframes); i <= k; ++i) {
-    const Keyframe& q = keyframes_[static_cast<std::size_t>(i)];
-    const std::vector<OrientedPoint> placed = Placed(kf_inverse * q.pose, q.points);
-    query.insert(query.end(), placed.begin(), placed.end());
-  }
-  query = Thinned(query, options_.loop.resolution_m);
   const LoopTarget& loop_target =
       Target(window_m > options_.loop.near_window_m
                  ? AreaKeyframes(kf.pose.translation(), window_m + options_.loop.reach_m,
                                  k - options_.loop.min_gap_keyframes)
                  : TargetKeyframes(candidate, k - options_.loop.min_gap_keyframes));
   const DistanceGrid& target = *loop_target.grid;
-  if (target.too_large()) return refuse(LoopSearch::Outcome::kScore, &loops_.rejected_score);
+  if (target.too_large()) return refuse(LoopSearch::Outcome::kScore);
   const LikelihoodPyramid& pyramid = *loop_target.pyramid;
   const CorrelativeMatch match = SearchCorrelative(
       Positions(query), pyramid, kf.pose, window_m, window_rad,
@@ -742,23 +811,23 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, int candidate, double w
   const double overlap =
       static_cast<double>(overlapping.size()) / static_cast<double>(query.size());
   if (!match.found || overlap < options_.loop.min_overlap)
-    return refuse(LoopSearch::Outcome::kScore, &loops_.rejected_score);
+    return refuse(LoopSearch::Outcome::kScore);
   if (match.second_score > 0 &&
       !TellsApart(target, query, match.pose, match.second_pose, options_.loop.registration,
                   options_.normal_max_gap_m, options_.loop.tell_apart_alpha))
-    return refuse(LoopSearch::Outcome::kAmbiguous, &loops_.rejected_ambiguous);
+    return refuse(LoopSearch::Outcome::kAmbiguous);
   const RegistrationResult fine =
       RegisterPoints(overlapping, target, match.pose, options_.loop.registration);
   if (!fine.accepted || fine.rms_m > options_.loop.max_rms_m)
-    return refuse(LoopSearch::Outcome::kRegistration, &loops_.rejected_registration);
+    return refuse(LoopSearch::Outcome::kRegistration);
   record.match = fine.pose;
   if (MeanLikelihood(target, Placed(fine.pose, overlapping), options_.loop.sigma_m) <
       options_.loop.min_score)
-    return refuse(LoopSearch::Outcome::kScore, &loops_.rejected_score);
+    return refuse(LoopSearch::Outcome::kScore);
   if (SeenFreeMisfitFraction(target, Placed(fine.pose, query),
                              options_.loop.registration.inlier_distance_m) >
       options_.loop.max_misfit_fraction)
-    return refuse(LoopSearch::Outcome::kMisfit, &loops_.rejected_misfit);
+    return refuse(LoopSearch::Outcome::kMisfit);
   PoseGraphEdge edge;
   edge.from = candidate;
   edge.to = k;
@@ -979,6 +1048,9 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Nested("loop", "loop closure", &loop);
   v.Field("optimize_every_keyframes", &optimize_every_keyframes,
           "closures found are optimised together this many keyframes after the first");
+  v.Field("background_loop_search", &background_loop_search,
+          "search loop closures on a second thread beside the front end (same result either "
+          "way)");
   v.Nested("pose_graph", "pose-graph optimisation", &pose_graph);
   v.Field("map_spacing_m", &map_spacing_m, "map curves from keyframes this far apart, m");
   v.Field("map_spacing_rad", &map_spacing_rad, "or turned this much from each other, rad");

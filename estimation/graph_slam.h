@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <future>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -241,6 +242,13 @@ struct GraphSlamOptions {
   // Closures found are added and optimised together, this many keyframes after the first of
   // them (0: at once): on a revisit every keyframe closes, and one optimisation serves a few.
   int optimize_every_keyframes = 5;
+  // A keyframe's loop-closure search reads the graph as it was when the keyframe was made, and
+  // what it found is added when the next keyframe is made (before it), so that the search can run
+  // on a second thread while the front end registers the scans in between. With this true it
+  // does, unless loop.min_gap_keyframes <= moving_keyframes (the front end then still edits
+  // keyframes a search reads); false runs it at once on the calling thread. Both give the same
+  // trajectory: the search sees the same data and its closures enter the graph at the same point.
+  bool background_loop_search = true;
   PoseGraphOptions pose_graph;
 
   // The map: curves of keyframes at least map_spacing_m or map_spacing_rad from every earlier
@@ -321,6 +329,10 @@ class GraphSlam {
   };
 
   GraphSlam(const kernel::Pose2& start, const GraphSlamOptions& options);
+  // A loop search may be running on `this`.
+  GraphSlam(const GraphSlam&) = delete;
+  GraphSlam& operator=(const GraphSlam&) = delete;
+  ~GraphSlam();
 
   void Predict(const kernel::Pose2& odometry_increment);
   void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser);
@@ -362,10 +374,11 @@ class GraphSlam {
   // Every loop-closure search, in order.
   const std::vector<LoopSearch>& loop_searches() const { return searches_; }
   const std::vector<PoseGraphSummary>& optimizations() const { return optimizations_; }
-  // Wall time spent in each part, ms.
+  // Wall time spent in each part, ms. The loop search may run beside the others
+  // (background_loop_search); loop_wait_ms is how long the front end waited for it.
   struct Times {
     double registration_ms = 0, keyframe_ms = 0, moving_ms = 0, submap_ms = 0, loop_search_ms = 0,
-           optimization_ms = 0;
+           loop_wait_ms = 0, optimization_ms = 0;
   };
   const Times& times() const { return times_; }
   kernel::Status health() const { return health_; }
@@ -409,23 +422,51 @@ class GraphSlam {
   void TrimKeyframe(int j);
   // Registers a scan at the predicted pose against the submap (see recovery_window_m).
   RegistrationResult RegisterScan(const std::vector<OrientedPoint>& points);
-  // Searches the new keyframe k against earlier ones; closures found wait in pending_.
-  void SearchLoopClosures(int k);
+  // One loop-closure search (MatchLoop): its record, and the closure when it passed the tests.
+  struct LoopFinding {
+    LoopSearch record;
+    std::optional<PoseGraphEdge> edge;
+    bool near = false;  // by the first search (see AddPending)
+  };
+  // The searches of keyframe k, made when the front end had travelled travelled_m.
+  struct LoopSearchRun {
+    int keyframe = -1;
+    double travelled_m = 0.0;
+    std::vector<LoopFinding> findings;  // in search order
+    double time_ms = 0.0;
+  };
+  // Starts the searches of the new keyframe k (background_loop_search), to be collected at the
+  // next keyframe; none before keyframe loop.min_gap_keyframes. Only one runs at a time.
+  void StartLoopSearch(int k);
+  // Waits for the running search and adds what it found (pending_, counters, FlushClosures).
+  void CollectLoopSearch();
+  // Searches keyframe k against earlier ones, `since_m` travelled since the last closure, with
+  // `query` (its points and those of the loop.query_keyframes before it, in its frame, thinned
+  // to loop.resolution_m). Reads keyframes up to k - loop.min_gap_keyframes, keyframe k's pose
+  // and the graph, and writes nothing but the loop targets' cache: it may run beside the front
+  // end.
+  LoopSearchRun SearchLoopClosures(int k, double travelled_m, double since_m,
+                                   const std::vector<OrientedPoint>& query);
   // Adds the largest set of pending closures that agree (confirm_keyframes), optimises, and
   // removes those that then disagree with the graph. Unconfirmed closures older than
-  // confirm_keyframes, or all when `final`, are dropped.
-  void FlushClosures(bool final);
+  // confirm_keyframes, or all when `final`, are dropped. `travelled_m`: the travel at the
+  // keyframe whose search found the latest closures.
+  void FlushClosures(bool final, double travelled_m);
   // Whether closures a and b put the newer of their keyframes at the same pose.
   bool Agree(const PoseGraphEdge& a, const PoseGraphEdge& b) const;
   // Covariance of the front-end edge from keyframe `to` - 1 to `to` (edge_sigma_m, ...).
   Eigen::Matrix3d FrontEndCovariance(int to) const;
-  // Searches keyframe k against the candidate's target within the windows; records the search.
-  std::optional<PoseGraphEdge> MatchLoop(int k, int candidate, double window_m, double window_rad);
+  // Searches keyframe k's query against the candidate's target within the windows; the closure
+  // when the match passes the tests. Records the search in *record.
+  std::optional<PoseGraphEdge> MatchLoop(int k, const std::vector<OrientedPoint>& query,
+                                         int candidate, double window_m, double window_rad,
+                                         LoopSearch* record);
   // The wide search of LoopClosureOptions at keyframe k, whose first window was near_m wide.
-  void SearchWide(int k, double near_m);
-  // A closure found at keyframe k waits in pending_; false when there is none. One found by the
-  // first (`near`) search restarts the travel that widens that search's radius.
-  bool AddPending(int k, const std::optional<PoseGraphEdge>& edge, bool near);
+  void SearchWide(int k, const std::vector<OrientedPoint>& query, double near_m,
+                  std::vector<LoopFinding>* findings);
+  // Records a search of keyframe k; a closure it found waits in pending_. One found by the first
+  // (`near`) search restarts, at travelled_m, the travel that widens that search's radius.
+  void AddFinding(int k, LoopFinding finding, double travelled_m);
   // Optimises, then moves the current pose with its keyframe.
   void Optimize();
   // A loop target's field and likelihood pyramid, built from these keyframes at their poses of
@@ -467,7 +508,7 @@ class GraphSlam {
   std::vector<int> pending_searches_;   // their searches_ indices
   std::vector<LoopSearch> searches_;
   double closure_at_m_ = 0.0;        // travelled when the last closure was found
-  std::vector<LoopTarget> targets_;  // the last loop targets built (Target)
+  std::vector<LoopTarget> targets_;  // the last loop targets built (Target; loop search only)
   long graph_version_ = 0;           // incremented by every optimisation
   int unflushed_since_ = -1;         // keyframe of the first closure found since the last flush
   long registrations_ = 0, fallbacks_ = 0, recoveries_ = 0, recovered_ = 0, trimmed_ = 0;
@@ -476,6 +517,8 @@ class GraphSlam {
   Times times_;
   std::size_t map_curves_ = 0, map_control_points_ = 0;
   kernel::Status health_;
+  // The latest keyframe's loop search (StartLoopSearch); last, so that it ends first.
+  std::future<LoopSearchRun> loop_run_;
 };
 
 }  // namespace splam::estimation

@@ -1,0 +1,105 @@
+// Cost over a long run (issue 49, item 2): does a method slow down, or its memory grow, as the
+// log gets longer in a world it has already mapped?
+//
+// BM_LongRun/<method>/<hours>: `office-long` (a 30 m x 12 m floor of eleven rooms off a corridor)
+// with the simulator's default URG-04LX at 10 Hz, its route driven lap after lap (about 3 minutes
+// a lap) for <hours> of simulated time, simulated lap by lap as the SLAM goes, so that the log
+// is never held whole. Every lap after the first revisits the same corridor: a method whose cost
+// follows the map stays flat, one whose cost follows the log grows. Counters, for each hour hN
+// of the log:
+// - median_hN_ms, p99_hN_ms: the median and the 99th percentile of its steps (predict + update);
+// - heap_hN_mb: the heap in use at its end (glibc's mallinfo2, minus the heap before the method
+//   was made), as in long_range_benchmark;
+// - map_hN: the method's MapSize() then;
+// and rmse_m, the position RMSE of the whole trajectory after Finish.
+// Five hours of the graph SLAM take several minutes: run it alone, e.g.
+//   build/bench/long_run_benchmark --benchmark_filter='BM_LongRun/graph'
+#include <benchmark/benchmark.h>
+#include <malloc.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "estimation/slam_method.h"
+#include "loop/slam_driver.h"
+#include "sim/builtin_worlds.h"
+#include "sim/ray_caster.h"
+#include "sim/simulator.h"
+
+namespace {
+
+using splam::kernel::Pose2;
+
+// The heap in use (allocated and not freed, mmapped blocks included), MB.
+double HeapMb() {
+  const struct mallinfo2 m = mallinfo2();
+  return static_cast<double>(m.uordblks + m.hblkhd) / (1024.0 * 1024.0);
+}
+
+double Quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  const auto k = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + static_cast<long>(k), values.end());
+  return values[k];
+}
+
+void BM_LongRun(benchmark::State& state, const char* method) {
+  const int hours = static_cast<int>(state.range(0));
+  const splam::sim::World world = *splam::sim::BuiltinWorld("office-long");
+  const splam::sim::RayCaster caster(world);
+  std::vector<std::vector<double>> steps(static_cast<std::size_t>(hours));
+  std::vector<double> heap(static_cast<std::size_t>(hours)), map(heap.size());
+  double rmse = 0.0;
+  for (auto _ : state) {
+    splam::sim::Simulator simulator(caster, {}, *world.start, 1);
+    const Pose2& robot_T_laser = simulator.options().laser.robot_T_laser;
+    const double before = HeapMb();
+    splam::loop::SlamDriver driver(std::move(*splam::estimation::SlamRegistry::Global()
+                                                  .Make(method, nullptr, {*world.start, {}})
+                                                  .value));
+    std::vector<Pose2> truth;
+    bool first_lap = true;
+    while (simulator.time_s() < 3600.0 * hours) {
+      splam::sim::RouteRun lap = splam::sim::FollowRoute(&simulator, world.route, {});
+      if (!lap.completed) state.SkipWithError(lap.message.c_str());
+      // A lap's first frame is sensed where the previous lap's last one was.
+      for (std::size_t i = first_lap ? 0 : 1; i < lap.frames.size(); ++i) {
+        const splam::sim::SensorFrame& frame = lap.frames[i];
+        const auto hour = static_cast<std::size_t>(frame.time_s / 3600.0);
+        if (hour >= steps.size()) break;
+        driver.Step(frame.odometry_pose, &frame.scan, robot_T_laser);
+        steps[hour].push_back(driver.update_ms().back());
+        heap[hour] = HeapMb() - before;
+        map[hour] = static_cast<double>(driver.method().MapSize());
+        truth.push_back(frame.true_pose);
+      }
+      first_lap = false;
+      if (!lap.completed) break;
+    }
+    driver.method().Finish();
+    const std::vector<Pose2> estimate = driver.method().Trajectory();
+    for (std::size_t i = 0; i < estimate.size() && i < truth.size(); ++i)
+      rmse += (estimate[i].translation() - truth[i].translation()).squaredNorm();
+    rmse = std::sqrt(rmse / static_cast<double>(std::max<std::size_t>(1, truth.size())));
+  }
+  for (std::size_t h = 0; h < steps.size(); ++h) {
+    const std::string hour = "h" + std::to_string(h + 1);
+    state.counters["median_" + hour + "_ms"] = Quantile(steps[h], 0.5);
+    state.counters["p99_" + hour + "_ms"] = Quantile(steps[h], 0.99);
+    state.counters["heap_" + hour + "_mb"] = heap[h];
+    state.counters["map_" + hour] = map[h];
+  }
+  state.counters["rmse_m"] = rmse;
+  state.SetLabel(method);
+}
+BENCHMARK_CAPTURE(BM_LongRun, graph, "graph")->Arg(5)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(BM_LongRun, topological, "topological")
+    ->Arg(5)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
