@@ -374,12 +374,13 @@ void RegistrationOptions::VisitFields(kernel::FieldVisitor& v) {
 }
 
 kernel::Status RegistrationOptions::Validate() const {
-  // Weights are 1 / sigma^2: beyond these they underflow, and the solve is no longer one.
-  if (!(point_sigma_m > 0 && point_sigma_m <= 10) || !(loss_scale_m > 0 && loss_scale_m <= 100) ||
-      !(prior_sigma_m > 0 && prior_sigma_m <= 1e4) ||
+  // Weights are 1 / sigma^2: beyond these they underflow or overflow, and the solve is no
+  // longer one.
+  if (!(point_sigma_m >= 1e-6 && point_sigma_m <= 10) ||
+      !(loss_scale_m > 0 && loss_scale_m <= 100) || !(prior_sigma_m > 0 && prior_sigma_m <= 1e4) ||
       !(prior_sigma_rad > 0 && prior_sigma_rad <= 100))
     return kernel::Status::Error(
-        "registration point_sigma_m must be in (0, 10] m, loss_scale_m in (0, 100] m, "
+        "registration point_sigma_m must be in [1e-6, 10] m, loss_scale_m in (0, 100] m, "
         "prior_sigma_m in (0, 1e4] m and prior_sigma_rad in (0, 100] rad");
   if (max_iterations < 1 || max_iterations > 1000 || min_points < 3)
     return kernel::Status::Error(

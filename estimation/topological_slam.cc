@@ -121,9 +121,10 @@ kernel::Status TopologicalSlamOptions::Validate() const {
     return kernel::Status::Error(
         "the local region needs a margin in [0, 100] m, a radius in (0, 30] m and 0 < alpha < 1");
   if (!(min_information >= 0.0)) return kernel::Status::Error("min_information must be >= 0");
-  // Weights are 1 / sigma^2: 1e308 m underflowed them and the solve returned NaN.
-  if (!(point_sigma_m > 0.0 && point_sigma_m <= 10.0))
-    return kernel::Status::Error("point_sigma_m must be in (0, 10] m");
+  // Weights are 1 / sigma^2: 1e308 m underflowed them and the solve returned NaN; 1e-300 m
+  // squared is zero, and the fusion divided by it (a NaN pose, the option fuzzer).
+  if (!(point_sigma_m >= 1e-6 && point_sigma_m <= 10.0))
+    return kernel::Status::Error("point_sigma_m must be in [1e-6, 10] m");
   if (kernel::Status e = odometry.Validate(); !e.ok()) return e;
   if (prediction == TopologicalPrediction::kScanMatching) {
     if (kernel::Status e = scan_matching.Validate(); !e.ok()) return e.Prefixed("scan_matching");
@@ -553,6 +554,7 @@ std::optional<TopologicalSlam::DenseResult> TopologicalSlam::RefineDense(
   if (static_cast<int>(samples.size()) < options_.dense_min_points) return std::nullopt;
   const double cos_max = std::cos(options_.dense_max_angle_rad);
   const double cell = options_.index_cell_m;
+  if (!start.translation().allFinite() || !std::isfinite(start.theta())) return std::nullopt;
   Pose2 current = start;
   DenseResult result;
   for (int round = 0; round < kPointToCurveIterations; ++round) {

@@ -107,10 +107,11 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
   ExpectDomain(&TopologicalSlamOptions::correction_rounds, {0, 1 << 30}, {1, 10},
                "correction_rounds");
   // A point sigma of 1e308 m: weights of 1e-616, a NaN pose (UBSan, found in the long run).
-  ExpectDomain(&TopologicalSlamOptions::point_sigma_m, {1e308, 0.0, nan}, {0.01, 1.0},
-               "topological point_sigma_m");
-  ExpectDomain(&RegistrationOptions::point_sigma_m, {1e308, 0.0, nan}, {0.01, 1.0},
-               "registration point_sigma_m");
+  // ... and 1e-300 m, whose square is zero (session 33: a NaN pose cast to a cell index).
+  ExpectDomain(&TopologicalSlamOptions::point_sigma_m, {1e308, 0.0, 1e-300, 1e-7, nan},
+               {1e-6, 0.01, 1.0}, "topological point_sigma_m");
+  ExpectDomain(&RegistrationOptions::point_sigma_m, {1e308, 0.0, 1e-300, 1e-7, nan},
+               {1e-6, 0.01, 1.0}, "registration point_sigma_m");
   // A corner margin of 1e308 m in samples: beyond size_t (UBSan, found in the long run).
   ExpectDomain(&kernel::FeatureOptions::corner_end_margin_m, {1e308, -1.0, nan}, {0.0, 0.5},
                "corner_end_margin_m");
