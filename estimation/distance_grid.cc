@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <opencv2/imgproc.hpp>
 
 namespace splam::estimation {
@@ -55,6 +56,22 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
                                  const std::vector<std::vector<Eigen::Vector2d>>& seen,
                                  bool signed_field, double seen_margin_m,
                                  const std::vector<std::vector<Eigen::Vector2d>>& seen_by_hits) {
+  std::vector<ViewCells> rasterised;
+  rasterised.reserve(seen.size() + seen_by_hits.size());
+  for (const auto& polygon : seen)
+    rasterised.push_back(RasteriseView(polygon, resolution_m, seen_margin_m));
+  for (const auto& polygon : seen_by_hits)
+    rasterised.push_back(RasteriseView(polygon, resolution_m, seen_margin_m));
+  std::vector<const ViewCells*> views, by_hits;
+  for (std::size_t i = 0; i < rasterised.size(); ++i)
+    (i < seen.size() ? views : by_hits).push_back(&rasterised[i]);
+  return Build(oriented, resolution_m, truncation_m, margin_m, views, signed_field, by_hits);
+}
+
+DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, double resolution_m,
+                                 double truncation_m, double margin_m,
+                                 const std::vector<const ViewCells*>& seen, bool signed_field,
+                                 const std::vector<const ViewCells*>& seen_by_hits) {
   DistanceGrid g;
   g.resolution_m_ = resolution_m;
   g.truncation_m_ = truncation_m;
@@ -64,16 +81,20 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
     lo = lo.cwiseMin(o.point);
     hi = hi.cwiseMax(o.point);
   }
-  g.origin_ = lo.array() - margin_m;
   const Eigen::Vector2d extent = (hi - lo).array() + 2 * margin_m;
-  const double cols = std::ceil(extent.x() / resolution_m) + 1;
-  const double rows = std::ceil(extent.y() / resolution_m) + 1;
-  if (!(cols * rows <= kMaxCells)) {
-    g.extent_ = extent;
+  // The lattice cell of the corner, and the cells up to the far corner.
+  const Eigen::Vector2d first = ((lo.array() - margin_m) / resolution_m).floor();
+  const Eigen::Vector2d last = ((hi.array() + margin_m) / resolution_m).floor();
+  const double cols = last.x() - first.x() + 1, rows = last.y() - first.y() + 1;
+  if (!(cols * rows <= kMaxCells) || !(std::abs(first.x()) < 1e9 && std::abs(first.y()) < 1e9)) {
+    g.extent_ = extent.cwiseMax(resolution_m);
     return g;
   }
   g.cols_ = static_cast<int>(cols);
   g.rows_ = static_cast<int>(rows);
+  g.first_col_ = static_cast<long>(first.x());
+  g.first_row_ = static_cast<long>(first.y());
+  g.origin_ = first * resolution_m;
 
   // Occupied cells keep the mean of their points: on a curve sampled densely, a point on it.
   // Their sums live in one slot per occupied cell (a grid spans far more cells than its points
@@ -92,8 +113,9 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
   std::vector<int> slot_of(cells, -1);
   std::vector<Occupied> occupied;
   for (const auto& [p, n] : oriented) {
-    const int c = static_cast<int>((p.x() - g.origin_.x()) / resolution_m);
-    const int r = static_cast<int>((p.y() - g.origin_.y()) / resolution_m);
+    // Clamped: a point on the far corner's lattice line may round past it.
+    const int c = std::min(static_cast<int>((p.x() - g.origin_.x()) / resolution_m), g.cols_ - 1);
+    const int r = std::min(static_cast<int>((p.y() - g.origin_.y()) / resolution_m), g.rows_ - 1);
     const std::size_t i = static_cast<std::size_t>(r) * g.cols_ + c;
     if (slot_of[i] < 0) {
       slot_of[i] = static_cast<int>(occupied.size());
@@ -157,48 +179,91 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
       g.values_[i] = std::clamp(d, -truncation_m, truncation_m);
     }
   if (seen.empty()) return g;
-  cv::Mat known(g.rows_, g.cols_, CV_8U, cv::Scalar(0));
-  auto cell = [&](const Eigen::Vector2d& p) {
-    const Eigen::Vector2d q = (p - g.origin_) / resolution_m;
-    return cv::Point(static_cast<int>(std::lround(std::clamp(q.x(), -1e6, 1e6))),
-                     static_cast<int>(std::lround(std::clamp(q.y(), -1e6, 1e6))));
-  };
-  // A polygon's vertex, unless it falls in the cell of the previous one: a dense laser's beams
-  // end a few per cell, and the fill (each edge drawn, then the scanlines between) is the same
-  // without the zero-length edges.
-  auto add_vertex = [](std::vector<cv::Point>* polygon, const cv::Point& v) {
-    if (polygon->empty() || polygon->back() != v) polygon->push_back(v);
-  };
   // Every view's whole polygon first, then the parts seen free, so that no view's margin covers
-  // another's free space.
-  for (const auto& polygon : seen) {
-    std::vector<cv::Point> outer;
-    for (const auto& p : polygon) add_vertex(&outer, cell(p));
-    cv::fillPoly(known, std::vector<std::vector<cv::Point>>{outer}, cv::Scalar(1));
-  }
-  // The polygons pulled back by seen_margin_m towards the sensor (their first vertex).
-  const auto fill_inner = [&](const std::vector<std::vector<Eigen::Vector2d>>& polygons,
-                              int value) {
-    for (const auto& polygon : polygons) {
-      std::vector<cv::Point> inner;
-      for (const auto& p : polygon) {
-        const Eigen::Vector2d ray = p - polygon.front();
-        const double length = ray.norm();
-        add_vertex(&inner, cell(length <= seen_margin_m
-                                    ? polygon.front()
-                                    : Eigen::Vector2d(p - seen_margin_m / length * ray)));
-      }
-      cv::fillPoly(known, std::vector<std::vector<cv::Point>>{inner}, cv::Scalar(value));
+  // another's free space: a cell's value is the highest any view gives it.
+  cv::Mat known(g.rows_, g.cols_, CV_8U, cv::Scalar(0));
+  const auto fill = [&](const std::vector<ViewCells::Run>& runs, unsigned char value) {
+    for (const ViewCells::Run& run : runs) {
+      const long r = run.row - g.first_row_;
+      const long c0 = std::max<long>(run.first - g.first_col_, 0);
+      const long c1 = std::min<long>(run.last - g.first_col_, g.cols_ - 1);
+      if (r < 0 || r >= g.rows_ || c0 > c1) continue;
+      std::fill_n(known.ptr<unsigned char>(static_cast<int>(r)) + c0, c1 - c0 + 1, value);
     }
   };
-  if (seen_margin_m <= 0)
-    known.setTo(cv::Scalar(2), known == 1);
-  else
-    fill_inner(seen, 2);
+  for (const ViewCells* view : seen) fill(view->whole, 1);
+  for (const ViewCells* view : seen) fill(view->inner, 2);
   known.setTo(cv::Scalar(2), free_cells == 0);
-  fill_inner(seen_by_hits, 3);
+  for (const ViewCells* view : seen_by_hits) fill(view->inner, 3);
   g.known_.assign(known.datastart, known.dataend);
   return g;
+}
+
+ViewCells RasteriseView(const std::vector<Eigen::Vector2d>& polygon, double resolution_m,
+                        double seen_margin_m) {
+  ViewCells v;
+  v.resolution_m = resolution_m;
+  if (polygon.empty()) return v;
+  // The window: 4096 cells square about the sensor's cell, in lattice cells.
+  constexpr long kHalf = 2048;
+  const auto lattice = [&](const Eigen::Vector2d& p) {
+    const Eigen::Vector2d q = p / resolution_m;
+    return Eigen::Vector2d(std::round(std::clamp(q.x(), -1e12, 1e12)),
+                           std::round(std::clamp(q.y(), -1e12, 1e12)));
+  };
+  const Eigen::Vector2d corner = lattice(polygon.front()).array() - kHalf;
+  if (!(corner.cwiseAbs().maxCoeff() < 1e9)) return v;  // beyond any grid (DistanceGrid::Build)
+  // A vertex in the window's cells (far ones clamped: the fill clips them), unless it falls in
+  // the cell of the previous one: a dense laser's beams end a few per cell, and the fill (each
+  // edge drawn, then the scanlines between) is the same without the zero-length edges.
+  const auto add_vertex = [&](std::vector<cv::Point>* out, const Eigen::Vector2d& p) {
+    const Eigen::Vector2d q = (lattice(p) - corner).cwiseMax(-1e6).cwiseMin(1e6);
+    const cv::Point vertex(static_cast<int>(q.x()), static_cast<int>(q.y()));
+    if (out->empty() || out->back() != vertex) out->push_back(vertex);
+  };
+  std::vector<cv::Point> whole, inner;
+  for (const auto& p : polygon) {
+    add_vertex(&whole, p);
+    // Pulled back by seen_margin_m towards the sensor (the first vertex).
+    const Eigen::Vector2d ray = p - polygon.front();
+    const double length = ray.norm();
+    add_vertex(&inner, length <= seen_margin_m ? polygon.front()
+                                               : Eigen::Vector2d(p - seen_margin_m / length * ray));
+  }
+  // The cells of the window the polygon can touch.
+  cv::Rect box = cv::boundingRect(whole) & cv::Rect(0, 0, 2 * kHalf, 2 * kHalf);
+  if (box.empty()) return v;
+  cv::Mat cells(box.height, box.width, CV_8U);
+  const auto runs_of = [&](std::vector<cv::Point> vertices, std::vector<ViewCells::Run>* runs) {
+    for (cv::Point& p : vertices) p -= box.tl();
+    cells.setTo(cv::Scalar(0));
+    cv::fillPoly(cells, std::vector<std::vector<cv::Point>>{vertices}, cv::Scalar(1));
+    // The runs of each row, found with memchr: most of a view's box is outside it (the long
+    // thin views of beams without a return).
+    const auto width = static_cast<std::size_t>(cells.cols);
+    for (int r = 0; r < cells.rows; ++r) {
+      const unsigned char* row = cells.ptr<unsigned char>(r);
+      const unsigned char* end = row + width;
+      for (const unsigned char* at = row; at < end;) {
+        const auto* start = static_cast<const unsigned char*>(
+            std::memchr(at, 1, static_cast<std::size_t>(end - at)));
+        if (start == nullptr) break;
+        const auto* stop = static_cast<const unsigned char*>(
+            std::memchr(start, 0, static_cast<std::size_t>(end - start)));
+        if (stop == nullptr) stop = end;
+        runs->push_back({static_cast<int>(corner.y()) + box.y + r,
+                         static_cast<int>(corner.x()) + box.x + static_cast<int>(start - row),
+                         static_cast<int>(corner.x()) + box.x + static_cast<int>(stop - row) - 1});
+        at = stop;
+      }
+    }
+  };
+  runs_of(whole, &v.whole);
+  if (seen_margin_m > 0)
+    runs_of(inner, &v.inner);
+  else
+    v.inner = v.whole;
+  return v;
 }
 
 long DistanceGrid::CellIndex(const Eigen::Vector2d& p) const {

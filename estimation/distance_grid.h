@@ -44,9 +44,27 @@ std::vector<OrientedPoint> FillLinkedGaps(const std::vector<OrientedPoint>& orie
                                           double max_gap_m, double line_tolerance_m,
                                           double spacing_m);
 
+// A view (DistanceGrid::Build's `seen`: a polygon from the sensor, its first vertex, through
+// every beam's end) rasterised on the plane's lattice of resolution_m cells, lattice cell (i, j)
+// covering [j, j + 1) x [i, i + 1) times resolution_m: the runs of cells it fills along each row,
+// whole and pulled back by seen_margin_m towards the sensor. Every DistanceGrid lies on the
+// lattice of its resolution, so a grid fills its masks from these runs without rasterising the
+// polygons again: the graph SLAM keeps a keyframe's until the keyframe moves. The polygon is
+// clipped to a square of 4096 cells about the sensor (the largest grid is 2^24 cells).
+struct ViewCells {
+  struct Run {
+    int row = 0, first = 0, last = 0;  // lattice row, first and last column (inclusive)
+  };
+  double resolution_m = 0.0;
+  std::vector<Run> whole, inner;
+};
+ViewCells RasteriseView(const std::vector<Eigen::Vector2d>& polygon, double resolution_m,
+                        double seen_margin_m);
+
 // A truncated Euclidean distance field on a regular grid: value(r, c) is the distance from the
 // centre of cell (r, c) to the nearest of a set of points (the samples of a submap's curves),
-// capped at `truncation_m`. Cell (r, c) has its centre at origin + ((c + 0.5) res, (r + 0.5) res).
+// capped at `truncation_m`. Cell (r, c) has its centre at origin + ((c + 0.5) res, (r + 0.5) res),
+// and the origin is a multiple of the resolution (a lattice cell, see ViewCells).
 //
 // The distance is exact to the stored point of the nearest occupied cell (found by a
 // distance transform), not to the cell's centre: a wall 1 cm inside a 5 cm cell reads 1 cm off
@@ -83,6 +101,13 @@ class DistanceGrid {
                             const std::vector<std::vector<Eigen::Vector2d>>& seen = {},
                             bool signed_field = false, double seen_margin_m = 0.0,
                             const std::vector<std::vector<Eigen::Vector2d>>& seen_by_hits = {});
+  // The same with the views already rasterised (RasteriseView at resolution_m and seen_margin_m):
+  // `seen` fills the known cells (whole) and those seen free (inner), `seen_by_hits` (inner)
+  // those seen free by a beam that returned. Empty `seen`: every cell is known.
+  static DistanceGrid Build(const std::vector<OrientedPoint>& points, double resolution_m,
+                            double truncation_m, double margin_m,
+                            const std::vector<const ViewCells*>& seen, bool signed_field,
+                            const std::vector<const ViewCells*>& seen_by_hits);
 
   // A grid holds at most this many cells (about 1 GB while it is built): points spanning more,
   // at the resolution asked, give an empty grid whose too_large() is true and whose extent()
@@ -143,6 +168,7 @@ class DistanceGrid {
   Eigen::Vector2d extent_ = Eigen::Vector2d::Zero();  // of a grid too large to build, m
   double resolution_m_ = 0.05, truncation_m_ = 1.0;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
+  long first_row_ = 0, first_col_ = 0;  // the lattice cell of cell (0, 0)
   std::vector<double> values_;
   // 0 unseen, 1 behind a hit, 2 seen free, 3 seen free by a beam that returned; empty: all 2.
   std::vector<unsigned char> known_;

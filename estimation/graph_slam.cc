@@ -366,6 +366,7 @@ void GraphSlam::FillKeyframe(std::vector<OrientedPoint> points, Keyframe* kf) {
   // Curves are sampled every centimetre; a few samples per cell place it as well.
   kf->raster = Thinned(kf->raster, options_.grid_resolution_m / 2);
   kf->points = std::move(points);
+  kf->rasters = {};  // the view changes
   kf->seen =
       ScanView(kf->reading, kf->robot_T_laser, UsableRange(kf->reading), options_.seen_margin_m);
   if (options_.loop.enabled && options_.loop.seen_free_score < 0)
@@ -408,12 +409,27 @@ std::vector<OrientedPoint> GraphSlam::WorldRaster(const std::vector<int>& keyfra
   return raster;
 }
 
-std::vector<std::vector<Eigen::Vector2d>> GraphSlam::WorldViews(const std::vector<int>& keyframes,
-                                                                bool by_hits) const {
-  std::vector<std::vector<Eigen::Vector2d>> views;
+std::vector<const ViewCells*> GraphSlam::ViewsOf(const std::vector<int>& keyframes, int slot,
+                                                 double resolution_m, bool by_hits) const {
+  std::vector<const ViewCells*> views;
   for (int i : keyframes) {
     const Keyframe& kf = keyframes_[static_cast<std::size_t>(i)];
-    if (!kf.trimmed) views.push_back(kf.pose * (by_hits ? kf.seen_by_hits : kf.seen));
+    if (kf.trimmed) continue;
+    Keyframe::ViewRaster& raster = kf.rasters[static_cast<std::size_t>(slot)];
+    const bool moved = !(raster.pose.x() == kf.pose.x() && raster.pose.y() == kf.pose.y() &&
+                         raster.pose.theta() == kf.pose.theta());
+    if (!raster.valid || moved || raster.seen.resolution_m != resolution_m) {
+      raster = {};
+      raster.seen = RasteriseView(kf.pose * kf.seen, resolution_m, options_.seen_margin_m);
+      raster.pose = kf.pose;
+      raster.valid = true;
+    }
+    if (by_hits && !raster.by_hits_valid) {
+      raster.by_hits =
+          RasteriseView(kf.pose * kf.seen_by_hits, resolution_m, options_.seen_margin_m);
+      raster.by_hits_valid = true;
+    }
+    views.push_back(by_hits ? &raster.by_hits : &raster.seen);
   }
   return views;
 }
@@ -436,6 +452,7 @@ void GraphSlam::TrimKeyframe(int j) {
   std::vector<OrientedPoint>().swap(kf.raster);
   std::vector<Eigen::Vector2d>().swap(kf.seen);
   std::vector<Eigen::Vector2d>().swap(kf.seen_by_hits);
+  kf.rasters = {};
   ForgetReading(&kf);
   kf.trimmed = true;
   ++trimmed_;
@@ -472,10 +489,14 @@ void GraphSlam::RebuildSubmap() {
   std::vector<int> recent;
   for (int i = std::max(0, last - options_.submap_keyframes + 1); i <= last; ++i)
     recent.push_back(i);
+  // The keyframe that left the submap keeps no raster of its view for it.
+  if (last >= options_.submap_keyframes)
+    keyframes_[static_cast<std::size_t>(last - options_.submap_keyframes)].rasters[0] = {};
   submap_ = DistanceGrid::Build(
       WorldRaster(recent), options_.grid_resolution_m, options_.truncation_m, options_.truncation_m,
-      options_.mask_unseen ? WorldViews(recent) : std::vector<std::vector<Eigen::Vector2d>>{},
-      options_.signed_distance, options_.seen_margin_m);
+      options_.mask_unseen ? ViewsOf(recent, 0, options_.grid_resolution_m)
+                           : std::vector<const ViewCells*>{},
+      options_.signed_distance, {});
   submap_scores_.reset();
   submap_dirty_ = false;
   if (submap_.too_large())
@@ -852,9 +873,9 @@ const GraphSlam::LoopTarget& GraphSlam::Target(const std::vector<int>& keyframes
   t.graph_version = graph_version_;
   t.grid = std::make_unique<DistanceGrid>(DistanceGrid::Build(
       WorldRaster(keyframes), options_.loop.resolution_m, options_.truncation_m,
-      options_.truncation_m, WorldViews(keyframes), false, options_.seen_margin_m,
-      options_.loop.seen_free_score < 0 ? WorldViews(keyframes, true)
-                                        : std::vector<std::vector<Eigen::Vector2d>>{}));
+      options_.truncation_m, ViewsOf(keyframes, 1, options_.loop.resolution_m), false,
+      options_.loop.seen_free_score < 0 ? ViewsOf(keyframes, 1, options_.loop.resolution_m, true)
+                                        : std::vector<const ViewCells*>{}));
   t.pyramid = std::make_unique<LikelihoodPyramid>(
       *t.grid, options_.loop.sigma_m, options_.loop.levels, options_.loop.seen_free_score,
       3 * options_.loop.resolution_m);

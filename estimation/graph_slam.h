@@ -2,6 +2,7 @@
 #define SPLAM_ESTIMATION_GRAPH_SLAM_H_
 
 #include <Eigen/Core>
+#include <array>
 #include <functional>
 #include <future>
 #include <memory>
@@ -326,6 +327,17 @@ class GraphSlam {
     kernel::Pose2 robot_T_laser;
     bool in_map = false;
     bool trimmed = false;  // points, raster and view dropped (trim_spacing_m)
+    // The views rasterised on the lattice at `pose` (RasteriseView; by_hits from seen_by_hits),
+    // for the submap ([0], the front end's thread) and the loop targets ([1], the loop search's):
+    // made again only when the keyframe has moved or its view changed (GraphSlam::ViewsOf).
+    struct ViewRaster {
+      bool valid = false;
+      kernel::Pose2 pose;
+      ViewCells seen;
+      bool by_hits_valid = false;
+      ViewCells by_hits;
+    };
+    mutable std::array<ViewRaster, 2> rasters;
   };
 
   GraphSlam(const kernel::Pose2& start, const GraphSlamOptions& options);
@@ -404,11 +416,12 @@ class GraphSlam {
   static void ForgetReading(Keyframe* kf);
   // Beams longer than this are not used: max_range_m, or the laser's range when it is 0.
   double UsableRange(const kernel::Scan& scan) const;
-  // The raster and the views (or those of the beams that returned) of these keyframes in the
-  // world frame (trimmed ones add nothing).
+  // The raster of these keyframes in the world frame (trimmed ones add nothing).
   std::vector<OrientedPoint> WorldRaster(const std::vector<int>& keyframes) const;
-  std::vector<std::vector<Eigen::Vector2d>> WorldViews(const std::vector<int>& keyframes,
-                                                       bool by_hits = false) const;
+  // Their views (or those of their beams that returned) rasterised at resolution_m, from their
+  // Keyframe::rasters[slot] (0: the submap's, 1: the loop targets'), made again where stale.
+  std::vector<const ViewCells*> ViewsOf(const std::vector<int>& keyframes, int slot,
+                                        double resolution_m, bool by_hits = false) const;
   // A loop target: the candidate and up to loop.target_keyframes keyframes holding data on
   // either side of it, none newer than `newest`.
   std::vector<int> TargetKeyframes(int candidate, int newest) const;

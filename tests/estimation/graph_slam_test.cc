@@ -256,6 +256,60 @@ TEST(DistanceGrid, WhatOnlyNoReturnsCrossedIsSeenFreeButNotByHits) {
   EXPECT_FALSE(grid.SeenFree(kernel::PolarToCartesian({3.0, M_PI / 4})));  // behind the wall
 }
 
+// Property: a view's cells are the same in every grid: RasteriseView's runs lie on the plane's
+// lattice and every grid's origin is a lattice cell, so the graph SLAM rasterises a keyframe's
+// view once for all the submaps and loop targets it is in (Keyframe::rasters). 200 random scans
+// (30-360 beams, ranges 0.3-20 m, a tenth without a return) at random poses, at 0.05 and 0.1 m:
+// every cell of the grid of the scan's hits reads the same (known, seen free, seen free by hits)
+// in a grid of the same hits and a point 40 m away. Filled into the grid itself (until session
+// 33) a view whose edges crossed the grid's border read differently in 0.07 % of the cells away
+// from the border (400 random grids against the lattice's runs; 4e-6 with every view inside).
+TEST(DistanceGrid, PropertyAViewsCellsDoNotDependOnTheGrid) {
+  std::mt19937 gen(29);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  long compared = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    kernel::Scan scan;
+    const int beams = 30 + static_cast<int>(gen() % 331);
+    scan.start_angle_rad = -M_PI / 2;
+    scan.angular_step_rad = M_PI / beams;
+    scan.max_range_m = 20.0;
+    for (int i = 0; i < beams; ++i) {
+      const bool none = u(gen) < 0.1;
+      const double range = 0.3 + 19.7 * u(gen);
+      scan.ranges_m.push_back(none ? kernel::Scan::kNoReturn : range);
+    }
+    const double x = 40.0 * u(gen) - 20.0;
+    const double y = 40.0 * u(gen) - 20.0;
+    const double theta = 2 * M_PI * u(gen);
+    const Pose2 pose(x, y, theta);
+    const double resolution = trial % 2 == 0 ? 0.05 : 0.1;
+    const std::vector<OrientedPoint> hits =
+        OrientTowards(pose * scan.HitPoints(), pose.translation(), 0.3);
+    std::vector<OrientedPoint> wider = hits;
+    wider.push_back({pose.translation() + Eigen::Vector2d(40.0, -40.0), Eigen::Vector2d::Zero()});
+    const std::vector<std::vector<Eigen::Vector2d>> seen = {pose *
+                                                            ScanView(scan, Pose2(), 20.0, 0.2)},
+                                                    by_hits = {pose * ScanView(scan, Pose2(), 20.0,
+                                                                               0.2, false)};
+    const DistanceGrid small = DistanceGrid::Build(hits, resolution, 0.5, 0.5, seen, false, 0.2,
+                                                   by_hits),
+                       large = DistanceGrid::Build(wider, resolution, 0.5, 0.5, seen, false, 0.2,
+                                                   by_hits);
+    ASSERT_GT(large.rows() * large.cols(), small.rows() * small.cols());
+    for (int r = 0; r < small.rows(); ++r)
+      for (int c = 0; c < small.cols(); ++c) {
+        const Eigen::Vector2d centre =
+            small.origin() + resolution * Eigen::Vector2d(c + 0.5, r + 0.5);
+        ASSERT_EQ(small.Known(centre), large.Known(centre)) << trial << " " << r << " " << c;
+        ASSERT_EQ(small.SeenFree(centre), large.SeenFree(centre)) << trial;
+        ASSERT_EQ(small.SeenFreeByHits(centre), large.SeenFreeByHits(centre)) << trial;
+        compared += small.Known(centre);
+      }
+  }
+  EXPECT_GT(compared, 1000000);
+}
+
 // Property: a laser's points on a wall at grazing incidence (0.5-1 deg beams, the wall 0.5-3 m
 // from the sensor at any heading, 1 cm range noise; the points metres apart) are linked into one
 // outline: their normals are the wall's, not the beams', and the gaps between them are filled on
