@@ -772,7 +772,7 @@ void GraphSlam::FlushClosures(bool final, double travelled_m) {
   loops_.accepted +=
       static_cast<long>(graph_.edges().size()) - first - static_cast<long>(disagree.size());
   // The drift that the first search's radius allows for restarts at a closure that search found
-  // (AddPending) or at one added to the graph: a wide search's closure waits for a second to
+  // (AddFinding) or at one added to the graph: a wide search's closure waits for a second to
   // confirm it, which only another wide search can find.
   if (disagree.size() < accepted.size()) closure_at_m_ = travelled_m;
   if (disagree.empty()) return;

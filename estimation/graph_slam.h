@@ -439,7 +439,7 @@ class GraphSlam {
   struct LoopFinding {
     LoopSearch record;
     std::optional<PoseGraphEdge> edge;
-    bool near = false;  // by the first search (see AddPending)
+    bool near = false;  // by the first search (see AddFinding)
   };
   // The searches of keyframe k, made when the front end had travelled travelled_m.
   struct LoopSearchRun {
