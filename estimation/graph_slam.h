@@ -456,8 +456,8 @@ class GraphSlam {
   // Searches keyframe k against earlier ones, `since_m` travelled since the last closure, with
   // `query` (its points and those of the loop.query_keyframes before it, in its frame, thinned
   // to loop.resolution_m). Reads keyframes up to k - loop.min_gap_keyframes, keyframe k's pose
-  // and the graph, and writes nothing but the loop targets' cache: it may run beside the front
-  // end.
+  // and the graph, and writes nothing but the loop targets' cache and those keyframes' view
+  // rasters for loop targets (Keyframe::rasters[1]): it may run beside the front end.
   LoopSearchRun SearchLoopClosures(int k, double travelled_m, double since_m,
                                    const std::vector<OrientedPoint>& query);
   // Adds the largest set of pending closures that agree (confirm_keyframes), optimises, and
