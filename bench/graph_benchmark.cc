@@ -1,6 +1,6 @@
-// Graph SLAM parts (issues 16 and 49): one scan-to-submap registration, one submap build, one
-// loop-closure search and one optimisation of a 1,000- and a 5,000-keyframe pose graph. Run with
-// --benchmark_repetitions=5 for medians.
+// Graph SLAM parts (issues 16 and 49): one scan-to-submap registration, one submap build and one
+// keyframe inserted into it, one loop-closure search and one optimisation of a 1,000- and a
+// 5,000-keyframe pose graph. Run with --benchmark_repetitions=5 for medians.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -59,27 +59,55 @@ void BM_GraphRegistration(benchmark::State& state) {
 }
 BENCHMARK(BM_GraphRegistration)->Unit(benchmark::kMillisecond);
 
-// One submap as the graph SLAM builds it after a new keyframe (GraphSlam::RebuildSubmap): the
-// points of 30 keyframes 0.3 m apart, with their views (the part of the plane they saw), into a
-// 10 cm field truncated at 0.5 m.
-void BM_GraphSubmap(benchmark::State& state) {
-  Scans scans;
-  std::vector<OrientedPoint> points;
-  std::vector<std::vector<Eigen::Vector2d>> views;
-  for (int i = 0; i < 30; ++i) {
-    const Pose2 at(2.0 + 0.3 * i, 3.0 + 0.1 * std::sin(i), 0.1 * std::sin(i));
-    const auto part = scans.WorldAt(at);
-    points.insert(points.end(), part.begin(), part.end());
-    const kernel::Scan scan = scans.ScanAt(at);
-    views.push_back(at * ScanView(scan, Pose2(), scan.max_range_m, 0.2));
+// A submap as the graph SLAM makes it (GraphSlam::UpdateSubmap): the points of 30 keyframes
+// 0.3 m apart with their views (the part of the plane they saw, rasterised once per keyframe),
+// into a 10 cm field truncated at 0.5 m with 1.2 m of room for the inserts; then the 31st
+// keyframe, 0.3 m on, inserted into it.
+struct Submap {
+  explicit Submap(int keyframes) {
+    Scans scans;
+    for (int i = 0; i < keyframes; ++i) {
+      const Pose2 at(2.0 + 0.3 * i, 3.0 + 0.1 * std::sin(i), 0.1 * std::sin(i));
+      points.push_back(scans.WorldAt(at));
+      const kernel::Scan scan = scans.ScanAt(at);
+      views.push_back(RasteriseView(at * ScanView(scan, Pose2(), scan.max_range_m, 0.2), 0.1, 0.2));
+    }
   }
+  DistanceGrid Build(int keyframes) const {
+    std::vector<OrientedPoint> all;
+    std::vector<const ViewCells*> seen;
+    for (int i = 0; i < keyframes; ++i) {
+      all.insert(all.end(), points[i].begin(), points[i].end());
+      seen.push_back(&views[i]);
+    }
+    return DistanceGrid::Build(all, 0.1, 0.5, 1.7, seen, false, {});
+  }
+  std::vector<std::vector<OrientedPoint>> points;
+  std::vector<ViewCells> views;
+};
+
+void BM_GraphSubmapBuild(benchmark::State& state) {
+  const Submap submap(30);
   for (auto _ : state) {
-    const DistanceGrid grid = DistanceGrid::Build(points, 0.1, 0.5, 0.5, views, false, 0.2);
+    const DistanceGrid grid = submap.Build(30);
     benchmark::DoNotOptimize(grid.values().data());
   }
-  state.counters["points"] = static_cast<double>(points.size());
+  state.counters["cells"] = static_cast<double>(submap.Build(30).values().size());
 }
-BENCHMARK(BM_GraphSubmap)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GraphSubmapBuild)->Unit(benchmark::kMillisecond);
+
+void BM_GraphSubmapInsert(benchmark::State& state) {
+  const Submap submap(31);
+  const DistanceGrid built = submap.Build(30);
+  for (auto _ : state) {
+    state.PauseTiming();
+    DistanceGrid grid = built;
+    state.ResumeTiming();
+    if (!grid.Insert(submap.points[30], {&submap.views[30]})) state.SkipWithError("no room");
+    benchmark::DoNotOptimize(grid.values().data());
+  }
+}
+BENCHMARK(BM_GraphSubmapInsert)->Unit(benchmark::kMillisecond);
 
 // A loop-closure search as the graph SLAM runs it: target grid and pyramid built from 31
 // keyframes, query of 11, a 3 m x 3 m x +-0.35 rad window, down to the score a closure needs

@@ -295,6 +295,8 @@ class GraphSlamMethod : public SlamMethod {
     s.association = "scan-to-submap registration, correlative loop closure";
     s.map = {{"keyframes", static_cast<long>(slam_.keyframes().size())},
              {"keyframes_trimmed", slam_.trimmed_keyframes()},
+             {"submap_builds", slam_.submap_builds()},
+             {"submap_inserts", slam_.submap_inserts()},
              {"curves", static_cast<long>(slam_.num_map_curves())},
              {"control_points", static_cast<long>(slam_.num_map_control_points())}};
     s.associations = {{"registrations", slam_.registrations()},

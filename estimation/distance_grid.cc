@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <opencv2/imgproc.hpp>
+#include <unordered_map>
 
 namespace splam::estimation {
 namespace {
@@ -40,7 +41,37 @@ double PieceDistance(const Eigen::Vector2d& v, const Eigen::Vector2d& n, double 
   return sign * d;
 }
 
+// A cell whose centre lies at least this many cells from the centre of its nearest occupied cell
+// reads the truncation: that cell's piece lies within sqrt(1/2) + kSegmentHalfLength cells of
+// its centre, and the 5x5 chamfer distance (Build's distance transform) is within 2 % of the
+// Euclidean one (at most 1.9 % above it, midway between the (1, 0) and (2, 1) moves).
+double FarCells(double truncation_m, double resolution_m) {
+  return (truncation_m / resolution_m + std::sqrt(0.5) + kSegmentHalfLength) / 0.95;
+}
+
 }  // namespace
+
+void DistanceGrid::CellSums::Add(const Eigen::Vector2d& p, const Eigen::Vector2d& n) {
+  sum += p;
+  normal += n;
+  if (reference.isZero()) reference = n;
+  if (n.dot(reference) < 0) opposed += n;
+  ++count;
+}
+
+OrientedPoint DistanceGrid::CellSums::Piece() const {
+  OrientedPoint piece{sum / count, normal};
+  if (piece.normal.norm() > 1e-12) piece.normal.normalize();
+  return piece;
+}
+
+Eigen::Vector2d DistanceGrid::CellSums::Back() const {
+  if (opposed.isZero()) return Eigen::Vector2d::Zero();
+  const Eigen::Vector2d same_as_reference = normal - opposed;
+  const Eigen::Vector2d back = normal.dot(same_as_reference) >= 0 ? opposed : same_as_reference;
+  if (back.dot(normal) >= 0 || back.norm() < 1e-12) return Eigen::Vector2d::Zero();
+  return back.normalized();
+}
 
 DistanceGrid DistanceGrid::Build(const std::vector<Eigen::Vector2d>& points, double resolution_m,
                                  double truncation_m, double margin_m,
@@ -75,6 +106,7 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
   DistanceGrid g;
   g.resolution_m_ = resolution_m;
   g.truncation_m_ = truncation_m;
+  g.signed_ = signed_field;
   if (oriented.empty()) return g;
   Eigen::Vector2d lo = oriented.front().point, hi = lo;
   for (const auto& o : oriented) {
@@ -100,18 +132,10 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
   // Their sums live in one slot per occupied cell (a grid spans far more cells than its points
   // occupy: an accumulator per cell made most of a submap's build time), filled in the points'
   // order.
-  struct Occupied {
-    std::size_t cell = 0;
-    Eigen::Vector2d sum = Eigen::Vector2d::Zero(), normal = Eigen::Vector2d::Zero();
-    // The normals turned more than 90 deg from the cell's first normal (`reference`), summed: an
-    // outline seen from both sides (normals point towards the sensor that saw the point).
-    Eigen::Vector2d reference = Eigen::Vector2d::Zero(), opposed = Eigen::Vector2d::Zero();
-    int count = 0;
-  };
   const std::size_t cells = static_cast<std::size_t>(g.rows_) * g.cols_;
   cv::Mat free_cells(g.rows_, g.cols_, CV_8U, cv::Scalar(255));
   std::vector<int> slot_of(cells, -1);
-  std::vector<Occupied> occupied;
+  std::vector<CellSums> occupied;
   for (const auto& [p, n] : oriented) {
     // Clamped: a point on the far corner's lattice line may round past it.
     const int c = std::min(static_cast<int>((p.x() - g.origin_.x()) / resolution_m), g.cols_ - 1);
@@ -122,40 +146,27 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
       occupied.push_back({.cell = i});
       free_cells.at<unsigned char>(r, c) = 0;
     }
-    Occupied& o = occupied[static_cast<std::size_t>(slot_of[i])];
-    o.sum += p;
-    o.normal += n;
-    if (o.reference.isZero()) o.reference = n;
-    if (n.dot(o.reference) < 0) o.opposed += n;
-    ++o.count;
+    occupied[static_cast<std::size_t>(slot_of[i])].Add(p, n);
   }
   cv::Mat distance, labels;
   cv::distanceTransform(free_cells, distance, labels, cv::DIST_L2, cv::DIST_MASK_5,
                         cv::DIST_LABEL_PIXEL);
   // label -> the piece of that occupied cell.
-  for (const Occupied& o : occupied) {
+  g.piece_of_.assign(cells, -1);
+  for (const CellSums& o : occupied) {
     const auto label = static_cast<std::size_t>(labels.at<int>(static_cast<int>(o.cell)));
     if (g.pieces_.size() <= label) {
       g.pieces_.resize(label + 1);
       g.back_normals_.resize(label + 1, Eigen::Vector2d::Zero());
+      g.sums_.resize(label + 1);
     }
-    g.pieces_[label] = {o.sum / o.count, o.normal};
-    if (o.opposed.isZero()) continue;
-    // Two-sided: the back is the side the summed normal does not point to.
-    const Eigen::Vector2d same_as_reference = o.normal - o.opposed;
-    const Eigen::Vector2d back =
-        o.normal.dot(same_as_reference) >= 0 ? o.opposed : same_as_reference;
-    if (back.dot(o.normal) >= 0 || back.norm() < 1e-12) continue;
-    g.back_normals_[label] = back.normalized();
+    g.pieces_[label] = o.Piece();
+    g.back_normals_[label] = o.Back();
+    g.sums_[label] = o;
+    g.piece_of_[o.cell] = static_cast<int>(label);
   }
-  for (auto& piece : g.pieces_)
-    if (piece.normal.norm() > 1e-12) piece.normal.normalize();
   const double half = kSegmentHalfLength * resolution_m;
-  // A cell whose centre lies at least `far` cells from the centre of its nearest occupied cell
-  // reads the truncation: that cell's piece lies within sqrt(1/2) + kSegmentHalfLength cells of
-  // its centre, and the 5x5 chamfer distance (the distance transform's) is within 2 % of the
-  // Euclidean one (at most 1.9 % above it, midway between the (1, 0) and (2, 1) moves).
-  const double far = (truncation_m / resolution_m + std::sqrt(0.5) + kSegmentHalfLength) / 0.95;
+  const double far = FarCells(truncation_m, resolution_m);
   g.values_.resize(cells);
   g.nearest_.assign(cells, -1);
   for (int r = 0; r < g.rows_; ++r)
@@ -179,31 +190,126 @@ DistanceGrid DistanceGrid::Build(const std::vector<OrientedPoint>& oriented, dou
       g.values_[i] = std::clamp(d, -truncation_m, truncation_m);
     }
   if (seen.empty()) return g;
-  // Every view's whole polygon first, then the parts seen free, so that no view's margin covers
-  // another's free space: a cell's value is the highest any view gives it.
-  cv::Mat known(g.rows_, g.cols_, CV_8U, cv::Scalar(0));
-  const auto fill = [&](const std::vector<ViewCells::Run>& runs, unsigned char value) {
-    for (const ViewCells::Run& run : runs) {
-      const long r = run.row - g.first_row_;
-      const long c0 = std::max<long>(run.first - g.first_col_, 0);
-      const long c1 = std::min<long>(run.last - g.first_col_, g.cols_ - 1);
-      if (r < 0 || r >= g.rows_ || c0 > c1) continue;
-      std::fill_n(known.ptr<unsigned char>(static_cast<int>(r)) + c0, c1 - c0 + 1, value);
-    }
-  };
-  for (const ViewCells* view : seen) fill(view->whole, 1);
-  for (const ViewCells* view : seen) fill(view->inner, 2);
-  known.setTo(cv::Scalar(2), free_cells == 0);
-  for (const ViewCells* view : seen_by_hits) fill(view->inner, 3);
-  g.known_.assign(known.datastart, known.dataend);
+  // A cell's value is the highest any view gives it: every view's whole polygon 1, the parts
+  // seen free 2 (so that no view's margin covers another's free space), those crossed by a beam
+  // that returned 3; an outline's cells are seen free.
+  g.known_.assign(cells, 0);
+  for (const ViewCells* view : seen) g.RaiseKnown(view->whole, 1);
+  for (const ViewCells* view : seen) g.RaiseKnown(view->inner, 2);
+  for (const CellSums& o : occupied)
+    g.known_[o.cell] = std::max<unsigned char>(g.known_[o.cell], 2);
+  for (const ViewCells* view : seen_by_hits) g.RaiseKnown(view->inner, 3);
   return g;
+}
+
+void DistanceGrid::RaiseKnown(const std::vector<ViewCells::Run>& runs, unsigned char value) {
+  for (const ViewCells::Run& run : runs) {
+    const long r = run.row - first_row_;
+    const long c0 = std::max<long>(run.first - first_col_, 0);
+    const long c1 = std::min<long>(run.last - first_col_, cols_ - 1);
+    if (r < 0 || r >= rows_ || c0 > c1) continue;
+    unsigned char* row = known_.data() + r * cols_;
+    for (long c = c0; c <= c1; ++c) row[c] = std::max(row[c], value);
+  }
+}
+
+int DistanceGrid::Reach() const {
+  return static_cast<int>(
+      std::ceil(truncation_m_ / resolution_m_ + std::sqrt(0.5) + kSegmentHalfLength));
+}
+
+bool DistanceGrid::Insert(const std::vector<OrientedPoint>& oriented,
+                          const std::vector<const ViewCells*>& seen) {
+  if (empty()) return false;
+  // As Build's margin: the field within the truncation of every point.
+  const double margin = truncation_m_ / resolution_m_;
+  std::vector<std::size_t> cell_of;
+  cell_of.reserve(oriented.size());
+  for (const OrientedPoint& o : oriented) {
+    const Eigen::Vector2d q = (o.point - origin_) / resolution_m_;
+    // Compared in doubles: a point kilometres off is no int.
+    if (!(q.x() >= margin && q.y() >= margin && q.x() < cols_ - margin && q.y() < rows_ - margin))
+      return false;
+    cell_of.push_back(static_cast<std::size_t>(static_cast<int>(q.y())) * cols_ +
+                      static_cast<std::size_t>(static_cast<int>(q.x())));
+  }
+  // Every point joins its cell's sums, in the points' order; a cell without a piece gets one.
+  const auto first_new = static_cast<int>(pieces_.size());
+  std::vector<int> changed;
+  for (std::size_t k = 0; k < oriented.size(); ++k) {
+    const std::size_t i = cell_of[k];
+    if (piece_of_[i] < 0) {
+      piece_of_[i] = static_cast<int>(pieces_.size());
+      pieces_.emplace_back();
+      back_normals_.emplace_back(Eigen::Vector2d::Zero());
+      sums_.push_back({.cell = i});
+      if (!known_.empty()) known_[i] = std::max<unsigned char>(known_[i], 2);
+    }
+    const int label = piece_of_[i];
+    if (changed.empty() || changed.back() != label) changed.push_back(label);
+    sums_[static_cast<std::size_t>(label)].Add(oriented[k].point, oriented[k].normal);
+  }
+  std::sort(changed.begin(), changed.end());
+  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+  const double half = kSegmentHalfLength * resolution_m_;
+  const int reach = Reach();
+  const double far = FarCells(truncation_m_, resolution_m_);
+  for (const int label : changed) {
+    const auto l = static_cast<std::size_t>(label);
+    const OrientedPoint before = pieces_[l];
+    const bool fresh = label >= first_new;
+    pieces_[l] = sums_[l].Piece();
+    back_normals_[l] = sums_[l].Back();
+    const OrientedPoint& piece = pieces_[l];
+    // A piece that a few more points moved so little that no distance within its reach changed
+    // by a hundredth of a cell (the point's shift plus the normal's turn times the reach) keeps
+    // its cells' values: Distance is exact to the piece all the same, and the values feed the
+    // correlative search.
+    const double shift = (piece.point - before.point).norm() +
+                         reach * resolution_m_ * (piece.normal - before.normal).norm();
+    if (!fresh && shift < 0.01 * resolution_m_) continue;
+    // As Build: a cell's own piece is that of the occupied cell whose centre is nearest to its
+    // centre (here Euclidean, there the 5x5 chamfer distance within 2 % of it), and its value the
+    // exact distance to that piece, or the truncation from `far` cells on. A new piece takes the
+    // cells within the reach whose own lies farther; a moved one changes its own cells' values.
+    const std::size_t cell = sums_[l].cell;
+    const int r0 = static_cast<int>(cell / static_cast<std::size_t>(cols_));
+    const int c0 = static_cast<int>(cell % static_cast<std::size_t>(cols_));
+    for (int r = std::max(r0 - reach, 0); r <= std::min(r0 + reach, rows_ - 1); ++r)
+      for (int c = std::max(c0 - reach, 0); c <= std::min(c0 + reach, cols_ - 1); ++c) {
+        const std::size_t i = static_cast<std::size_t>(r) * cols_ + c;
+        const int away2 = (r - r0) * (r - r0) + (c - c0) * (c - c0);
+        const int own = nearest_[i];
+        if (own != label) {
+          if (!fresh) continue;
+          if (own >= 0) {
+            const std::size_t other = sums_[static_cast<std::size_t>(own)].cell;
+            const int dr = r - static_cast<int>(other / static_cast<std::size_t>(cols_));
+            const int dc = c - static_cast<int>(other % static_cast<std::size_t>(cols_));
+            if (dr * dr + dc * dc <= away2) continue;
+          }
+          nearest_[i] = label;
+        }
+        const Eigen::Vector2d centre = origin_ + resolution_m_ * Eigen::Vector2d(c + 0.5, r + 0.5);
+        double d = PieceDistance(centre - piece.point, piece.normal, half, nullptr);
+        if (std::sqrt(static_cast<double>(away2)) >= far)
+          d = d < 0 ? -truncation_m_ : truncation_m_;
+        values_[i] = std::clamp(signed_ ? d : std::abs(d), -truncation_m_, truncation_m_);
+      }
+  }
+  if (!known_.empty()) {
+    for (const ViewCells* view : seen) RaiseKnown(view->whole, 1);
+    for (const ViewCells* view : seen) RaiseKnown(view->inner, 2);
+  }
+  return true;
 }
 
 ViewCells RasteriseView(const std::vector<Eigen::Vector2d>& polygon, double resolution_m,
                         double seen_margin_m) {
   ViewCells v;
   v.resolution_m = resolution_m;
-  if (polygon.empty()) return v;
+  // Vertices that are not finite (a pose or a margin that is not) are left out.
+  if (polygon.empty() || !polygon.front().allFinite()) return v;
   // The window: 4096 cells square about the sensor's cell, in lattice cells.
   constexpr long kHalf = 2048;
   const auto lattice = [&](const Eigen::Vector2d& p) {
@@ -217,6 +323,7 @@ ViewCells RasteriseView(const std::vector<Eigen::Vector2d>& polygon, double reso
   // the cell of the previous one: a dense laser's beams end a few per cell, and the fill (each
   // edge drawn, then the scanlines between) is the same without the zero-length edges.
   const auto add_vertex = [&](std::vector<cv::Point>* out, const Eigen::Vector2d& p) {
+    if (!p.allFinite()) return;
     const Eigen::Vector2d q = (lattice(p) - corner).cwiseMax(-1e6).cwiseMin(1e6);
     const cv::Point vertex(static_cast<int>(q.x()), static_cast<int>(q.y()));
     if (out->empty() || out->back() != vertex) out->push_back(vertex);

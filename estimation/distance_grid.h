@@ -2,6 +2,7 @@
 #define SPLAM_ESTIMATION_DISTANCE_GRID_H_
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <vector>
 
 namespace splam::estimation {
@@ -109,6 +110,21 @@ class DistanceGrid {
                             const std::vector<const ViewCells*>& seen, bool signed_field,
                             const std::vector<const ViewCells*>& seen_by_hits);
 
+  // Adds a keyframe's outline and view to the field in place (the graph SLAM's submap between two
+  // builds): every point joins its cell's sums, so that each piece is the mean of all the points
+  // in its cell as Build makes it (a cell without one gets a new piece); every cell within the
+  // truncation of a new or moved piece takes it where it is nearer than the cell's own (the exact
+  // distance, where Build compares cell centres by a chamfer distance transform), and the cells
+  // whose own piece moved follow it (a piece that moved no distance within its reach by a
+  // hundredth of a cell keeps its cells' values: Distance is exact to it all the same). The views
+  // raise the cells' knowledge as Build's `seen` (`seen_by_hits` is not updated).
+  // Returns false, having changed nothing, when a point lies nearer than the truncation to the
+  // grid's edge, or beyond it (Build would have made the grid larger): build again.
+  bool Insert(const std::vector<OrientedPoint>& points, const std::vector<const ViewCells*>& seen);
+  // How many cells from its own a piece can bring a cell's centre within the truncation:
+  // ceil(truncation / resolution + sqrt(1/2) + kSegmentHalfLength).
+  int Reach() const;
+
   // A grid holds at most this many cells (about 1 GB while it is built): points spanning more,
   // at the resolution asked, give an empty grid whose too_large() is true and whose extent()
   // says how far they spread (an odometry jump of kilometres, a resolution of a micrometre).
@@ -163,6 +179,8 @@ class DistanceGrid {
   friend class LikelihoodPyramid;
   // Row-major index of the cell holding p; -1 outside the grid.
   long CellIndex(const Eigen::Vector2d& p) const;
+  // Raises known_ to at least `value` on the runs' cells inside the grid.
+  void RaiseKnown(const std::vector<ViewCells::Run>& runs, unsigned char value);
 
   int rows_ = 0, cols_ = 0;
   Eigen::Vector2d extent_ = Eigen::Vector2d::Zero();  // of a grid too large to build, m
@@ -172,7 +190,25 @@ class DistanceGrid {
   std::vector<double> values_;
   // 0 unseen, 1 behind a hit, 2 seen free, 3 seen free by a beam that returned; empty: all 2.
   std::vector<unsigned char> known_;
-  std::vector<int> nearest_;                   // per cell: index into pieces_ of its nearest piece
+  bool signed_ = false;        // Build's signed_field
+  std::vector<int> nearest_;   // per cell: index into pieces_ of its nearest piece
+  std::vector<int> piece_of_;  // per cell: index into pieces_ of its own, or -1
+  // The sums of an occupied cell's points, from which its piece is made.
+  struct CellSums {
+    std::size_t cell = 0;
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero(), normal = Eigen::Vector2d::Zero();
+    // The normals turned more than 90 deg from the cell's first normal (`reference`), summed: an
+    // outline seen from both sides (normals point towards the sensor that saw the point).
+    Eigen::Vector2d reference = Eigen::Vector2d::Zero(), opposed = Eigen::Vector2d::Zero();
+    int count = 0;
+    void Add(const Eigen::Vector2d& p, const Eigen::Vector2d& n);
+    // The piece: the mean of the points, the normalised sum of their normals.
+    OrientedPoint Piece() const;
+    // BackNormal of the piece: the normal of the side the summed normal does not point to, zero
+    // for a one-sided piece.
+    Eigen::Vector2d Back() const;
+  };
+  std::vector<CellSums> sums_;                 // per piece (Insert adds to them)
   std::vector<OrientedPoint> pieces_;          // the occupied cells' outline pieces
   std::vector<Eigen::Vector2d> back_normals_;  // per piece: BackNormal, or zero
 };

@@ -75,6 +75,10 @@ Eigen::Matrix3d Diagonal(double sigma_m, double sigma_rad) {
   return Eigen::Vector3d(sigma_m * sigma_m, sigma_m * sigma_m, sigma_rad * sigma_rad).asDiagonal();
 }
 
+// How much farther than its keyframes' outline a submap's grid reaches at most, for the keyframes
+// inserted into it (GraphSlamOptions::submap_insert_keyframes), m.
+constexpr double kMaxSubmapRoom_m = 5.0;
+
 // Adds the wall time of its scope to a counter, ms.
 class ScopedTimer {
  public:
@@ -139,7 +143,14 @@ std::vector<int> LargestAgreeingSet(const std::vector<bool>& with_graph,
 }
 
 GraphSlam::GraphSlam(const kernel::Pose2& start, const GraphSlamOptions& options)
-    : options_(options), pose_(start) {}
+    : options_(options), pose_(start) {
+  if (BackgroundLoopSearch()) background_ = std::make_unique<Background>(1);
+}
+
+bool GraphSlam::BackgroundLoopSearch() const {
+  return options_.loop.enabled && options_.background_loop_search &&
+         options_.loop.min_gap_keyframes > options_.moving_keyframes;
+}
 
 GraphSlam::~GraphSlam() {
   if (loop_run_.valid()) loop_run_.wait();
@@ -170,7 +181,7 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
   registered_ = false;
   const kernel::Pose2 predicted = pose_;
   if (localised == nullptr && !keyframes_.empty()) {
-    if (submap_dirty_) RebuildSubmap();
+    UpdateSubmap();
     if (!health_.ok()) return;
     const long recovered_before = recovered_;
     const RegistrationResult r = RegisterScan(points);
@@ -330,7 +341,6 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
     edge.robust = robust_edge;
     graph_.AddEdge(edge);
   }
-  submap_dirty_ = true;
   if (options_.trim_spacing_m > 0)
     TrimKeyframe(k -
                  (options_.loop.enabled
@@ -483,20 +493,42 @@ std::vector<int> GraphSlam::AreaKeyframes(const Eigen::Vector2d& center, double 
   return area;
 }
 
-void GraphSlam::RebuildSubmap() {
-  const ScopedTimer timer(&times_.submap_ms);
+void GraphSlam::UpdateSubmap() {
   const int last = static_cast<int>(keyframes_.size()) - 1;
+  if (!submap_dirty_ && submap_last_ == last) return;
+  const ScopedTimer timer(&times_.submap_ms);
+  const bool mask = options_.mask_unseen;
+  const double resolution = options_.grid_resolution_m;
+  if (!submap_dirty_ && options_.submap_insert_keyframes > 0 &&
+      last - submap_first_ < options_.submap_keyframes + options_.submap_insert_keyframes) {
+    bool fits = true;
+    for (int i = submap_last_ + 1; i <= last && fits; ++i) {
+      fits = submap_.Insert(WorldRaster({i}),
+                            mask ? ViewsOf({i}, 0, resolution) : std::vector<const ViewCells*>{});
+      submap_inserts_ += fits;
+    }
+    if (fits) {
+      submap_last_ = last;
+      submap_scores_.reset();
+      return;
+    }
+  }
+  const int first = std::max(0, last - options_.submap_keyframes + 1);
+  // The keyframes that left the submap keep no raster of their view for it.
+  for (int i = submap_first_; i < first; ++i)
+    keyframes_[static_cast<std::size_t>(i)].rasters[0] = {};
   std::vector<int> recent;
-  for (int i = std::max(0, last - options_.submap_keyframes + 1); i <= last; ++i)
-    recent.push_back(i);
-  // The keyframe that left the submap keeps no raster of its view for it.
-  if (last >= options_.submap_keyframes)
-    keyframes_[static_cast<std::size_t>(last - options_.submap_keyframes)].rasters[0] = {};
+  for (int i = first; i <= last; ++i) recent.push_back(i);
   submap_ = DistanceGrid::Build(
-      WorldRaster(recent), options_.grid_resolution_m, options_.truncation_m, options_.truncation_m,
-      options_.mask_unseen ? ViewsOf(recent, 0, options_.grid_resolution_m)
-                           : std::vector<const ViewCells*>{},
+      WorldRaster(recent), resolution, options_.truncation_m,
+      options_.truncation_m +
+          std::min(options_.submap_insert_keyframes * options_.keyframe_distance_m,
+                   kMaxSubmapRoom_m),
+      mask ? ViewsOf(recent, 0, resolution) : std::vector<const ViewCells*>{},
       options_.signed_distance, {});
+  ++submap_builds_;
+  submap_first_ = first;
+  submap_last_ = last;
   submap_scores_.reset();
   submap_dirty_ = false;
   if (submap_.too_large())
@@ -526,8 +558,6 @@ std::vector<int> Spread(std::vector<std::pair<double, int>> ranked, int count, i
 
 void GraphSlam::StartLoopSearch(int k) {
   if (k < options_.loop.min_gap_keyframes) return;  // no candidate yet
-  const bool background = options_.background_loop_search &&
-                          options_.loop.min_gap_keyframes > options_.moving_keyframes;
   // The query's keyframes are copied now: the front end may take moving objects out of them
   // while the search runs.
   std::vector<std::pair<kernel::Pose2, std::vector<OrientedPoint>>> query_keyframes;
@@ -546,8 +576,8 @@ void GraphSlam::StartLoopSearch(int k) {
     }
     return SearchLoopClosures(k, travelled, since, Thinned(query, options_.loop.resolution_m));
   };
-  if (background) {
-    loop_run_ = std::async(std::launch::async, std::move(search));
+  if (BackgroundLoopSearch()) {
+    loop_run_ = background_->Run(std::move(search));
   } else {
     std::packaged_task<LoopSearchRun()> task(std::move(search));
     loop_run_ = task.get_future();
@@ -753,12 +783,23 @@ void GraphSlam::FlushClosures(bool final, double travelled_m) {
   pending_ = std::move(waiting);
   pending_searches_ = std::move(waiting_searches);
   if (accepted.empty()) return;
+  // Closures that agree with the graph as it is move only its recent part
+  // (local_optimization_keyframes).
+  int first_free = 0;
+  if (options_.local_optimization_keyframes > 0 &&
+      std::all_of(accepted.begin(), accepted.end(), [&](const PoseGraphEdge& e) {
+        return graph_.EdgeChi2(e) <= options_.loop.max_chi2;
+      })) {
+    first_free = std::max(0, newest - options_.local_optimization_keyframes + 1);
+    for (const PoseGraphEdge& e : accepted)
+      first_free = std::min(first_free, std::max(e.from, e.to));
+  }
   std::vector<kernel::Pose2> before;
   for (int i = 0; i < graph_.num_nodes(); ++i) before.push_back(graph_.node(i));
   const kernel::Pose2 pose_before = pose_;
   const int first = static_cast<int>(graph_.edges().size());
   for (const PoseGraphEdge& e : accepted) graph_.AddEdge(e);
-  Optimize();
+  Optimize(first_free);
   // Agreement with the other edges: optimised together, a closure's residual stays small;
   // those that do not are removed and the graph optimised again from where it was.
   std::vector<int> disagree;
@@ -783,7 +824,7 @@ void GraphSlam::FlushClosures(bool final, double travelled_m) {
     keyframes_[static_cast<std::size_t>(i)].pose = before[static_cast<std::size_t>(i)];
   }
   pose_ = pose_before;
-  if (static_cast<int>(graph_.edges().size()) > first) Optimize();
+  if (static_cast<int>(graph_.edges().size()) > first) Optimize(first_free);
 }
 
 void GraphSlam::Finish() {
@@ -865,12 +906,19 @@ std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, const std::vector<Orien
   return edge;
 }
 
+std::vector<Eigen::Vector3d> GraphSlam::PosesOf(const std::vector<int>& keyframes) const {
+  std::vector<Eigen::Vector3d> poses;
+  poses.reserve(keyframes.size());
+  for (int i : keyframes) poses.push_back(keyframes_[static_cast<std::size_t>(i)].pose.ToVector());
+  return poses;
+}
+
 const GraphSlam::LoopTarget& GraphSlam::Target(const std::vector<int>& keyframes) {
   for (const LoopTarget& t : targets_)
-    if (t.keyframes == keyframes && t.graph_version == graph_version_) return t;
+    if (t.keyframes == keyframes && t.poses == PosesOf(keyframes)) return t;
   LoopTarget t;
   t.keyframes = keyframes;
-  t.graph_version = graph_version_;
+  t.poses = PosesOf(keyframes);
   t.grid = std::make_unique<DistanceGrid>(DistanceGrid::Build(
       WorldRaster(keyframes), options_.loop.resolution_m, options_.truncation_m,
       options_.truncation_m, ViewsOf(keyframes, 1, options_.loop.resolution_m), false,
@@ -886,13 +934,13 @@ const GraphSlam::LoopTarget& GraphSlam::Target(const std::vector<int>& keyframes
   return targets_.back();
 }
 
-void GraphSlam::Optimize() {
+void GraphSlam::Optimize(int first_free) {
   const ScopedTimer timer(&times_.optimization_ms);
-  ++graph_version_;
   const int last = graph_.num_nodes() - 1;
   const kernel::Pose2 offset = keyframes_.back().pose.Between(pose_);
-  optimizations_.push_back(graph_.Optimize(options_.pose_graph));
-  for (int i = 0; i <= last; ++i) keyframes_[static_cast<std::size_t>(i)].pose = graph_.node(i);
+  optimizations_.push_back(graph_.Optimize(options_.pose_graph, first_free));
+  for (int i = first_free; i <= last; ++i)
+    keyframes_[static_cast<std::size_t>(i)].pose = graph_.node(i);
   pose_ = keyframes_.back().pose * offset;
   submap_dirty_ = true;
 }
@@ -1034,6 +1082,8 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("keyframe_distance_m", &keyframe_distance_m, "a keyframe every this much travel, m");
   v.Field("keyframe_angle_rad", &keyframe_angle_rad, "or this much turn, rad");
   v.Field("submap_keyframes", &submap_keyframes, "keyframes in the registration submap");
+  v.Field("submap_insert_keyframes", &submap_insert_keyframes,
+          "new keyframes inserted into the submap before it is built anew (0: anew every time)");
   v.Field("grid_resolution_m", &grid_resolution_m, "distance field cell size, in [0.01, 1] m");
   v.Field("truncation_m", &truncation_m, "distance field truncation, at most 10 m");
   v.Field("raster_curves", &raster_curves, "rasterise the curves' samples");
@@ -1069,6 +1119,9 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Nested("loop", "loop closure", &loop);
   v.Field("optimize_every_keyframes", &optimize_every_keyframes,
           "closures found are optimised together this many keyframes after the first");
+  v.Field("local_optimization_keyframes", &local_optimization_keyframes,
+          "closures that agree with the graph optimise only this many last keyframes (0: the "
+          "whole graph)");
   v.Field("background_loop_search", &background_loop_search,
           "search loop closures on a second thread beside the front end (same result either "
           "way)");
@@ -1092,6 +1145,8 @@ kernel::Status GraphSlamOptions::Validate() const {
     return kernel::Status::Error("seen_margin_m >= 0, normal_max_gap_m > 0, line_tolerance_m >= 0");
   if (moving_keyframes < 0 || moving_keyframes > 1000)
     return kernel::Status::Error("moving_keyframes in [0, 1000]");
+  if (submap_insert_keyframes < 0 || submap_insert_keyframes > 1000)
+    return kernel::Status::Error("submap_insert_keyframes in [0, 1000]");
   if (submap_keyframes < 1 || !(grid_resolution_m >= 0.01 && grid_resolution_m <= 1) ||
       !(truncation_m > grid_resolution_m && truncation_m <= 10))
     return kernel::Status::Error(
@@ -1112,8 +1167,9 @@ kernel::Status GraphSlamOptions::Validate() const {
     return kernel::Status::Error("edge sigmas must be positive");
   if (!(truncation_m > loop.resolution_m))
     return kernel::Status::Error("truncation_m > loop.resolution_m");
-  if (optimize_every_keyframes < 0)
-    return kernel::Status::Error("optimize_every_keyframes must be >= 0");
+  if (optimize_every_keyframes < 0 || local_optimization_keyframes < 0)
+    return kernel::Status::Error(
+        "optimize_every_keyframes and local_optimization_keyframes must be >= 0");
   if (!(map_spacing_m >= 0) || !(map_spacing_rad >= 0) || !(trim_spacing_m >= 0) ||
       !(trim_spacing_rad >= 0))
     return kernel::Status::Error("map and trim spacings must be >= 0");

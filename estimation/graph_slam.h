@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "estimation/background.h"
 #include "estimation/correlative_matcher.h"
 #include "estimation/distance_grid.h"
 #include "estimation/map_spline.h"
@@ -167,6 +168,17 @@ struct GraphSlamOptions {
   // normal_max_gap_m away. 0.1 m cells: the pieces keep the sub-cell position of the outline, and
   // 0.05 m was slower and no more accurate on intel and mit-csail (docs/graph_slam.md).
   int submap_keyframes = 30;
+  // With submap_insert_keyframes > 0 the submap is built anew from its last submap_keyframes
+  // keyframes only after that many new keyframes (and when the graph has moved them, when moving
+  // objects were taken out of them); each new keyframe is inserted into it as it comes
+  // (DistanceGrid::Insert: its points join their cells' means, new cells make new pieces, its
+  // view raises what the submap has seen). A build makes room for the inserts (its grid reaches
+  // submap_insert_keyframes * keyframe_distance_m farther, at most 5 m); a keyframe that does
+  // not fit makes a build. Off by default (0: built anew at every keyframe): with 4, intel's
+  // submaps took 30 % less time at 0.0191 m, but MIT Killian Court ended 0.124 m off (0.031 m
+  // built anew) and scans 0.5 m apart in `complex` 0.059 m (0.019 m): each change of the submap
+  // moves a long log's chaotic course of closures (docs/graph_slam.md, "Speed").
+  int submap_insert_keyframes = 0;
   double grid_resolution_m = 0.1;
   double truncation_m = 0.5;
   bool raster_curves = true;
@@ -243,6 +255,18 @@ struct GraphSlamOptions {
   // Closures found are added and optimised together, this many keyframes after the first of
   // them (0: at once): on a revisit every keyframe closes, and one optimisation serves a few.
   int optimize_every_keyframes = 5;
+  // Closures that all agree with the graph as it is (each within loop.max_chi2 at the current
+  // poses: a revisit of a place the map already holds right) are optimised with only the last
+  // local_optimization_keyframes keyframes free (and at least each closure's newer keyframe), the
+  // earlier ones held: their poses already agree with the closures, and the optimisation's cost
+  // follows this window, not the length of the log. Closures that move the graph optimise it
+  // whole, and so does the end of the data (Finish). 0 (the default): always whole. The window
+  // must hold the loops its closures close: with 100 keyframes (30 m of path) each flush of a long
+  // revisit pushed its closures' small residuals into the last 30 m, a kink at the window's edge
+  // every time, and MIT Killian Court ended 1.59 m off (0.031-0.032 m with 1000 or the whole
+  // graph); with 1000, intel ends 0.0197 m off (0.0190 m whole). Off by default: a log whose
+  // loops are longer than the window would break as Killian did (docs/graph_slam.md).
+  int local_optimization_keyframes = 0;
   // A keyframe's loop-closure search reads the graph as it was when the keyframe was made, and
   // what it found is added when the next keyframe is made (before it), so that the search can run
   // on a second thread while the front end registers the scans in between. With this true it
@@ -371,6 +395,9 @@ class GraphSlam {
   std::size_t num_map_curves() const { return map_curves_; }
   std::size_t num_map_control_points() const { return map_control_points_; }
   long trimmed_keyframes() const { return trimmed_; }
+  // Submaps built anew, and keyframes inserted into one (submap_insert_keyframes).
+  long submap_builds() const { return submap_builds_; }
+  long submap_inserts() const { return submap_inserts_; }
 
   // Whether the last scan's registration stood (Update; false after a fallback to odometry, and
   // after UpdateAt).
@@ -396,6 +423,8 @@ class GraphSlam {
   kernel::Status health() const { return health_; }
 
  private:
+  // Whether the loop search runs on the second thread (background_loop_search).
+  bool BackgroundLoopSearch() const;
   // Update, registering the scan when `localised` is null, else taking that pose.
   void Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_laser,
             const kernel::Pose2* localised);
@@ -430,7 +459,9 @@ class GraphSlam {
   // query shifted towards it than with the query where it is, and the correlative score, which
   // counts every query point, prefers the shift (docs/graph_slam.md, "Large simulated worlds").
   std::vector<int> AreaKeyframes(const Eigen::Vector2d& center, double radius_m, int newest) const;
-  void RebuildSubmap();
+  // Brings the submap up to the last keyframe: inserts the new keyframes or builds it anew (see
+  // submap_insert_keyframes).
+  void UpdateSubmap();
   // Drops keyframe j's data when an earlier keyframe holding its own is near (trim_spacing_m).
   void TrimKeyframe(int j);
   // Registers a scan at the predicted pose against the submap (see recovery_window_m).
@@ -480,17 +511,21 @@ class GraphSlam {
   // Records a search of keyframe k; a closure it found waits in pending_. One found by the first
   // (`near`) search restarts, at travelled_m, the travel that widens that search's radius.
   void AddFinding(int k, LoopFinding finding, double travelled_m);
-  // Optimises, then moves the current pose with its keyframe.
-  void Optimize();
-  // A loop target's field and likelihood pyramid, built from these keyframes at their poses of
-  // graph_version_; kept for the next searches of the same keyframes until the graph moves.
+  // Optimises the keyframes from first_free on (all: 0), then moves the current pose with its
+  // keyframe.
+  void Optimize(int first_free = 0);
+  // A loop target's field and likelihood pyramid, built from these keyframes at these poses;
+  // kept for the next searches of the same keyframes until one of them moves (an optimisation
+  // of part of the graph leaves the older keyframes where they were).
   struct LoopTarget {
     std::vector<int> keyframes;
-    long graph_version = 0;
+    std::vector<Eigen::Vector3d> poses;  // PosesOf(keyframes) when it was built
     std::unique_ptr<DistanceGrid> grid;
     std::unique_ptr<LikelihoodPyramid> pyramid;  // of *grid
   };
   const LoopTarget& Target(const std::vector<int>& keyframes);
+  // The keyframes' poses (x, y, theta).
+  std::vector<Eigen::Vector3d> PosesOf(const std::vector<int>& keyframes) const;
 
   GraphSlamOptions options_;
   kernel::Pose2 pose_;
@@ -498,7 +533,9 @@ class GraphSlam {
   PoseGraph graph_;
   DistanceGrid submap_;
   std::unique_ptr<LikelihoodPyramid> submap_scores_;  // of submap_
-  bool submap_dirty_ = true;
+  bool submap_dirty_ = true;                          // to be built anew
+  int submap_first_ = 0, submap_last_ = -1;           // its first and last keyframe
+  long submap_builds_ = 0, submap_inserts_ = 0;
   bool force_keyframe_ = false;
   bool recovered_since_keyframe_ = false;  // a recovery search placed a scan since the last one
   // A marked node: keyframe_T_node of its keyframe, or (keyframe -1, until the next keyframe is
@@ -522,7 +559,6 @@ class GraphSlam {
   std::vector<LoopSearch> searches_;
   double closure_at_m_ = 0.0;        // travelled when the last closure was found
   std::vector<LoopTarget> targets_;  // the last loop targets built (Target; loop search only)
-  long graph_version_ = 0;           // incremented by every optimisation
   int unflushed_since_ = -1;         // keyframe of the first closure found since the last flush
   long registrations_ = 0, fallbacks_ = 0, recoveries_ = 0, recovered_ = 0, trimmed_ = 0;
   LoopClosureCounts loops_;
@@ -530,7 +566,9 @@ class GraphSlam {
   Times times_;
   std::size_t map_curves_ = 0, map_control_points_ = 0;
   kernel::Status health_;
-  // The latest keyframe's loop search (StartLoopSearch); last, so that it ends first.
+  // The loop search's thread (background_loop_search); null when it runs on the calling thread.
+  std::unique_ptr<Background> background_;
+  // The latest keyframe's loop search (StartLoopSearch), waited for by the destructor.
   std::future<LoopSearchRun> loop_run_;
 };
 

@@ -11,7 +11,6 @@
 #include <cmath>
 #include <memory>
 #include <set>
-#include <unordered_set>
 #include <utility>
 
 #include "estimation/pose_graph.h"
@@ -106,49 +105,60 @@ class PointsToMapCost : public ceres::CostFunction {
   bool cauchy_;
 };
 
-// sqrt(I) (target^-1 T) for a pose prior (registration) or a relative pose (graph edge, with
-// T = from^-1 to).
-struct RelativePoseResidual {
-  RelativePoseResidual(const kernel::Pose2& measurement, const Eigen::Matrix3d& sqrt_information)
-      : m_(measurement.ToVector()), sqrt_information_(sqrt_information) {}
-  template <typename T>
-  bool operator()(const T* from, const T* to, T* residual) const {
-    const T c = ceres::cos(from[2]), s = ceres::sin(from[2]);
-    const T dx = to[0] - from[0], dy = to[1] - from[1];
-    Eigen::Matrix<T, 3, 1> r;
-    r(0) = c * dx + s * dy - T(m_.x());
-    r(1) = -s * dx + c * dy - T(m_.y());
-    r(2) = WrapAngle(to[2] - from[2] - T(m_.z()));
-    // The translation error in the measurement's frame, so that the information (given in the
-    // measured frame) applies to it.
-    const T cm = T(std::cos(m_.z())), sm = T(std::sin(m_.z()));
-    const T ex = cm * r(0) + sm * r(1), ey = -sm * r(0) + cm * r(1);
-    r(0) = ex;
-    r(1) = ey;
-    const Eigen::Matrix<T, 3, 1> w = sqrt_information_.cast<T>() * r;
-    for (int i = 0; i < 3; ++i) residual[i] = w(i);
-    return true;
-  }
-  Eigen::Vector3d m_;
-  Eigen::Matrix3d sqrt_information_;
-};
-
-// A prior: the relative pose from a fixed `anchor` to the free pose.
-struct PriorResidual {
-  PriorResidual(const kernel::Pose2& anchor, const Eigen::Matrix3d& sqrt_information)
-      : anchor_(anchor.ToVector()), relative_(kernel::Pose2(), sqrt_information) {}
-  template <typename T>
-  bool operator()(const T* pose, T* residual) const {
-    const T a[3] = {T(anchor_.x()), T(anchor_.y()), T(anchor_.z())};
-    return relative_(a, pose, residual);
-  }
-  Eigen::Vector3d anchor_;
-  RelativePoseResidual relative_;
-};
-
 Eigen::Matrix3d SqrtInformation(const Eigen::Matrix3d& information) {
   return Eigen::LLT<Eigen::Matrix3d>(information).matrixU();
 }
+
+// An edge's residual for Ceres, with its analytic Jacobians (EdgeResidual): as fast as automatic
+// differentiation of it (BM_PoseGraph within the machine's noise), one residual for the
+// optimisation, the closures' chi-square and the registration's prior.
+class EdgeCost : public ceres::SizedCostFunction<3, 3, 3> {
+ public:
+  explicit EdgeCost(const PoseGraphEdge& edge) : residual_(edge) {}
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    Eigen::Matrix3d d_from, d_to;
+    const bool want = jacobians != nullptr;
+    const Eigen::Vector3d w =
+        residual_(parameters[0], parameters[1], want && jacobians[0] ? &d_from : nullptr,
+                  want && jacobians[1] ? &d_to : nullptr);
+    Eigen::Map<Eigen::Vector3d> out(residuals);
+    out = w;
+    using RowMajor = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+    if (want && jacobians[0] != nullptr) Eigen::Map<RowMajor>{jacobians[0]} = d_from;
+    if (want && jacobians[1] != nullptr) Eigen::Map<RowMajor>{jacobians[1]} = d_to;
+    return true;
+  }
+
+ private:
+  EdgeResidual residual_;
+};
+
+// A prior on a pose: an edge from a fixed `anchor` to it (EdgeResidual).
+class PriorCost : public ceres::SizedCostFunction<3, 3> {
+ public:
+  PriorCost(const kernel::Pose2& anchor, const Eigen::Matrix3d& information)
+      : anchor_(anchor.ToVector()), residual_(Identity(information)) {}
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    Eigen::Matrix3d d_pose;
+    const bool want = jacobians != nullptr && jacobians[0] != nullptr;
+    Eigen::Map<Eigen::Vector3d> out(residuals);
+    out = residual_(anchor_.data(), parameters[0], nullptr, want ? &d_pose : nullptr);
+    if (want) Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>{jacobians[0]} = d_pose;
+    return true;
+  }
+
+ private:
+  // The identity measurement with this information.
+  static PoseGraphEdge Identity(const Eigen::Matrix3d& information) {
+    PoseGraphEdge edge;
+    edge.information = information;
+    return edge;
+  }
+  Eigen::Vector3d anchor_;
+  EdgeResidual residual_;
+};
 
 // Solves on one thread without logging.
 ceres::Solver::Summary SolveSilently(ceres::Problem* problem, ceres::LinearSolverType solver_type,
@@ -163,18 +173,18 @@ ceres::Solver::Summary SolveSilently(ceres::Problem* problem, ceres::LinearSolve
   return summary;
 }
 
-// J^T J of one residual block of a problem with one 3-parameter block, and the block's cost
-// (half its squared residuals, Ceres' convention) in *cost when not null.
-Eigen::Matrix3d GaussNewtonHessian(ceres::Problem* problem, ceres::ResidualBlockId block,
-                                   double* cost = nullptr) {
-  ceres::CRSMatrix j;
-  ceres::Problem::EvaluateOptions options;
-  options.residual_blocks = {block};
-  problem->Evaluate(options, cost, nullptr, nullptr, &j);
+// J^T J of a cost function of one 3-parameter block at `pose`, accumulated row by row. Evaluated
+// directly: Problem::Evaluate sets up an evaluator on every call, most of a registration's
+// covariance.
+Eigen::Matrix3d GaussNewtonHessian(const ceres::CostFunction& cost, const double* pose) {
+  const auto rows = static_cast<std::size_t>(cost.num_residuals());
+  std::vector<double> residuals(rows), jacobian(3 * rows);
+  const double* parameters[] = {pose};
+  double* jacobians[] = {jacobian.data()};
+  cost.Evaluate(parameters, residuals.data(), jacobians);
   Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
-  for (int r = 0; r < j.num_rows; ++r) {
-    Eigen::Vector3d row = Eigen::Vector3d::Zero();
-    for (int k = j.rows[r]; k < j.rows[r + 1]; ++k) row(j.cols[k]) = j.values[k];
+  for (std::size_t r = 0; r < rows; ++r) {
+    const Eigen::Vector3d row(jacobian[3 * r], jacobian[3 * r + 1], jacobian[3 * r + 2]);
     h += row * row.transpose();
   }
   return h;
@@ -271,20 +281,20 @@ RegistrationResult RegisterPoints(const std::vector<OrientedPoint>& points,
   const MapDistance distance{grid, field, options.bicubic_field};
   double pose[3] = {prior.x(), prior.y(), prior.theta()};
   ceres::Problem problem;
-  const ceres::ResidualBlockId points_block = problem.AddResidualBlock(
+  auto* points_cost =
       new PointsToMapCost(distance, seen, options.point_sigma_m,
-                          options.loss_scale_m / options.point_sigma_m, options.cauchy_loss),
-      nullptr, pose);
-  const Eigen::Matrix3d prior_sqrt_information =
-      prior_covariance != nullptr ? SqrtInformation(prior_covariance->inverse())
-                                  : Eigen::Matrix3d(Eigen::Vector3d(1.0 / options.prior_sigma_m,
-                                                                    1.0 / options.prior_sigma_m,
-                                                                    1.0 / options.prior_sigma_rad)
-                                                        .asDiagonal());
-  const ceres::ResidualBlockId prior_block =
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PriorResidual, 3, 3>(
-                                   new PriorResidual(prior, prior_sqrt_information)),
-                               nullptr, pose);
+                          options.loss_scale_m / options.point_sigma_m, options.cauchy_loss);
+  problem.AddResidualBlock(points_cost, nullptr, pose);
+  const Eigen::Matrix3d prior_information =
+      prior_covariance != nullptr
+          ? Eigen::Matrix3d(prior_covariance->inverse())
+          : Eigen::Matrix3d(
+                Eigen::Vector3d(1.0 / (options.prior_sigma_m * options.prior_sigma_m),
+                                1.0 / (options.prior_sigma_m * options.prior_sigma_m),
+                                1.0 / (options.prior_sigma_rad * options.prior_sigma_rad))
+                    .asDiagonal());
+  auto* prior_cost = new PriorCost(prior, prior_information);
+  const ceres::ResidualBlockId prior_block = problem.AddResidualBlock(prior_cost, nullptr, pose);
   const ceres::Solver::Summary summary =
       SolveSilently(&problem, ceres::DENSE_NORMAL_CHOLESKY, options.max_iterations);
   result.iterations = static_cast<int>(summary.iterations.size());
@@ -294,16 +304,19 @@ RegistrationResult RegisterPoints(const std::vector<OrientedPoint>& points,
   // the neighbours in a cell, so the points count once per cell they fall in (a dense laser's
   // 5-10 points per 0.1 m otherwise make the scan overconfident by as much, and a gate that
   // compares it with the odometry refuses the odometry where the scan slides along a corridor).
-  std::unordered_set<long long> cells;
+  std::vector<long long> cells;
+  cells.reserve(seen.size());
   for (const auto& p : seen) {
     const Eigen::Vector2d cell = grid.CellCoordinates(result.pose * p);
-    cells.insert(static_cast<long long>(std::floor(cell.x())) * 1000003LL +
-                 static_cast<long long>(std::floor(cell.y())));
+    cells.push_back(static_cast<long long>(std::floor(cell.x())) * 1000003LL +
+                    static_cast<long long>(std::floor(cell.y())));
   }
-  const double independent = static_cast<double>(cells.size()) / static_cast<double>(seen.size());
-  const Eigen::Matrix3d prior_hessian = GaussNewtonHessian(&problem, prior_block);
+  std::sort(cells.begin(), cells.end());
+  const auto distinct = std::unique(cells.begin(), cells.end()) - cells.begin();
+  const double independent = static_cast<double>(distinct) / static_cast<double>(seen.size());
+  const Eigen::Matrix3d prior_hessian = GaussNewtonHessian(*prior_cost, pose);
   const Eigen::Matrix3d information =
-      independent * GaussNewtonHessian(&problem, points_block) + prior_hessian;
+      independent * GaussNewtonHessian(*points_cost, pose) + prior_hessian;
   result.covariance = information.inverse();
 
   int inliers = 0;
@@ -437,45 +450,75 @@ void PoseGraph::SetNode(int i, const kernel::Pose2& pose) {
 }
 
 double PoseGraph::EdgeChi2(const PoseGraphEdge& e) const {
-  const RelativePoseResidual r(e.measurement, SqrtInformation(e.information));
-  double residual[3];
-  r(poses_[static_cast<std::size_t>(e.from)].data(), poses_[static_cast<std::size_t>(e.to)].data(),
-    residual);
-  return residual[0] * residual[0] + residual[1] * residual[1] + residual[2] * residual[2];
+  return EdgeResidual(e)(poses_[static_cast<std::size_t>(e.from)].data(),
+                         poses_[static_cast<std::size_t>(e.to)].data())
+      .squaredNorm();
+}
+
+EdgeResidual::EdgeResidual(const PoseGraphEdge& edge)
+    : measurement_(edge.measurement.ToVector()),
+      sqrt_information_(SqrtInformation(edge.information)) {}
+
+Eigen::Vector3d EdgeResidual::operator()(const double* from, const double* to,
+                                         Eigen::Matrix3d* d_from, Eigen::Matrix3d* d_to) const {
+  const double c = std::cos(from[2]), s = std::sin(from[2]);
+  const double dx = to[0] - from[0], dy = to[1] - from[1];
+  // M rotates the error into the measurement's frame.
+  const double cm = std::cos(measurement_.z()), sm = std::sin(measurement_.z());
+  Eigen::Matrix3d m = Eigen::Matrix3d::Identity();
+  m.topLeftCorner<2, 2>() << cm, sm, -sm, cm;
+  const Eigen::Vector3d r(c * dx + s * dy - measurement_.x(), -s * dx + c * dy - measurement_.y(),
+                          WrapAngle(to[2] - from[2] - measurement_.z()));
+  const Eigen::Matrix3d whitened = sqrt_information_ * m;
+  if (d_from != nullptr) {
+    Eigen::Matrix3d dr;
+    dr << -c, -s, -s * dx + c * dy, s, -c, -c * dx - s * dy, 0, 0, -1;
+    *d_from = whitened * dr;
+  }
+  if (d_to != nullptr) {
+    Eigen::Matrix3d dr;
+    dr << c, s, 0, -s, c, 0, 0, 0, 1;
+    *d_to = whitened * dr;
+  }
+  return whitened * r;
 }
 
 namespace {
 
-// Adds the edges' residuals over `poses` to `problem`, loop closures with `loop_loss`, and fixes
-// the first pose (the gauge).
+// Adds to `problem` the residuals of the edges that reach a node from first_free on (loop
+// closures with `loop_loss`) and holds the nodes before it, or the first node (the gauge) when
+// first_free is 0.
 void AddPoseGraph(const std::vector<PoseGraphEdge>& edges, std::vector<Eigen::Vector3d>* poses,
-                  ceres::LossFunction* loop_loss, ceres::Problem* problem) {
+                  int first_free, ceres::LossFunction* loop_loss, ceres::Problem* problem) {
+  const auto pose = [&](int i) { return (*poses)[static_cast<std::size_t>(i)].data(); };
   for (const PoseGraphEdge& e : edges)
-    problem->AddResidualBlock(
-        new ceres::AutoDiffCostFunction<RelativePoseResidual, 3, 3, 3>(
-            new RelativePoseResidual(e.measurement, SqrtInformation(e.information))),
-        e.loop || e.robust ? loop_loss : nullptr, (*poses)[static_cast<std::size_t>(e.from)].data(),
-        (*poses)[static_cast<std::size_t>(e.to)].data());
-  problem->SetParameterBlockConstant(poses->front().data());
+    if (std::max(e.from, e.to) >= first_free)
+      problem->AddResidualBlock(new EdgeCost(e), e.loop || e.robust ? loop_loss : nullptr,
+                                pose(e.from), pose(e.to));
+  for (int i = 0; i < std::max(first_free, 1); ++i)
+    if (problem->HasParameterBlock(pose(i))) problem->SetParameterBlockConstant(pose(i));
 }
 
 }  // namespace
 
-PoseGraphSummary PoseGraph::Optimize(const PoseGraphOptions& options) {
+PoseGraphSummary PoseGraph::Optimize(const PoseGraphOptions& options, int first_free) {
   const auto start = std::chrono::steady_clock::now();
+  first_free = std::clamp(first_free, 0, num_nodes());
   PoseGraphSummary s;
   s.nodes = num_nodes();
+  s.free_nodes = num_nodes() - std::max(first_free, 1);
   s.edges = static_cast<int>(edges_.size());
-  if (poses_.size() < 2) return s;
+  if (s.free_nodes < 1) return s;
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
   ceres::CauchyLoss loop_loss(options.loop_loss_scale);
   for (const PoseGraphEdge& e : edges_) s.loop_edges += e.loop;
-  AddPoseGraph(edges_, &poses_, &loop_loss, &problem);
+  AddPoseGraph(edges_, &poses_, first_free, &loop_loss, &problem);
   const ceres::Solver::Summary summary =
       SolveSilently(&problem, ceres::SPARSE_NORMAL_CHOLESKY, options.max_iterations);
-  for (auto& p : poses_) p.z() = WrapAngle(p.z());
+  for (std::size_t i = static_cast<std::size_t>(first_free); i < poses_.size(); ++i)
+    poses_[i].z() = WrapAngle(poses_[i].z());
   s.iterations = static_cast<int>(summary.iterations.size());
   s.initial_cost = summary.initial_cost;
   s.final_cost = summary.final_cost;

@@ -61,10 +61,27 @@ struct PoseGraphOptions {
 // What one optimisation did (kept per optimisation in summary.json).
 struct PoseGraphSummary {
   int nodes = 0, edges = 0, loop_edges = 0;
+  int free_nodes = 0;  // the nodes optimised (PoseGraph::Optimize's first_free on)
   int iterations = 0;
   double initial_cost = 0.0, final_cost = 0.0;
   bool converged = false;
   double time_ms = 0.0;
+};
+
+// The whitened residual of an edge between the poses (x, y, theta) of its two nodes,
+//   w = sqrt(I) (R_m^T (R_from^T (t_to - t_from) - t_m), wrap(th_to - th_from - th_m)),
+// the translation error taken in the measurement's frame (where the information is given),
+// with its analytic Jacobians dw/d from and dw/d to when not null.
+class EdgeResidual {
+ public:
+  explicit EdgeResidual(const PoseGraphEdge& edge);
+  Eigen::Vector3d operator()(const double* from, const double* to,
+                             Eigen::Matrix3d* d_from = nullptr,
+                             Eigen::Matrix3d* d_to = nullptr) const;
+
+ private:
+  Eigen::Vector3d measurement_;
+  Eigen::Matrix3d sqrt_information_;  // upper Cholesky factor of the information
 };
 
 // A 2-D pose graph (Ceres, after its examples/slam/pose_graph_2d): minimises
@@ -83,7 +100,9 @@ class PoseGraph {
   void SetNode(int i, const kernel::Pose2& pose);
   // Whitened squared residual r^T I r of edge `e` at the current node poses.
   double EdgeChi2(const PoseGraphEdge& e) const;
-  PoseGraphSummary Optimize(const PoseGraphOptions& options);
+  // Optimises the nodes from first_free on, holding the earlier ones (0: every node but the
+  // first, which anchors the gauge); edges between held nodes are left out.
+  PoseGraphSummary Optimize(const PoseGraphOptions& options, int first_free = 0);
 
  private:
   std::vector<Eigen::Vector3d> poses_;  // (x, y, theta)

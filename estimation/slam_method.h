@@ -123,7 +123,11 @@ class SlamOptionsOf : public SlamOptions {
  public:
   explicit SlamOptionsOf(Options options = {}) : options_(std::move(options)) {}
   void VisitFields(kernel::FieldVisitor& v) override { options_.VisitFields(v); }
-  kernel::Status Validate() const override { return options_.Validate(); }
+  // Every number finite (kernel::FiniteFields), then the struct's own checks.
+  kernel::Status Validate() const override {
+    if (kernel::Status s = kernel::FiniteFields(options_); !s.ok()) return s;
+    return options_.Validate();
+  }
   std::unique_ptr<SlamOptions> Clone() const override {
     return std::make_unique<SlamOptionsOf>(options_);
   }

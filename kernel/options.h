@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "kernel/pose2.h"
+#include "kernel/status.h"
 
 // Options structs describe their fields to a visitor, once, next to their definition: the key
 // (the field's name), a pointer to the value and a one-line comment with the unit. io/ turns the
@@ -40,6 +41,23 @@ class FieldVisitor {
     Group(key, doc, [options](FieldVisitor& v) { options->VisitFields(v); });
   }
 };
+
+// No integer option counts beyond this (keyframes, beams, iterations): the sum of a few stays
+// an int (a loop target's window of INT_MAX keyframes overflowed one).
+constexpr int kMaxCount = 100000000;
+
+// The first field that `visit` shows holding a number that is not finite (a NaN, an infinity:
+// no option means anything by one) or an integer beyond kMaxCount in magnitude, as an error
+// naming its key (nested keys joined by dots); success when there is none. Options read from
+// files and `--set` are finite already (io's reader refuses the others); this covers options set
+// in code, where an infinity passes a range check written as `x >= 0`.
+Status CheckFinite(const std::function<void(FieldVisitor&)>& visit);
+
+// CheckFinite of an options struct with a VisitFields(FieldVisitor&) member (visited on a copy).
+template <class Options>
+Status FiniteFields(Options options) {
+  return CheckFinite([&options](FieldVisitor& v) { options.VisitFields(v); });
+}
 
 }  // namespace splam::kernel
 

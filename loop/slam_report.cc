@@ -30,6 +30,7 @@ nlohmann::ordered_json StatisticsJson(const estimation::SlamStatistics& statisti
     nlohmann::ordered_json list = nlohmann::ordered_json::array();
     for (const auto& o : statistics.optimizations)
       list.push_back({{"nodes", o.nodes},
+                      {"free_nodes", o.free_nodes},
                       {"edges", o.edges},
                       {"loop_edges", o.loop_edges},
                       {"iterations", o.iterations},

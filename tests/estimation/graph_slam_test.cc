@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <random>
+#include <set>
 
 #include "estimation/correlative_matcher.h"
 #include "estimation/distance_grid.h"
@@ -310,6 +312,83 @@ TEST(DistanceGrid, PropertyAViewsCellsDoNotDependOnTheGrid) {
   EXPECT_GT(compared, 1000000);
 }
 
+// Property: inserting a second scan into a grid (DistanceGrid::Insert, the graph SLAM's submap
+// between builds) gives the grid a build from both scans and both views gives: the same
+// knowledge in every cell, and the same value in nearly every cell (within a hundredth of a
+// cell: a piece that moved less keeps its cells' values; the others differ where the build's
+// chamfer distance transform and Insert's Euclidean distance between cell centres name
+// different, equally near occupied cells). Every value is the distance to the piece the grid
+// names for the cell, alike; a scan with a point too near the edge changes nothing. Measured:
+// 22,159,730 of 22,192,003 cells (99.85 %) as built from both, the worst 0.25 m off (a cell
+// whose nearest occupied cell the two distances name differently).
+TEST(DistanceGrid, PropertyInsertingAScanGivesTheGridOfABuildFromBoth) {
+  std::mt19937 gen(31);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto random_scan = [&] {
+    kernel::Scan scan;
+    const int beams = 30 + static_cast<int>(gen() % 331);
+    scan.start_angle_rad = -M_PI / 2;
+    scan.angular_step_rad = M_PI / beams;
+    scan.max_range_m = 8.0;
+    for (int i = 0; i < beams; ++i) {
+      const bool none = u(gen) < 0.1;
+      const double range = 0.3 + 7.7 * u(gen);
+      scan.ranges_m.push_back(none ? kernel::Scan::kNoReturn : range);
+    }
+    return scan;
+  };
+  using Views = std::vector<const ViewCells*>;
+  long checked = 0, same = 0, refused = 0;
+  double worst = 0.0;
+  for (int trial = 0; trial < 100; ++trial) {
+    const double resolution = trial % 2 == 0 ? 0.05 : 0.1, truncation = 0.5;
+    const Pose2 a(20.0 * u(gen) - 10.0, 20.0 * u(gen) - 10.0, 2 * M_PI * u(gen));
+    const Pose2 b = a * Pose2(u(gen) - 0.5, u(gen) - 0.5, 0.5 * (u(gen) - 0.5));
+    const kernel::Scan scan_a = random_scan(), scan_b = random_scan();
+    const std::vector<OrientedPoint> hits_a =
+        OrientTowards(a * scan_a.HitPoints(), a.translation(), 0.3);
+    const std::vector<OrientedPoint> hits_b =
+        OrientTowards(b * scan_b.HitPoints(), b.translation(), 0.3);
+    const ViewCells view_a =
+        RasteriseView(a * ScanView(scan_a, Pose2(), 8.0, 0.2), resolution, 0.2);
+    const ViewCells view_b =
+        RasteriseView(b * ScanView(scan_b, Pose2(), 8.0, 0.2), resolution, 0.2);
+    // Room for scan b: 8 m of range from a pose up to 0.7 m away.
+    DistanceGrid after =
+        DistanceGrid::Build(hits_a, resolution, truncation, 9.0, Views{&view_a}, false, {});
+    ASSERT_TRUE(after.Insert(hits_b, {&view_b})) << trial;
+    std::vector<OrientedPoint> both = hits_a;
+    both.insert(both.end(), hits_b.begin(), hits_b.end());
+    const DistanceGrid together =
+        DistanceGrid::Build(both, resolution, truncation, 9.0, Views{&view_a, &view_b}, false, {});
+    for (int r = 0; r < after.rows(); ++r)
+      for (int c = 0; c < after.cols(); ++c) {
+        const Eigen::Vector2d x = after.origin() + resolution * Eigen::Vector2d(c + 0.5, r + 0.5);
+        const double value = after.Nearest(x), built = together.Nearest(x);
+        if (value < truncation) {
+          ASSERT_NEAR(std::abs(after.Distance(x)), value, 0.01 * resolution + 1e-9) << trial;
+        }
+        ASSERT_EQ(after.Known(x), together.Known(x)) << trial << " " << r << " " << c;
+        ASSERT_EQ(after.SeenFree(x), together.SeenFree(x)) << trial << " " << r << " " << c;
+        same += std::abs(value - built) <= 0.01 * resolution + 1e-9;
+        worst = std::max(worst, std::abs(value - built));
+        ++checked;
+      }
+    // A point nearer than the truncation to the edge: refused, the grid as it was.
+    DistanceGrid refusing = after;
+    std::vector<OrientedPoint> outside = hits_b;
+    outside.push_back({after.origin() + Eigen::Vector2d(0.2, 3.0), Eigen::Vector2d::Zero()});
+    ASSERT_FALSE(refusing.Insert(outside, {&view_b}));
+    ASSERT_EQ(refusing.values(), after.values());
+    ++refused;
+  }
+  std::cout << same << " of " << checked << " cells as built from both; worst difference " << worst
+            << " m\n";
+  EXPECT_GT(checked, 1000000);
+  EXPECT_GT(static_cast<double>(same), 0.99 * static_cast<double>(checked));
+  EXPECT_EQ(refused, 100);
+}
+
 // Property: a laser's points on a wall at grazing incidence (0.5-1 deg beams, the wall 0.5-3 m
 // from the sensor at any heading, 1 cm range noise; the points metres apart) are linked into one
 // outline: their normals are the wall's, not the beams', and the gaps between them are filled on
@@ -402,6 +481,85 @@ TEST(PoseGraph, SyntheticLoopRecoversTruePoses) {
     EXPECT_LT((graph.node(graph.num_nodes() - 1).translation() - truth.back().translation()).norm(),
               std::max(0.05, 0.5 * drift))
         << "seed " << seed;
+  }
+}
+
+// Property: an edge's analytic Jacobians (EdgeResidual, which the pose graph's optimisation and
+// the registration's prior use) match central differences of its residual, for random poses,
+// measurements and information matrices (headings across the wrap included).
+TEST(PoseGraph, PropertyEdgeJacobiansMatchNumericalDifferences) {
+  std::mt19937 gen(23);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 1000; ++trial) {
+    PoseGraphEdge edge;
+    edge.measurement = Pose2(3 * u(gen), 3 * u(gen), M_PI * u(gen));
+    Eigen::Matrix3d a;
+    for (int i = 0; i < 9; ++i) a(i / 3, i % 3) = u(gen);
+    edge.information = a * a.transpose() + 0.1 * Eigen::Matrix3d::Identity();
+    const EdgeResidual residual(edge);
+    const Eigen::Vector3d from(10 * u(gen), 10 * u(gen), M_PI * u(gen)),
+        to(10 * u(gen), 10 * u(gen), M_PI * u(gen));
+    Eigen::Matrix3d d_from, d_to;
+    residual(from.data(), to.data(), &d_from, &d_to);
+    constexpr double kStep = 1e-6;
+    for (int k = 0; k < 3; ++k) {
+      Eigen::Vector3d plus = from, minus = from;
+      plus(k) += kStep;
+      minus(k) -= kStep;
+      const Eigen::Vector3d numeric_from =
+          (residual(plus.data(), to.data()) - residual(minus.data(), to.data())) / (2 * kStep);
+      plus = to;
+      minus = to;
+      plus(k) += kStep;
+      minus(k) -= kStep;
+      const Eigen::Vector3d numeric_to =
+          (residual(from.data(), plus.data()) - residual(from.data(), minus.data())) / (2 * kStep);
+      // A heading difference within a step of the wrap jumps by 2 pi sqrt(I): skip that column.
+      if (numeric_from.norm() > 1e3 || numeric_to.norm() > 1e3) continue;
+      ASSERT_LT((numeric_from - d_from.col(k)).norm(), 1e-5 * (1 + d_from.col(k).norm()))
+          << trial << " " << k;
+      ASSERT_LT((numeric_to - d_to.col(k)).norm(), 1e-5 * (1 + d_to.col(k).norm()))
+          << trial << " " << k;
+    }
+  }
+}
+
+// Property: an optimisation from node F on (PoseGraph::Optimize's first_free) leaves the nodes
+// before F as they were to the last bit, lowers the cost of the edges it optimises, and with F = 0
+// is the whole graph's optimisation. A chain of 60 noisy edges with a closure from node 5 to the
+// last, F drawn in [1, 55].
+TEST(PoseGraph, PropertyALocalOptimisationHoldsTheEarlierNodes) {
+  std::mt19937 gen(17);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    PoseGraph graph;
+    const Eigen::Matrix3d information = Eigen::Vector3d(2500, 2500, 40000).asDiagonal();
+    std::vector<Pose2> truth = {Pose2()};
+    Pose2 dead = truth.front();
+    graph.AddNode(dead);
+    for (int i = 1; i < 60; ++i) {
+      truth.push_back(truth.back() * Pose2(0.3, 0.0, 0.1));
+      const Pose2 m = truth[truth.size() - 2].Between(truth.back()) *
+                      Scaled(0.02, 0.02, 0.005, Draw<3>(noise, &gen));
+      dead = dead * m;
+      graph.AddNode(dead);
+      graph.AddEdge({i - 1, i, m, information, false});
+    }
+    graph.AddEdge({5, 59, truth[5].Between(truth[59]), information, true});
+    const int first_free = 1 + static_cast<int>(gen() % 55);
+    PoseGraph local = graph, whole = graph, all = graph;
+    const PoseGraphSummary s = local.Optimize(PoseGraphOptions{}, first_free);
+    EXPECT_EQ(s.free_nodes, 60 - first_free);
+    EXPECT_LT(s.final_cost, s.initial_cost) << trial;
+    for (int i = 0; i < 60; ++i) {
+      if (i < first_free)
+        ASSERT_EQ(local.node(i).ToVector(), graph.node(i).ToVector()) << trial << " " << i;
+      else
+        EXPECT_NE(local.node(i).ToVector(), graph.node(i).ToVector()) << trial << " " << i;
+    }
+    whole.Optimize(PoseGraphOptions{});
+    all.Optimize(PoseGraphOptions{}, 0);
+    for (int i = 0; i < 60; ++i) ASSERT_EQ(whole.node(i).ToVector(), all.node(i).ToVector());
   }
 }
 
@@ -561,6 +719,9 @@ struct LapsRun {
   double rmse_m = 0.0;
   std::vector<Pose2> trajectory;
   long loops_accepted = 0;
+  long submap_builds = 0, submap_inserts = 0;
+  // Optimisations, those of part of the graph, and the nodes they optimised in all.
+  long optimizations = 0, local_optimizations = 0, optimized_nodes = 0;
 };
 // What a lap sees besides the world: the simulator's options (laser, odometry), people walking
 // and the spacing of the scans given to the SLAM (0: every scan).
@@ -614,6 +775,13 @@ LapsRun DriveLaps(int laps, const GraphSlamOptions& options = {},
   r.rmse_m = std::sqrt(r.rmse_m / static_cast<double>(trajectory.size()));
   r.trajectory = trajectory;
   r.loops_accepted = slam.loops().accepted;
+  r.submap_builds = slam.submap_builds();
+  r.submap_inserts = slam.submap_inserts();
+  for (const PoseGraphSummary& o : slam.optimizations()) {
+    ++r.optimizations;
+    r.local_optimizations += o.free_nodes < o.nodes - 1;
+    r.optimized_nodes += o.free_nodes;
+  }
   return r;
 }
 
@@ -686,6 +854,48 @@ TEST(GraphSlam, KeyframeDataIsBoundedByTheMappedArea) {
             << three.rmse_m << " m, untrimmed " << three_untrimmed.rmse_m << " m\n";
 }
 
+// Closures that agree with the graph as it is optimise only its last keyframes
+// (GraphSlamOptions::local_optimization_keyframes), as accurately over three laps of `complex` as
+// optimising the whole graph every time; a window of 300 keyframes (a lap and a half: the three
+// laps make about 600). Measured: 50 of 69 optimisations local, 20,077 nodes optimised against
+// 27,722, RMSE 0.0241 m against 0.0223 m.
+TEST(GraphSlam, ClosuresThatAgreeWithTheGraphOptimiseItsRecentPart) {
+  GraphSlamOptions window, whole;
+  window.local_optimization_keyframes = 300;
+  whole.local_optimization_keyframes = 0;
+  const LapsRun local = DriveLaps(3, window), full = DriveLaps(3, whole);
+  EXPECT_EQ(full.local_optimizations, 0);
+  EXPECT_GT(local.local_optimizations, local.optimizations / 2);
+  EXPECT_LT(local.optimized_nodes, full.optimized_nodes);
+  EXPECT_LT(local.rmse_m, 0.1);
+  EXPECT_LT(local.rmse_m, full.rmse_m + 0.01);
+  std::cout << "local: RMSE " << local.rmse_m << " m, " << local.local_optimizations << " of "
+            << local.optimizations << " optimisations local, " << local.optimized_nodes
+            << " nodes optimised; whole: RMSE " << full.rmse_m << " m, " << full.optimized_nodes
+            << " nodes\n";
+}
+
+// With submap_insert_keyframes 4 (off by default) the submap takes each new keyframe in place and
+// is built anew every fifth, as accurate over two laps of `complex` as built anew at every
+// keyframe. Not on MIT Killian Court and in harder conditions, which is why it is off
+// (docs/graph_slam.md, "Speed"). Measured: 0.0236 m (112 builds and 284 inserts over 396 keyframes), 0.0264 m
+// built anew.
+TEST(GraphSlam, KeyframesInsertedIntoTheSubmapKeepItsAccuracy) {
+  GraphSlamOptions inserts, anew;
+  inserts.submap_insert_keyframes = 4;
+  anew.submap_insert_keyframes = 0;
+  const LapsRun inserting = DriveLaps(2, inserts), building = DriveLaps(2, anew);
+  EXPECT_EQ(building.submap_inserts, 0);
+  EXPECT_GT(building.submap_builds, static_cast<long>(building.keyframes) - 2);
+  EXPECT_GT(inserting.submap_inserts, static_cast<long>(inserting.keyframes) / 2);
+  EXPECT_LT(inserting.submap_builds, static_cast<long>(inserting.keyframes) / 3);
+  EXPECT_LT(inserting.rmse_m, 0.1);
+  EXPECT_LT(inserting.rmse_m, building.rmse_m + 0.01);
+  std::cout << "inserting: RMSE " << inserting.rmse_m << " m, " << inserting.submap_builds
+            << " builds and " << inserting.submap_inserts << " inserts over " << inserting.keyframes
+            << " keyframes; built anew: RMSE " << building.rmse_m << " m\n";
+}
+
 // A keyframe's loop search runs on a second thread while the front end registers the next scans
 // (GraphSlamOptions::background_loop_search), and gives the same trajectory as run at once on
 // the calling thread: it reads what the front end does not change, and its closures enter the
@@ -709,7 +919,8 @@ TEST(GraphSlam, ABackgroundLoopSearchGivesTheSameTrajectory) {
 
 // What real logs contain (issue 47, item 3), one condition at a time against the same lap of
 // `complex` without it: every run within 0.08 m and at most 0.03 m worse than the plain lap.
-// Measured (plain lap RMSE_PLAIN m): RESULTS.
+// Measured (session 34; plain lap 0.035 m): an interlaced SICK 0.008 m, scans 0.5 m apart
+// 0.019 m, glass walls 0.036 m, a third of the returns missing 0.034 m.
 class RealConditions : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { plain_ = DriveLaps(1).rmse_m; }

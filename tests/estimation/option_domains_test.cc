@@ -11,9 +11,11 @@
 #include "estimation/correlative_matcher.h"
 #include "estimation/distance_grid.h"
 #include "estimation/ekf_bspline_slam.h"
+#include "estimation/graph_slam.h"
 #include "estimation/models.h"
 #include "estimation/pose_graph.h"
 #include "estimation/scan_registration.h"
+#include "estimation/slam_method.h"
 #include "estimation/spline_association.h"
 #include "estimation/topological_slam.h"
 #include "exploration/explorer.h"
@@ -199,6 +201,78 @@ TEST(OptionDomains, CurveSamplesAreNoDenserThanTheirPoints) {
   EXPECT_LE(report.dense_points, static_cast<int>(scan.HitPoints().size()));
   EXPECT_GT(report.dense_points, 100);
   EXPECT_LT(slam.pose().translation().norm(), 0.01);
+}
+
+// Sets the `target`-th number field of a visited struct (doubles, their lists and poses counted
+// in visiting order) to `value`; counts them.
+class NumberSetter : public kernel::FieldVisitor {
+ public:
+  NumberSetter(int target, double value) : target_(target), value_(value) {}
+  int count() const { return next_; }
+  void Field(std::string_view, double* v, std::string_view) override {
+    if (next_++ == target_) *v = value_;
+  }
+  void Field(std::string_view, int*, std::string_view) override {}
+  void Field(std::string_view, std::uint64_t*, std::string_view) override {}
+  void Field(std::string_view, bool*, std::string_view) override {}
+  void Field(std::string_view, std::string*, std::string_view) override {}
+  void Field(std::string_view, std::vector<double>* v, std::string_view) override {
+    if (next_++ == target_) v->assign(2, value_);
+  }
+  void Choice(std::string_view, int*, std::initializer_list<std::string_view>,
+              std::string_view) override {}
+  void Field(std::string_view, kernel::Pose2* v, std::string_view) override {
+    if (next_++ == target_) *v = kernel::Pose2(value_, 0.0, 0.0);
+  }
+  void Group(std::string_view, std::string_view,
+             const std::function<void(FieldVisitor&)>& fields) override {
+    fields(*this);
+  }
+
+ private:
+  int target_;
+  double value_;
+  int next_ = 0;
+};
+
+// Session 34's option fuzzer: a loop target of INT_MAX keyframes either side (its sum with
+// min_gap_keyframes overflowed an int, UBSan) and the topological front end's seen margin of
+// infinity (a view's vertex NaN, cast to a cell, UBSan). Every method's options refuse, before
+// their own checks (SlamOptionsOf::Validate), any number that is not finite and any integer beyond
+// kernel::kMaxCount, naming the field: each number field of each method set to +inf, -inf and
+// NaN in turn.
+TEST(OptionDomains, EveryMethodRefusesNumbersThatAreNotFiniteAndHugeCounts) {
+  GraphSlamOptions graph;
+  graph.loop.target_keyframes = std::numeric_limits<int>::max();
+  EXPECT_EQ(SlamOptionsOf<GraphSlamOptions>(graph).Validate().message(),
+            "loop.target_keyframes must be a finite number (an integer at most 100000000 in "
+            "magnitude)");
+  graph.loop.target_keyframes = kernel::kMaxCount;
+  EXPECT_TRUE(kernel::FiniteFields(graph).ok());
+  TopologicalSlamOptions topological;
+  topological.scan_matching.seen_margin_m = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(SlamOptionsOf<TopologicalSlamOptions>(topological).Validate().ok());
+  const SlamRegistry& registry = SlamRegistry::Global();
+  int refused = 0;
+  for (const std::string& name : registry.Names()) {
+    const std::unique_ptr<SlamOptions> defaults = registry.Find(name)->default_options({});
+    ASSERT_TRUE(defaults->Validate().ok()) << name;
+    NumberSetter counter(-1, 0.0);
+    defaults->VisitFields(counter);
+    for (int i = 0; i < counter.count(); ++i)
+      for (const double value : {std::numeric_limits<double>::infinity(),
+                                 -std::numeric_limits<double>::infinity(), std::nan("")}) {
+        const std::unique_ptr<SlamOptions> options = defaults->Clone();
+        NumberSetter setter(i, value);
+        options->VisitFields(setter);
+        const kernel::Status status = options->Validate();
+        ASSERT_FALSE(status.ok()) << name << " field " << i << " = " << value;
+        ASSERT_NE(status.message().find("must be a finite number"), std::string::npos)
+            << status.message();
+        ++refused;
+      }
+  }
+  EXPECT_GT(refused, 300);
 }
 
 }  // namespace
