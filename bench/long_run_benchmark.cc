@@ -19,9 +19,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "estimation/graph_slam.h"
 #include "estimation/slam_method.h"
 #include "loop/slam_driver.h"
 #include "sim/builtin_worlds.h"
@@ -45,7 +47,8 @@ double Quantile(std::vector<double> values, double q) {
   return values[k];
 }
 
-void BM_LongRun(benchmark::State& state, const char* method) {
+// `local_window` >= 0: the graph SLAM's local_optimization_keyframes (else the defaults).
+void BM_LongRun(benchmark::State& state, const char* method, int local_window = -1) {
   const int hours = static_cast<int>(state.range(0));
   const splam::sim::World world = *splam::sim::BuiltinWorld("office-long");
   const splam::sim::RayCaster caster(world);
@@ -56,9 +59,15 @@ void BM_LongRun(benchmark::State& state, const char* method) {
     splam::sim::Simulator simulator(caster, {}, *world.start, 1);
     const Pose2& robot_T_laser = simulator.options().laser.robot_T_laser;
     const double before = HeapMb();
-    splam::loop::SlamDriver driver(std::move(*splam::estimation::SlamRegistry::Global()
-                                                  .Make(method, nullptr, {*world.start, {}})
-                                                  .value));
+    const auto& registry = splam::estimation::SlamRegistry::Global();
+    const std::unique_ptr<splam::estimation::SlamOptions> options =
+        registry.Find(method)->default_options({});
+    if (local_window >= 0)
+      static_cast<splam::estimation::SlamOptionsOf<splam::estimation::GraphSlamOptions>&>(*options)
+          .options()
+          .local_optimization_keyframes = local_window;
+    splam::loop::SlamDriver driver(
+        std::move(*registry.Make(method, options.get(), {*world.start, {}}).value));
     std::vector<Pose2> truth;
     bool first_lap = true;
     while (simulator.time_s() < 3600.0 * hours) {
@@ -94,7 +103,17 @@ void BM_LongRun(benchmark::State& state, const char* method) {
   state.counters["rmse_m"] = rmse;
   state.SetLabel(method);
 }
-BENCHMARK_CAPTURE(BM_LongRun, graph, "graph")->Arg(5)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(BM_LongRun, graph, "graph")
+    ->Arg(2)
+    ->Arg(5)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
+// The graph SLAM optimising only its last 1000 keyframes for closures that agree with the graph.
+BENCHMARK_CAPTURE(BM_LongRun, graph_local_1000, "graph", 1000)
+    ->Arg(2)
+    ->Arg(5)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_LongRun, topological, "topological")
     ->Arg(5)
     ->Iterations(1)

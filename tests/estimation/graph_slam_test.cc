@@ -258,6 +258,23 @@ TEST(DistanceGrid, WhatOnlyNoReturnsCrossedIsSeenFreeButNotByHits) {
   EXPECT_FALSE(grid.SeenFree(kernel::PolarToCartesian({3.0, M_PI / 4})));  // behind the wall
 }
 
+// A half circle of 30-360 beams (the count drawn first), each a no-return with probability 0.1
+// or a range drawn uniformly in [0.3, range_m).
+kernel::Scan RandomScan(double range_m, std::mt19937* gen) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  kernel::Scan scan;
+  const int beams = 30 + static_cast<int>((*gen)() % 331);
+  scan.start_angle_rad = -M_PI / 2;
+  scan.angular_step_rad = M_PI / beams;
+  scan.max_range_m = range_m;
+  for (int i = 0; i < beams; ++i) {
+    const bool none = u(*gen) < 0.1;
+    const double range = 0.3 + (range_m - 0.3) * u(*gen);
+    scan.ranges_m.push_back(none ? kernel::Scan::kNoReturn : range);
+  }
+  return scan;
+}
+
 // Property: a view's cells are the same in every grid: RasteriseView's runs lie on the plane's
 // lattice and every grid's origin is a lattice cell, so the graph SLAM rasterises a keyframe's
 // view once for all the submaps and loop targets it is in (Keyframe::rasters). 200 random scans
@@ -271,16 +288,7 @@ TEST(DistanceGrid, PropertyAViewsCellsDoNotDependOnTheGrid) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   long compared = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    kernel::Scan scan;
-    const int beams = 30 + static_cast<int>(gen() % 331);
-    scan.start_angle_rad = -M_PI / 2;
-    scan.angular_step_rad = M_PI / beams;
-    scan.max_range_m = 20.0;
-    for (int i = 0; i < beams; ++i) {
-      const bool none = u(gen) < 0.1;
-      const double range = 0.3 + 19.7 * u(gen);
-      scan.ranges_m.push_back(none ? kernel::Scan::kNoReturn : range);
-    }
+    const kernel::Scan scan = RandomScan(20.0, &gen);
     const double x = 40.0 * u(gen) - 20.0;
     const double y = 40.0 * u(gen) - 20.0;
     const double theta = 2 * M_PI * u(gen);
@@ -324,19 +332,6 @@ TEST(DistanceGrid, PropertyAViewsCellsDoNotDependOnTheGrid) {
 TEST(DistanceGrid, PropertyInsertingAScanGivesTheGridOfABuildFromBoth) {
   std::mt19937 gen(31);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  const auto random_scan = [&] {
-    kernel::Scan scan;
-    const int beams = 30 + static_cast<int>(gen() % 331);
-    scan.start_angle_rad = -M_PI / 2;
-    scan.angular_step_rad = M_PI / beams;
-    scan.max_range_m = 8.0;
-    for (int i = 0; i < beams; ++i) {
-      const bool none = u(gen) < 0.1;
-      const double range = 0.3 + 7.7 * u(gen);
-      scan.ranges_m.push_back(none ? kernel::Scan::kNoReturn : range);
-    }
-    return scan;
-  };
   using Views = std::vector<const ViewCells*>;
   long checked = 0, same = 0, refused = 0;
   double worst = 0.0;
@@ -344,7 +339,7 @@ TEST(DistanceGrid, PropertyInsertingAScanGivesTheGridOfABuildFromBoth) {
     const double resolution = trial % 2 == 0 ? 0.05 : 0.1, truncation = 0.5;
     const Pose2 a(20.0 * u(gen) - 10.0, 20.0 * u(gen) - 10.0, 2 * M_PI * u(gen));
     const Pose2 b = a * Pose2(u(gen) - 0.5, u(gen) - 0.5, 0.5 * (u(gen) - 0.5));
-    const kernel::Scan scan_a = random_scan(), scan_b = random_scan();
+    const kernel::Scan scan_a = RandomScan(8.0, &gen), scan_b = RandomScan(8.0, &gen);
     const std::vector<OrientedPoint> hits_a =
         OrientTowards(a * scan_a.HitPoints(), a.translation(), 0.3);
     const std::vector<OrientedPoint> hits_b =
@@ -878,8 +873,8 @@ TEST(GraphSlam, ClosuresThatAgreeWithTheGraphOptimiseItsRecentPart) {
 // With submap_insert_keyframes 4 (off by default) the submap takes each new keyframe in place and
 // is built anew every fifth, as accurate over two laps of `complex` as built anew at every
 // keyframe. Not on MIT Killian Court and in harder conditions, which is why it is off
-// (docs/graph_slam.md, "Speed"). Measured: 0.0236 m (112 builds and 284 inserts over 396 keyframes), 0.0264 m
-// built anew.
+// (docs/graph_slam.md, "Speed"). Measured: 0.0236 m (112 builds and 284 inserts over 396
+// keyframes), 0.0264 m built anew.
 TEST(GraphSlam, KeyframesInsertedIntoTheSubmapKeepItsAccuracy) {
   GraphSlamOptions inserts, anew;
   inserts.submap_insert_keyframes = 4;
