@@ -12,8 +12,9 @@
 //   was made), as in long_range_benchmark;
 // - map_hN: the method's MapSize() then;
 // and rmse_m, the position RMSE of the whole trajectory after Finish.
-// Five hours of the graph SLAM take several minutes: run it alone, e.g.
-//   build/bench/long_run_benchmark --benchmark_filter='BM_LongRun/graph'
+// Run one at a time, alone: two hours of the graph SLAM take about 8 minutes with its defaults
+// (2 with the local optimisation window), five hours did not finish in 25 minutes (fc3ee83), e.g.
+//   build/bench/long_run_benchmark --benchmark_filter='BM_LongRun/graph/2/'
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 
