@@ -112,12 +112,13 @@ class DistanceGrid {
 
   // Adds a keyframe's outline and view to the field in place (the graph SLAM's submap between two
   // builds): every point joins its cell's sums, so that each piece is the mean of all the points
-  // in its cell as Build makes it (a cell without one gets a new piece); every cell within the
-  // truncation of a new or moved piece takes it where it is nearer than the cell's own (the exact
-  // distance, where Build compares cell centres by a chamfer distance transform), and the cells
-  // whose own piece moved follow it (a piece that moved no distance within its reach by a
-  // hundredth of a cell keeps its cells' values: Distance is exact to it all the same). The views
-  // raise the cells' knowledge as Build's `seen` (`seen_by_hits` is not updated).
+  // in its cell as Build makes it (a cell without one gets a new piece). As in Build, a cell's
+  // piece is that of the occupied cell whose centre is nearest to its own (here by Euclidean
+  // distance, there by a chamfer distance transform within 2 % of it): a new piece takes the
+  // cells within Reach() whose piece lies farther, and the cells of a moved piece follow it (one
+  // that moved no distance within its reach by a hundredth of a cell keeps its cells' values:
+  // Distance is exact to it all the same). The views raise the cells' knowledge as Build's
+  // `seen` (`seen_by_hits` is not updated).
   // Returns false, having changed nothing, when a point lies nearer than the truncation to the
   // grid's edge, or beyond it (Build would have made the grid larger): build again.
   bool Insert(const std::vector<OrientedPoint>& points, const std::vector<const ViewCells*>& seen);
