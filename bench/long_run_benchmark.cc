@@ -12,8 +12,8 @@
 //   was made), as in long_range_benchmark;
 // - map_hN: the method's MapSize() then;
 // and rmse_m, the position RMSE of the whole trajectory after Finish.
-// Run one at a time, alone: two hours of the graph SLAM take about 8 minutes with its defaults
-// (2 with the local optimisation window), five hours did not finish in 25 minutes (fc3ee83), e.g.
+// Run one at a time, alone: two hours of the graph SLAM take about 1.5 minutes with its defaults
+// and 6 optimising the whole graph at every flush (docs/benchmarks.md). E.g.
 //   build/bench/long_run_benchmark --benchmark_filter='BM_LongRun/graph/2/'
 #include <benchmark/benchmark.h>
 #include <malloc.h>
@@ -48,8 +48,11 @@ double Quantile(std::vector<double> values, double q) {
   return values[k];
 }
 
-// `local_window` >= 0: the graph SLAM's local_optimization_keyframes (else the defaults).
-void BM_LongRun(benchmark::State& state, const char* method, int local_window = -1) {
+using splam::estimation::GraphSlamOptions;
+
+// `tweak`, when given, changes the graph SLAM's default options.
+void BM_LongRun(benchmark::State& state, const char* method,
+                void (*tweak)(GraphSlamOptions&) = nullptr) {
   const int hours = static_cast<int>(state.range(0));
   const splam::sim::World world = *splam::sim::BuiltinWorld("office-long");
   const splam::sim::RayCaster caster(world);
@@ -63,10 +66,8 @@ void BM_LongRun(benchmark::State& state, const char* method, int local_window = 
     const auto& registry = splam::estimation::SlamRegistry::Global();
     const std::unique_ptr<splam::estimation::SlamOptions> options =
         registry.Find(method)->default_options({});
-    if (local_window >= 0)
-      static_cast<splam::estimation::SlamOptionsOf<splam::estimation::GraphSlamOptions>&>(*options)
-          .options()
-          .local_optimization_keyframes = local_window;
+    if (tweak != nullptr)
+      tweak(static_cast<splam::estimation::SlamOptionsOf<GraphSlamOptions>&>(*options).options());
     splam::loop::SlamDriver driver(
         std::move(*registry.Make(method, options.get(), {*world.start, {}}).value));
     std::vector<Pose2> truth;
@@ -109,10 +110,21 @@ BENCHMARK_CAPTURE(BM_LongRun, graph, "graph")
     ->Arg(5)
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
-// The graph SLAM optimising only its last 1000 keyframes for closures that agree with the graph.
-BENCHMARK_CAPTURE(BM_LongRun, graph_local_1000, "graph", 1000)
+// The graph SLAM optimising the whole graph at every flush of closures (the defaults before
+// session 35's deferred_optimization_fraction).
+BENCHMARK_CAPTURE(
+    BM_LongRun, graph_every_flush, "graph",
+    +[](GraphSlamOptions& o) { o.deferred_optimization_fraction = 0.0; })
     ->Arg(2)
     ->Arg(5)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
+// Closures that agree with the graph waiting for its whole optimisation without optimising its
+// last keyframes meanwhile.
+BENCHMARK_CAPTURE(
+    BM_LongRun, graph_without_local, "graph",
+    +[](GraphSlamOptions& o) { o.local_optimization_keyframes = 0; })
+    ->Arg(2)
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_LongRun, topological, "topological")

@@ -250,6 +250,7 @@ void AddGraphStatistics(const GraphSlam& graph, SlamStatistics* s) {
                           {"loop_rejected_misfit", l.rejected_misfit},
                           {"loop_rejected_disagreement", l.rejected_disagreement},
                           {"loop_rejected_unconfirmed", l.rejected_unconfirmed},
+                          {"loop_flushes_deferred", graph.deferred_optimizations()},
                           {"moving_object_beams", graph.moving_beams()}});
   const GraphSlam::Times& t = graph.times();
   s->time_ms = {{"registration", t.registration_ms}, {"keyframes", t.keyframe_ms},

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "estimation/chi_square.h"
 #include "estimation/pose_graph_uncertainty.h"
 #include "estimation/scan_view.h"
 #include "kernel/angle.h"
@@ -783,39 +784,66 @@ void GraphSlam::FlushClosures(bool final, double travelled_m) {
   pending_ = std::move(waiting);
   pending_searches_ = std::move(waiting_searches);
   if (accepted.empty()) return;
-  // Closures that agree with the graph as it is move only its recent part
-  // (local_optimization_keyframes).
-  int first_free = 0;
-  if (options_.local_optimization_keyframes > 0 &&
-      std::all_of(accepted.begin(), accepted.end(), [&](const PoseGraphEdge& e) {
-        return graph_.EdgeChi2(e) <= options_.loop.max_chi2;
-      })) {
-    first_free = std::max(0, newest - options_.local_optimization_keyframes + 1);
-    for (const PoseGraphEdge& e : accepted)
-      first_free = std::min(first_free, std::max(e.from, e.to));
+  bool agree_with_graph = true;
+  double chi2 = 0.0;
+  for (const PoseGraphEdge& e : accepted) {
+    const double c = graph_.EdgeChi2(e);
+    agree_with_graph &= c <= options_.loop.max_chi2;
+    chi2 += c;
+  }
+  // Closures that agree with the graph as it is wait in it, unoptimised (DeferOptimization).
+  if (agree_with_graph && DeferOptimization(chi2, static_cast<int>(accepted.size()))) {
+    deferred_chi2_ += chi2;
+    for (std::size_t i = 0; i < accepted.size(); ++i) {
+      deferred_edges_.push_back(static_cast<int>(graph_.edges().size()));
+      deferred_searches_.push_back(accepted_searches[i]);
+      graph_.AddEdge(accepted[i]);
+      searches_[static_cast<std::size_t>(accepted_searches[i])].outcome =
+          LoopSearch::Outcome::kAccepted;
+    }
+    loops_.accepted += static_cast<long>(accepted.size());
+    ++deferred_optimizations_;
+    closure_at_m_ = travelled_m;
+    if (const int first_free = LocalWindow(accepted); first_free > 0) Optimize(first_free);
+    return;
+  }
+  AddAndOptimize(accepted, accepted_searches, 0, travelled_m);
+}
+
+void GraphSlam::AddAndOptimize(const std::vector<PoseGraphEdge>& closures,
+                               const std::vector<int>& closure_searches, int first_free,
+                               double travelled_m) {
+  // The closures checked after the optimisation: the new ones and, when the whole graph is
+  // optimised, those that waited in it unoptimised.
+  std::vector<int> checked, checked_searches;
+  if (first_free == 0) {
+    checked = deferred_edges_;
+    checked_searches = deferred_searches_;
   }
   std::vector<kernel::Pose2> before;
   for (int i = 0; i < graph_.num_nodes(); ++i) before.push_back(graph_.node(i));
   const kernel::Pose2 pose_before = pose_;
-  const int first = static_cast<int>(graph_.edges().size());
-  for (const PoseGraphEdge& e : accepted) graph_.AddEdge(e);
+  for (std::size_t i = 0; i < closures.size(); ++i) {
+    checked.push_back(static_cast<int>(graph_.edges().size()));
+    checked_searches.push_back(closure_searches[i]);
+    graph_.AddEdge(closures[i]);
+  }
   Optimize(first_free);
   // Agreement with the other edges: optimised together, a closure's residual stays small;
   // those that do not are removed and the graph optimised again from where it was.
   std::vector<int> disagree;
-  for (int e = first; e < static_cast<int>(graph_.edges().size()); ++e) {
-    const bool undone =
-        graph_.EdgeChi2(graph_.edges()[static_cast<std::size_t>(e)]) > options_.loop.max_chi2;
-    if (undone) disagree.push_back(e);
-    searches_[static_cast<std::size_t>(accepted_searches[static_cast<std::size_t>(e - first)])]
-        .outcome = undone ? LoopSearch::Outcome::kUndone : LoopSearch::Outcome::kAccepted;
+  for (std::size_t i = 0; i < checked.size(); ++i) {
+    const bool undone = graph_.EdgeChi2(graph_.edges()[static_cast<std::size_t>(checked[i])]) >
+                        options_.loop.max_chi2;
+    if (undone) disagree.push_back(checked[i]);
+    searches_[static_cast<std::size_t>(checked_searches[i])].outcome =
+        undone ? LoopSearch::Outcome::kUndone : LoopSearch::Outcome::kAccepted;
   }
-  loops_.accepted +=
-      static_cast<long>(graph_.edges().size()) - first - static_cast<long>(disagree.size());
+  loops_.accepted += static_cast<long>(closures.size()) - static_cast<long>(disagree.size());
   // The drift that the first search's radius allows for restarts at a closure that search found
   // (AddFinding) or at one added to the graph: a wide search's closure waits for a second to
   // confirm it, which only another wide search can find.
-  if (disagree.size() < accepted.size()) closure_at_m_ = travelled_m;
+  if (disagree.size() < checked.size()) closure_at_m_ = travelled_m;
   if (disagree.empty()) return;
   loops_.rejected_disagreement += static_cast<long>(disagree.size());
   graph_.RemoveEdges(disagree);
@@ -824,13 +852,16 @@ void GraphSlam::FlushClosures(bool final, double travelled_m) {
     keyframes_[static_cast<std::size_t>(i)].pose = before[static_cast<std::size_t>(i)];
   }
   pose_ = pose_before;
-  if (static_cast<int>(graph_.edges().size()) > first) Optimize(first_free);
+  if (disagree.size() < checked.size()) Optimize(first_free);
 }
 
 void GraphSlam::Finish() {
   CollectLoopSearch();
   FlushClosures(true, travelled_m_);
-  if (loops_.accepted > 0) Optimize();
+  if (!deferred_edges_.empty())
+    AddAndOptimize({}, {}, 0, travelled_m_);
+  else if (loops_.accepted > 0)
+    Optimize();
 }
 
 std::optional<PoseGraphEdge> GraphSlam::MatchLoop(int k, const std::vector<OrientedPoint>& query,
@@ -934,9 +965,34 @@ const GraphSlam::LoopTarget& GraphSlam::Target(const std::vector<int>& keyframes
   return targets_.back();
 }
 
+int GraphSlam::LocalWindow(const std::vector<PoseGraphEdge>& closures) const {
+  if (options_.local_optimization_keyframes <= 0) return 0;
+  int first_free = std::max(0, graph_.num_nodes() - options_.local_optimization_keyframes);
+  for (const PoseGraphEdge& e : closures) first_free = std::min(first_free, std::max(e.from, e.to));
+  return first_free;
+}
+
+bool GraphSlam::DeferOptimization(double chi2, int closures) const {
+  const double fraction = options_.deferred_optimization_fraction;
+  if (!(fraction > 0) ||
+      graph_.num_nodes() - optimized_nodes_ >= fraction * static_cast<double>(optimized_nodes_))
+    return false;
+  // Right closures on right poses: the sum of their whitened squared residuals is chi^2 with
+  // three degrees of freedom per closure; tested at loop.max_chi2's significance.
+  constexpr double kSignificance = 0.999;
+  const int n = static_cast<int>(deferred_edges_.size()) + closures;
+  return deferred_chi2_ + chi2 <= ChiSquareQuantile(kSignificance, 3.0 * n);
+}
+
 void GraphSlam::Optimize(int first_free) {
   const ScopedTimer timer(&times_.optimization_ms);
   const int last = graph_.num_nodes() - 1;
+  if (first_free == 0) {
+    optimized_nodes_ = graph_.num_nodes();
+    deferred_chi2_ = 0.0;
+    deferred_edges_.clear();
+    deferred_searches_.clear();
+  }
   const kernel::Pose2 offset = keyframes_.back().pose.Between(pose_);
   optimizations_.push_back(graph_.Optimize(options_.pose_graph, first_free));
   for (int i = first_free; i <= last; ++i)
@@ -1119,9 +1175,11 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Nested("loop", "loop closure", &loop);
   v.Field("optimize_every_keyframes", &optimize_every_keyframes,
           "closures found are optimised together this many keyframes after the first");
+  v.Field("deferred_optimization_fraction", &deferred_optimization_fraction,
+          "closures that agree with the graph wait for its whole optimisation until it has grown "
+          "by this fraction since the last (0: every flush optimises it whole)");
   v.Field("local_optimization_keyframes", &local_optimization_keyframes,
-          "closures that agree with the graph optimise only this many last keyframes (0: the "
-          "whole graph)");
+          "closures that wait optimise only this many last keyframes meanwhile (0: none)");
   v.Field("background_loop_search", &background_loop_search,
           "search loop closures on a second thread beside the front end (same result either "
           "way)");
@@ -1167,6 +1225,8 @@ kernel::Status GraphSlamOptions::Validate() const {
     return kernel::Status::Error("edge sigmas must be positive");
   if (!(truncation_m > loop.resolution_m))
     return kernel::Status::Error("truncation_m > loop.resolution_m");
+  if (!(deferred_optimization_fraction >= 0 && deferred_optimization_fraction <= 10))
+    return kernel::Status::Error("deferred_optimization_fraction must be in [0, 10]");
   if (optimize_every_keyframes < 0 || local_optimization_keyframes < 0)
     return kernel::Status::Error(
         "optimize_every_keyframes and local_optimization_keyframes must be >= 0");

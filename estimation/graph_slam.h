@@ -256,17 +256,31 @@ struct GraphSlamOptions {
   // them (0: at once): on a revisit every keyframe closes, and one optimisation serves a few.
   int optimize_every_keyframes = 5;
   // Closures that all agree with the graph as it is (each within loop.max_chi2 at the current
-  // poses: a revisit of a place the map already holds right) are optimised with only the last
-  // local_optimization_keyframes keyframes free (and at least each closure's newer keyframe), the
-  // earlier ones held: their poses already agree with the closures, and the optimisation's cost
-  // follows this window, not the length of the log. Closures that move the graph optimise it
-  // whole, and so does the end of the data (Finish). 0 (the default): always whole. The window
-  // must hold the loops its closures close: with 100 keyframes (30 m of path) each flush of a long
-  // revisit pushed its closures' small residuals into the last 30 m, a kink at the window's edge
-  // every time, and MIT Killian Court ended 1.59 m off (0.031-0.032 m with 1000 or the whole
-  // graph); with 1000, intel ends 0.0197 m off (0.0190 m whole). Off by default: a log whose
-  // loops are longer than the window would break as Killian did (docs/graph_slam.md).
-  int local_optimization_keyframes = 0;
+  // poses, and with those already waiting their sum within chi^2(3m) 99.9 % for m closures) are
+  // added to it without a whole optimisation while the graph has grown by less than
+  // deferred_optimization_fraction of its nodes since its last one; closures that would move the
+  // graph, a graph grown by that much, and the end of the data (Finish) optimise it whole, and
+  // every closure added since its last whole optimisation must then agree with it (else it is
+  // removed). On a revisit every few keyframes close, and an optimisation's cost grows with the
+  // graph: optimised whole at every flush (fraction 0), two hours of `office-long` took 339 s and
+  // the 99th percentile of a step grew from 78 to 263 ms from the first hour to the second.
+  // Optimised again only after fraction * n new keyframes, a graph of n nodes whose optimisation
+  // costs c per node costs at most c / fraction per keyframe, whatever the log's length (a
+  // geometric schedule).
+  double deferred_optimization_fraction = 0.03;
+  // Meanwhile the closures that wait optimise the last local_optimization_keyframes keyframes
+  // (and at least each closure's newer keyframe), the earlier ones held, so that the front end's
+  // recent keyframes are pulled onto the map as at every flush; the next whole optimisation
+  // takes out what holding the rest bent. Without it (0) the submaps between whole
+  // optimisations drift from the map: two hours of `office-long` ended 0.072-0.078 m off against
+  // 0.054 m at every flush. 100 keyframes (30 m of path) hold the submap and the keyframes a
+  // flush closes. Alone (the whole graph never optimised for closures that agree) a window of
+  // 100 left MIT Killian Court 1.59 m off (session 34). The two defaults together: intel
+  // 0.0190 m with 0.49 s of optimisation (0.0190 m and 1.44 s at every flush, the same hour),
+  // mit-csail 0.0291 m (0.0294 m), MIT Killian Court 0.0301 m (0.0303 m), `office-long` for two
+  // hours 0.052 m in 96 s, its 99th percentile 4.2 and 2.9 ms; three laps of `complex`, seeds
+  // 1-6, 0.0242 m against 0.0217 m at every flush (docs/graph_slam.md, "Speed").
+  int local_optimization_keyframes = 100;
   // A keyframe's loop-closure search reads the graph as it was when the keyframe was made, and
   // what it found is added when the next keyframe is made (before it), so that the search can run
   // on a second thread while the front end registers the scans in between. With this true it
@@ -398,6 +412,8 @@ class GraphSlam {
   // Submaps built anew, and keyframes inserted into one (submap_insert_keyframes).
   long submap_builds() const { return submap_builds_; }
   long submap_inserts() const { return submap_inserts_; }
+  // Flushes whose closures were added without an optimisation (deferred_optimization_fraction).
+  long deferred_optimizations() const { return deferred_optimizations_; }
 
   // Whether the last scan's registration stood (Update; false after a fallback to odometry, and
   // after UpdateAt).
@@ -514,6 +530,19 @@ class GraphSlam {
   // Optimises the keyframes from first_free on (all: 0), then moves the current pose with its
   // keyframe.
   void Optimize(int first_free = 0);
+  // Adds `closures` (found by these searches_) and optimises the keyframes from first_free on;
+  // then removes the closures that disagree with the optimised graph (those added and, when
+  // first_free is 0, those that waited in it unoptimised) and optimises again from where it was.
+  // `travelled_m` as for FlushClosures.
+  void AddAndOptimize(const std::vector<PoseGraphEdge>& closures,
+                      const std::vector<int>& closure_searches, int first_free, double travelled_m);
+  // The first keyframe a local optimisation for these closures frees (local_optimization_keyframes;
+  // 0: the whole graph).
+  int LocalWindow(const std::vector<PoseGraphEdge>& closures) const;
+  // Whether closures that each agree with the graph (whitened squared residuals summing to chi2)
+  // wait unoptimised: the graph has grown by less than deferred_optimization_fraction since its
+  // last whole optimisation, and with those waiting already they still agree with it as a whole.
+  bool DeferOptimization(double chi2, int closures) const;
   // A loop target's field and likelihood pyramid, built from these keyframes at these poses;
   // kept for the next searches of the same keyframes until one of them moves (an optimisation
   // of part of the graph leaves the older keyframes where they were).
@@ -561,6 +590,12 @@ class GraphSlam {
   std::vector<LoopTarget> targets_;  // the last loop targets built (Target; loop search only)
   int unflushed_since_ = -1;         // keyframe of the first closure found since the last flush
   long registrations_ = 0, fallbacks_ = 0, recoveries_ = 0, recovered_ = 0, trimmed_ = 0;
+  int optimized_nodes_ = 0;  // the graph's nodes at its last whole optimisation
+  // The closures added since then without an optimisation: their edges (indices, ascending),
+  // their searches (searches_ indices) and the sum of their whitened squared residuals.
+  std::vector<int> deferred_edges_, deferred_searches_;
+  double deferred_chi2_ = 0.0;
+  long deferred_optimizations_ = 0;
   LoopClosureCounts loops_;
   std::vector<PoseGraphSummary> optimizations_;
   Times times_;
