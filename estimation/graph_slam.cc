@@ -804,22 +804,17 @@ void GraphSlam::FlushClosures(bool final, double travelled_m) {
     loops_.accepted += static_cast<long>(accepted.size());
     ++deferred_optimizations_;
     closure_at_m_ = travelled_m;
-    if (const int first_free = LocalWindow(accepted); first_free > 0) Optimize(first_free);
+    // Node 0 is held in any case: a window over the whole graph frees nodes 1 on.
+    if (options_.local_optimization_keyframes > 0) Optimize(std::max(1, LocalWindow(accepted)));
     return;
   }
-  AddAndOptimize(accepted, accepted_searches, 0, travelled_m);
+  AddAndOptimize(accepted, accepted_searches, travelled_m);
 }
 
 void GraphSlam::AddAndOptimize(const std::vector<PoseGraphEdge>& closures,
-                               const std::vector<int>& closure_searches, int first_free,
-                               double travelled_m) {
-  // The closures checked after the optimisation: the new ones and, when the whole graph is
-  // optimised, those that waited in it unoptimised.
-  std::vector<int> checked, checked_searches;
-  if (first_free == 0) {
-    checked = deferred_edges_;
-    checked_searches = deferred_searches_;
-  }
+                               const std::vector<int>& closure_searches, double travelled_m) {
+  // The closures checked after the optimisation: those that waited in the graph, then the new.
+  std::vector<int> checked = deferred_edges_, checked_searches = deferred_searches_;
   std::vector<kernel::Pose2> before;
   for (int i = 0; i < graph_.num_nodes(); ++i) before.push_back(graph_.node(i));
   const kernel::Pose2 pose_before = pose_;
@@ -828,7 +823,7 @@ void GraphSlam::AddAndOptimize(const std::vector<PoseGraphEdge>& closures,
     checked_searches.push_back(closure_searches[i]);
     graph_.AddEdge(closures[i]);
   }
-  Optimize(first_free);
+  Optimize();
   // Agreement with the other edges: optimised together, a closure's residual stays small;
   // those that do not are removed and the graph optimised again from where it was.
   std::vector<int> disagree;
@@ -852,14 +847,14 @@ void GraphSlam::AddAndOptimize(const std::vector<PoseGraphEdge>& closures,
     keyframes_[static_cast<std::size_t>(i)].pose = before[static_cast<std::size_t>(i)];
   }
   pose_ = pose_before;
-  if (disagree.size() < checked.size()) Optimize(first_free);
+  if (disagree.size() < checked.size()) Optimize();
 }
 
 void GraphSlam::Finish() {
   CollectLoopSearch();
   FlushClosures(true, travelled_m_);
   if (!deferred_edges_.empty())
-    AddAndOptimize({}, {}, 0, travelled_m_);
+    AddAndOptimize({}, {}, travelled_m_);
   else if (loops_.accepted > 0)
     Optimize();
 }
@@ -966,7 +961,6 @@ const GraphSlam::LoopTarget& GraphSlam::Target(const std::vector<int>& keyframes
 }
 
 int GraphSlam::LocalWindow(const std::vector<PoseGraphEdge>& closures) const {
-  if (options_.local_optimization_keyframes <= 0) return 0;
   int first_free = std::max(0, graph_.num_nodes() - options_.local_optimization_keyframes);
   for (const PoseGraphEdge& e : closures) first_free = std::min(first_free, std::max(e.from, e.to));
   return first_free;

@@ -530,14 +530,13 @@ class GraphSlam {
   // Optimises the keyframes from first_free on (all: 0), then moves the current pose with its
   // keyframe.
   void Optimize(int first_free = 0);
-  // Adds `closures` (found by these searches_) and optimises the keyframes from first_free on;
-  // then removes the closures that disagree with the optimised graph (those added and, when
-  // first_free is 0, those that waited in it unoptimised) and optimises again from where it was.
-  // `travelled_m` as for FlushClosures.
+  // Adds `closures` (found by these searches_) and optimises the whole graph; then removes the
+  // closures that disagree with it (those added and those that waited in it unoptimised) and
+  // optimises again from where it was. `travelled_m` as for FlushClosures.
   void AddAndOptimize(const std::vector<PoseGraphEdge>& closures,
-                      const std::vector<int>& closure_searches, int first_free, double travelled_m);
-  // The first keyframe a local optimisation for these closures frees (local_optimization_keyframes;
-  // 0: the whole graph).
+                      const std::vector<int>& closure_searches, double travelled_m);
+  // The first keyframe that a local optimisation for these closures frees: the last
+  // local_optimization_keyframes keyframes and each closure's newer one (0: the whole graph).
   int LocalWindow(const std::vector<PoseGraphEdge>& closures) const;
   // Whether closures that each agree with the graph (whitened squared residuals summing to chi2)
   // wait unoptimised: the graph has grown by less than deferred_optimization_fraction since its
