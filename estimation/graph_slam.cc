@@ -377,7 +377,7 @@ void GraphSlam::FillKeyframe(std::vector<OrientedPoint> points, Keyframe* kf) {
   // Curves are sampled every centimetre; a few samples per cell place it as well.
   kf->raster = Thinned(kf->raster, options_.grid_resolution_m / 2);
   kf->points = std::move(points);
-  kf->rasters = {};  // the view changes
+  kf->rasters = std::make_unique<std::array<Keyframe::ViewRaster, 2>>();  // the view changes
   kf->seen =
       ScanView(kf->reading, kf->robot_T_laser, UsableRange(kf->reading), options_.seen_margin_m);
   if (options_.loop.enabled && options_.loop.seen_free_score < 0)
@@ -426,7 +426,7 @@ std::vector<const ViewCells*> GraphSlam::ViewsOf(const std::vector<int>& keyfram
   for (int i : keyframes) {
     const Keyframe& kf = keyframes_[static_cast<std::size_t>(i)];
     if (kf.trimmed) continue;
-    Keyframe::ViewRaster& raster = kf.rasters[static_cast<std::size_t>(slot)];
+    Keyframe::ViewRaster& raster = (*kf.rasters)[static_cast<std::size_t>(slot)];
     const bool moved = !(raster.pose.x() == kf.pose.x() && raster.pose.y() == kf.pose.y() &&
                          raster.pose.theta() == kf.pose.theta());
     if (!raster.valid || moved || raster.seen.resolution_m != resolution_m) {
@@ -463,7 +463,7 @@ void GraphSlam::TrimKeyframe(int j) {
   std::vector<OrientedPoint>().swap(kf.raster);
   std::vector<Eigen::Vector2d>().swap(kf.seen);
   std::vector<Eigen::Vector2d>().swap(kf.seen_by_hits);
-  kf.rasters = {};
+  kf.rasters.reset();
   ForgetReading(&kf);
   kf.trimmed = true;
   ++trimmed_;
@@ -517,7 +517,7 @@ void GraphSlam::UpdateSubmap() {
   const int first = std::max(0, last - options_.submap_keyframes + 1);
   // The keyframes that left the submap keep no raster of their view for it.
   for (int i = submap_first_; i < first; ++i)
-    keyframes_[static_cast<std::size_t>(i)].rasters[0] = {};
+    if (const auto& rasters = keyframes_[static_cast<std::size_t>(i)].rasters) (*rasters)[0] = {};
   std::vector<int> recent;
   for (int i = first; i <= last; ++i) recent.push_back(i);
   submap_ = DistanceGrid::Build(

@@ -276,7 +276,7 @@ struct GraphSlamOptions {
   // 0.054 m at every flush. 100 keyframes (30 m of path) hold the submap and the keyframes a
   // flush closes. Alone (the whole graph never optimised for closures that agree) a window of
   // 100 left MIT Killian Court 1.59 m off (session 34). The two defaults together: intel
-  // 0.0190 m with 0.49 s of optimisation (0.0190 m and 1.44 s at every flush, the same hour),
+  // 0.0190 m with 0.52 s of optimisation (0.0190 m and 1.44 s at every flush, the same hour),
   // mit-csail 0.0291 m (0.0294 m), MIT Killian Court 0.0301 m (0.0303 m), `office-long` for two
   // hours 0.052 m in 96 s, its 99th percentile 4.2 and 2.9 ms; three laps of `complex`, seeds
   // 1-6, 0.0242 m against 0.0217 m at every flush (docs/graph_slam.md, "Speed").
@@ -368,6 +368,8 @@ class GraphSlam {
     // The views rasterised on the lattice at `pose` (RasteriseView; by_hits from seen_by_hits),
     // for the submap ([0], the front end's thread) and the loop targets ([1], the loop search's):
     // made again only when the keyframe has moved or its view changed (GraphSlam::ViewsOf).
+    // Allocated while the keyframe holds its view, null once trimmed: in place, the empty
+    // rasters were half of a trimmed keyframe's 656 bytes.
     struct ViewRaster {
       bool valid = false;
       kernel::Pose2 pose;
@@ -375,7 +377,7 @@ class GraphSlam {
       bool by_hits_valid = false;
       ViewCells by_hits;
     };
-    mutable std::array<ViewRaster, 2> rasters;
+    mutable std::unique_ptr<std::array<ViewRaster, 2>> rasters;
   };
 
   GraphSlam(const kernel::Pose2& start, const GraphSlamOptions& options);
