@@ -296,6 +296,9 @@ class GraphSlamMethod : public SlamMethod {
     s.association = "scan-to-submap registration, correlative loop closure";
     s.map = {{"keyframes", static_cast<long>(slam_.keyframes().size())},
              {"keyframes_trimmed", slam_.trimmed_keyframes()},
+             {"keyframes_merged", slam_.merged_keyframes()},
+             {"graph_nodes", slam_.graph().num_live_nodes()},
+             {"graph_edges", static_cast<long>(slam_.graph().edges().size())},
              {"submap_builds", slam_.submap_builds()},
              {"submap_inserts", slam_.submap_inserts()},
              {"curves", static_cast<long>(slam_.num_map_curves())},
@@ -352,6 +355,7 @@ class TopologicalGraphSlamMethod : public SlamMethod {
     s.association = "curvature; correlative loop closure";
     s.map.emplace_back("keyframes", static_cast<long>(slam_.graph().keyframes().size()));
     s.map.emplace_back("keyframes_trimmed", slam_.graph().trimmed_keyframes());
+    s.map.emplace_back("keyframes_merged", slam_.graph().merged_keyframes());
     AddGraphStatistics(slam_.graph(), &s);
     return s;
   }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 
 #include "estimation/chi_square.h"
@@ -223,7 +224,9 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
   if (new_keyframe)
     AddKeyframe(without_moving ? *without_moving : clipped, robot_T_laser, std::move(points));
   const int k = static_cast<int>(keyframes_.size()) - 1;
-  scans_.push_back({k, keyframes_.back().pose.Between(pose_)});
+  const kernel::Pose2 offset = keyframes_.back().pose.Between(pose_);
+  scans_.push_back({k, static_cast<float>(offset.x()), static_cast<float>(offset.y()),
+                    static_cast<float>(offset.theta())});
 }
 
 std::vector<OrientedPoint> GraphSlam::ScanPoints(const kernel::Scan& scan,
@@ -241,16 +244,17 @@ std::vector<std::size_t> GraphSlam::MovingBeams(const kernel::Scan& scan,
   const std::size_t n = keyframes_.size();
   for (std::size_t i = n - std::min<std::size_t>(n, options_.moving_keyframes); i < n; ++i) {
     Keyframe& kf = keyframes_[i];
-    if (kf.trimmed || kf.reading.ranges_m.empty()) continue;
-    const kernel::Pose2 world_T_kf_laser = kf.pose * kf.robot_T_laser;
+    if (!kf.data || kf.data->reading.ranges_m.empty()) continue;
+    Keyframe::Data& d = *kf.data;
+    const kernel::Pose2 world_T_kf_laser = kf.pose * d.robot_T_laser;
     const std::vector<std::size_t> here = SeenThroughBeams(
-        scan, candidates, world_T_laser, kf.reading, world_T_kf_laser, options_.moving);
+        scan, candidates, world_T_laser, d.reading, world_T_kf_laser, options_.moving);
     moving.insert(moving.end(), here.begin(), here.end());
     const std::vector<std::size_t> there = SeenThroughBeams(
-        kf.reading, kf.candidates, world_T_kf_laser, scan, world_T_laser, options_.moving);
+        d.reading, d.candidates, world_T_kf_laser, scan, world_T_laser, options_.moving);
     if (there.empty()) continue;
-    kf.reading = WithoutBeams(kf.reading, there);
-    FillKeyframe(ScanPoints(kf.reading, kf.robot_T_laser), &kf);
+    d.reading = WithoutBeams(d.reading, there);
+    FillKeyframe(ScanPoints(d.reading, d.robot_T_laser), &kf);
     moving_beams_ += static_cast<long>(there.size());
     submap_dirty_ = true;
   }
@@ -320,8 +324,9 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
   kf.pose = pose_;
   kf.travelled_m = travelled_m_;
   kf.scan = static_cast<int>(scans_.size());
-  kf.reading = scan;
-  kf.robot_T_laser = robot_T_laser;
+  kf.data = std::make_unique<Keyframe::Data>();
+  kf.data->reading = scan;
+  kf.data->robot_T_laser = robot_T_laser;
   kf.in_map = std::none_of(keyframes_.begin(), keyframes_.end(), [&](const Keyframe& o) {
     return o.in_map && Within(o.pose, kf.pose, options_.map_spacing_m, options_.map_spacing_rad);
   });
@@ -353,48 +358,49 @@ void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot
 }
 
 void GraphSlam::FillKeyframe(std::vector<OrientedPoint> points, Keyframe* kf) {
+  Keyframe::Data& d = *kf->data;
   if (kf->in_map) {
-    map_curves_ -= kf->curves.size();
-    for (const auto& c : kf->curves) map_control_points_ -= c.spline.control_points().size();
+    map_curves_ -= d.curves.size();
+    for (const auto& c : d.curves) map_control_points_ -= c.spline.control_points().size();
   }
-  kf->curves.clear();
-  kf->raster.clear();
-  if (options_.moving.enabled) kf->candidates = ForegroundObjects(kf->reading, options_.moving);
-  for (const auto& curve : kernel::ExtractCurves(kf->reading, options_.extraction)) {
-    kf->curves.push_back(kernel::Transformed(curve, kf->robot_T_laser));
+  d.curves.clear();
+  d.raster.clear();
+  if (options_.moving.enabled) d.candidates = ForegroundObjects(d.reading, options_.moving);
+  for (const auto& curve : kernel::ExtractCurves(d.reading, options_.extraction)) {
+    d.curves.push_back(kernel::Transformed(curve, d.robot_T_laser));
     if (!options_.raster_curves) continue;
-    const auto samples = OrientTowards(kf->curves.back().samples, kf->robot_T_laser.translation(),
+    const auto samples = OrientTowards(d.curves.back().samples, d.robot_T_laser.translation(),
                                        options_.grid_resolution_m);
-    kf->raster.insert(kf->raster.end(), samples.begin(), samples.end());
+    d.raster.insert(d.raster.end(), samples.begin(), samples.end());
   }
-  if (options_.raster_points || kf->raster.empty()) {
-    kf->raster.insert(kf->raster.end(), points.begin(), points.end());
+  if (options_.raster_points || d.raster.empty()) {
+    d.raster.insert(d.raster.end(), points.begin(), points.end());
     const std::vector<OrientedPoint> fill =
         FillLinkedGaps(points, options_.normal_max_gap_m, options_.line_tolerance_m,
                        options_.grid_resolution_m / 2);
-    kf->raster.insert(kf->raster.end(), fill.begin(), fill.end());
+    d.raster.insert(d.raster.end(), fill.begin(), fill.end());
   }
   // Curves are sampled every centimetre; a few samples per cell place it as well.
-  kf->raster = Thinned(kf->raster, options_.grid_resolution_m / 2);
-  kf->points = std::move(points);
-  kf->rasters = std::make_unique<std::array<Keyframe::ViewRaster, 2>>();  // the view changes
-  kf->seen =
-      ScanView(kf->reading, kf->robot_T_laser, UsableRange(kf->reading), options_.seen_margin_m);
+  d.raster = Thinned(d.raster, options_.grid_resolution_m / 2);
+  d.points = std::move(points);
+  d.rasters = {};  // the view changes
+  d.seen = ScanView(d.reading, d.robot_T_laser, UsableRange(d.reading), options_.seen_margin_m);
   if (options_.loop.enabled && options_.loop.seen_free_score < 0)
-    kf->seen_by_hits = ScanView(kf->reading, kf->robot_T_laser, UsableRange(kf->reading),
-                                options_.seen_margin_m, false);
+    d.seen_by_hits =
+        ScanView(d.reading, d.robot_T_laser, UsableRange(d.reading), options_.seen_margin_m, false);
   if (kf->in_map) {
-    map_curves_ += kf->curves.size();
-    for (const auto& c : kf->curves) map_control_points_ += c.spline.control_points().size();
+    map_curves_ += d.curves.size();
+    for (const auto& c : d.curves) map_control_points_ += c.spline.control_points().size();
   } else {
     // Rasterised; with their centimetre samples they were most of a keyframe's memory.
-    std::vector<kernel::SplineCurve>().swap(kf->curves);
+    std::vector<kernel::SplineCurve>().swap(d.curves);
   }
 }
 
 void GraphSlam::ForgetReading(Keyframe* kf) {
-  kf->reading = {};
-  BeamRanges().swap(kf->candidates);
+  if (!kf->data) return;
+  kf->data->reading = {};
+  BeamRanges().swap(kf->data->candidates);
 }
 
 Eigen::Matrix3d GraphSlam::FrontEndCovariance(int to) const {
@@ -414,7 +420,8 @@ std::vector<OrientedPoint> GraphSlam::WorldRaster(const std::vector<int>& keyfra
   std::vector<OrientedPoint> raster;
   for (int i : keyframes) {
     const Keyframe& kf = keyframes_[static_cast<std::size_t>(i)];
-    const std::vector<OrientedPoint> placed = Placed(kf.pose, kf.raster);
+    if (!kf.data) continue;
+    const std::vector<OrientedPoint> placed = Placed(kf.pose, kf.data->raster);
     raster.insert(raster.end(), placed.begin(), placed.end());
   }
   return raster;
@@ -425,19 +432,19 @@ std::vector<const ViewCells*> GraphSlam::ViewsOf(const std::vector<int>& keyfram
   std::vector<const ViewCells*> views;
   for (int i : keyframes) {
     const Keyframe& kf = keyframes_[static_cast<std::size_t>(i)];
-    if (kf.trimmed) continue;
-    Keyframe::ViewRaster& raster = (*kf.rasters)[static_cast<std::size_t>(slot)];
+    if (!kf.data) continue;
+    Keyframe::ViewRaster& raster = kf.data->rasters[static_cast<std::size_t>(slot)];
     const bool moved = !(raster.pose.x() == kf.pose.x() && raster.pose.y() == kf.pose.y() &&
                          raster.pose.theta() == kf.pose.theta());
     if (!raster.valid || moved || raster.seen.resolution_m != resolution_m) {
       raster = {};
-      raster.seen = RasteriseView(kf.pose * kf.seen, resolution_m, options_.seen_margin_m);
+      raster.seen = RasteriseView(kf.pose * kf.data->seen, resolution_m, options_.seen_margin_m);
       raster.pose = kf.pose;
       raster.valid = true;
     }
     if (by_hits && !raster.by_hits_valid) {
       raster.by_hits =
-          RasteriseView(kf.pose * kf.seen_by_hits, resolution_m, options_.seen_margin_m);
+          RasteriseView(kf.pose * kf.data->seen_by_hits, resolution_m, options_.seen_margin_m);
       raster.by_hits_valid = true;
     }
     views.push_back(by_hits ? &raster.by_hits : &raster.seen);
@@ -449,22 +456,22 @@ void GraphSlam::TrimKeyframe(int j) {
   if (j < 1) return;
   Keyframe& kf = keyframes_[static_cast<std::size_t>(j)];
   if (kf.in_map || kf.trimmed) return;
+  // The nearest earlier keyframe that holds its data within the spacing.
+  int cover = -1;
+  double nearest_m = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < j; ++i) {
+    const Keyframe& o = keyframes_[static_cast<std::size_t>(i)];
+    const double d = (o.pose.translation() - kf.pose.translation()).norm();
+    if (!o.trimmed && d < nearest_m &&
+        Within(o.pose, kf.pose, options_.trim_spacing_m, options_.trim_spacing_rad)) {
+      cover = i;
+      nearest_m = d;
+    }
+  }
   // Without loop closure no search reads a keyframe that has left the submap.
-  const bool covered =
-      !options_.loop.enabled ||
-      std::any_of(keyframes_.begin(), keyframes_.begin() + j, [&](const Keyframe& o) {
-        return !o.trimmed &&
-               Within(o.pose, kf.pose, options_.trim_spacing_m, options_.trim_spacing_rad);
-      });
-  if (!covered) return;
-  // Swapped with empty vectors: assigning {} would keep their capacity. A keyframe that is not a
-  // map keyframe holds no curves (AddKeyframe).
-  std::vector<OrientedPoint>().swap(kf.points);
-  std::vector<OrientedPoint>().swap(kf.raster);
-  std::vector<Eigen::Vector2d>().swap(kf.seen);
-  std::vector<Eigen::Vector2d>().swap(kf.seen_by_hits);
-  kf.rasters.reset();
-  ForgetReading(&kf);
+  if (options_.loop.enabled && cover < 0) return;
+  if (options_.loop.enabled && options_.merge_trimmed_keyframes) merge_queue_.push_back({j, cover});
+  kf.data.reset();
   kf.trimmed = true;
   ++trimmed_;
 }
@@ -517,7 +524,7 @@ void GraphSlam::UpdateSubmap() {
   const int first = std::max(0, last - options_.submap_keyframes + 1);
   // The keyframes that left the submap keep no raster of their view for it.
   for (int i = submap_first_; i < first; ++i)
-    if (const auto& rasters = keyframes_[static_cast<std::size_t>(i)].rasters) (*rasters)[0] = {};
+    if (const auto& data = keyframes_[static_cast<std::size_t>(i)].data) data->rasters[0] = {};
   std::vector<int> recent;
   for (int i = first; i <= last; ++i) recent.push_back(i);
   submap_ = DistanceGrid::Build(
@@ -564,7 +571,7 @@ void GraphSlam::StartLoopSearch(int k) {
   std::vector<std::pair<kernel::Pose2, std::vector<OrientedPoint>>> query_keyframes;
   for (int i = std::max(0, k - options_.loop.query_keyframes); i <= k; ++i) {
     const Keyframe& q = keyframes_[static_cast<std::size_t>(i)];
-    query_keyframes.emplace_back(q.pose, q.points);
+    query_keyframes.emplace_back(q.pose, q.data ? q.data->points : std::vector<OrientedPoint>{});
   }
   auto search = [this, k, travelled = travelled_m_, since = travelled_m_ - closure_at_m_,
                  query_keyframes = std::move(query_keyframes)] {
@@ -839,15 +846,45 @@ void GraphSlam::AddAndOptimize(const std::vector<PoseGraphEdge>& closures,
   // (AddFinding) or at one added to the graph: a wide search's closure waits for a second to
   // confirm it, which only another wide search can find.
   if (disagree.size() < checked.size()) closure_at_m_ = travelled_m;
-  if (disagree.empty()) return;
-  loops_.rejected_disagreement += static_cast<long>(disagree.size());
-  graph_.RemoveEdges(disagree);
-  for (int i = 0; i < graph_.num_nodes(); ++i) {
-    graph_.SetNode(i, before[static_cast<std::size_t>(i)]);
-    keyframes_[static_cast<std::size_t>(i)].pose = before[static_cast<std::size_t>(i)];
+  if (!disagree.empty()) {
+    loops_.rejected_disagreement += static_cast<long>(disagree.size());
+    graph_.RemoveEdges(disagree);
+    for (int i = 0; i < graph_.num_nodes(); ++i) {
+      graph_.SetNode(i, before[static_cast<std::size_t>(i)]);
+      keyframes_[static_cast<std::size_t>(i)].pose = graph_.node(i);
+    }
+    pose_ = pose_before;
+    if (disagree.size() < checked.size()) Optimize();
   }
-  pose_ = pose_before;
-  if (disagree.size() < checked.size()) Optimize();
+  MergeTrimmed();
+}
+
+void GraphSlam::MergeTrimmed() {
+  if (merge_queue_.empty()) return;
+  // The graph must know where the keyframe lies beside the one it is merged into: within a third
+  // of the trim spacing (one sigma of the translation, RelativeCovarianceWithin), as when a
+  // closure ties the revisit to the place. Without one, the two are near only as far as the
+  // drift lets the estimate tell, and a merge would close the loop there with certainty.
+  const double sigma_m = options_.trim_spacing_m / 3;
+  const PoseGraphAdjacency adjacent = Adjacency(graph_);
+  std::vector<QueuedMerge> held;
+  std::vector<QueuedMerge> merge;
+  for (QueuedMerge m : merge_queue_) {
+    const bool pending = std::any_of(pending_.begin(), pending_.end(), [&](const PoseGraphEdge& e) {
+      return e.from == m.keyframe || e.to == m.keyframe;
+    });
+    if (!pending &&
+        RelativeCovarianceWithin(graph_, adjacent, m.keyframe, m.into, 2 * sigma_m * sigma_m))
+      merge.push_back(m);
+    else if (++m.checks < 2)  // one more whole optimisation to be tied to the place
+      held.push_back(m);
+  }
+  for (const QueuedMerge& m : merge) {
+    graph_.MergeNode(m.keyframe, m.into);
+    keyframes_[static_cast<std::size_t>(m.keyframe)].merged = true;
+    ++merged_;
+  }
+  merge_queue_ = std::move(held);
 }
 
 void GraphSlam::Finish() {
@@ -999,7 +1036,8 @@ std::vector<kernel::Pose2> GraphSlam::Trajectory() const {
   std::vector<kernel::Pose2> poses;
   poses.reserve(scans_.size());
   for (const ScanAnchor& s : scans_)
-    poses.push_back(keyframes_[static_cast<std::size_t>(s.keyframe)].pose * s.offset);
+    poses.push_back(keyframes_[static_cast<std::size_t>(s.keyframe)].pose *
+                    kernel::Pose2(s.x, s.y, s.theta));
   return poses;
 }
 
@@ -1022,7 +1060,7 @@ std::vector<MapSpline> GraphSlam::MapSplines() const {
   std::vector<MapSpline> splines;
   for (const Keyframe& kf : keyframes_) {
     if (!kf.in_map) continue;
-    for (const auto& c : kf.curves)
+    for (const auto& c : kf.data->curves)
       splines.push_back({static_cast<int>(splines.size()), c.spline.Transformed(kf.pose), 1});
   }
   return splines;
@@ -1183,6 +1221,9 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("trim_spacing_m", &trim_spacing_m,
           "an old keyframe this close to an earlier one keeps only its pose (0: never), m");
   v.Field("trim_spacing_rad", &trim_spacing_rad, "and turned less than this from it, rad");
+  v.Field("merge_trimmed_keyframes", &merge_trimmed_keyframes,
+          "merge a trimmed keyframe's node into the earlier one beside it, so that the graph "
+          "follows the map");
 }
 
 kernel::Status GraphSlamOptions::Validate() const {

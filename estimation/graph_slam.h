@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <deque>
 #include <functional>
 #include <future>
 #include <memory>
@@ -308,6 +309,15 @@ struct GraphSlamOptions {
   // data once it leaves the submap, so that memory follows the map alone. 0 disables.
   double trim_spacing_m = 0.3;
   double trim_spacing_rad = 0.5;
+  // A keyframe trimmed for the earlier keyframe beside it is then merged into that keyframe's
+  // node (PoseGraph::MergeNode) after the next whole optimisation, once the graph ties the two
+  // (their relative pose known to a third of trim_spacing_m, as after a closure there) and no
+  // closure waiting for confirmation reaches it: its scans and marked nodes follow that node
+  // from then on, its edges go to it, and
+  // edges between the same two places are fused, so that the graph, its optimisation and its
+  // memory follow the map, not the path (a reduced pose graph, Johannsson et al. 2013). Needs
+  // loop closure (loop.enabled).
+  bool merge_trimmed_keyframes = true;
 
   void VisitFields(kernel::FieldVisitor& v);
   kernel::Status Validate() const;
@@ -350,26 +360,15 @@ struct LoopClosureCounts {
 class GraphSlam {
  public:
   struct Keyframe {
-    kernel::Pose2 pose;                         // world_T_robot, optimised
-    std::vector<OrientedPoint> points;          // the scan's hits, robot frame, with normals
-    std::vector<OrientedPoint> raster;          // curve samples (+ points), robot frame
-    std::vector<kernel::SplineCurve> curves;    // robot frame; map keyframes only
-    std::vector<Eigen::Vector2d> seen;          // the scan's view: sensor, then beam ends
-    std::vector<Eigen::Vector2d> seen_by_hits;  // the view of its beams that returned
-    double travelled_m = 0.0;                   // path length at this keyframe
-    int scan = 0;                               // the scan that made it (0-based, input order)
-    // That scan, clipped, its moving objects read as NaN, and its mounting; kept while the
-    // keyframe is among the last moving_keyframes (empty after).
-    kernel::Scan reading;
-    BeamRanges candidates;  // the reading's (ForegroundObjects)
-    kernel::Pose2 robot_T_laser;
+    kernel::Pose2 pose;        // world_T_robot, optimised
+    double travelled_m = 0.0;  // path length at this keyframe
+    int scan = 0;              // the scan that made it (0-based, input order)
     bool in_map = false;
-    bool trimmed = false;  // points, raster and view dropped (trim_spacing_m)
+    bool trimmed = false;  // its data dropped (trim_spacing_m)
+    bool merged = false;   // its node merged into an earlier one (merge_trimmed_keyframes)
     // The views rasterised on the lattice at `pose` (RasteriseView; by_hits from seen_by_hits),
     // for the submap ([0], the front end's thread) and the loop targets ([1], the loop search's):
     // made again only when the keyframe has moved or its view changed (GraphSlam::ViewsOf).
-    // Allocated while the keyframe holds its view, null once trimmed: in place, the empty
-    // rasters were half of a trimmed keyframe's 656 bytes.
     struct ViewRaster {
       bool valid = false;
       kernel::Pose2 pose;
@@ -377,7 +376,22 @@ class GraphSlam {
       bool by_hits_valid = false;
       ViewCells by_hits;
     };
-    mutable std::unique_ptr<std::array<ViewRaster, 2>> rasters;
+    // What a keyframe holds until it is trimmed: on its own allocation, so that a trimmed
+    // keyframe (most of them on a long revisiting run) keeps only the 56 bytes above.
+    struct Data {
+      std::vector<OrientedPoint> points;          // the scan's hits, robot frame, with normals
+      std::vector<OrientedPoint> raster;          // curve samples (+ points), robot frame
+      std::vector<kernel::SplineCurve> curves;    // robot frame; map keyframes only
+      std::vector<Eigen::Vector2d> seen;          // the scan's view: sensor, then beam ends
+      std::vector<Eigen::Vector2d> seen_by_hits;  // the view of its beams that returned
+      // That scan, clipped, its moving objects read as NaN, and its mounting; kept while the
+      // keyframe is among the last moving_keyframes (empty after).
+      kernel::Scan reading;
+      BeamRanges candidates;  // the reading's (ForegroundObjects)
+      kernel::Pose2 robot_T_laser;
+      mutable std::array<ViewRaster, 2> rasters;
+    };
+    std::unique_ptr<Data> data;  // null once trimmed
   };
 
   GraphSlam(const kernel::Pose2& start, const GraphSlamOptions& options);
@@ -411,6 +425,7 @@ class GraphSlam {
   std::size_t num_map_curves() const { return map_curves_; }
   std::size_t num_map_control_points() const { return map_control_points_; }
   long trimmed_keyframes() const { return trimmed_; }
+  long merged_keyframes() const { return merged_; }
   // Submaps built anew, and keyframes inserted into one (submap_insert_keyframes).
   long submap_builds() const { return submap_builds_; }
   long submap_inserts() const { return submap_inserts_; }
@@ -429,7 +444,7 @@ class GraphSlam {
   // Beams of scans and keyframes left out as moving objects (MovingObjectOptions).
   long moving_beams() const { return moving_beams_; }
   // Every loop-closure search, in order.
-  const std::vector<LoopSearch>& loop_searches() const { return searches_; }
+  std::vector<LoopSearch> loop_searches() const { return {searches_.begin(), searches_.end()}; }
   const std::vector<PoseGraphSummary>& optimizations() const { return optimizations_; }
   // Wall time spent in each part, ms. The loop search may run beside the others
   // (background_loop_search); loop_wait_ms is how long the front end waited for it.
@@ -540,6 +555,9 @@ class GraphSlam {
   // The first keyframe that a local optimisation for these closures frees: the last
   // local_optimization_keyframes keyframes and each closure's newer one (0: the whole graph).
   int LocalWindow(const std::vector<PoseGraphEdge>& closures) const;
+  // Merges the queued keyframes (merge_queue_) that may be merged; called after a whole
+  // optimisation, when every closure in the graph has been checked against it.
+  void MergeTrimmed();
   // Whether closures that each agree with the graph (whitened squared residuals summing to chi2)
   // wait unoptimised: the graph has grown by less than deferred_optimization_fraction since its
   // last whole optimisation, and with those waiting already they still agree with it as a whole.
@@ -579,19 +597,31 @@ class GraphSlam {
   kernel::Pose2 since_update_;  // odometry since the last registered scan
   bool registered_ = false;
   long moving_beams_ = 0;
+  // Every scan's pose, as the run's record (Trajectory): keyframe^-1 * scan pose, in floats (a
+  // scan lies within metres of its keyframe: micrometres), 16 bytes a scan; in a deque, which
+  // grows by blocks where a vector would double.
   struct ScanAnchor {
     int keyframe;
-    kernel::Pose2 offset;  // keyframe^-1 * scan pose
+    float x, y, theta;
   };
-  std::vector<ScanAnchor> scans_;
+  std::deque<ScanAnchor> scans_;
   std::vector<PoseGraphEdge> pending_;  // closures found, not yet in the graph
   std::vector<int> pending_searches_;   // their searches_ indices
-  std::vector<LoopSearch> searches_;
-  double closure_at_m_ = 0.0;        // travelled when the last closure was found
-  std::vector<LoopTarget> targets_;  // the last loop targets built (Target; loop search only)
-  int unflushed_since_ = -1;         // keyframe of the first closure found since the last flush
+  std::deque<LoopSearch> searches_;     // the run's record of every search
+  double closure_at_m_ = 0.0;           // travelled when the last closure was found
+  std::vector<LoopTarget> targets_;     // the last loop targets built (Target; loop search only)
+  int unflushed_since_ = -1;            // keyframe of the first closure found since the last flush
   long registrations_ = 0, fallbacks_ = 0, recoveries_ = 0, recovered_ = 0, trimmed_ = 0;
   int optimized_nodes_ = 0;  // the graph's nodes at its last whole optimisation
+  // Keyframes trimmed for an earlier one beside it, with that one: merged after a whole
+  // optimisation (MergeTrimmed), when no closure still waiting for confirmation reaches them and
+  // the graph ties them to that one; dropped (kept as nodes) after two such checks.
+  struct QueuedMerge {
+    int keyframe, into;
+    int checks = 0;
+  };
+  std::vector<QueuedMerge> merge_queue_;
+  long merged_ = 0;
   // The closures added since then without an optimisation: their edges (indices, ascending),
   // their searches (searches_ indices) and the sum of their whitened squared residuals.
   std::vector<int> deferred_edges_, deferred_searches_;

@@ -105,10 +105,6 @@ class PointsToMapCost : public ceres::CostFunction {
   bool cauchy_;
 };
 
-Eigen::Matrix3d SqrtInformation(const Eigen::Matrix3d& information) {
-  return Eigen::LLT<Eigen::Matrix3d>(information).matrixU();
-}
-
 // An edge's residual for Ceres, with its analytic Jacobians (EdgeResidual): as fast as automatic
 // differentiation of it (BM_PoseGraph within the machine's noise), one residual for the
 // optimisation, the closures' chi-square and the registration's prior.
@@ -407,82 +403,6 @@ kernel::Status RegistrationOptions::Validate() const {
   return kernel::Status::Ok();
 }
 
-const char* OutcomeName(LoopSearch::Outcome outcome) {
-  switch (outcome) {
-    case LoopSearch::Outcome::kPending:
-      return "pending";
-    case LoopSearch::Outcome::kAccepted:
-      return "accepted";
-    case LoopSearch::Outcome::kScore:
-      return "score";
-    case LoopSearch::Outcome::kAmbiguous:
-      return "ambiguous";
-    case LoopSearch::Outcome::kRegistration:
-      return "registration";
-    case LoopSearch::Outcome::kMisfit:
-      return "misfit";
-    case LoopSearch::Outcome::kUnconfirmed:
-      return "unconfirmed";
-    case LoopSearch::Outcome::kUndone:
-      return "undone";
-  }
-  return "?";
-}
-
-int PoseGraph::AddNode(const kernel::Pose2& pose) {
-  poses_.push_back(pose.ToVector());
-  return num_nodes() - 1;
-}
-
-void PoseGraph::AddEdge(const PoseGraphEdge& edge) { edges_.push_back(edge); }
-
-void PoseGraph::RemoveEdges(const std::vector<int>& indices) {
-  for (auto it = indices.rbegin(); it != indices.rend(); ++it) edges_.erase(edges_.begin() + *it);
-}
-
-kernel::Pose2 PoseGraph::node(int i) const {
-  const Eigen::Vector3d& p = poses_[static_cast<std::size_t>(i)];
-  return {p.x(), p.y(), p.z()};
-}
-
-void PoseGraph::SetNode(int i, const kernel::Pose2& pose) {
-  poses_[static_cast<std::size_t>(i)] = pose.ToVector();
-}
-
-double PoseGraph::EdgeChi2(const PoseGraphEdge& e) const {
-  return EdgeResidual(e)(poses_[static_cast<std::size_t>(e.from)].data(),
-                         poses_[static_cast<std::size_t>(e.to)].data())
-      .squaredNorm();
-}
-
-EdgeResidual::EdgeResidual(const PoseGraphEdge& edge)
-    : measurement_(edge.measurement.ToVector()),
-      sqrt_information_(SqrtInformation(edge.information)) {}
-
-Eigen::Vector3d EdgeResidual::operator()(const double* from, const double* to,
-                                         Eigen::Matrix3d* d_from, Eigen::Matrix3d* d_to) const {
-  const double c = std::cos(from[2]), s = std::sin(from[2]);
-  const double dx = to[0] - from[0], dy = to[1] - from[1];
-  // M rotates the error into the measurement's frame.
-  const double cm = std::cos(measurement_.z()), sm = std::sin(measurement_.z());
-  Eigen::Matrix3d m = Eigen::Matrix3d::Identity();
-  m.topLeftCorner<2, 2>() << cm, sm, -sm, cm;
-  const Eigen::Vector3d r(c * dx + s * dy - measurement_.x(), -s * dx + c * dy - measurement_.y(),
-                          WrapAngle(to[2] - from[2] - measurement_.z()));
-  const Eigen::Matrix3d whitened = sqrt_information_ * m;
-  if (d_from != nullptr) {
-    Eigen::Matrix3d dr;
-    dr << -c, -s, -s * dx + c * dy, s, -c, -c * dx - s * dy, 0, 0, -1;
-    *d_from = whitened * dr;
-  }
-  if (d_to != nullptr) {
-    Eigen::Matrix3d dr;
-    dr << c, s, 0, -s, c, 0, 0, 0, 1;
-    *d_to = whitened * dr;
-  }
-  return whitened * r;
-}
-
 namespace {
 
 // Adds to `problem` the residuals of the edges that reach a node from first_free on (loop
@@ -505,8 +425,8 @@ PoseGraphSummary PoseGraph::Optimize(const PoseGraphOptions& options, int first_
   const auto start = std::chrono::steady_clock::now();
   first_free = std::clamp(first_free, 0, num_nodes());
   PoseGraphSummary s;
-  s.nodes = num_nodes();
-  s.free_nodes = num_nodes() - std::max(first_free, 1);
+  s.nodes = num_live_nodes();
+  for (int i = std::max(first_free, 1); i < num_nodes(); ++i) s.free_nodes += !merged(i);
   s.edges = static_cast<int>(edges_.size());
   if (s.free_nodes < 1) return s;
   ceres::Problem::Options problem_options;

@@ -84,6 +84,15 @@ class EdgeResidual {
   Eigen::Matrix3d sqrt_information_;  // upper Cholesky factor of the information
 };
 
+// The same constraint as an edge from `to` to `from`: the inverse measurement, its information
+// carried to the reversed residual (which is -Ad(z) e to first order, z the measurement).
+PoseGraphEdge ReversedEdge(const PoseGraphEdge& edge);
+// Two edges between the same two nodes (in either direction) as one edge from a.from to a.to,
+// whose whitened squared residual is the sum of theirs up to a constant, to first order in the
+// residuals: information I_a + B^T I_b B and a measurement moved by the weighted mean of their
+// difference (B rotates b's residual into a's frame). Keeps a's flags.
+PoseGraphEdge FusedEdge(const PoseGraphEdge& a, const PoseGraphEdge& b);
+
 // A 2-D pose graph (Ceres, after its examples/slam/pose_graph_2d): minimises
 //   sum_e rho_e(r_e^T I_e r_e),  r_e = (R_from^T (t_to - t_from) - t_m, wrap(th_to - th_from -
 //   th_m))
@@ -94,8 +103,26 @@ class PoseGraph {
   void AddEdge(const PoseGraphEdge& edge);
   // Removes the edges with these indices (ascending).
   void RemoveEdges(const std::vector<int>& indices);
+  // Every node ever added, merged ones included (node indices are never reused).
   int num_nodes() const { return static_cast<int>(poses_.size()); }
+  // The nodes not merged into another.
+  int num_live_nodes() const { return live_nodes_; }
+  // Merges node j into node `into` (both live, distinct), for a graph whose size follows the
+  // map rather than the path (a reduced pose graph, Johannsson et al. 2013): j is held at its
+  // present pose relative to `into` (node(j) = node(into) * into_T_j from now on, SetNode
+  // ignores it) and leaves the optimisation. Its other edges go to `into`, each the same
+  // residual to first order. The edges between j and `into` are dropped, their covariance
+  // carried into each of j's other edges as the offset's error: merging a node of a chain into
+  // its neighbour composes its two edges (the marginal of the nodes left is unchanged), and at
+  // a node of more edges the offset's error is counted once per edge (its correlation between
+  // them ignored: less certain, never more). Without an edge between them (a revisit tied to the
+  // place through a closure) the offset is taken as exact. An edge parallel to an edge of the
+  // same kind (loop, robust) is fused into it (FusedEdge), so that the edges follow the pairs of
+  // places joined. The edges that did not reach j keep their order.
+  void MergeNode(int j, int into);
+  bool merged(int i) const;
   const std::vector<PoseGraphEdge>& edges() const { return edges_; }
+  // A merged node's pose follows the node it was merged into.
   kernel::Pose2 node(int i) const;
   void SetNode(int i, const kernel::Pose2& pose);
   // Whitened squared residual r^T I r of edge `e` at the current node poses.
@@ -105,7 +132,10 @@ class PoseGraph {
   PoseGraphSummary Optimize(const PoseGraphOptions& options, int first_free = 0);
 
  private:
-  std::vector<Eigen::Vector3d> poses_;  // (x, y, theta)
+  // (x, y, theta): in the world, or for a merged node relative to its parent.
+  std::vector<Eigen::Vector3d> poses_;
+  std::vector<int> parent_;  // the node it was merged into, -1 while live
+  int live_nodes_ = 0;
   std::vector<PoseGraphEdge> edges_;
 };
 

@@ -2,6 +2,8 @@
 #define SPLAM_ESTIMATION_POSE_GRAPH_UNCERTAINTY_H_
 
 #include <Eigen/Core>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "estimation/pose_graph.h"
@@ -26,6 +28,18 @@ Eigen::Matrix3d PropagatedCovariance(const Eigen::Matrix3d& covariance, const ke
 // (this bound ignores that), and it costs one Dijkstra search, O(E log N), instead of a sparse
 // inverse of the whole problem. Nodes the source does not reach get infinite covariances.
 std::vector<Eigen::Matrix3d> RelativeCovariances(const PoseGraph& graph, int source);
+
+// Each node's (neighbour, edge index) pairs, each edge seen from both ends.
+using PoseGraphAdjacency = std::vector<std::vector<std::pair<int, int>>>;
+PoseGraphAdjacency Adjacency(const PoseGraph& graph);
+
+// RelativeCovariances' covariance for `target` alone, the search bounded to the nodes whose
+// covariance's translation trace is at most max_trace_m2 (a few nodes around the source when the
+// bound is small): nullopt when the target lies beyond. `adjacent` is Adjacency(graph).
+std::optional<Eigen::Matrix3d> RelativeCovarianceWithin(const PoseGraph& graph,
+                                                        const PoseGraphAdjacency& adjacent,
+                                                        int source, int target,
+                                                        double max_trace_m2);
 
 }  // namespace splam::estimation
 

@@ -1,0 +1,185 @@
+#include "estimation/pose_graph.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "estimation/pose_graph_uncertainty.h"
+#include "kernel/angle.h"
+
+namespace splam::estimation {
+
+const char* OutcomeName(LoopSearch::Outcome outcome) {
+  switch (outcome) {
+    case LoopSearch::Outcome::kPending:
+      return "pending";
+    case LoopSearch::Outcome::kAccepted:
+      return "accepted";
+    case LoopSearch::Outcome::kScore:
+      return "score";
+    case LoopSearch::Outcome::kAmbiguous:
+      return "ambiguous";
+    case LoopSearch::Outcome::kRegistration:
+      return "registration";
+    case LoopSearch::Outcome::kMisfit:
+      return "misfit";
+    case LoopSearch::Outcome::kUnconfirmed:
+      return "unconfirmed";
+    case LoopSearch::Outcome::kUndone:
+      return "undone";
+  }
+  return "?";
+}
+
+int PoseGraph::AddNode(const kernel::Pose2& pose) {
+  poses_.push_back(pose.ToVector());
+  parent_.push_back(-1);
+  ++live_nodes_;
+  return num_nodes() - 1;
+}
+
+void PoseGraph::AddEdge(const PoseGraphEdge& edge) { edges_.push_back(edge); }
+
+void PoseGraph::RemoveEdges(const std::vector<int>& indices) {
+  for (auto it = indices.rbegin(); it != indices.rend(); ++it) edges_.erase(edges_.begin() + *it);
+}
+
+kernel::Pose2 PoseGraph::node(int i) const {
+  const auto at = [&](int n) {
+    const Eigen::Vector3d& p = poses_[static_cast<std::size_t>(n)];
+    return kernel::Pose2(p.x(), p.y(), p.z());
+  };
+  // A merged node's pose is relative to its parent, which may have been merged since.
+  const int parent = parent_[static_cast<std::size_t>(i)];
+  return parent < 0 ? at(i) : node(parent) * at(i);
+}
+
+void PoseGraph::SetNode(int i, const kernel::Pose2& pose) {
+  if (!merged(i)) poses_[static_cast<std::size_t>(i)] = pose.ToVector();
+}
+
+double PoseGraph::EdgeChi2(const PoseGraphEdge& e) const {
+  return EdgeResidual(e)(poses_[static_cast<std::size_t>(e.from)].data(),
+                         poses_[static_cast<std::size_t>(e.to)].data())
+      .squaredNorm();
+}
+
+EdgeResidual::EdgeResidual(const PoseGraphEdge& edge)
+    : measurement_(edge.measurement.ToVector()),
+      sqrt_information_(Eigen::LLT<Eigen::Matrix3d>(edge.information).matrixU()) {}
+
+Eigen::Vector3d EdgeResidual::operator()(const double* from, const double* to,
+                                         Eigen::Matrix3d* d_from, Eigen::Matrix3d* d_to) const {
+  const double c = std::cos(from[2]), s = std::sin(from[2]);
+  const double dx = to[0] - from[0], dy = to[1] - from[1];
+  // M rotates the error into the measurement's frame.
+  const double cm = std::cos(measurement_.z()), sm = std::sin(measurement_.z());
+  Eigen::Matrix3d m = Eigen::Matrix3d::Identity();
+  m.topLeftCorner<2, 2>() << cm, sm, -sm, cm;
+  const Eigen::Vector3d r(c * dx + s * dy - measurement_.x(), -s * dx + c * dy - measurement_.y(),
+                          kernel::WrapAngle(to[2] - from[2] - measurement_.z()));
+  const Eigen::Matrix3d whitened = sqrt_information_ * m;
+  if (d_from != nullptr) {
+    Eigen::Matrix3d dr;
+    dr << -c, -s, -s * dx + c * dy, s, -c, -c * dx - s * dy, 0, 0, -1;
+    *d_from = whitened * dr;
+  }
+  if (d_to != nullptr) {
+    Eigen::Matrix3d dr;
+    dr << c, s, 0, -s, c, 0, 0, 0, 1;
+    *d_to = whitened * dr;
+  }
+  return whitened * r;
+}
+
+PoseGraphEdge ReversedEdge(const PoseGraphEdge& edge) {
+  PoseGraphEdge reversed = edge;
+  std::swap(reversed.from, reversed.to);
+  reversed.measurement = edge.measurement.Inverse();
+  // The reversed residual is -Ad(z) e to first order (z the measurement, e the residual).
+  reversed.information =
+      PropagatedCovariance(edge.information.inverse(), reversed.measurement).inverse();
+  return reversed;
+}
+
+PoseGraphEdge FusedEdge(const PoseGraphEdge& a, const PoseGraphEdge& b_any) {
+  const PoseGraphEdge b = b_any.from == a.from ? b_any : ReversedEdge(b_any);
+  // The residuals are the coordinates of E_a = z_a^-1 D and E_b = z_b^-1 D = delta E_a, with
+  // delta = z_b^-1 z_a: e_b = d + B e_a to first order in e_a, d the coordinates of delta and
+  // B = diag(R_delta, 1). e_a^T I_a e_a + e_b^T I_b e_b = (e_a - mu)^T I (e_a - mu) + const with
+  // I = I_a + B^T I_b B and mu = -I^-1 B^T I_b d; the fused edge's residual, the coordinates of
+  // exp(mu)^-1 E_a, is e_a - mu to first order.
+  const kernel::Pose2 delta = b.measurement.Between(a.measurement);
+  Eigen::Matrix3d rotate = Eigen::Matrix3d::Identity();
+  rotate.topLeftCorner<2, 2>() = delta.Rotation();
+  PoseGraphEdge fused = a;
+  fused.information = a.information + rotate.transpose() * b.information * rotate;
+  const Eigen::Vector3d mu =
+      -fused.information.inverse() * rotate.transpose() * b.information * delta.ToVector();
+  fused.measurement = a.measurement * kernel::Pose2(mu.x(), mu.y(), mu.z());
+  return fused;
+}
+
+bool PoseGraph::merged(int i) const { return parent_[static_cast<std::size_t>(i)] >= 0; }
+
+void PoseGraph::MergeNode(int j, int into) {
+  const kernel::Pose2 offset = node(into).Between(node(j));  // into_T_j
+  // The edges between j and `into`, fused into one from `into` to j: its residual is the
+  // offset's error eps (j = into o eps), its covariance `held`; zero without such an edge.
+  std::optional<PoseGraphEdge> between;
+  int others = 0;  // j's edges to other nodes
+  for (const PoseGraphEdge& edge : edges_) {
+    if (edge.from != j && edge.to != j) continue;
+    if (edge.from != into && edge.to != into) {
+      ++others;
+      continue;
+    }
+    const PoseGraphEdge forward = edge.from == into ? edge : ReversedEdge(edge);
+    between = between ? FusedEdge(*between, forward) : forward;
+  }
+  const Eigen::Matrix3d held = between && others == 1
+                                   ? Eigen::Matrix3d(between->information.inverse())
+                                   : Eigen::Matrix3d::Zero();
+  std::vector<PoseGraphEdge> kept, moved;
+  kept.reserve(edges_.size());
+  for (PoseGraphEdge edge : edges_) {
+    if (edge.from != j && edge.to != j) {
+      kept.push_back(edge);
+      continue;
+    }
+    // From side, z' = o z gives the residual E = z^-1 j^-1 x = (z^-1 eps^-1 z) E', so
+    // e = e' - Ad(z^-1) eps; to side, z' = z o^-1 gives E' = o E eps^-1 o^-1, so
+    // e' = Ad(o) (e - eps), to first order.
+    if (edge.from == j) {
+      edge.from = into;
+      edge.information =
+          (edge.information.inverse() + PropagatedCovariance(held, edge.measurement)).inverse();
+      edge.measurement = offset * edge.measurement;
+    }
+    if (edge.to == j) {
+      edge.to = into;
+      edge.measurement = edge.measurement * offset.Inverse();
+      edge.information =
+          PropagatedCovariance(edge.information.inverse() + held, offset.Inverse()).inverse();
+    }
+    if (edge.from != edge.to) moved.push_back(edge);
+  }
+  for (const PoseGraphEdge& edge : moved) {
+    const auto parallel = std::find_if(kept.begin(), kept.end(), [&](const PoseGraphEdge& o) {
+      return o.loop == edge.loop && o.robust == edge.robust &&
+             ((o.from == edge.from && o.to == edge.to) || (o.from == edge.to && o.to == edge.from));
+    });
+    if (parallel != kept.end())
+      *parallel = FusedEdge(*parallel, edge);
+    else
+      kept.push_back(edge);
+  }
+  edges_ = std::move(kept);
+  poses_[static_cast<std::size_t>(j)] = offset.ToVector();
+  parent_[static_cast<std::size_t>(j)] = into;
+  --live_nodes_;
+}
+
+}  // namespace splam::estimation
