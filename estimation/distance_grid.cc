@@ -467,6 +467,17 @@ std::vector<OrientedPoint> OrientTowards(const std::vector<Eigen::Vector2d>& poi
                                          double line_tolerance_m) {
   const std::vector<bool> linked = LinkedToNext(points, max_gap_m, line_tolerance_m);
   std::vector<OrientedPoint> out(points.size());
+  // Prefix sums of the points and their products, relative to the first point (which keeps
+  // the sums' cancellation small: a scan's extent against a centimetre scatter), so that each
+  // point's run costs O(1): sum_j (q_j - m)(q_j - m)^T = sum_j q_j q_j^T - n m m^T.
+  const Eigen::Vector2d origin = points.empty() ? Eigen::Vector2d::Zero() : points.front();
+  std::vector<Eigen::Vector2d> sum(points.size() + 1, Eigen::Vector2d::Zero());
+  std::vector<Eigen::Vector3d> products(points.size() + 1, Eigen::Vector3d::Zero());  // xx xy yy
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d q = points[i] - origin;
+    sum[i + 1] = sum[i] + q;
+    products[i + 1] = products[i] + Eigen::Vector3d(q.x() * q.x(), q.x() * q.y(), q.y() * q.y());
+  }
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector2d& p = points[i];
     // The run's points within max_gap_m of p (reached through gaps of at most max_gap_m), and
@@ -485,12 +496,12 @@ std::vector<OrientedPoint> OrientTowards(const std::vector<Eigen::Vector2d>& poi
     if (last - first >= 2) {
       // The normal of the total-least-squares line through them: the eigenvector of their
       // scatter with the smaller eigenvalue.
-      Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-      for (std::size_t j = first; j <= last; ++j) mean += points[j];
-      mean /= static_cast<double>(last - first + 1);
-      Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-      for (std::size_t j = first; j <= last; ++j)
-        scatter += (points[j] - mean) * (points[j] - mean).transpose();
+      const double count = static_cast<double>(last - first + 1);
+      const Eigen::Vector2d mean = (sum[last + 1] - sum[first]) / count;
+      const Eigen::Vector3d product = products[last + 1] - products[first];
+      Eigen::Matrix2d scatter;
+      scatter << product(0) - count * mean.x() * mean.x(), product(1) - count * mean.x() * mean.y(),
+          product(1) - count * mean.x() * mean.y(), product(2) - count * mean.y() * mean.y();
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen;
       eigen.computeDirect(scatter);  // closed form
       n = eigen.eigenvectors().col(0);
