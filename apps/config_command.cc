@@ -4,6 +4,7 @@
 
 #include "apps/commands.h"
 #include "apps/run_config.h"
+#include "exploration/explorer.h"
 
 namespace splam::apps {
 namespace {
@@ -49,8 +50,10 @@ void AddConfigCommand(CLI::App* app, int* exit_code) {
                    "SLAM method (or, with --explorer, the localisation):\n" +
                        estimation::SlamRegistry::Global().Describe())
       ->check(CLI::IsMember(loop::LocalizationChoices()));
-  print->add_option("--explorer", args->explorer, "Exploration strategy")
-      ->check(CLI::IsMember({"srt", "reg"}));
+  print
+      ->add_option("--explorer", args->explorer,
+                   "Exploration strategy:\n" + exploration::ExplorerRegistry::Global().Describe())
+      ->check(CLI::IsMember(exploration::ExplorerRegistry::Global().Names()));
   print->callback([args, exit_code] { *exit_code = PrintConfig(*args); });
 }
 

@@ -10,6 +10,7 @@
 #include "apps/commands.h"
 #include "apps/interrupt.h"
 #include "apps/run_config.h"
+#include "exploration/explorer.h"
 #include "io/config.h"
 #include "io/text.h"
 #include "io/world_file.h"
@@ -59,8 +60,9 @@ kernel::Status Configure(const ExploreArgs& args, ExploreConfig* config) {
   if (given("seed")) setup.seed = flags.seed;
   if (given("odometry-noise")) setup.odometry_noise_scale = flags.odometry_noise_scale;
   if (given("no-sonar")) setup.sonar = false;
-  if (setup.explorer != "srt" && setup.explorer != "reg")
-    return kernel::Status::Error("unknown explorer '" + setup.explorer + "' (srt, reg)");
+  if (exploration::ExplorerRegistry::Global().Find(setup.explorer) == nullptr)
+    return kernel::Status::Error("unknown explorer '" + setup.explorer + "' (" +
+                                 exploration::ExplorerRegistry::Global().NameList() + ")");
   if (!loop::IsLocalization(setup.localization))
     return kernel::Status::Error("unknown localisation '" + setup.localization + "' (" +
                                  loop::LocalizationNames() + ")");
@@ -224,8 +226,10 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
     flags.emplace_back(name, option);
     return option;
   };
-  flag("explorer", cmd->add_option("--explorer", setup.explorer, "Exploration strategy"))
-      ->check(CLI::IsMember({"srt", "reg"}))
+  flag("explorer", cmd->add_option("--explorer", setup.explorer,
+                                   "Exploration strategy:\n" +
+                                       exploration::ExplorerRegistry::Global().Describe()))
+      ->check(CLI::IsMember(exploration::ExplorerRegistry::Global().Names()))
       ->capture_default_str();
   cmd->add_option("--world", args->world,
                   "Built-in world (corridor, office, office-long, office-doors, complex), a YAML "

@@ -367,7 +367,7 @@ class TopologicalGraphSlamMethod : public SlamMethod {
 
 }  // namespace
 
-void AddBuiltinSlamMethods(SlamRegistry* registry) {
+void AddBuiltinSlamMethods(kernel::Registry<SlamMethodInfo>* registry) {
   registry->Add(MakeSlamMethodInfo<EkfLineSlamOptions>(
       "ekf-lines", "EKF-SLAM with line and corner landmarks (paper 001, SPEC §2-6)",
       [](const EkfLineSlamOptions& o, const SlamContext& c) {

@@ -16,6 +16,7 @@
 #include "kernel/local_safe_region.h"
 #include "kernel/options.h"
 #include "kernel/pose2.h"
+#include "kernel/registry.h"
 #include "kernel/scan.h"
 #include "kernel/spline_extraction.h"
 #include "kernel/status.h"
@@ -150,29 +151,20 @@ struct SlamMethodInfo {
   std::function<std::unique_ptr<SlamMethod>(const SlamOptions&, const SlamContext&)> make;
 };
 
-// name -> method. The built-in methods (ekf-lines, ekf-bspline, topological) are there from the
-// start; others join with RegisterSlamMethod.
-class SlamRegistry {
+// name -> method. The built-in methods (ekf-lines, ekf-bspline, topological, graph,
+// topological-graph) are there from the start; others join with RegisterSlamMethod or a
+// SlamMethodRegistration, from anywhere (kernel::Registry).
+class SlamRegistry : public kernel::Registry<SlamMethodInfo> {
  public:
+  explicit SlamRegistry(std::function<void(kernel::Registry<SlamMethodInfo>*)> builtins)
+      : kernel::Registry<SlamMethodInfo>(std::move(builtins)) {}
+  // The registry of the command line, the experiments and the explorer's localisation.
   static SlamRegistry& Global();
-  // Adds (or replaces) a method.
-  void Add(SlamMethodInfo info);
-  // nullptr for an unknown name.
-  const SlamMethodInfo* Find(const std::string& name) const;
-  // In registration order.
-  std::vector<std::string> Names() const;
-  // The names joined by ", " (for messages and help).
-  std::string NameList() const;
-  // "ekf-lines: ...\ntopological: ..." for help texts.
-  std::string Describe() const;
   // The method `name` with `options` (its defaults when null); an error names the unknown method
   // with the known ones, or the invalid option.
   kernel::Result<std::unique_ptr<SlamMethod>> Make(const std::string& name,
                                                    const SlamOptions* options,
                                                    const SlamContext& context) const;
-
- private:
-  std::vector<SlamMethodInfo> methods_;
 };
 
 // The registry entry of a method whose options struct is `Options` (with VisitFields and
@@ -205,7 +197,9 @@ SlamMethodInfo MakeSlamMethodInfo(
 }
 
 // Adds a method to the global registry: the one line that makes a new method known to the
-// command line, the experiments and the explorer's localisation.
+// command line, the experiments and the explorer's localisation. From a function (main, a test,
+// the built-in methods' list in builtin_slam_methods.cc) or, as a SlamMethodRegistration, from a
+// namespace-scope object of any translation unit.
 template <class Options>
 void RegisterSlamMethod(
     std::string name, std::string description,
@@ -214,6 +208,23 @@ void RegisterSlamMethod(
   SlamRegistry::Global().Add(MakeSlamMethodInfo<Options>(std::move(name), std::move(description),
                                                          std::move(make), std::move(adapt)));
 }
+
+// RegisterSlamMethod as an object, for a translation unit of its own:
+//   static const SlamMethodRegistration<MyOptions> kMine("mine", "...", MakeMine);
+// It registers when the program starts (static initialisation; the registry is built on first
+// use, whichever unit gets there first). A unit in a static library is linked only when the
+// program uses a symbol of it: register from a function the program calls, or link that
+// library whole (an OBJECT library, or --whole-archive).
+template <class Options>
+struct SlamMethodRegistration {
+  SlamMethodRegistration(
+      std::string name, std::string description,
+      std::function<std::unique_ptr<SlamMethod>(const Options&, const SlamContext&)> make,
+      std::function<void(const SensorNoise&, Options*)> adapt = {}) {
+    RegisterSlamMethod<Options>(std::move(name), std::move(description), std::move(make),
+                                std::move(adapt));
+  }
+};
 
 }  // namespace splam::estimation
 

@@ -61,10 +61,30 @@ std::string TerminationName(Termination termination) {
   return "unknown";
 }
 
+namespace {
+
+void AddBuiltinExplorers(kernel::Registry<ExplorerInfo>* registry) {
+  registry->Add({"srt", "Sensor-based Random Tree (Oriolo et al. 2004)",
+                 [](const ExplorerOptions& o) { return std::make_unique<SrtExplorer>(o); }});
+  registry->Add({"reg", "Random Exploration Graph (paper 003 §3.1)",
+                 [](const ExplorerOptions& o) { return std::make_unique<RegExplorer>(o); }});
+}
+
+}  // namespace
+
+ExplorerRegistry& ExplorerRegistry::Global() {
+  static ExplorerRegistry registry(AddBuiltinExplorers);
+  return registry;
+}
+
+void RegisterExplorer(std::string name, std::string description,
+                      std::function<std::unique_ptr<Explorer>(const ExplorerOptions&)> make) {
+  ExplorerRegistry::Global().Add({std::move(name), std::move(description), std::move(make)});
+}
+
 std::unique_ptr<Explorer> MakeExplorer(const std::string& name, const ExplorerOptions& options) {
-  if (name == "srt") return std::make_unique<SrtExplorer>(options);
-  if (name == "reg") return std::make_unique<RegExplorer>(options);
-  return nullptr;
+  const ExplorerInfo* info = ExplorerRegistry::Global().Find(name);
+  return info != nullptr && info->make ? info->make(options) : nullptr;
 }
 
 void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {

@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "exploration/localization.h"
@@ -13,6 +14,7 @@
 #include "graph/exploration_graph.h"
 #include "kernel/angle.h"
 #include "kernel/options.h"
+#include "kernel/registry.h"
 #include "kernel/scan.h"
 #include "kernel/status.h"
 
@@ -213,7 +215,36 @@ class Explorer {
   virtual ExplorationRun Run(RobotInterface* robot, Localization* localization) = 0;
 };
 
-// "srt" or "reg"; nullptr for another name.
+struct ExplorerInfo {
+  std::string name;         // "reg"
+  std::string description;  // one line for --help
+  std::function<std::unique_ptr<Explorer>(const ExplorerOptions&)> make;
+};
+
+// name -> explorer: the built-in SRT and REG from the start, others with RegisterExplorer or an
+// ExplorerRegistration, from anywhere (kernel::Registry). The command line, `config print`,
+// RunExploration and the sweeps look explorers up here.
+class ExplorerRegistry : public kernel::Registry<ExplorerInfo> {
+ public:
+  explicit ExplorerRegistry(std::function<void(kernel::Registry<ExplorerInfo>*)> builtins)
+      : kernel::Registry<ExplorerInfo>(std::move(builtins)) {}
+  static ExplorerRegistry& Global();
+};
+
+// Adds an explorer to the global registry: the one line that makes it known to `splam explore`.
+void RegisterExplorer(std::string name, std::string description,
+                      std::function<std::unique_ptr<Explorer>(const ExplorerOptions&)> make);
+
+// RegisterExplorer as a namespace-scope object of a translation unit of its own (see
+// estimation::SlamMethodRegistration for when a static library's unit is linked).
+struct ExplorerRegistration {
+  ExplorerRegistration(std::string name, std::string description,
+                       std::function<std::unique_ptr<Explorer>(const ExplorerOptions&)> make) {
+    RegisterExplorer(std::move(name), std::move(description), std::move(make));
+  }
+};
+
+// The registered explorer `name`; nullptr for an unknown name.
 std::unique_ptr<Explorer> MakeExplorer(const std::string& name, const ExplorerOptions& options);
 
 }  // namespace splam::exploration

@@ -121,7 +121,8 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
       exploration::MakeExplorer(setup.explorer, options);
   std::shared_ptr<exploration::Localization> localization = MakeLocalization(setup);
   if (!explorer) {
-    outcome.error = "unknown explorer '" + setup.explorer + "' (srt, reg)";
+    outcome.error = "unknown explorer '" + setup.explorer + "' (" +
+                    exploration::ExplorerRegistry::Global().NameList() + ")";
     return outcome;
   }
   if (!localization) {

@@ -1,11 +1,17 @@
 // The registry of SLAM methods: the built-in methods, adding one, and errors as values.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "estimation/slam_method.h"
 #include "estimation/topological_slam.h"
+#include "tests/estimation/echo_slam_method.h"
 
 namespace splam::estimation {
 namespace {
+
+using test_methods::Echo;
+using test_methods::EchoOptions;
 
 TEST(SlamRegistry, ListsTheBuiltInMethodsInOrder) {
   const SlamRegistry& registry = SlamRegistry::Global();
@@ -56,36 +62,6 @@ TEST(SlamRegistry, SensorNoiseReachesTheOptions) {
   EXPECT_DOUBLE_EQ(o.odometry.forward_per_m, 3.0 * OdometryNoiseModel().forward_per_m);
 }
 
-// A method of one's own: it reports what it was given.
-struct EchoOptions {
-  double gain = 1.0;
-  void VisitFields(kernel::FieldVisitor& v) { v.Field("gain", &gain, "a gain"); }
-  kernel::Status Validate() const {
-    return gain > 0 ? kernel::Status::Ok() : kernel::Status::Error("gain must be positive");
-  }
-};
-class Echo : public SlamMethod {
- public:
-  Echo(const EchoOptions& o, const SlamContext& c) : gain_(o.gain), pose_(c.start) {}
-  void Predict(const kernel::Pose2& u) override { pose_ = pose_ * u; }
-  void Update(const kernel::Scan&, const kernel::Pose2&) override { ++updates_; }
-  kernel::Pose2 pose() const override { return pose_; }
-  kernel::Status health() const override { return kernel::Status::Ok(); }
-  std::size_t MapSize() const override { return static_cast<std::size_t>(updates_); }
-  std::string MapDescription() const override { return "echo"; }
-  SlamMap Map() const override { return {}; }
-  SlamStatistics Statistics() const override {
-    SlamStatistics s;
-    s.map = {{"gain", long(gain_)}};
-    return s;
-  }
-
- private:
-  double gain_;
-  kernel::Pose2 pose_;
-  int updates_ = 0;
-};
-
 TEST(SlamRegistry, OneLineRegistersAMethod) {
   RegisterSlamMethod<EchoOptions>(
       "echo", "test method",
@@ -107,6 +83,19 @@ TEST(SlamRegistry, OneLineRegistersAMethod) {
   });
   const auto names = SlamRegistry::Global().Names();
   EXPECT_EQ(std::count(names.begin(), names.end(), "echo"), 1);
+}
+
+// A method registered by a static object in a translation unit of its own
+// (slam_registration_elsewhere.cc) is there before main, after the built-in methods.
+TEST(SlamRegistry, AMethodRegisteredInAnotherUnitIsThere) {
+  const SlamRegistry& registry = SlamRegistry::Global();
+  ASSERT_NE(registry.Find("echo-elsewhere"), nullptr);
+  const std::vector<std::string> names = registry.Names();
+  EXPECT_GT(std::find(names.begin(), names.end(), "echo-elsewhere") - names.begin(),
+            std::find(names.begin(), names.end(), "topological-graph") - names.begin());
+  auto made = registry.Make("echo-elsewhere", nullptr, {kernel::Pose2(1, 0, 0), {}});
+  ASSERT_TRUE(made.ok()) << made.error;
+  EXPECT_EQ((*made.value)->pose().x(), 1.0);
 }
 
 TEST(Status, CarriesTheFirstError) {

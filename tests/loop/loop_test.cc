@@ -2,6 +2,7 @@
 // any registered method, and the scoring of runs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -9,6 +10,7 @@
 
 #include "estimation/metrics.h"
 #include "estimation/topological_slam.h"
+#include "exploration/explorer.h"
 #include "io/simulation_log.h"
 #include "kernel/angle.h"
 #include "loop/association_scoring.h"
@@ -244,11 +246,29 @@ TEST(RunExploration, NamesWhatCannotStart) {
   EXPECT_NE(LocalizationNames().find("ground-truth, odometry, ekf-lines"), std::string::npos);
   setup.localization = "ground-truth";
   setup.explorer = "dfs";
-  EXPECT_EQ(RunExploration(world, setup).error, "unknown explorer 'dfs' (srt, reg)");
+  EXPECT_EQ(RunExploration(world, setup).error,
+            "unknown explorer 'dfs' (" + exploration::ExplorerRegistry::Global().NameList() + ")");
+  EXPECT_EQ(exploration::ExplorerRegistry::Global().NameList().rfind("srt, reg", 0), 0u);
   setup.localization = "topological";
   EXPECT_NE(DefaultSlamOptions(setup), nullptr);
   setup.localization = "odometry";
   EXPECT_EQ(DefaultSlamOptions(setup), nullptr);
+}
+
+// An explorer registered by a static object in a translation unit of its own
+// (explorer_registration_elsewhere.cc) is listed after SRT and REG and runs like them.
+TEST(RunExploration, RunsAnExplorerRegisteredInAnotherUnit) {
+  const std::vector<std::string> names = exploration::ExplorerRegistry::Global().Names();
+  ASSERT_EQ(std::find(names.begin(), names.end(), "reg-again") - names.begin(), 2);
+  const sim::World world = *sim::BuiltinWorld("corridor");
+  ExploreSetup setup;
+  setup.explorer = "reg-again";
+  setup.localization = "ground-truth";
+  setup.options.max_nodes = 4;
+  const ExploreOutcome outcome = RunExploration(world, setup);
+  ASSERT_TRUE(outcome.error.empty()) << outcome.error;
+  EXPECT_EQ(outcome.run.explorer, "reg-again");
+  EXPECT_EQ(boost::num_vertices(outcome.run.graph), 4u);
 }
 
 TEST(SlamContext, TheRegionReachesTheTopologicalSlam) {
