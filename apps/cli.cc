@@ -1,0 +1,56 @@
+#include "apps/cli.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <new>
+#include <system_error>
+
+#include "apps/commands.h"
+
+namespace splam::apps {
+namespace {
+
+// Standard output or error that cannot be written (a full disk) is a failed write like any
+// file's: said on standard error (if it can be), exit status 4 (kExitWriteFailed).
+int StreamFailed(const char* why) {
+  std::fprintf(stderr, "splam: writing to standard output or error failed: %s\n", why);
+  return splam::apps::kExitWriteFailed;
+}
+
+}  // namespace
+
+int Main(int argc, char** argv) {
+  CLI::App app{"splam: B-spline SLAM and exploration for 2-D laser robots"};
+  app.require_subcommand(1);
+  int exit_code = splam::apps::kExitOk;
+  splam::apps::AddSimulateCommand(&app, &exit_code);
+  splam::apps::AddRenderCommand(&app, &exit_code);
+  splam::apps::AddSlamCommand(&app, &exit_code);
+  splam::apps::AddEvalCommand(&app, &exit_code);
+  splam::apps::AddExperimentCommand(&app, &exit_code);
+  splam::apps::AddExploreCommand(&app, &exit_code);
+  splam::apps::AddConfigCommand(&app, &exit_code);
+  splam::apps::AddConvertCommand(&app, &exit_code);
+  splam::apps::AddSweepCommand(&app, &exit_code);
+  int status = exit_code;
+  try {
+    app.parse(argc, argv);
+    status = exit_code;
+  } catch (const CLI::ParseError& e) {
+    status = app.exit(e) == 0 ? 0 : splam::apps::kExitBadInput;
+  } catch (const std::system_error& e) {  // fmt::print to a stream that refused the bytes
+    return StreamFailed(e.code().message().c_str());
+  } catch (const std::bad_alloc&) {  // what no bound caught: said, not a signal
+    std::fprintf(stderr, "splam: out of memory: the input asks for more than this machine has\n");
+    return splam::apps::kExitBadInput;
+  }
+  errno = 0;
+  if (std::fflush(stdout) != 0 || std::ferror(stdout))
+    return status != 0 ? status : StreamFailed(errno != 0 ? std::strerror(errno) : "stream error");
+  return status;
+}
+
+}  // namespace splam::apps
