@@ -1,0 +1,81 @@
+// A splam program of one's own, built outside splam's tree against the installed package
+// (find_package(splam)): a SLAM variant and an explorer variant, one registration line each,
+// and splam's command line with both among its choices.
+//   my_splam slam --method dead-reckoning LOG --out DIR
+//   my_splam explore --explorer reg-again --localization dead-reckoning
+#include <memory>
+#include <string>
+
+#include "apps/cli.h"
+#include "estimation/slam_method.h"
+#include "exploration/explorer.h"
+#include "exploration/reg.h"
+
+namespace my_lab {
+
+// The smallest SLAM method: the odometry alone, with an options struct of one field.
+struct DeadReckoningOptions {
+  double scale = 1.0;  // odometry increments are scaled by this
+  void VisitFields(splam::kernel::FieldVisitor& v) { v.Field("scale", &scale, "odometry scale"); }
+  splam::kernel::Status Validate() const {
+    return scale > 0 ? splam::kernel::Status::Ok()
+                     : splam::kernel::Status::Error("scale must be positive");
+  }
+};
+
+class DeadReckoning : public splam::estimation::SlamMethod {
+ public:
+  DeadReckoning(const DeadReckoningOptions& o, const splam::estimation::SlamContext& c)
+      : scale_(o.scale), pose_(c.start) {}
+  void Predict(const splam::kernel::Pose2& u) override {
+    pose_ = pose_ * splam::kernel::Pose2(scale_ * u.x(), scale_ * u.y(), u.theta());
+  }
+  void Update(const splam::kernel::Scan&, const splam::kernel::Pose2&) override { ++scans_; }
+  splam::kernel::Pose2 pose() const override { return pose_; }
+  splam::kernel::Status health() const override { return splam::kernel::Status::Ok(); }
+  std::size_t MapSize() const override { return 0; }
+  std::string MapDescription() const override { return "no map"; }
+  splam::estimation::SlamMap Map() const override { return {}; }
+  splam::estimation::SlamStatistics Statistics() const override {
+    splam::estimation::SlamStatistics s;
+    s.map = {{"scans", scans_}};
+    return s;
+  }
+
+ private:
+  double scale_;
+  splam::kernel::Pose2 pose_;
+  long scans_ = 0;
+};
+
+// An explorer variant's shape: REG under a name of its own (a variant of the strategy
+// implements Run as exploration/reg.h does).
+class RegAgain : public splam::exploration::Explorer {
+ public:
+  explicit RegAgain(const splam::exploration::ExplorerOptions& o) : reg_(o) {}
+  std::string name() const override { return "reg-again"; }
+  splam::exploration::ExplorationRun Run(splam::exploration::RobotInterface* robot,
+                                         splam::exploration::Localization* localization) override {
+    splam::exploration::ExplorationRun run = reg_.Run(robot, localization);
+    run.explorer = name();
+    return run;
+  }
+
+ private:
+  splam::exploration::RegExplorer reg_;
+};
+
+}  // namespace my_lab
+
+int main(int argc, char** argv) {
+  splam::estimation::RegisterSlamMethod<my_lab::DeadReckoningOptions>(
+      "dead-reckoning", "the odometry alone (out-of-tree tutorial)",
+      [](const my_lab::DeadReckoningOptions& o, const splam::estimation::SlamContext& c) {
+        return std::make_unique<my_lab::DeadReckoning>(o, c);
+      });
+  splam::exploration::RegisterExplorer("reg-again", "REG under another name (out-of-tree tutorial)",
+                                       [](const splam::exploration::ExplorerOptions& o) {
+                                         return std::make_unique<my_lab::RegAgain>(o);
+                                       });
+  return splam::apps::Main(argc, argv);
+}
