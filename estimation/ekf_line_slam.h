@@ -7,6 +7,7 @@
 
 #include "estimation/ekf_core.h"
 #include "estimation/landmark_candidates.h"
+#include "estimation/map_line.h"
 #include "estimation/models.h"
 #include "kernel/lines.h"
 #include "kernel/options.h"
@@ -59,19 +60,6 @@ struct EkfLineSlamOptions {
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
   kernel::Status Validate() const;
-};
-
-// One landmark of the map as it is drawn and exported.
-struct MapLine {
-  Line line;                   // world frame
-  Eigen::Vector2d start, end;  // extent of everything seen of it
-  Eigen::Matrix2d covariance;  // of (rho, theta)
-  int observations = 0;
-};
-struct MapCorner {
-  Eigen::Vector2d position;
-  Eigen::Matrix2d covariance;
-  int observations = 0;
 };
 
 // What one update did.

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "estimation/ekf_line_slam.h"
+#include "estimation/map_line.h"
 #include "estimation/map_spline.h"
 #include "estimation/pose_graph.h"
 #include "kernel/local_safe_region.h"

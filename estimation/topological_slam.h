@@ -10,7 +10,6 @@
 #include <unordered_map>
 #include <vector>
 
-#include "estimation/ekf_bspline_slam.h"
 #include "estimation/graph_slam.h"
 #include "estimation/models.h"
 #include "estimation/spline_association.h"

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "estimation/ekf_line_slam.h"
 #include "estimation/slam_method.h"
 #include "estimation/topological_slam.h"
 #include "tests/estimation/echo_slam_method.h"
