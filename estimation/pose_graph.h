@@ -111,13 +111,14 @@ class PoseGraph {
   // map rather than the path (a reduced pose graph, Johannsson et al. 2013): j is held at its
   // present pose relative to `into` (node(j) = node(into) * into_T_j from now on, SetNode
   // ignores it) and leaves the optimisation. Its other edges go to `into`, each the same
-  // residual to first order. The edges between j and `into` are dropped, their covariance
-  // carried into each of j's other edges as the offset's error: merging a node of a chain into
-  // its neighbour composes its two edges (the marginal of the nodes left is unchanged), and at
-  // a node of more edges the offset's error is counted once per edge (its correlation between
-  // them ignored: less certain, never more). Without an edge between them (a revisit tied to the
-  // place through a closure) the offset is taken as exact. An edge parallel to an edge of the
-  // same kind (loop, robust) is fused into it (FusedEdge), so that the edges follow the pairs of
+  // residual to first order, and the edges between j and `into` are dropped. When j has one
+  // other edge (a node of a chain merged into its neighbour) the dropped edges' covariance is
+  // carried into it as the offset's error: the two edges are composed, and the marginal of the
+  // nodes left is unchanged. Otherwise the offset is taken as exact, as a reduced pose graph
+  // does for a revisit tied to the place: a node of several edges has no marginal in separate
+  // edges, and counting the offset's error once per edge weakened the closures and a revisit's
+  // odometry (docs/graph_slam.md, "Memory, session 36"). An edge parallel to an edge of the same
+  // kind (loop, robust) is fused into it (FusedEdge), so that the edges follow the pairs of
   // places joined. The edges that did not reach j keep their order.
   void MergeNode(int j, int into);
   bool merged(int i) const;

@@ -554,24 +554,32 @@ TEST(PoseGraph, PropertyEdgeJacobiansMatchNumericalDifferences) {
 // before F as they were to the last bit, lowers the cost of the edges it optimises, and with F = 0
 // is the whole graph's optimisation. A chain of 60 noisy edges with a closure from node 5 to the
 // last, F drawn in [1, 55].
+// A chain of `n` nodes 0.3 m and 0.1 rad apart along an arc: its edges the true motions with
+// noise of 2 cm and 0.005 rad (information kChainInformation), its nodes where those put them.
+// Returns the true poses.
+const Eigen::Matrix3d kChainInformation = Eigen::Vector3d(2500, 2500, 40000).asDiagonal();
+std::vector<Pose2> NoisyChain(int n, std::mt19937* gen, PoseGraph* graph) {
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::vector<Pose2> truth = {Pose2()};
+  Pose2 dead = truth.front();
+  graph->AddNode(dead);
+  for (int i = 1; i < n; ++i) {
+    truth.push_back(truth.back() * Pose2(0.3, 0.0, 0.1));
+    const Pose2 m = truth[truth.size() - 2].Between(truth.back()) *
+                    Scaled(0.02, 0.02, 0.005, Draw<3>(noise, gen));
+    dead = dead * m;
+    graph->AddNode(dead);
+    graph->AddEdge({i - 1, i, m, kChainInformation, false});
+  }
+  return truth;
+}
+
 TEST(PoseGraph, PropertyALocalOptimisationHoldsTheEarlierNodes) {
   std::mt19937 gen(17);
-  std::normal_distribution<double> noise(0.0, 1.0);
   for (int trial = 0; trial < 20; ++trial) {
     PoseGraph graph;
-    const Eigen::Matrix3d information = Eigen::Vector3d(2500, 2500, 40000).asDiagonal();
-    std::vector<Pose2> truth = {Pose2()};
-    Pose2 dead = truth.front();
-    graph.AddNode(dead);
-    for (int i = 1; i < 60; ++i) {
-      truth.push_back(truth.back() * Pose2(0.3, 0.0, 0.1));
-      const Pose2 m = truth[truth.size() - 2].Between(truth.back()) *
-                      Scaled(0.02, 0.02, 0.005, Draw<3>(noise, &gen));
-      dead = dead * m;
-      graph.AddNode(dead);
-      graph.AddEdge({i - 1, i, m, information, false});
-    }
-    graph.AddEdge({5, 59, truth[5].Between(truth[59]), information, true});
+    const std::vector<Pose2> truth = NoisyChain(60, &gen, &graph);
+    graph.AddEdge({5, 59, truth[5].Between(truth[59]), kChainInformation, true});
     const int first_free = 1 + static_cast<int>(gen() % 55);
     PoseGraph local = graph, whole = graph, all = graph;
     const PoseGraphSummary s = local.Optimize(PoseGraphOptions{}, first_free);
@@ -639,35 +647,23 @@ TEST(PoseGraph, PropertyAFusedEdgeCostsWhatTheTwoEdgesCostTogether) {
 // with closures from every tenth node to the one five before, chain nodes (two edges) merged into
 // the node before them at their dead-reckoned poses, then optimised, puts every node left within
 // a millimetre of the whole graph's optimum (a merged node keeps its dead-reckoned offset). The
-// closures' nodes (three edges each) merged at that optimum into a live node they have no edge
-// to (the offset taken as exact, as for a revisit) keep it within a millimetre; merged into the
-// next node (the offset's error counted on both other edges) they move it by at most 5 cm
-// (measured: 3.2 cm, the chain's far end, the five closures' pull weakened). No edge then
+// closures' nodes (three edges each) merged at that optimum, into the next node or into a live
+// node they have no edge to, keep it within a millimetre: their offsets are taken as exact and
+// their other edges carried to the node merged into are the same residuals. No edge then
 // reaches a merged node or joins a node to itself, no two edges of one kind join the same nodes,
 // and the merged nodes follow the nodes they were merged into.
 TEST(PoseGraph, PropertyMergingANodeOfAChainComposesItsEdges) {
   std::mt19937 gen(31);
   std::normal_distribution<double> noise(0.0, 1.0);
-  double worst_m = 0.0;
   for (int trial = 0; trial < 20; ++trial) {
     PoseGraph graph;
-    const Eigen::Matrix3d information = Eigen::Vector3d(2500, 2500, 40000).asDiagonal();
-    std::vector<Pose2> truth = {Pose2()};
-    Pose2 dead = truth.front();
-    graph.AddNode(dead);
-    for (int i = 1; i < 60; ++i) {
-      truth.push_back(truth.back() * Pose2(0.3, 0.0, 0.1));
-      const Pose2 m = truth[truth.size() - 2].Between(truth.back()) *
-                      Scaled(0.02, 0.02, 0.005, Draw<3>(noise, &gen));
-      dead = dead * m;
-      graph.AddNode(dead);
-      graph.AddEdge({i - 1, i, m, information, false});
-      if (i % 10 == 0)
-        graph.AddEdge({i - 5, i,
-                       truth[static_cast<std::size_t>(i - 5)].Between(truth.back()) *
-                           Scaled(0.02, 0.02, 0.005, Draw<3>(noise, &gen)),
-                       information, true});
-    }
+    const std::vector<Pose2> truth = NoisyChain(60, &gen, &graph);
+    for (int i = 10; i < 60; i += 10)
+      graph.AddEdge(
+          {i - 5, i,
+           truth[static_cast<std::size_t>(i - 5)].Between(truth[static_cast<std::size_t>(i)]) *
+               Scaled(0.02, 0.02, 0.005, Draw<3>(noise, &gen)),
+           kChainInformation, true});
     PoseGraph whole = graph;
     whole.Optimize(PoseGraphOptions{});
     const auto merge = [](PoseGraph* g, int j, int into) { g->MergeNode(j, into); };
@@ -685,7 +681,7 @@ TEST(PoseGraph, PropertyMergingANodeOfAChainComposesItsEdges) {
           << trial << " " << i;
     }
     // The closures' nodes (three edges each) merged at that optimum into the next node, and in
-    // a copy into a live node they have no edge to (their offsets then taken as exact).
+    // a copy into a live node they have no edge to: their offsets are taken as exact.
     PoseGraph exact = graph;
     for (int j = 10; j < 60; j += 10) {
       int far = j + 2;
@@ -700,8 +696,8 @@ TEST(PoseGraph, PropertyMergingANodeOfAChainComposesItsEdges) {
     for (int i = 0; i < 60; ++i) {
       EXPECT_LT((exact.node(i).translation() - exact_before.node(i).translation()).norm(), 1e-3)
           << trial << " " << i;
-      worst_m =
-          std::max(worst_m, (graph.node(i).translation() - before.node(i).translation()).norm());
+      EXPECT_LT((graph.node(i).translation() - before.node(i).translation()).norm(), 1e-3)
+          << trial << " " << i;
     }
     EXPECT_EQ(graph.num_live_nodes(), 60 - merged);
     std::set<std::tuple<int, int, bool>> pairs;
@@ -716,8 +712,6 @@ TEST(PoseGraph, PropertyMergingANodeOfAChainComposesItsEdges) {
     for (int i = 0; i < 60; ++i)
       EXPECT_LT(MaxAbsDifference(shifted.node(i), shift * graph.node(i)), 1e-9) << i;
   }
-  EXPECT_LT(worst_m, 0.05);
-  std::cout << "merged closures' nodes moved the optimum by " << worst_m << " m at most\n";
 }
 
 // A recovery search that took the wrong basin (a 16 deg turn and 0.4 m where the robot drove
