@@ -146,7 +146,7 @@ struct LoopClosureOptions {
   kernel::Status Validate() const;
 };
 
-// Graph SLAM on curve maps (issue 16): keyframes keep their scan's B-spline curves and points;
+// Graph SLAM on curve maps: keyframes keep their scan's B-spline curves and points;
 // every scan is registered against a submap rasterised from the curves of recent keyframes;
 // each new keyframe searches earlier ones for a loop closure; a Ceres pose graph over the
 // keyframes is optimised when closures are accepted and re-anchors the map.

@@ -24,7 +24,7 @@ struct TopologicalGraphSlamOptions {
   kernel::Status Validate() const;
 };
 
-// The topological B-spline SLAM with the graph SLAM's back end behind it (issue 17, item 4):
+// The topological B-spline SLAM with the graph SLAM's back end behind it:
 // the topological SLAM localises every scan against its curve map; the poses it finds become the
 // graph's keyframes (every keyframe_distance_m or keyframe_angle_rad, and at every exploration
 // node), with edges between consecutive keyframes; the graph searches every new keyframe for loop

@@ -29,7 +29,7 @@ std::vector<TimeBin> TimeByMapSize(const std::vector<double>& ms,
 double MeanDistanceToObstacles(const sim::RayCaster& caster,
                                const std::vector<estimation::MapSpline>& splines);
 
-// Map curves per true obstacle (issue 17, item 3): every map curve is given to the obstacle
+// Map curves per true obstacle: every map curve is given to the obstacle
 // nearest to most of its points (5 cm apart, within 0.5 m); the number of curves over the number
 // of obstacles given at least one. A map that builds an object twice, or in pieces, scores more
 // than 1; curves on no obstacle count in the numerator only. 0 for an empty map.

@@ -579,8 +579,8 @@ bool Session::LegIsClear(const kernel::LocalSafeRegion& lsr, const Eigen::Vector
   // The robot may stand closer to the boundary than `needed` (the sonar's part of the boundary
   // is conservative: 0.27 m from the laser behind the robot); the leg must then not get any
   // closer and must be fully clear after its first `needed` metres. A leg shorter than that only
-  // must not get closer (it had to be fully clear until issue 18, which no leg from such a start
-  // is: the short first leg of a bent path through a door was refused).
+  // must not get closer: required to be fully clear, no such leg is (the short first leg of a
+  // bent path through a door was refused).
   // "Not closer" tolerates half a cell of LsrPlanner's grid, whose paths leave such a start
   // sideways along the boundary.
   const double floor = std::min(needed, kernel::SegmentClearance(lsr, a, a)) - kStartTolerance;
