@@ -1,11 +1,13 @@
 #ifndef SPLAM_IO_MAP_EXPORT_H_
 #define SPLAM_IO_MAP_EXPORT_H_
 
+#include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "estimation/ekf_bspline_slam.h"
-#include "estimation/ekf_line_slam.h"
+#include "estimation/map_line.h"
+#include "estimation/map_spline.h"
 #include "estimation/slam_method.h"
 #include "io/result.h"
 
