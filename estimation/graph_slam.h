@@ -262,25 +262,17 @@ struct GraphSlamOptions {
   // deferred_optimization_fraction of its nodes since its last one; closures that would move the
   // graph, a graph grown by that much, and the end of the data (Finish) optimise it whole, and
   // every closure added since its last whole optimisation must then agree with it (else it is
-  // removed). On a revisit every few keyframes close, and an optimisation's cost grows with the
-  // graph: optimised whole at every flush (fraction 0), two hours of `office-long` took 339 s and
-  // the 99th percentile of a step grew from 78 to 263 ms from the first hour to the second.
-  // Optimised again only after fraction * n new keyframes, a graph of n nodes whose optimisation
-  // costs c per node costs at most c / fraction per keyframe, whatever the log's length (a
-  // geometric schedule).
+  // removed). On a revisit every few keyframes close, and a whole optimisation's cost grows with
+  // the graph. Optimised again only after fraction * n new keyframes, a graph of n nodes whose
+  // optimisation costs c per node costs at most c / fraction per keyframe, whatever the log's
+  // length (a geometric schedule). 0: every flush optimises the whole graph.
   double deferred_optimization_fraction = 0.03;
   // Meanwhile the closures that wait optimise the last local_optimization_keyframes keyframes
   // (and at least each closure's newer keyframe), the earlier ones held, so that the front end's
-  // recent keyframes are pulled onto the map as at every flush; the next whole optimisation
-  // takes out what holding the rest bent. Without it (0) the submaps between whole
-  // optimisations drift from the map: two hours of `office-long` ended 0.072-0.078 m off against
-  // 0.054 m at every flush. 100 keyframes (30 m of path) hold the submap and the keyframes a
-  // flush closes. Alone (the whole graph never optimised for closures that agree) a window of
-  // 100 left MIT Killian Court 1.59 m off (session 34). The two defaults together: intel
-  // 0.0190 m with 0.52 s of optimisation (0.0190 m and 1.44 s at every flush, the same hour),
-  // mit-csail 0.0291 m (0.0294 m), MIT Killian Court 0.0301 m (0.0303 m), `office-long` for two
-  // hours 0.052 m in 96 s, its 99th percentile 4.2 and 2.9 ms; three laps of `complex`, seeds
-  // 1-6, 0.0242 m against 0.0217 m at every flush (docs/graph_slam.md, "Speed").
+  // recent keyframes are pulled onto the map as at every flush and its submaps do not drift from
+  // it; the next whole optimisation takes out what holding the rest bent. 100 keyframes (30 m of
+  // path) hold the submap and the keyframes a flush closes. 0: none. The measurements behind
+  // both defaults are in docs/graph_slam.md ("Speed, session 35").
   int local_optimization_keyframes = 100;
   // A keyframe's loop-closure search reads the graph as it was when the keyframe was made, and
   // what it found is added when the next keyframe is made (before it), so that the search can run
