@@ -15,10 +15,6 @@ namespace {
 // The EKFs start with a small covariance at the known start pose.
 Eigen::Matrix3d StartCovariance() { return Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal(); }
 
-kernel::Status StatusOf(const std::string& health) {
-  return health.empty() ? kernel::Status::Ok() : kernel::Status::Error(health);
-}
-
 // What every EKF-SLAM filter answers the same way.
 template <class Filter, class Options>
 class FilterMethod : public SlamMethod {
@@ -33,7 +29,7 @@ class FilterMethod : public SlamMethod {
   std::size_t MapSize() const override {
     return static_cast<std::size_t>(slam_.state().size() - 3) / 2;
   }
-  kernel::Status health() const override { return StatusOf(slam_.health()); }
+  kernel::Status health() const override { return slam_.health(); }
 
  protected:
   Filter slam_;
@@ -202,7 +198,7 @@ class TopologicalSlamMethod : public SlamMethod {
     tally_.Add(slam_.Update(scan, robot_T_laser));
   }
   kernel::Pose2 pose() const override { return slam_.pose(); }
-  kernel::Status health() const override { return StatusOf(slam_.health()); }
+  kernel::Status health() const override { return slam_.health(); }
   std::size_t MapSize() const override { return slam_.num_control_points(); }
   std::size_t MapCurves() const override { return slam_.num_curves(); }
   void AtNode(const kernel::LocalSafeRegion& lsr) override { slam_.SetLocalRegion(lsr); }

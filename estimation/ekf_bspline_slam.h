@@ -135,7 +135,7 @@ class EkfBSplineSlam {
   std::size_t num_control_points() const { return (ekf_.state().size() - 3) / 2; }
   std::vector<MapSpline> MapSplines() const;
   bool healthy() const { return ekf_.healthy(); }
-  const std::string& health() const { return ekf_.health(); }
+  const kernel::Status& health() const { return ekf_.health(); }
   const EkfBSplineSlamOptions& options() const { return options_; }
 
  private:

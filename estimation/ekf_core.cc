@@ -114,13 +114,13 @@ void EkfCore::Negate(Eigen::Index i) {
 }
 
 void EkfCore::CheckHealth() {
-  if (!health_.empty()) return;
+  if (!health_.ok()) return;
   // The state and the diagonal only (O(N)): a non-finite covariance entry reaches the diagonal
   // with the next correction.
   if (!x_.allFinite() || !p_.diagonal().allFinite()) {
-    health_ = "state or covariance is not finite";
+    health_ = kernel::Status::Error("state or covariance is not finite");
   } else if ((p_.diagonal().array() <= 0.0).any()) {
-    health_ = "covariance lost a positive diagonal entry";
+    health_ = kernel::Status::Error("covariance lost a positive diagonal entry");
   }
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "kernel/pose2.h"
+#include "kernel/status.h"
 
 // The filter arithmetic shared by the EKF-SLAM variants: a state X = [x, y, th, landmarks...]
 // with full covariance P, odometry prediction, corrections whose Jacobian touches the robot and
@@ -59,12 +60,12 @@ class EkfCore {
   const Eigen::MatrixXd& covariance() const { return p_; }
 
   // False once the state or covariance is not finite or P lost positive diagonal entries.
-  bool healthy() const { return health_.empty(); }
-  const std::string& health() const { return health_; }
+  bool healthy() const { return health_.ok(); }
+  const kernel::Status& health() const { return health_; }
   void CheckHealth();
   // Marks the filter unhealthy with this message (e.g. invalid options); it then ignores input.
   void Fail(std::string message) {
-    if (health_.empty()) health_ = std::move(message);
+    if (health_.ok()) health_ = kernel::Status::Error(std::move(message));
   }
 
  private:
@@ -73,7 +74,7 @@ class EkfCore {
 
   Eigen::VectorXd x_;
   Eigen::MatrixXd p_;
-  std::string health_;
+  kernel::Status health_;
   std::size_t corrections_ = 0;
 };
 

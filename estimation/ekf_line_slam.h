@@ -101,7 +101,7 @@ class EkfLineSlam {
   // False once the state or covariance is not finite or P lost positive diagonal entries; the
   // message says what happened. An unhealthy filter ignores further input.
   bool healthy() const { return ekf_.healthy(); }
-  const std::string& health() const { return ekf_.health(); }
+  const kernel::Status& health() const { return ekf_.health(); }
 
  private:
   struct LineLandmark {

@@ -20,7 +20,7 @@ TopologicalGraphSlam::TopologicalGraphSlam(const Pose2& start,
     : topological_(start, options.topological), graph_(start, options.graph) {}
 
 kernel::Status TopologicalGraphSlam::health() const {
-  if (!topological_.healthy()) return kernel::Status::Error(topological_.health());
+  if (!topological_.healthy()) return topological_.health();
   return graph_.health();
 }
 

@@ -195,7 +195,7 @@ bool TopologicalSlam::RegionShape::Near(const Eigen::Vector2d& p, double margin_
 
 TopologicalSlam::TopologicalSlam(const Pose2& initial_pose, const TopologicalSlamOptions& options)
     : options_(options),
-      health_(options.Validate().message()),
+      health_(options.Validate()),
       association_(options.association),
       pose_(initial_pose) {
   if (healthy() && options_.prediction == TopologicalPrediction::kScanMatching)

@@ -228,8 +228,8 @@ class TopologicalSlam {
   // The map curves with their samples, curvature and features (world frame).
   const std::vector<kernel::SplineCurve>& curves() const { return curves_; }
   std::vector<MapSpline> MapSplines() const;
-  bool healthy() const { return health_.empty(); }
-  const std::string& health() const { return health_; }
+  bool healthy() const { return health_.ok(); }
+  const kernel::Status& health() const { return health_; }
   const TopologicalSlamOptions& options() const { return options_; }
 
   // Adds a curve to the map as it is (world frame), e.g. a prior map or a benchmark's.
@@ -324,7 +324,7 @@ class TopologicalSlam {
   }
 
   TopologicalSlamOptions options_;
-  std::string health_;
+  kernel::Status health_;
   CurvatureAssociation association_;
   kernel::Pose2 pose_;
   Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Zero();  // of pose_ (point_to_curve)

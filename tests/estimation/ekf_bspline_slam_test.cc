@@ -41,7 +41,7 @@ DriveResult Drive(const sim::World& world, const EkfBSplineSlamOptions& options,
     const sim::SensorFrame& f = r.frames[i];
     if (i > 0) slam->Predict(r.frames[i - 1].odometry_pose.Between(f.odometry_pose));
     const BSplineUpdateReport report = slam->Update(f.scan);
-    EXPECT_TRUE(slam->healthy()) << slam->health();
+    EXPECT_TRUE(slam->healthy()) << slam->health().message();
     run.created += static_cast<int>(report.created.size());
     run.extended += static_cast<int>(report.extended.size());
     run.truth.push_back({f.time_s, f.true_pose});
@@ -136,7 +136,7 @@ TEST(EkfBSplineSlamOptions, Validate) {
   o.association = "nearest";
   EkfBSplineSlam slam(kernel::Pose2(), Eigen::Matrix3d::Identity(), o);
   EXPECT_FALSE(slam.healthy());
-  EXPECT_NE(slam.health().find("association"), std::string::npos);
+  EXPECT_NE(slam.health().message().find("association"), std::string::npos);
   kernel::Scan scan;
   scan.angular_step_rad = 0.01;
   scan.max_range_m = 4.0;

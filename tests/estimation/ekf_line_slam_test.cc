@@ -103,7 +103,7 @@ TEST(EkfLineSlam, PropertyCorrectsOdometryDriftAgainstTheMap) {
       dead_reckoning = dead_reckoning * measured;
       slam.Predict(measured);
       slam.Update(SeeRoom(truth, &random, 0.005), Pose2());
-      ASSERT_TRUE(slam.healthy()) << slam.health();
+      ASSERT_TRUE(slam.healthy()) << slam.health().message();
     }
     const double error = (slam.pose().translation() - truth.translation()).norm();
     drifted += (dead_reckoning.translation() - truth.translation()).norm() > 0.2;
