@@ -17,7 +17,6 @@
 #include "estimation/distance_grid.h"
 #include "estimation/graph_slam.h"
 #include "estimation/pose_graph.h"
-#include "estimation/pose_graph_uncertainty.h"
 #include "estimation/scan_registration.h"
 #include "estimation/scan_view.h"
 #include "io/world_file.h"

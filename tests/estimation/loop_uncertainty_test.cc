@@ -6,6 +6,7 @@
 #include <Eigen/LU>
 
 #include <cmath>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -112,6 +113,44 @@ TEST(RelativeCovariances, AClosureShortensTheUncertainPath) {
   // A node the source does not reach has an infinite covariance.
   graph.AddNode(Pose2(100, 0, 0));
   EXPECT_FALSE(std::isfinite(RelativeCovariances(graph, 40)[41](0, 0)));
+}
+
+// RelativeCovarianceWithin gives RelativeCovariances' covariance of one node, searching only as
+// far as the bound: the same matrix for every node within it, nothing beyond it, and a node
+// reached only the long way round is beyond a bound that the closure's path meets.
+TEST(RelativeCovariances, TheBoundedSearchAgreesWithTheWholeOneWithinItsBound) {
+  PoseGraph graph;
+  const Eigen::Matrix3d step_covariance = Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal();
+  Pose2 pose;
+  graph.AddNode(pose);
+  for (int i = 1; i <= 40; ++i) {
+    const Pose2 step(0.5, 0.0, i % 10 == 0 ? kernel::kPi / 2 : 0.0);
+    pose = pose * step;
+    graph.AddNode(pose);
+    graph.AddEdge(Edge(i - 1, i, step, step_covariance));
+  }
+  const Eigen::Matrix3d closure_covariance = Eigen::Vector3d(4e-4, 4e-4, 1e-4).asDiagonal();
+  graph.AddEdge(Edge(0, 40, graph.node(0).Between(graph.node(40)), closure_covariance));
+  const PoseGraphAdjacency adjacent = Adjacency(graph);
+  const std::vector<Eigen::Matrix3d> whole = RelativeCovariances(graph, 40);
+  const auto trace = [](const Eigen::Matrix3d& c) { return c(0, 0) + c(1, 1); };
+  const double bound = trace(whole[2]) + 1e-12;  // node 2: through the closure, two steps on
+  int within = 0;
+  for (int i = 0; i <= 40; ++i) {
+    const std::optional<Eigen::Matrix3d> c =
+        RelativeCovarianceWithin(graph, adjacent, 40, i, bound);
+    const double t = trace(whole[static_cast<std::size_t>(i)]);
+    if (t <= bound) {
+      ASSERT_TRUE(c.has_value()) << i;
+      EXPECT_LT((*c - whole[static_cast<std::size_t>(i)]).norm(), 1e-15) << i;
+      ++within;
+    } else {
+      EXPECT_FALSE(c.has_value()) << i;
+    }
+  }
+  EXPECT_GE(within, 5);   // 40, 39, 38, ... and 0, 1, 2 through the closure
+  EXPECT_LE(within, 20);  // not the far side of the square
+  EXPECT_FALSE(RelativeCovarianceWithin(graph, adjacent, 40, 20, bound).has_value());
 }
 
 // Two passes along the office corridor, scans ray-cast every 0.5 m: with the true poses almost no
