@@ -879,11 +879,7 @@ void GraphSlam::MergeTrimmed() {
     else if (++m.checks < 2)  // one more whole optimisation to be tied to the place
       held.push_back(m);
   }
-  for (const QueuedMerge& m : merge) {
-    graph_.MergeNode(m.keyframe, m.into);
-    keyframes_[static_cast<std::size_t>(m.keyframe)].merged = true;
-    ++merged_;
-  }
+  for (const QueuedMerge& m : merge) graph_.MergeNode(m.keyframe, m.into);
   merge_queue_ = std::move(held);
 }
 

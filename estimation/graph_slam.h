@@ -357,7 +357,6 @@ class GraphSlam {
     int scan = 0;              // the scan that made it (0-based, input order)
     bool in_map = false;
     bool trimmed = false;  // its data dropped (trim_spacing_m)
-    bool merged = false;   // its node merged into an earlier one (merge_trimmed_keyframes)
     // The views rasterised on the lattice at `pose` (RasteriseView; by_hits from seen_by_hits),
     // for the submap ([0], the front end's thread) and the loop targets ([1], the loop search's):
     // made again only when the keyframe has moved or its view changed (GraphSlam::ViewsOf).
@@ -417,7 +416,8 @@ class GraphSlam {
   std::size_t num_map_curves() const { return map_curves_; }
   std::size_t num_map_control_points() const { return map_control_points_; }
   long trimmed_keyframes() const { return trimmed_; }
-  long merged_keyframes() const { return merged_; }
+  // Keyframes whose nodes were merged into earlier ones (merge_trimmed_keyframes).
+  long merged_keyframes() const { return graph_.num_nodes() - graph_.num_live_nodes(); }
   // Submaps built anew, and keyframes inserted into one (submap_insert_keyframes).
   long submap_builds() const { return submap_builds_; }
   long submap_inserts() const { return submap_inserts_; }
@@ -613,7 +613,6 @@ class GraphSlam {
     int checks = 0;
   };
   std::vector<QueuedMerge> merge_queue_;
-  long merged_ = 0;
   // The closures added since then without an optimisation: their edges (indices, ascending),
   // their searches (searches_ indices) and the sum of their whitened squared residuals.
   std::vector<int> deferred_edges_, deferred_searches_;

@@ -86,18 +86,24 @@ TEST(RelativeCovariances, PropertyAChainMatchesMonteCarlo) {
 
 // A loop closure is a shortcut: after a closure from the source back to the first node, the
 // first node is as certain as the closure, and the nodes between are reached from either end.
-TEST(RelativeCovariances, AClosureShortensTheUncertainPath) {
+// A square loop of 40 steps of 0.5 m, a quarter turn every 10 steps, each step's covariance
+// 1e-4 on every axis; not closed.
+PoseGraph SquareLoop() {
   PoseGraph graph;
   const Eigen::Matrix3d step_covariance = Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal();
   Pose2 pose;
   graph.AddNode(pose);
-  // A square loop of 40 steps of 0.5 m, a quarter turn every 10 steps.
   for (int i = 1; i <= 40; ++i) {
     const Pose2 step(0.5, 0.0, i % 10 == 0 ? kernel::kPi / 2 : 0.0);
     pose = pose * step;
     graph.AddNode(pose);
     graph.AddEdge(Edge(i - 1, i, step, step_covariance));
   }
+  return graph;
+}
+
+TEST(RelativeCovariances, AClosureShortensTheUncertainPath) {
+  PoseGraph graph = SquareLoop();
   const auto trace = [](const Eigen::Matrix3d& c) { return c(0, 0) + c(1, 1); };
   const std::vector<Eigen::Matrix3d> open = RelativeCovariances(graph, 40);
   const Eigen::Matrix3d closure_covariance = Eigen::Vector3d(4e-4, 4e-4, 1e-4).asDiagonal();
@@ -119,16 +125,7 @@ TEST(RelativeCovariances, AClosureShortensTheUncertainPath) {
 // far as the bound: the same matrix for every node within it, nothing beyond it, and a node
 // reached only the long way round is beyond a bound that the closure's path meets.
 TEST(RelativeCovariances, TheBoundedSearchAgreesWithTheWholeOneWithinItsBound) {
-  PoseGraph graph;
-  const Eigen::Matrix3d step_covariance = Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal();
-  Pose2 pose;
-  graph.AddNode(pose);
-  for (int i = 1; i <= 40; ++i) {
-    const Pose2 step(0.5, 0.0, i % 10 == 0 ? kernel::kPi / 2 : 0.0);
-    pose = pose * step;
-    graph.AddNode(pose);
-    graph.AddEdge(Edge(i - 1, i, step, step_covariance));
-  }
+  PoseGraph graph = SquareLoop();
   const Eigen::Matrix3d closure_covariance = Eigen::Vector3d(4e-4, 4e-4, 1e-4).asDiagonal();
   graph.AddEdge(Edge(0, 40, graph.node(0).Between(graph.node(40)), closure_covariance));
   const PoseGraphAdjacency adjacent = Adjacency(graph);
