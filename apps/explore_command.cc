@@ -84,7 +84,9 @@ kernel::Status Configure(const ExploreArgs& args, ExploreConfig* config) {
            setup.seed != before.seed || setup.odometry_noise_scale != before.odometry_noise_scale;
   };
   if (file) {
-    if (kernel::Status s = file->Read(ExploreConfigRoot(config)); !s.ok()) return s;
+    if (kernel::Status s = file->Read(ExploreConfigRoot(config, /*other_explorers=*/true));
+        !s.ok())
+      return s;
     setup.explorer = before.explorer;
     setup.localization = before.localization;
     setup.seed = before.seed;
@@ -98,11 +100,17 @@ kernel::Status Configure(const ExploreArgs& args, ExploreConfig* config) {
   setup.sonar = config->simulator.enable_sonar;
   setup.simulator = config->simulator;
   setup.slam_options = config->slam_options ? config->slam_options->Clone() : nullptr;
+  setup.explorer_options =
+      config->explorer_options ? config->explorer_options->Clone() : nullptr;
   if (kernel::Status p = setup.region.Validate(); !p.ok()) return p.Prefixed("local_region");
   exploration::ExplorerOptions checked = setup.options;
   checked.lsr_radius_m = setup.region.radius_m;
   checked.alpha = setup.region.alpha;
   if (kernel::Status p = checked.Validate(); !p.ok()) return p;
+  if (setup.explorer_options) {
+    if (kernel::Status p = setup.explorer_options->Validate(); !p.ok())
+      return p.Prefixed("exploration." + setup.explorer);
+  }
   if (kernel::Status p = config->simulator.Validate(); !p.ok()) return p.Prefixed("simulator");
   if (setup.slam_options) return setup.slam_options->Validate().Prefixed(setup.localization);
   return kernel::Status::Ok();

@@ -17,10 +17,13 @@ io::ConfigRoot SlamConfigRoot(SlamConfig* config) {
   };
 }
 
-io::ConfigRoot ExploreConfigRoot(ExploreConfig* config) {
-  return [config, name = config->setup.localization](kernel::FieldVisitor& v) {
+io::ConfigRoot ExploreConfigRoot(ExploreConfig* config, bool other_explorers) {
+  // The explorer's and the method's sections are named after those chosen when the root is made.
+  return [config, other_explorers, explorer = config->setup.explorer,
+          name = config->setup.localization](kernel::FieldVisitor& v) {
     loop::ExploreSetup& s = config->setup;
-    v.Field("explorer", &s.explorer, "srt or reg");
+    v.Field("explorer", &s.explorer,
+            "exploration strategy: " + exploration::ExplorerRegistry::Global().NameList());
     v.Field("localization", &s.localization,
             "where the explorer believes it is: " + loop::LocalizationNames());
     v.Field("seed", &s.seed, "simulator noise and the explorer's draws");
@@ -29,7 +32,20 @@ io::ConfigRoot ExploreConfigRoot(ExploreConfig* config) {
             "override single fields)");
     v.Nested("local_region", "LSR radius r and step alpha r, shared by explorer and SLAM",
              &s.region);
-    v.Nested("exploration", "the explorer's options", &s.options);
+    v.Group("exploration", "the options every explorer shares, and the explorer's own",
+            [&](kernel::FieldVisitor& f) {
+              s.options.VisitFields(f);
+              if (config->explorer_options) {
+                f.Group(explorer, "options of the explorer",
+                        [&](kernel::FieldVisitor& e) { config->explorer_options->VisitFields(e); });
+              }
+              const auto& registry = exploration::ExplorerRegistry::Global();
+              for (const std::string& other : registry.Names()) {
+                if (!other_explorers || other == explorer) continue;
+                std::unique_ptr<kernel::AnyOptions> unused = registry.Find(other)->default_options();
+                f.Group(other, "", [&](kernel::FieldVisitor& e) { unused->VisitFields(e); });
+              }
+            });
     v.Nested("simulator", "the simulated robot and its sensors", &config->simulator);
     if (config->slam_options) {
       v.Group(name, "options of the SLAM method",
@@ -39,6 +55,9 @@ io::ConfigRoot ExploreConfigRoot(ExploreConfig* config) {
 }
 
 void ResetExploreDefaults(ExploreConfig* config) {
+  const exploration::ExplorerInfo* explorer =
+      exploration::ExplorerRegistry::Global().Find(config->setup.explorer);
+  config->explorer_options = explorer != nullptr ? explorer->default_options() : nullptr;
   config->simulator = loop::DefaultSimulator(config->setup);
   config->slam_options = loop::DefaultSlamOptions(config->setup);
 }

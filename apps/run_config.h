@@ -26,16 +26,20 @@ struct SlamConfig {
 io::ConfigRoot SlamConfigRoot(SlamConfig* config);
 
 // `splam explore`: explorer, localization, seed, odometry_noise_scale, local_region,
-// exploration (the explorer's options), simulator, and the SLAM method's options under its name
-// when the localisation is one.
+// exploration (the options every explorer shares, and the explorer's own under its name),
+// simulator, and the SLAM method's options under its name when the localisation is one.
 struct ExploreConfig {
   loop::ExploreSetup setup;
+  std::unique_ptr<kernel::AnyOptions> explorer_options;  // the explorer's own
   sim::SimulatorOptions simulator;
   std::unique_ptr<estimation::SlamOptions> slam_options;
 };
-io::ConfigRoot ExploreConfigRoot(ExploreConfig* config);
-// The simulator and SLAM defaults of config->setup (after explorer, localization, seed and
-// odometry_noise_scale are known).
+// With `other_explorers`, the sections of the other registered explorers are read too (into
+// their defaults) and not used: a file written for one explorer serves a run of another chosen by
+// --explorer, and a key misspelt in any of them is still an error.
+io::ConfigRoot ExploreConfigRoot(ExploreConfig* config, bool other_explorers = false);
+// The explorer's, simulator's and SLAM method's defaults of config->setup (after explorer,
+// localization, seed and odometry_noise_scale are known).
 void ResetExploreDefaults(ExploreConfig* config);
 
 // Applies each "key=value" of `sets` (--set) in order; the first problem names the key.

@@ -110,34 +110,10 @@ struct SlamContext {
 
 // A method's options, type-erased so that the registry and the configuration files can hold
 // any method's options struct.
-class SlamOptions {
- public:
-  virtual ~SlamOptions() = default;
-  virtual void VisitFields(kernel::FieldVisitor& v) = 0;
-  virtual kernel::Status Validate() const = 0;
-  virtual std::unique_ptr<SlamOptions> Clone() const = 0;
-};
-
+using SlamOptions = kernel::AnyOptions;
 // `Options` (a struct with VisitFields and Validate) as SlamOptions.
 template <class Options>
-class SlamOptionsOf : public SlamOptions {
- public:
-  explicit SlamOptionsOf(Options options = {}) : options_(std::move(options)) {}
-  void VisitFields(kernel::FieldVisitor& v) override { options_.VisitFields(v); }
-  // Every number finite (kernel::FiniteFields), then the struct's own checks.
-  kernel::Status Validate() const override {
-    if (kernel::Status s = kernel::FiniteFields(options_); !s.ok()) return s;
-    return options_.Validate();
-  }
-  std::unique_ptr<SlamOptions> Clone() const override {
-    return std::make_unique<SlamOptionsOf>(options_);
-  }
-  Options& options() { return options_; }
-  const Options& options() const { return options_; }
-
- private:
-  Options options_;
-};
+using SlamOptionsOf = kernel::OptionsOf<Options>;
 
 struct SlamMethodInfo {
   std::string name;         // "ekf-lines"

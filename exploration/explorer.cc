@@ -26,10 +26,6 @@ kernel::Status ExplorerOptions::Validate() const {
         "frontier_view_depth_m must be in [0, 100] m and shadow_edge_m in (0, 100] m");
   if (retry_nodes < 0 || retry_nodes > 10000)
     return kernel::Status::Error("retry_nodes must be in [0, 10000]");
-  if (srt_max_attempts < 1 || srt_max_attempts > 10000)
-    return kernel::Status::Error("srt_max_attempts must be in [1, 10000]");
-  if (!(reg_piece_factor > 0.0 && reg_piece_factor <= 100.0))
-    return kernel::Status::Error("reg_piece_factor must be in (0, 100]");
   if (max_nodes < 1 || max_nodes > 1000000)
     return kernel::Status::Error("max_nodes must be in [1, 1000000]");
   if (!(max_time_s > 0.0 && max_time_s <= 1e7))
@@ -64,10 +60,16 @@ std::string TerminationName(Termination termination) {
 namespace {
 
 void AddBuiltinExplorers(kernel::Registry<ExplorerInfo>* registry) {
-  registry->Add({"srt", "Sensor-based Random Tree (Oriolo et al. 2004)",
-                 [](const ExplorerOptions& o) { return std::make_unique<SrtExplorer>(o); }});
-  registry->Add({"reg", "Random Exploration Graph (paper 003 §3.1)",
-                 [](const ExplorerOptions& o) { return std::make_unique<RegExplorer>(o); }});
+  registry->Add(MakeExplorerInfo<SrtOptions>(
+      "srt", "Sensor-based Random Tree (Oriolo et al. 2004)",
+      [](const ExplorerOptions& o, const SrtOptions& srt) {
+        return std::make_unique<SrtExplorer>(o, srt);
+      }));
+  registry->Add(MakeExplorerInfo<RegOptions>(
+      "reg", "Random Exploration Graph (paper 003 §3.1)",
+      [](const ExplorerOptions& o, const RegOptions& reg) {
+        return std::make_unique<RegExplorer>(o, reg);
+      }));
 }
 
 }  // namespace
@@ -77,14 +79,34 @@ ExplorerRegistry& ExplorerRegistry::Global() {
   return registry;
 }
 
-void RegisterExplorer(std::string name, std::string description,
-                      std::function<std::unique_ptr<Explorer>(const ExplorerOptions&)> make) {
-  ExplorerRegistry::Global().Add({std::move(name), std::move(description), std::move(make)});
+kernel::Result<std::unique_ptr<Explorer>> ExplorerRegistry::Make(
+    const std::string& name, const ExplorerOptions& options, const kernel::AnyOptions* own) const {
+  using R = kernel::Result<std::unique_ptr<Explorer>>;
+  const ExplorerInfo* info = Find(name);
+  if (info == nullptr) return R::Fail("unknown explorer '" + name + "' (" + NameList() + ")");
+  if (kernel::Status s = kernel::FiniteFields(options); !s.ok())
+    return R::Fail(s.Prefixed("invalid explorer options"));
+  if (kernel::Status s = options.Validate(); !s.ok())
+    return R::Fail(s.Prefixed("invalid explorer options"));
+  std::unique_ptr<kernel::AnyOptions> defaults;
+  if (own == nullptr) {
+    defaults = info->default_options();
+    own = defaults.get();
+  }
+  if (kernel::Status s = own->Validate(); !s.ok())
+    return R::Fail(s.Prefixed("invalid " + name + " options"));
+  std::unique_ptr<Explorer> explorer = info->make(options, *own);
+  if (!explorer) return R::Fail("the options given are not " + name + "'s");
+  return R::Ok(std::move(explorer));
 }
 
-std::unique_ptr<Explorer> MakeExplorer(const std::string& name, const ExplorerOptions& options) {
-  const ExplorerInfo* info = ExplorerRegistry::Global().Find(name);
-  return info != nullptr && info->make ? info->make(options) : nullptr;
+void RegisterExplorer(std::string name, std::string description,
+                      std::function<std::unique_ptr<Explorer>(const ExplorerOptions&)> make) {
+  RegisterExplorer<kernel::NoOptions>(
+      std::move(name), std::move(description),
+      [make = std::move(make)](const ExplorerOptions& o, const kernel::NoOptions&) {
+        return make(o);
+      });
 }
 
 void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
@@ -119,16 +141,9 @@ void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
           "open given-up frontiers are retried from up to this many other nodes (0: as published)");
   v.Field("face_frontiers", &face_frontiers,
           "after an approach the robot turns to face the frontier before sensing");
-  v.Field("look_before_giving_up", &look_before_giving_up,
-          "REG: a node with no clear leg to a piece turns to face it and senses again first "
-          "(false: as published)");
   v.Field("unseen_frontiers", &unseen_frontiers,
           "LSR boundary bounded by the sonars only, with nothing seen beyond by a laser, is a "
           "frontier to look at (false: it counts as seen)");
-  v.Field("srt_max_attempts", &srt_max_attempts, "SRT: RANDOM_DIR attempts before backtracking");
-  v.Field("srt_relaxed_valid_conf", &srt_relaxed_valid_conf,
-          "SRT: VALID_CONF relaxed for arcs no other LSR saw beyond (false: as published)");
-  v.Field("reg_piece_factor", &reg_piece_factor, "REG: FRONT_RAND piece length factor");
   v.Field("max_nodes", &max_nodes, "cap on graph nodes");
   v.Field("max_time_s", &max_time_s, "cap on simulated exploration time, s");
   v.Field("max_failed_moves", &max_failed_moves, "cap on failed moves in a row");

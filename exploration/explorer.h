@@ -21,6 +21,9 @@
 // Sensor-based exploration (SPEC §9): SRT (Oriolo et al. 2004) and REG (paper 003 §3.1).
 namespace splam::exploration {
 
+// The options every explorer shares (the LSR, the robot's clearance, the frontier rules of the
+// toolkit, the caps); an explorer's own options are a struct of its own (SrtOptions, RegOptions),
+// registered with it.
 struct ExplorerOptions {
   double lsr_radius_m = 3.0;  // r: LSRs are clipped here (below the URG-04LX's 4 m range)
   // A new node lies alpha * r from the current one, 0 < alpha < 1, and alpha * r plus the robot's
@@ -103,16 +106,6 @@ struct ExplorerOptions {
   // (0.27 m), which in a doorway closed the way through the door or back into the corridor
   // (docs/experiments.md, Fig. 18). false: the robot senses as it arrived.
   bool face_frontiers = true;
-  // REG: a node with no clear leg towards a frontier piece turns in place to face the piece and
-  // senses again (a new node at the same place, Session::LookTowards) before it approaches the
-  // piece or gives it up; once per place. A robot that stopped in a doorway facing along the wall
-  // sees the room through the door in a wedge whose apex the edge of its laser's 240 deg cuts: too
-  // narrow near the robot for its disc, so no path led in (REG + ekf-lines in `office`, seed 5).
-  // Off by default: on, it drove the floor-plan test's seed 1 into a room facing away from its
-  // far half, which the sonars' first echoes closed, and that run ended `explored` at 88 %
-  // (docs/experiments.md, Fig. 18). false: the robot plans with what it sensed on arrival, as
-  // published.
-  bool look_before_giving_up = false;
   // A stretch of an LSR's boundary that only the sonars bounded (the 120 deg behind the laser)
   // and beyond which no node's laser saw, nor a laser hit within frontier_view_depth_m, is a
   // frontier too (Session::UnseenStretches): once nothing else is left the robot looks at it,
@@ -121,17 +114,6 @@ struct ExplorerOptions {
   // desk corner closed half a room the laser never looked at, and the run said `explored` at 88 %
   // (docs/experiments.md, Fig. 18). false: a sonar boundary counts as a seen obstacle.
   bool unseen_frontiers = true;
-  // SRT: RANDOM_DIR + VALID_CONF attempts before backtracking to the parent.
-  int srt_max_attempts = 30;
-  // SRT: when the draws run out while the node's free arcs still hold parts no other LSR saw
-  // beyond (frontier_view_depth_m), VALID_CONF is relaxed for them: the candidate may lie inside
-  // other LSRs and closer than alpha r, else the robot approaches the part (grid_paths). false:
-  // the published SRT (Oriolo et al. 2004), which in `office` left rooms seen only through their
-  // doors (docs/experiments.md, Fig. 18).
-  bool srt_relaxed_valid_conf = true;
-  // REG: FRONT_RAND takes at most factor * 2 r acos(alpha / 2) of arc length, the part of the
-  // circle of radius r around the node that a disc of radius r alpha * r away covers.
-  double reg_piece_factor = 1.0;
   // Caps, each a stated termination reason: nodes, simulated seconds, moves in a row that fail.
   int max_nodes = 400;
   double max_time_s = 3600.0;
@@ -218,34 +200,75 @@ class Explorer {
 struct ExplorerInfo {
   std::string name;         // "reg"
   std::string description;  // one line for --help
-  std::function<std::unique_ptr<Explorer>(const ExplorerOptions&)> make;
+  // The explorer's own options with their defaults (kernel::NoOptions when it has none).
+  std::function<std::unique_ptr<kernel::AnyOptions>()> default_options;
+  // The explorer with the shared options and its own (as default_options gives them, possibly
+  // edited); nullptr when `own` is not of the explorer's type.
+  std::function<std::unique_ptr<Explorer>(const ExplorerOptions&, const kernel::AnyOptions& own)>
+      make;
 };
 
 // name -> explorer: the built-in SRT and REG from the start, others with RegisterExplorer or an
 // ExplorerRegistration, from anywhere (kernel::Registry). The command line, `config print`,
-// RunExploration and the sweeps look explorers up here.
+// RunExploration, the sweeps and the experiments look explorers up here.
 class ExplorerRegistry : public kernel::Registry<ExplorerInfo> {
  public:
   explicit ExplorerRegistry(std::function<void(kernel::Registry<ExplorerInfo>*)> builtins)
       : kernel::Registry<ExplorerInfo>(std::move(builtins)) {}
   static ExplorerRegistry& Global();
+  // The explorer `name` with the shared `options` and its own `own` (its defaults when null); an
+  // error names an unknown explorer with the known ones, or the invalid option.
+  kernel::Result<std::unique_ptr<Explorer>> Make(const std::string& name,
+                                                 const ExplorerOptions& options,
+                                                 const kernel::AnyOptions* own = nullptr) const;
 };
 
-// Adds an explorer to the global registry: the one line that makes it known to `splam explore`.
+// The registry entry of an explorer whose own options struct is `Own` (with VisitFields and
+// Validate; kernel::NoOptions for none).
+template <class Own>
+ExplorerInfo MakeExplorerInfo(
+    std::string name, std::string description,
+    std::function<std::unique_ptr<Explorer>(const ExplorerOptions&, const Own&)> make) {
+  using Typed = kernel::OptionsOf<Own>;
+  return {std::move(name), std::move(description),
+          [] { return std::make_unique<Typed>(); },
+          [make](const ExplorerOptions& options,
+                 const kernel::AnyOptions& own) -> std::unique_ptr<Explorer> {
+            const auto* typed = dynamic_cast<const Typed*>(&own);
+            return typed != nullptr ? make(options, typed->options()) : nullptr;
+          }};
+}
+
+// Adds an explorer to the global registry: the one line that makes it known to `splam explore`,
+// `config print`, the sweeps and RunExploration. From a function (main, a test) or, as an
+// ExplorerRegistration, from a namespace-scope object of any translation unit.
+template <class Own>
+void RegisterExplorer(
+    std::string name, std::string description,
+    std::function<std::unique_ptr<Explorer>(const ExplorerOptions&, const Own&)> make) {
+  ExplorerRegistry::Global().Add(
+      MakeExplorerInfo<Own>(std::move(name), std::move(description), std::move(make)));
+}
+// The same for an explorer with no options of its own.
 void RegisterExplorer(std::string name, std::string description,
                       std::function<std::unique_ptr<Explorer>(const ExplorerOptions&)> make);
 
-// RegisterExplorer as a namespace-scope object of a translation unit of its own (see
-// estimation::SlamMethodRegistration for when a static library's unit is linked).
+// RegisterExplorer as a namespace-scope object of a translation unit of its own:
+//   static const ExplorerRegistration<MyOptions> kMine("mine", "...", MakeMine);
+//   static const ExplorerRegistration<> kPlain("plain", "...", MakePlain);  // no own options
+// (see estimation::SlamMethodRegistration for when a static library's unit is linked).
+template <class Own = kernel::NoOptions>
 struct ExplorerRegistration {
+  ExplorerRegistration(
+      std::string name, std::string description,
+      std::function<std::unique_ptr<Explorer>(const ExplorerOptions&, const Own&)> make) {
+    RegisterExplorer<Own>(std::move(name), std::move(description), std::move(make));
+  }
   ExplorerRegistration(std::string name, std::string description,
                        std::function<std::unique_ptr<Explorer>(const ExplorerOptions&)> make) {
     RegisterExplorer(std::move(name), std::move(description), std::move(make));
   }
 };
-
-// The registered explorer `name`; nullptr for an unknown name.
-std::unique_ptr<Explorer> MakeExplorer(const std::string& name, const ExplorerOptions& options);
 
 }  // namespace splam::exploration
 

@@ -18,9 +18,11 @@ using graph::Vertex;
 
 class Reg {
  public:
-  Reg(const ExplorerOptions& options, RobotInterface* robot, Localization* localization)
+  Reg(const ExplorerOptions& options, const RegOptions& reg, RobotInterface* robot,
+      Localization* localization)
       : session_("reg", options, robot, localization),
         options_(session_.options()),
+        reg_(reg),
         g_(session_.graph()) {}
 
   ExplorationRun Run();
@@ -32,7 +34,7 @@ class Reg {
 
   internal::Session session_;
   const ExplorerOptions& options_;  // the session's
-  graph::ExplorationGraph& g_;
+  const RegOptions& reg_;  graph::ExplorationGraph& g_;
   std::vector<Vertex> list_;     // the frontier-control list
   std::set<Vertex> approached_;  // nodes that retried a piece from another node (Approach)
   std::set<Vertex>
@@ -59,7 +61,7 @@ ExplorationRun Reg::Run() {
   if (!session_.Start()) return session_.Finish();
   const Vertex start = session_.AddNodeHere(-1);
   Vertex current = start;
-  const double max_piece = options_.reg_piece_factor * 2.0 * std::acos(options_.alpha / 2.0);
+  const double max_piece = reg_.piece_factor * 2.0 * std::acos(options_.alpha / 2.0);
   while (!session_.CapReached()) {
     std::optional<kernel::FrontierArc> piece;
     std::optional<std::size_t> shadow;  // the occlusion edge approached instead of a piece
@@ -76,7 +78,7 @@ ExplorationRun Reg::Run() {
       while (!frontiers.empty() && !destination && !look) {
         piece = internal::FrontRand(session_, &frontiers, &session_.random(), max_piece);
         destination = internal::Displacement(session_, g_[current], *piece);
-        if (!destination && options_.look_before_giving_up && !looked_.contains(current)) {
+        if (!destination && reg_.look_before_giving_up && !looked_.contains(current)) {
           // Before anything else the robot looks at the piece from where it stands: the piece
           // goes back to the node, and what the new LSR covers of it leaves (CurrIntersection).
           looked_.insert(current);
@@ -209,7 +211,20 @@ void Reg::Unlist(Vertex v) { std::erase(list_, v); }
 }  // namespace
 
 ExplorationRun RegExplorer::Run(RobotInterface* robot, Localization* localization) {
-  return Reg(options_, robot, localization).Run();
+  return Reg(options_, reg_, robot, localization).Run();
+}
+
+void RegOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("piece_factor", &piece_factor, "FRONT_RAND piece length, times 2 r acos(alpha / 2)");
+  v.Field("look_before_giving_up", &look_before_giving_up,
+          "a node with no clear leg to a piece turns to face it and senses again first (false: "
+          "as published)");
+}
+
+kernel::Status RegOptions::Validate() const {
+  if (!(piece_factor > 0.0 && piece_factor <= 100.0))
+    return kernel::Status::Error("piece_factor must be in (0, 100]");
+  return kernel::Status::Ok();
 }
 
 }  // namespace splam::exploration

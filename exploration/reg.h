@@ -5,6 +5,26 @@
 
 namespace splam::exploration {
 
+// REG's own options (the shared ones are ExplorerOptions).
+struct RegOptions {
+  // FRONT_RAND takes at most factor * 2 r acos(alpha / 2) of arc length, the part of the circle
+  // of radius r around the node that a disc of radius r alpha * r away covers.
+  double piece_factor = 1.0;
+  // A node with no clear leg towards a frontier piece turns in place to face the piece and
+  // senses again (a new node at the same place, Session::LookTowards) before it approaches the
+  // piece or gives it up; once per place. A robot that stopped in a doorway facing along the wall
+  // sees the room through the door in a wedge whose apex the edge of its laser's 240 deg cuts: too
+  // narrow near the robot for its disc, so no path led in (REG + ekf-lines in `office`, seed 5).
+  // Off by default: on, it drove the floor-plan test's seed 1 into a room facing away from its
+  // far half, which the sonars' first echoes closed, and that run ended `explored` at 88 %
+  // (docs/experiments.md, Fig. 18). false: the robot plans with what it sensed on arrival, as
+  // published.
+  bool look_before_giving_up = false;
+
+  void VisitFields(kernel::FieldVisitor& v);
+  kernel::Status Validate() const;
+};
+
 // Random Exploration Graph (paper 003 §3.1, Figs 8-9; SPEC §9). Each iteration at the current
 // node q:
 //  - CURR_INTERSECTION: for every node whose LSR overlaps q's, the frontier parts of either
@@ -25,12 +45,14 @@ namespace splam::exploration {
 // iteration this equals the paper's late insertion.
 class RegExplorer : public Explorer {
  public:
-  explicit RegExplorer(const ExplorerOptions& options) : options_(options) {}
+  explicit RegExplorer(const ExplorerOptions& options, const RegOptions& reg = {})
+      : options_(options), reg_(reg) {}
   std::string name() const override { return "reg"; }
   ExplorationRun Run(RobotInterface* robot, Localization* localization) override;
 
  private:
   ExplorerOptions options_;
+  RegOptions reg_;
 };
 
 }  // namespace splam::exploration

@@ -12,7 +12,7 @@
 namespace splam::exploration {
 namespace {
 
-// Relaxed VALID_CONF (ExplorerOptions::srt_relaxed_valid_conf): once the draws of SRT ran out at
+// Relaxed VALID_CONF (SrtOptions::relaxed_valid_conf): once the draws of SRT ran out at
 // node v, the parts of its free arcs that no other LSR saw beyond (Session::OpenParts) are drawn
 // from instead, the candidate may lie inside other LSRs, and closer (1, 2/3, 1/3 of alpha r);
 // failing that the robot approaches the widest open part, or an open shadow frontier, as near as
@@ -22,7 +22,8 @@ namespace {
 // relaxed move. A part seen only through a door at a slant is approached on the door's axis,
 // facing through it (Session::DoorwayApproach).
 using Move = internal::Session::Move;
-std::optional<Move> RelaxedMove(internal::Session* session, graph::Vertex v, double* last_open) {
+std::optional<Move> RelaxedMove(internal::Session* session, graph::Vertex v, int max_attempts,
+                                double* last_open) {
   const graph::ExplorationGraph& g = session->graph();
   const graph::NodeData& node = g[v];
   std::vector<kernel::FrontierArc> open;
@@ -41,7 +42,7 @@ std::optional<Move> RelaxedMove(internal::Session* session, graph::Vertex v, dou
   const ExplorerOptions& options = session->options();
   const double step = options.alpha * options.lsr_radius_m;
   const Eigen::Vector2d here = node.configuration.translation();
-  for (int attempt = 0; attempt < options.srt_max_attempts && !open.empty(); ++attempt) {
+  for (int attempt = 0; attempt < max_attempts && !open.empty(); ++attempt) {
     const double theta = internal::RandomDirection(open, &session->random());
     for (const double fraction : {1.0, 2.0 / 3.0, 1.0 / 3.0}) {
       const Eigen::Vector2d candidate =
@@ -68,6 +69,18 @@ std::optional<Move> RelaxedMove(internal::Session* session, graph::Vertex v, dou
 
 }  // namespace
 
+void SrtOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("max_attempts", &max_attempts, "RANDOM_DIR draws before backtracking");
+  v.Field("relaxed_valid_conf", &relaxed_valid_conf,
+          "VALID_CONF relaxed for arcs no other LSR saw beyond (false: as published)");
+}
+
+kernel::Status SrtOptions::Validate() const {
+  if (max_attempts < 1 || max_attempts > 10000)
+    return kernel::Status::Error("max_attempts must be in [1, 10000]");
+  return kernel::Status::Ok();
+}
+
 ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localization) {
   internal::Session session("srt", options_, robot, localization);
   if (!session.Start()) return session.Finish();
@@ -83,7 +96,7 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
       internal::Session::PlanningTimer timer(&session);
       const graph::NodeData& node = g[current];
       const Eigen::Vector2d here = node.configuration.translation();
-      for (int attempt = 0; attempt < options_.srt_max_attempts && !node.frontiers.empty();
+      for (int attempt = 0; attempt < srt_.max_attempts && !node.frontiers.empty();
            ++attempt) {
         const double theta = internal::RandomDirection(node.frontiers, &session.random());
         const Eigen::Vector2d candidate =
@@ -93,10 +106,10 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
         if (valid) path = session.PathInside(node.lsr, here, candidate);
         if (path) break;
       }
-      if (!path && options_.srt_relaxed_valid_conf) {
+      if (!path && srt_.relaxed_valid_conf) {
         const auto [it, added] =
             last_open.try_emplace(current, std::numeric_limits<double>::infinity());
-        if (std::optional<Move> move = RelaxedMove(&session, current, &it->second)) {
+        if (std::optional<Move> move = RelaxedMove(&session, current, srt_.max_attempts, &it->second)) {
           path = std::move(move->path);
           face = move->face;
         }
@@ -111,7 +124,7 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
     // other nodes' LSRs cover them).
     g[current].given_up.clear();
     const std::string reason =
-        "no valid configuration in " + std::to_string(options_.srt_max_attempts) + " draws";
+        "no valid configuration in " + std::to_string(srt_.max_attempts) + " draws";
     for (const kernel::FrontierArc& arc : g[current].frontiers)
       session.GiveUp(current, arc, reason);
     for (const std::size_t edge : g[current].shadows) session.GiveUpShadow(current, edge, reason);

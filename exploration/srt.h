@@ -5,20 +5,37 @@
 
 namespace splam::exploration {
 
+// SRT's own options (the shared ones are ExplorerOptions).
+struct SrtOptions {
+  // RANDOM_DIR + VALID_CONF attempts before backtracking to the parent.
+  int max_attempts = 30;
+  // When the draws run out while the node's free arcs still hold parts no other LSR saw beyond
+  // (frontier_view_depth_m), VALID_CONF is relaxed for them: the candidate may lie inside other
+  // LSRs and closer than alpha r, else the robot approaches the part (grid_paths). false: the
+  // published SRT (Oriolo et al. 2004), which in `office` left rooms seen only through their
+  // doors (docs/experiments.md, Fig. 18).
+  bool relaxed_valid_conf = true;
+
+  void VisitFields(kernel::FieldVisitor& v);
+  kernel::Status Validate() const;
+};
+
 // Sensor-based Random Tree (Oriolo et al. 2004; paper 003 §2.1, Figs 1-2; SPEC §9). At the
 // current node: RANDOM_DIR draws directions uniformly over the node's free arcs; the candidate
 // lies alpha * r along it (the LSR radius in a free direction is r); VALID_CONF accepts it when
 // it lies outside the LSRs of all other nodes and the straight leg to it is clear for the
-// robot's disc. After srt_max_attempts rejected draws, or with no free arc, the robot backtracks
+// robot's disc. After max_attempts rejected draws, or with no free arc, the robot backtracks
 // to the parent along the tree edge. The run ends back at the root with nothing left.
 class SrtExplorer : public Explorer {
  public:
-  explicit SrtExplorer(const ExplorerOptions& options) : options_(options) {}
+  explicit SrtExplorer(const ExplorerOptions& options, const SrtOptions& srt = {})
+      : options_(options), srt_(srt) {}
   std::string name() const override { return "srt"; }
   ExplorationRun Run(RobotInterface* robot, Localization* localization) override;
 
  private:
   ExplorerOptions options_;
+  SrtOptions srt_;
 };
 
 }  // namespace splam::exploration

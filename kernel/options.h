@@ -4,8 +4,10 @@
 #include <cstdint>
 #include <functional>
 #include <initializer_list>
+#include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "kernel/pose2.h"
@@ -58,6 +60,43 @@ template <class Options>
 Status FiniteFields(Options options) {
   return CheckFinite([&options](FieldVisitor& v) { options.VisitFields(v); });
 }
+
+// An options struct whose type is chosen at run time (a SLAM method's, an explorer's own): the
+// registries, the configuration documents and the runs hold any variant's options through it.
+class AnyOptions {
+ public:
+  virtual ~AnyOptions() = default;
+  virtual void VisitFields(FieldVisitor& v) = 0;
+  virtual Status Validate() const = 0;
+  virtual std::unique_ptr<AnyOptions> Clone() const = 0;
+};
+
+// `Options` (a struct with VisitFields and Validate) as AnyOptions.
+template <class Options>
+class OptionsOf : public AnyOptions {
+ public:
+  explicit OptionsOf(Options options = {}) : options_(std::move(options)) {}
+  void VisitFields(FieldVisitor& v) override { options_.VisitFields(v); }
+  // Every number finite (FiniteFields), then the struct's own checks.
+  Status Validate() const override {
+    if (Status s = FiniteFields(options_); !s.ok()) return s;
+    return options_.Validate();
+  }
+  std::unique_ptr<AnyOptions> Clone() const override {
+    return std::make_unique<OptionsOf>(options_);
+  }
+  Options& options() { return options_; }
+  const Options& options() const { return options_; }
+
+ private:
+  Options options_;
+};
+
+// The options of a variant that has none of its own.
+struct NoOptions {
+  void VisitFields(FieldVisitor&) {}
+  Status Validate() const { return Status::Ok(); }
+};
 
 }  // namespace splam::kernel
 

@@ -21,6 +21,44 @@
 #include "sim/simulator.h"
 
 namespace splam::loop {
+namespace {
+
+// An options struct's fields as a JSON object (the report's copy of the run's options).
+class JsonWriter : public kernel::FieldVisitor {
+ public:
+  explicit JsonWriter(nlohmann::json* out) : out_(out) {}
+  void Field(std::string_view key, double* v, std::string_view) override { Set(key, *v); }
+  void Field(std::string_view key, int* v, std::string_view) override { Set(key, *v); }
+  void Field(std::string_view key, std::uint64_t* v, std::string_view) override { Set(key, *v); }
+  void Field(std::string_view key, bool* v, std::string_view) override { Set(key, *v); }
+  void Field(std::string_view key, std::string* v, std::string_view) override { Set(key, *v); }
+  void Field(std::string_view key, std::vector<double>* v, std::string_view) override {
+    Set(key, *v);
+  }
+  void Field(std::string_view key, kernel::Pose2* v, std::string_view) override {
+    Set(key, std::vector<double>{v->x(), v->y(), v->theta()});
+  }
+  void Choice(std::string_view key, int* index, std::initializer_list<std::string_view> choices,
+              std::string_view) override {
+    Set(key, std::string(*(choices.begin() + *index)));
+  }
+  void Group(std::string_view key, std::string_view,
+             const std::function<void(FieldVisitor&)>& fields) override {
+    nlohmann::json group = nlohmann::json::object();
+    JsonWriter writer(&group);
+    fields(writer);
+    (*out_)[std::string(key)] = std::move(group);
+  }
+
+ private:
+  template <class T>
+  void Set(std::string_view key, const T& value) {
+    (*out_)[std::string(key)] = value;
+  }
+  nlohmann::json* out_;
+};
+
+}  // namespace
 
 nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& setup,
                                  const ExploreOutcome& outcome) {
@@ -97,30 +135,27 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
     if (statistics.contains("least_squares"))
       report["slam"]["least_squares"] = statistics["least_squares"];
   }
-  const exploration::ExplorerOptions& o = setup.options;
-  report["options"] = {{"lsr_radius_m", setup.region.radius_m},
-                       {"alpha", setup.region.alpha},
-                       {"clearance_margin_m", o.clearance_margin_m},
-                       {"min_frontier_m", o.min_frontier_m},
-                       {"frontier_view_depth_m", o.frontier_view_depth_m},
-                       {"shadow_edge_m", o.shadow_edge_m},
-                       {"frontiers_carry_on", o.frontiers_carry_on},
-                       {"shadow_frontiers", o.shadow_frontiers},
-                       {"grid_paths", o.grid_paths},
-                       {"exact_escapes", o.exact_escapes},
-                       {"doorway_goals", o.doorway_goals},
-                       {"min_doorway_arc_m", o.min_doorway_arc_m},
-                       {"srt_max_attempts", o.srt_max_attempts},
-                       {"srt_relaxed_valid_conf", o.srt_relaxed_valid_conf},
-                       {"retry_nodes", o.retry_nodes},
-                       {"unseen_frontiers", o.unseen_frontiers},
-                       {"face_frontiers", o.face_frontiers},
-                       {"look_before_giving_up", o.look_before_giving_up},
-                       {"reg_piece_factor", o.reg_piece_factor},
-                       {"max_nodes", o.max_nodes},
-                       {"max_time_s", o.max_time_s},
-                       {"sonar", setup.sonar},
-                       {"odometry_noise_scale", setup.odometry_noise_scale}};
+  // Every option of the explorer (the shared ones, its own under its name), the region and
+  // the simulated sensors' switches.
+  nlohmann::json options = {{"lsr_radius_m", setup.region.radius_m},
+                            {"alpha", setup.region.alpha},
+                            {"sonar", setup.sonar},
+                            {"odometry_noise_scale", setup.odometry_noise_scale}};
+  JsonWriter writer(&options);
+  exploration::ExplorerOptions shared = setup.options;
+  shared.seed = setup.seed;  // as RunExploration runs it
+  shared.VisitFields(writer);
+  std::unique_ptr<kernel::AnyOptions> own =
+      setup.explorer_options ? setup.explorer_options->Clone() : nullptr;
+  if (const exploration::ExplorerInfo* info =
+          exploration::ExplorerRegistry::Global().Find(setup.explorer);
+      !own && info != nullptr)
+    own = info->default_options();
+  if (own) {
+    writer.Group(setup.explorer, "",
+                 [&](kernel::FieldVisitor& v) { own->VisitFields(v); });
+  }
+  report["options"] = std::move(options);
   return report;
 }
 

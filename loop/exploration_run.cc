@@ -117,14 +117,15 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
   options.seed = setup.seed;
   options.lsr_radius_m = setup.region.radius_m;
   options.alpha = setup.region.alpha;
-  const std::unique_ptr<exploration::Explorer> explorer =
-      exploration::MakeExplorer(setup.explorer, options);
-  std::shared_ptr<exploration::Localization> localization = MakeLocalization(setup);
-  if (!explorer) {
-    outcome.error = "unknown explorer '" + setup.explorer + "' (" +
-                    exploration::ExplorerRegistry::Global().NameList() + ")";
+  kernel::Result<std::unique_ptr<exploration::Explorer>> made =
+      exploration::ExplorerRegistry::Global().Make(setup.explorer, options,
+                                                   setup.explorer_options.get());
+  if (!made.ok()) {
+    outcome.error = made.error;
     return outcome;
   }
+  const std::unique_ptr<exploration::Explorer> explorer = std::move(*made.value);
+  std::shared_ptr<exploration::Localization> localization = MakeLocalization(setup);
   if (!localization) {
     outcome.error =
         "unknown localisation '" + setup.localization + "' (" + LocalizationNames() + ")";

@@ -19,15 +19,19 @@ namespace splam::loop {
 
 // One simulated exploration: which explorer, localisation and seed, and every option.
 struct ExploreSetup {
-  std::string explorer = "reg";  // "srt" or "reg"
+  std::string explorer = "reg";  // a registered explorer (exploration::ExplorerRegistry)
   // "ground-truth", "odometry", or a registered SLAM method (the SPLAM loop).
   std::string localization = "topological";
   std::uint64_t seed = 1;             // simulator noise and the explorer's draws
   double odometry_noise_scale = 1.0;  // times the default odometry noise (simulated and modelled)
   bool sonar = true;                  // complete the LSR behind the robot with sonar
   kernel::LocalRegionOptions region;  // r and alpha, shared by the explorer and the SLAM
-  // lsr_radius_m, alpha and seed are overwritten by `region` and `seed`.
+  // The options every explorer shares; lsr_radius_m, alpha and seed are overwritten by `region`
+  // and `seed`.
   exploration::ExplorerOptions options;
+  // The explorer's own options (ExplorerInfo::default_options, possibly edited); null: its
+  // defaults.
+  std::shared_ptr<const kernel::AnyOptions> explorer_options;
   // The simulator; null: DefaultSimulator(*this).
   std::optional<sim::SimulatorOptions> simulator;
   // The SLAM method's options; null: DefaultSlamOptions(*this).

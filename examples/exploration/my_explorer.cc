@@ -56,7 +56,8 @@ int main() {
     splam::exploration::Localization* localization =
         with_slam ? static_cast<splam::exploration::Localization*>(&my_slam) : &ground_truth;
     const splam::exploration::ExplorationRun run =
-        splam::exploration::MakeExplorer(with_slam ? "reg" : name, options)
+        (*splam::exploration::ExplorerRegistry::Global().Make(with_slam ? "reg" : name, options)
+              .value)
             ->Run(&robot, localization);
     // Step 3: what happened.
     std::printf("%s: %zu nodes, %zu edges, %.1f m in %.0f s simulated; %s (%s)\n", name,

@@ -997,6 +997,18 @@ TEST(SplamCli, ExploreReadsItsConfigAndWritesTheOneItUsed) {
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.text.find("--set: exploration.max_nodez: unknown key"), std::string::npos)
       << bad.text;
+  // The explorer's own options are in its section, checked by its own rules.
+  const std::string reg_used = Slurp(dir / "flags" / "config.yaml");
+  EXPECT_NE(reg_used.find("  reg:  # options of the explorer\n    piece_factor: 1"),
+            std::string::npos)
+      << reg_used;
+  const Output own = Splam("explore --explorer reg --set exploration.reg.piece_factor=0");
+  EXPECT_EQ(own.status, 2);
+  EXPECT_NE(own.text.find("exploration.reg: piece_factor must be in (0, 100]"), std::string::npos)
+      << own.text;
+  const Output other = Splam("explore --explorer reg --set exploration.srt.max_attempts=3");
+  EXPECT_EQ(other.status, 2);  // --set reaches the chosen explorer's section only
+  EXPECT_NE(other.text.find("exploration.srt: unknown key"), std::string::npos) << other.text;
 }
 
 TEST(SplamCli, EveryCommandHasHelp) {

@@ -20,6 +20,8 @@
 #include "estimation/topological_slam.h"
 #include "exploration/explorer.h"
 #include "exploration/motion.h"
+#include "exploration/reg.h"
+#include "exploration/srt.h"
 #include "kernel/bspline_fit.h"
 #include "kernel/curvature.h"
 #include "kernel/curve_features.h"
@@ -95,8 +97,9 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
                {0.001, 0.1}, "arc_sampling_rad");
   ExpectDomain(&exploration::ExplorerOptions::max_nodes, {0, -1, 2000000000}, {1, 1000},
                "max_nodes");
-  ExpectDomain(&exploration::ExplorerOptions::srt_max_attempts, {0, 1 << 30}, {1, 100},
-               "srt_max_attempts");
+  ExpectDomain(&exploration::SrtOptions::max_attempts, {0, 1 << 30}, {1, 100}, "max_attempts");
+  ExpectDomain(&exploration::RegOptions::piece_factor, {0.0, -1.0, 1e9, nan}, {0.5, 2.0},
+               "piece_factor");
   ExpectDomain(&exploration::ExplorerOptions::max_time_s, {1e308, 0.0, nan}, {60.0, 1e6},
                "max_time_s");
   // ekf-lines: 1.9e9 RANSAC draws per line, a hang; counts of iterations and control points.

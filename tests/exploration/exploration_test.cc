@@ -11,6 +11,8 @@
 #include "exploration/localization.h"
 #include "exploration/motion.h"
 #include "exploration/perception.h"
+#include "exploration/reg.h"
+#include "exploration/srt.h"
 #include "io/floor_plan.h"
 #include "kernel/angle.h"
 #include "kernel/random.h"
@@ -140,8 +142,10 @@ struct Trial {
   double coverage = 0.0;
 };
 
+// `own`: the explorer's own options (SrtOptions, RegOptions), its defaults when null.
 Trial ExploreWorld(const std::string& explorer, const sim::World& world, std::uint64_t seed,
-                   const ExplorerOptions& options = {}, bool odometry = false) {
+                   const ExplorerOptions& options = {}, bool odometry = false,
+                   const kernel::AnyOptions* own = nullptr) {
   const sim::RayCaster caster(world);
   sim::SimulatorOptions sim_options;
   sim_options.enable_sonar = true;
@@ -152,7 +156,7 @@ Trial ExploreWorld(const std::string& explorer, const sim::World& world, std::ui
   ExplorerOptions o = options;
   o.seed = seed;
   Trial trial;
-  trial.run = MakeExplorer(explorer, o)
+  trial.run = std::move(*ExplorerRegistry::Global().Make(explorer, o, own).value)
                   ->Run(&robot, odometry ? static_cast<Localization*>(&dead_reckoning) : &truth);
   kernel::Box2 bounds = world.Bounds();
   CoverageGrid grid(bounds, 0.1, world.start->translation(), [&](const Eigen::Vector2d& c) {
@@ -166,8 +170,9 @@ Trial ExploreWorld(const std::string& explorer, const sim::World& world, std::ui
 }
 
 Trial Explore(const std::string& explorer, const std::string& world_name, std::uint64_t seed,
-              const ExplorerOptions& options = {}, bool odometry = false) {
-  return ExploreWorld(explorer, *sim::BuiltinWorld(world_name), seed, options, odometry);
+              const ExplorerOptions& options = {}, bool odometry = false,
+              const kernel::AnyOptions* own = nullptr) {
+  return ExploreWorld(explorer, *sim::BuiltinWorld(world_name), seed, options, odometry, own);
 }
 
 // Whether a node of the run lies in the box [lo, hi].
@@ -262,9 +267,9 @@ TEST(ExplorationCauses, SpaceClosedOnlyByTheSonarsIsLookedAt) {
   // without the option enters that half too (100 %), so only the run with it is checked here.
   const sim::World world = FloorPlanRooms();
   ExplorerOptions options;
-  options.look_before_giving_up = true;
   options.doorway_goals = false;  // with it the robot enters that room facing its east half
-  const Trial t = ExploreWorld("reg", world, 1, options);
+  const kernel::OptionsOf<RegOptions> look(RegOptions{.look_before_giving_up = true});
+  const Trial t = ExploreWorld("reg", world, 1, options, false, &look);
   EXPECT_TRUE(NodeIn(t.run, {3.7, 0.3}, {5.9, 3.3}));
   EXPECT_GT(t.coverage, 0.97);
   EXPECT_EQ(t.run.termination, Termination::kExplored) << t.run.message;
@@ -328,20 +333,19 @@ TEST(ExplorationCauses, PropertyARobotInADoorwayLooksBeforeItGivesUp) {
   // Without doorway_goals, as before (with it and min_doorway_arc_m at 0, two starts ended
   // `incomplete` at 99-100 % for a one-beam arc past the corridor's end corner).
   sim::World w = CorridorAndRoom();
-  ExplorerOptions without;
-  without.doorway_goals = false;
-  ExplorerOptions with = without;
-  with.look_before_giving_up = true;
+  ExplorerOptions options;
+  options.doorway_goals = false;
   for (const double x : {5.95, 6.05}) {
     for (const double y : {0.1, 0.25, 0.4}) {
       for (const double heading : {-2.7, 3.14, 2.0, 1.57, 0.5, 0.0, -0.4}) {
         w.start = kernel::Pose2(x, y, heading);
-        for (const ExplorerOptions& options : {without, with}) {
-          const Trial t = ExploreWorld("reg", w, 1, options);
+        for (const bool look : {false, true}) {
+          const kernel::OptionsOf<RegOptions> reg(RegOptions{.look_before_giving_up = look});
+          const Trial t = ExploreWorld("reg", w, 1, options, false, &reg);
           EXPECT_EQ(t.run.termination, Termination::kExplored) << t.run.message;
           EXPECT_GT(t.coverage, 0.98) << x << " " << y << " " << heading;
           EXPECT_TRUE(NodeIn(t.run, {4.3, -6.2}, {7.7, -0.5}))
-              << x << " " << y << " " << heading << " look " << options.look_before_giving_up;
+              << x << " " << y << " " << heading << " look " << look;
         }
       }
     }
@@ -397,11 +401,11 @@ TEST(Exploration, SrtBuildsATreeAndEndsAtTheRoot) {
 
 TEST(Exploration, PublishedSrtKeepsValidConfAndReportsWhatItLeftOpen) {
   ExplorerOptions options;  // SRT as published: free arcs only, VALID_CONF never relaxed, no
-  options.srt_relaxed_valid_conf = false;  // retries
-  options.shadow_frontiers = false;
+  options.shadow_frontiers = false;  // retries
   options.retry_nodes = 0;
   options.unseen_frontiers = false;
-  const Trial t = Explore("srt", "office", 2, options);
+  const kernel::OptionsOf<SrtOptions> published(SrtOptions{.relaxed_valid_conf = false});
+  const Trial t = Explore("srt", "office", 2, options, false, &published);
   // VALID_CONF: no node lies inside the LSR of another (up to the goal tolerance).
   const auto& g = t.run.graph;
   for (graph::Vertex a = 0; a < boost::num_vertices(g); ++a) {

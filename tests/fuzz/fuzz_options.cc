@@ -15,6 +15,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   splam::exploration::ExplorerOptions explorer;
   if (file.value->Read([&](splam::kernel::FieldVisitor& v) { explorer.VisitFields(v); }, true).ok())
     static_cast<void>(explorer.Validate());
+  const auto& explorers = splam::exploration::ExplorerRegistry::Global();
+  for (const std::string& name : explorers.Names()) {
+    auto own = explorers.Find(name)->default_options();
+    if (file.value->Read([&](splam::kernel::FieldVisitor& v) { own->VisitFields(v); }, true).ok())
+      static_cast<void>(own->Validate());
+  }
   const auto& registry = splam::estimation::SlamRegistry::Global();
   for (const std::string& name : registry.Names()) {
     auto options = registry.Find(name)->default_options({});
