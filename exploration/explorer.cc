@@ -60,16 +60,14 @@ std::string TerminationName(Termination termination) {
 namespace {
 
 void AddBuiltinExplorers(kernel::Registry<ExplorerInfo>* registry) {
-  registry->Add(MakeExplorerInfo<SrtOptions>(
-      "srt", "Sensor-based Random Tree (Oriolo et al. 2004)",
-      [](const ExplorerOptions& o, const SrtOptions& srt) {
-        return std::make_unique<SrtExplorer>(o, srt);
-      }));
-  registry->Add(MakeExplorerInfo<RegOptions>(
-      "reg", "Random Exploration Graph (paper 003 §3.1)",
-      [](const ExplorerOptions& o, const RegOptions& reg) {
-        return std::make_unique<RegExplorer>(o, reg);
-      }));
+  registry->Add(MakeExplorerInfo<SrtOptions>("srt", "Sensor-based Random Tree (Oriolo et al. 2004)",
+                                             [](const ExplorerOptions& o, const SrtOptions& srt) {
+                                               return std::make_unique<SrtExplorer>(o, srt);
+                                             }));
+  registry->Add(MakeExplorerInfo<RegOptions>("reg", "Random Exploration Graph (paper 003 §3.1)",
+                                             [](const ExplorerOptions& o, const RegOptions& reg) {
+                                               return std::make_unique<RegExplorer>(o, reg);
+                                             }));
 }
 
 }  // namespace

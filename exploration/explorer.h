@@ -57,13 +57,13 @@ struct ExplorerOptions {
   bool frontiers_carry_on = true;
   // The space an LSR's sensor could not see behind an occluder (an occlusion edge at least
   // frontier_view_depth_m long, kernel::OcclusionEdges) is a frontier too, until other LSRs see
-  // beyond it (Session::ShadowCovered): REG once no free arc is left, and SRT with
-  // srt_relaxed_valid_conf, move as near to it as the LSR lets them. The papers' frontiers are the
-  // free arcs only: the floor behind a table, and a room whose door a node saw edge-on (an arc
-  // under min_frontier_m), were never visited (docs/experiments.md, Fig. 18).
+  // beyond it (FrontierRules::ShadowCovered): REG once no free arc is left, and SRT with
+  // SrtOptions::relaxed_valid_conf, move as near to it as the LSR lets them. The papers' frontiers
+  // are the free arcs only: the floor behind a table, and a room whose door a node saw edge-on (an
+  // arc under min_frontier_m), were never visited (docs/experiments.md, Fig. 18).
   bool shadow_frontiers = true;
   // A path inside an LSR that no straight leg gives is searched on a 5 cm grid of the LSR
-  // (internal::LsrPlanner), through as many bends as it needs; false: the shortest two-leg path
+  // (LsrPlanner), through as many bends as it needs; false: the shortest two-leg path
   // through a polar grid of waypoints (radii 0.4-2 m, every 10 deg), which missed narrow doors
   // seen at a slant (docs/experiments.md, Fig. 18). Neither is in the papers, whose robot drives
   // straight.
@@ -71,19 +71,19 @@ struct ExplorerOptions {
   // When the grid path from a robot standing closer to the LSR boundary than its radius plus
   // margin fails the exact clearance test (the raster's clearances are a cell off, and its first
   // cells came 2-4 mm closer than the robot stood), the robot leaves by a straight leg that the
-  // exact test passed (Session::Escapes) and the grid search goes on from its end. REG in `office`,
-  // seed 7, gave up the east of a room from a node beside the sonar's boundary
+  // exact test passed (SafePaths::Escapes) and the grid search goes on from its end. REG in
+  // `office`, seed 7, gave up the east of a room from a node beside the sonar's boundary
   // (docs/experiments.md, Fig. 18). false: only the grid's own way out (needs grid_paths).
   bool exact_escapes = true;
   // A free arc that a node saw only through a gap at a slant (a door: the wedge between the two
   // jambs' shadow edges is narrower than the robot near the door) is approached on the gap's axis:
   // the robot stands in front of the door's middle and faces through it
-  // (Session::DoorwayApproach), before the plain approach to the reachable point nearest the
+  // (SafePaths::DoorwayApproach), before the plain approach to the reachable point nearest the
   // arc, which stopped beside the door and looked past it again. SRT in `office`, seed 1, left
   // a room whose door the corridor nodes saw only at a slant (docs/experiments.md, Fig. 18).
   // With it, a free arc shorter than min_frontier_m seen through such a gap is a frontier
-  // (Session::FrontiersOf), and stays one until another LSR covers part of it
-  // (Session::UncoveredParts; REG dropped it at its node's first overlap: `office`, seed 8).
+  // (FrontierRules::FrontiersOf), and stays one until another LSR covers part of it
+  // (FrontierRules::UncoveredParts; REG dropped it at its node's first overlap: `office`, seed 8).
   // false: only the plain approach (needs grid_paths).
   bool doorway_goals = true;
   // doorway_goals keeps a free arc shorter than min_frontier_m only when it is at least this long
@@ -96,7 +96,7 @@ struct ExplorerOptions {
   // A frontier given up at its node (no clear leg, no approach saw behind it) and still open in
   // the explorer's map is retried from up to this many other nodes once nothing else is left: the
   // robot drives to the node whose LSR reaches nearest to it and approaches it from there
-  // (Session::NextRetry; needs grid_paths). A node in a doorway perceives the corridor behind it
+  // (Retries; needs grid_paths). A node in a doorway perceives the corridor behind it
   // with the sonars only, whose blind spikes between the cones close the way back
   // (docs/experiments.md, Fig. 18). 0: a given-up frontier stays given up, as published.
   int retry_nodes = 2;
@@ -108,10 +108,10 @@ struct ExplorerOptions {
   bool face_frontiers = true;
   // A stretch of an LSR's boundary that only the sonars bounded (the 120 deg behind the laser)
   // and beyond which no node's laser saw, nor a laser hit within frontier_view_depth_m, is a
-  // frontier too (Session::UnseenStretches): once nothing else is left the robot looks at it,
-  // turning in place at the nearest node that sees it (Session::NextRetry), and the done check
-  // counts it open. A sonar echo may come from anywhere in its 30 deg cone: the first echoes off a
-  // desk corner closed half a room the laser never looked at, and the run said `explored` at 88 %
+  // frontier too (GivenUpFrontiers, frontier_map.h): once nothing else is left the robot looks at
+  // it, turning in place at the nearest node that sees it (Retries), and the done check counts it
+  // open. A sonar echo may come from anywhere in its 30 deg cone: the first echoes off a desk
+  // corner closed half a room the laser never looked at, and the run said `explored` at 88 %
   // (docs/experiments.md, Fig. 18). false: a sonar boundary counts as a seen obstacle.
   bool unseen_frontiers = true;
   // Caps, each a stated termination reason: nodes, simulated seconds, moves in a row that fail.
@@ -159,7 +159,7 @@ struct GivenUpFrontier {
   kernel::FrontierArc arc;  // on that node's LSR circle, world frame (free arcs)
   int shadow_edge = -1;     // >= 0: the occlusion edge of the node's LSR (shadow frontiers)
   // Not empty: a stretch of the node's LSR boundary that only its sonars saw and no node's laser
-  // saw beyond (Session::UnseenStretches), world frame.
+  // saw beyond (GivenUpFrontiers, frontier_map.h), world frame.
   std::vector<Eigen::Vector2d> unseen;
   Eigen::Vector2d midpoint;  // its middle, world frame
   std::string reason;        // why it was given up
@@ -230,8 +230,7 @@ ExplorerInfo MakeExplorerInfo(
     std::string name, std::string description,
     std::function<std::unique_ptr<Explorer>(const ExplorerOptions&, const Own&)> make) {
   using Typed = kernel::OptionsOf<Own>;
-  return {std::move(name), std::move(description),
-          [] { return std::make_unique<Typed>(); },
+  return {std::move(name), std::move(description), [] { return std::make_unique<Typed>(); },
           [make](const ExplorerOptions& options,
                  const kernel::AnyOptions& own) -> std::unique_ptr<Explorer> {
             const auto* typed = dynamic_cast<const Typed*>(&own);

@@ -6,8 +6,9 @@
 #include <optional>
 #include <set>
 
-#include "exploration/internal/session.h"
-#include "exploration/internal/steps.h"
+#include "exploration/retries.h"
+#include "exploration/session.h"
+#include "exploration/steps.h"
 #include "graph/bidirectional_astar.h"
 #include "graph/frontiers.h"
 
@@ -32,9 +33,11 @@ class Reg {
   void List(Vertex v);
   void Unlist(Vertex v);
 
-  internal::Session session_;
+  Session session_;
   const ExplorerOptions& options_;  // the session's
-  const RegOptions& reg_;  graph::ExplorationGraph& g_;
+  const RegOptions& reg_;
+  graph::ExplorationGraph& g_;
+  Retries retries_;              // given-up frontiers retried once nothing else is left
   std::vector<Vertex> list_;     // the frontier-control list
   std::set<Vertex> approached_;  // nodes that retried a piece from another node (Approach)
   std::set<Vertex>
@@ -67,23 +70,23 @@ ExplorationRun Reg::Run() {
     std::optional<std::size_t> shadow;  // the occlusion edge approached instead of a piece
     std::optional<std::vector<Eigen::Vector2d>> destination;  // path to q_dest
     std::optional<graph::GraphPath> path;
-    std::optional<internal::Session::Retry> retry;  // once nothing else is left (NextRetry)
-    std::optional<Eigen::Vector2d> face;            // what an approach came to see (Session::Drive)
-    std::optional<Eigen::Vector2d> look;            // turn in place to face this and sense again
+    std::optional<Retry> retry;           // once nothing else is left (Retries)
+    std::optional<Eigen::Vector2d> face;  // what an approach came to see (Session::Drive)
+    std::optional<Eigen::Vector2d> look;  // turn in place to face this and sense again
     {
-      internal::Session::PlanningTimer timer(&session_);
-      internal::CurrIntersection(session_, &g_, current);
+      Session::PlanningTimer timer(&session_);
+      CurrIntersection(session_, &g_, current);
       // FRONTIERS / FRONT_RAND, until a piece with a clear leg is found.
       std::vector<kernel::FrontierArc>& frontiers = g_[current].frontiers;
       while (!frontiers.empty() && !destination && !look) {
-        piece = internal::FrontRand(session_, &frontiers, &session_.random(), max_piece);
-        destination = internal::Displacement(session_, g_[current], *piece);
+        piece = FrontRand(session_, &frontiers, &session_.random(), max_piece);
+        destination = Displacement(session_, g_[current], *piece);
         if (!destination && reg_.look_before_giving_up && !looked_.contains(current)) {
           // Before anything else the robot looks at the piece from where it stands: the piece
           // goes back to the node, and what the new LSR covers of it leaves (CurrIntersection).
           looked_.insert(current);
           frontiers.push_back(*piece);
-          look = internal::Session::ArcSight(g_[current].lsr, *piece);
+          look = FrontierRules::ArcSight(g_[current].lsr, *piece);
           break;
         }
         if (!destination && !approached_.contains(current)) {
@@ -92,15 +95,15 @@ ExplorationRun Reg::Run() {
           // squarely), once per node.
           // A piece seen through a door at a slant: in front of the door, facing through it.
           const Eigen::Vector2d here = g_[current].configuration.translation();
-          if (auto door = session_.DoorwayApproach(g_[current].lsr, here, *piece,
-                                                   session_.NodePositions())) {
+          if (auto door = session_.paths().DoorwayApproach(session_.rules(), g_[current].lsr, here,
+                                                           *piece, session_.NodePositions())) {
             destination = std::move(door->path);
             face = door->face;
           } else {
             const double mid = 0.5 * (piece->start_angle_rad + piece->end_angle_rad);
-            destination = session_.Approach(g_[current].lsr, here, g_[current].lsr.ArcPoint(mid),
-                                            session_.NodePositions());
-            if (destination) face = internal::Session::ArcSight(g_[current].lsr, *piece);
+            destination = session_.paths().Approach(
+                g_[current].lsr, here, g_[current].lsr.ArcPoint(mid), session_.NodePositions());
+            if (destination) face = FrontierRules::ArcSight(g_[current].lsr, *piece);
           }
           if (destination) approached_.insert(current);
         }
@@ -117,10 +120,10 @@ ExplorationRun Reg::Run() {
         shadow = shadows.back();
         shadows.pop_back();
         piece.reset();
-        face = internal::Session::ShadowSight(g_[current].lsr, *shadow);
-        destination = session_.Approach(g_[current].lsr, g_[current].configuration.translation(),
-                                        internal::Session::ShadowTarget(g_[current].lsr, *shadow),
-                                        session_.NodePositions());
+        face = FrontierRules::ShadowSight(g_[current].lsr, *shadow);
+        destination = session_.paths().Approach(
+            g_[current].lsr, g_[current].configuration.translation(),
+            FrontierRules::ShadowTarget(g_[current].lsr, *shadow), session_.NodePositions());
         if (!destination) {
           ++session_.run().unreachable_frontiers;
           session_.GiveUpShadow(current, *shadow, "no reachable point nearer the hidden space");
@@ -132,7 +135,7 @@ ExplorationRun Reg::Run() {
         Unlist(current);
         std::erase_if(list_, [&](Vertex v) { return !Pending(v); });
         if (list_.empty() && options_.shadow_frontiers) Sweep();
-        if (list_.empty()) retry = session_.NextRetry();
+        if (list_.empty()) retry = retries_.Next(session_);
         if (!retry)
           path = graph::BidirectionalAStar(g_, current,
                                            list_.empty() ? std::vector<Vertex>{start} : list_);
@@ -145,17 +148,18 @@ ExplorationRun Reg::Run() {
                              : session_.NodeAfterFailedMove(previous);
       // VERIFIES: what the new LSR does not cover of the piece goes back to the previous node
       // (all of it is dropped when the move failed: the way there is not clear).
-      internal::Session::PlanningTimer timer(&session_);
+      Session::PlanningTimer timer(&session_);
       if (shadow) {
         // The approach is the attempt: what the new LSR does not see behind the edge is given
         // up, and the new node's own shadows carry on the search.
-        if (!move.reached || !session_.ShadowCovered(g_[previous].lsr, *shadow, {&g_[current].lsr}))
+        if (!move.reached ||
+            !session_.rules().ShadowCovered(g_[previous].lsr, *shadow, {&g_[current].lsr}))
           session_.GiveUpShadow(previous, *shadow,
                                 move.reached ? "not seen from the node that approached it"
                                              : "the move towards it failed");
       } else if (move.reached) {
         for (const kernel::FrontierArc& rest :
-             session_.UncoveredParts(g_[previous].lsr, *piece, {&g_[current].lsr}))
+             session_.rules().UncoveredParts(g_[previous].lsr, *piece, {&g_[current].lsr}))
           g_[previous].frontiers.push_back(rest);
       } else {
         ++session_.run().unreachable_frontiers;
@@ -171,7 +175,7 @@ ExplorationRun Reg::Run() {
     }
     if (retry) {
       // A given-up frontier retried from another node.
-      current = session_.DriveRetry(current, *retry);
+      current = DriveRetry(&session_, current, *retry);
       continue;
     }
     if (list_.empty()) {

@@ -6,8 +6,9 @@
 #include <optional>
 #include <string>
 
-#include "exploration/internal/session.h"
-#include "exploration/internal/steps.h"
+#include "exploration/retries.h"
+#include "exploration/session.h"
+#include "exploration/steps.h"
 
 namespace splam::exploration {
 namespace {
@@ -20,9 +21,9 @@ namespace {
 // in rad plus the number of open shadows; neither grows, as nodes are only added): a part that a
 // new node cannot see beyond is not tried forever. `last_open` holds that measure at v's previous
 // relaxed move. A part seen only through a door at a slant is approached on the door's axis,
-// facing through it (Session::DoorwayApproach).
-using Move = internal::Session::Move;
-std::optional<Move> RelaxedMove(internal::Session* session, graph::Vertex v, int max_attempts,
+// facing through it (SafePaths::DoorwayApproach).
+using Move = SafePaths::Move;
+std::optional<Move> RelaxedMove(Session* session, graph::Vertex v, int max_attempts,
                                 double* last_open) {
   const graph::ExplorationGraph& g = session->graph();
   const graph::NodeData& node = g[v];
@@ -43,11 +44,12 @@ std::optional<Move> RelaxedMove(internal::Session* session, graph::Vertex v, int
   const double step = options.alpha * options.lsr_radius_m;
   const Eigen::Vector2d here = node.configuration.translation();
   for (int attempt = 0; attempt < max_attempts && !open.empty(); ++attempt) {
-    const double theta = internal::RandomDirection(open, &session->random());
+    const double theta = RandomDirection(open, &session->random());
     for (const double fraction : {1.0, 2.0 / 3.0, 1.0 / 3.0}) {
       const Eigen::Vector2d candidate =
           node.lsr.center() + fraction * step * Eigen::Vector2d(std::cos(theta), std::sin(theta));
-      if (auto path = session->PathInside(node.lsr, here, candidate)) return Move{*path, {}};
+      if (auto path = session->paths().PathInside(node.lsr, here, candidate))
+        return Move{*path, {}};
     }
   }
   const std::vector<Eigen::Vector2d> nodes = session->NodePositions();
@@ -55,14 +57,16 @@ std::optional<Move> RelaxedMove(internal::Session* session, graph::Vertex v, int
     const kernel::FrontierArc* widest = &open.front();
     for (const kernel::FrontierArc& part : open)
       if (part.AngularWidth() > widest->AngularWidth()) widest = &part;
-    if (auto door = session->DoorwayApproach(node.lsr, here, *widest, nodes)) return door;
+    if (auto door =
+            session->paths().DoorwayApproach(session->rules(), node.lsr, here, *widest, nodes))
+      return door;
     const double mid = 0.5 * (widest->start_angle_rad + widest->end_angle_rad);
-    if (auto path = session->Approach(node.lsr, here, node.lsr.ArcPoint(mid), nodes))
+    if (auto path = session->paths().Approach(node.lsr, here, node.lsr.ArcPoint(mid), nodes))
       return Move{*path, {}};
   }
   for (const std::size_t edge : shadows_open)
-    if (auto path = session->Approach(node.lsr, here,
-                                      internal::Session::ShadowTarget(node.lsr, edge), nodes))
+    if (auto path = session->paths().Approach(node.lsr, here,
+                                              FrontierRules::ShadowTarget(node.lsr, edge), nodes))
       return Move{*path, {}};
   return std::nullopt;
 }
@@ -82,34 +86,35 @@ kernel::Status SrtOptions::Validate() const {
 }
 
 ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localization) {
-  internal::Session session("srt", options_, robot, localization);
+  Session session("srt", options_, robot, localization);
   if (!session.Start()) return session.Finish();
   graph::ExplorationGraph& g = session.graph();
   graph::Vertex current = session.AddNodeHere(-1);
   const double step = options_.alpha * options_.lsr_radius_m;
   std::map<graph::Vertex, int> failed_returns;  // failed backtracks from each node
   std::map<graph::Vertex, double> last_open;    // RelaxedMove's open width at each node, rad
+  Retries retries;                              // given-up frontiers, once back at the root
   while (!session.CapReached()) {
     std::optional<std::vector<Eigen::Vector2d>> path;  // to the new node's configuration
     std::optional<Eigen::Vector2d> face;               // what to face there (RelaxedMove)
     {
-      internal::Session::PlanningTimer timer(&session);
+      Session::PlanningTimer timer(&session);
       const graph::NodeData& node = g[current];
       const Eigen::Vector2d here = node.configuration.translation();
-      for (int attempt = 0; attempt < srt_.max_attempts && !node.frontiers.empty();
-           ++attempt) {
-        const double theta = internal::RandomDirection(node.frontiers, &session.random());
+      for (int attempt = 0; attempt < srt_.max_attempts && !node.frontiers.empty(); ++attempt) {
+        const double theta = RandomDirection(node.frontiers, &session.random());
         const Eigen::Vector2d candidate =
             node.lsr.center() + step * Eigen::Vector2d(std::cos(theta), std::sin(theta));
         // VALID_CONF: outside the LSR of every other node, and reachable inside this one.
-        const bool valid = internal::OutsideOtherLsrs(g, current, candidate);
-        if (valid) path = session.PathInside(node.lsr, here, candidate);
+        const bool valid = OutsideOtherLsrs(g, current, candidate);
+        if (valid) path = session.paths().PathInside(node.lsr, here, candidate);
         if (path) break;
       }
       if (!path && srt_.relaxed_valid_conf) {
         const auto [it, added] =
             last_open.try_emplace(current, std::numeric_limits<double>::infinity());
-        if (std::optional<Move> move = RelaxedMove(&session, current, srt_.max_attempts, &it->second)) {
+        if (std::optional<Move> move =
+                RelaxedMove(&session, current, srt_.max_attempts, &it->second)) {
           path = std::move(move->path);
           face = move->face;
         }
@@ -132,13 +137,13 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
     if (parent < 0) {
       // Back at the root: the frontiers given up and still open are retried from other nodes
       // (ExplorerOptions::retry_nodes), each a new subtree.
-      std::optional<internal::Session::Retry> retry;
+      std::optional<Retry> retry;
       {
-        internal::Session::PlanningTimer timer(&session);
-        retry = session.NextRetry();
+        Session::PlanningTimer timer(&session);
+        retry = retries.Next(session);
       }
       if (!retry) return session.Finish(Termination::kExplored, "back at the root, nothing left");
-      current = session.DriveRetry(current, *retry);
+      current = DriveRetry(&session, current, *retry);
       continue;
     }
     // Backtrack along the tree edge; a failed move leaves the robot between the two nodes,

@@ -1,5 +1,5 @@
 // The named steps of SRT and REG on small hand-made LSRs.
-#include "exploration/internal/steps.h"
+#include "exploration/steps.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include "sim/builtin_worlds.h"
 #include "sim/ray_caster.h"
 
-namespace splam::exploration::internal {
+namespace splam::exploration {
 namespace {
 
 using kernel::kPi;
@@ -56,7 +56,7 @@ struct Fixture {
   graph::Vertex Node(const Eigen::Vector2d& at, const kernel::Scan& scan, double heading = 0.0) {
     const graph::Vertex v = graph::AddNode(&g, Pose2(at, heading));
     g[v].lsr = kernel::LocalSafeRegion::FromScan(scan, Pose2(at, heading), options.lsr_radius_m);
-    g[v].frontiers = session.LongEnough(g[v].lsr.frontiers());
+    g[v].frontiers = session.rules().LongEnough(g[v].lsr.frontiers());
     return v;
   }
 };
@@ -160,9 +160,9 @@ TEST(Verifies, ThePartOfAPieceANewNodeSeesIsCovered) {
   const kernel::FrontierArc piece{kPi / 2 - 0.5, kPi / 2 + 0.5};
   // The new node 2.4 m along the piece's midpoint covers all of it (its disc reaches
   // acos(0.4) = 1.16 rad either side).
-  EXPECT_TRUE(f.session.UncoveredParts(f.g[a].lsr, piece, {&f.g[b].lsr}).empty());
+  EXPECT_TRUE(f.session.rules().UncoveredParts(f.g[a].lsr, piece, {&f.g[b].lsr}).empty());
   const kernel::FrontierArc wide{kPi / 2 - 1.5, kPi / 2 + 1.5};
-  const auto rest = f.session.UncoveredParts(f.g[a].lsr, wide, {&f.g[b].lsr});
+  const auto rest = f.session.rules().UncoveredParts(f.g[a].lsr, wide, {&f.g[b].lsr});
   ASSERT_EQ(rest.size(), 2u);  // both ends go back to the node
   EXPECT_NEAR(Width(rest), 3.0 - 2 * std::acos(0.4), 0.05);
 }
@@ -198,15 +198,15 @@ TEST(Session, LegsKeepTheRobotsRadiusFromTheLsrBoundary) {
                                    return s > 1e-9 ? 1.0 / s : kernel::Scan::kNoReturn;
                                  }));
   const kernel::LocalSafeRegion& lsr = f.g[a].lsr;
-  EXPECT_TRUE(f.session.LegIsClear(lsr, {0, 0}, {2.0, 0.5}));   // 0.5 m from the wall
-  EXPECT_FALSE(f.session.LegIsClear(lsr, {0, 0}, {2.0, 0.8}));  // 0.2 m from the wall
-  EXPECT_FALSE(f.session.LegIsClear(lsr, {0, 0}, {0.0, 2.0}));  // through it
+  EXPECT_TRUE(f.session.paths().LegIsClear(lsr, {0, 0}, {2.0, 0.5}));   // 0.5 m from the wall
+  EXPECT_FALSE(f.session.paths().LegIsClear(lsr, {0, 0}, {2.0, 0.8}));  // 0.2 m from the wall
+  EXPECT_FALSE(f.session.paths().LegIsClear(lsr, {0, 0}, {0.0, 2.0}));  // through it
   // A goal behind a corner of the free space is reached through one waypoint, a goal beyond the
   // wall not at all.
-  const auto direct = f.session.PathInside(lsr, {0, 0}, {2.0, 0.3});
+  const auto direct = f.session.paths().PathInside(lsr, {0, 0}, {2.0, 0.3});
   ASSERT_TRUE(direct);
   EXPECT_EQ(direct->size(), 1u);
-  EXPECT_FALSE(f.session.PathInside(lsr, {0, 0}, {0.0, 1.5}));
+  EXPECT_FALSE(f.session.paths().PathInside(lsr, {0, 0}, {0.0, 1.5}));
 }
 
 // A robot that stopped 0.27 m in front of the sonars' boundary (the blind spikes between their
@@ -243,7 +243,7 @@ TEST(Session, PropertyARobotBesideTheSonarsBoundaryLeavesByAnExactLeg) {
       Fixture f(options);
       const graph::Vertex v = f.Node(at, scan, heading);
       const kernel::LocalSafeRegion& lsr = f.g[v].lsr;
-      const double needed = f.session.Needed();
+      const double needed = f.session.paths().Needed();
       const double start = kernel::SegmentClearance(lsr, at, at);
       ASSERT_LT(start, needed);
       for (const Eigen::Vector2d& offset : targets) {
@@ -251,7 +251,7 @@ TEST(Session, PropertyARobotBesideTheSonarsBoundaryLeavesByAnExactLeg) {
         if (!lsr.Contains(target) || kernel::SegmentClearance(lsr, target, target) < needed + 0.1)
           continue;
         goals += escapes;
-        const auto path = f.session.PathInside(lsr, at, target);
+        const auto path = f.session.paths().PathInside(lsr, at, target);
         if (!escapes) {
           unreached_without += !path;
           continue;
@@ -263,7 +263,7 @@ TEST(Session, PropertyARobotBesideTheSonarsBoundaryLeavesByAnExactLeg) {
         for (const Eigen::Vector2d& next : *path) {
           const bool near_start = (from - at).norm() <= needed;
           const double asked = near_start ? start : needed;
-          EXPECT_TRUE(f.session.LegIsClear(lsr, from, next, near_start) ||
+          EXPECT_TRUE(f.session.paths().LegIsClear(lsr, from, next, near_start) ||
                       kernel::SegmentClearance(lsr, from, next) >= asked - LsrPlanner::kCellM)
               << "trial " << trial << ": leg " << from.transpose() << " -> " << next.transpose();
           from = next;
@@ -315,7 +315,7 @@ TEST(Session, ADoorSeenAtASlantNearTheRimIsAFrontierASlitIsNot) {
       if (ArcsAt({arc}, door_bearing) == 0) continue;
       ++short_arcs;
       EXPECT_LT(graph::ArcLength(arc, 3.0), 0.5);
-      const auto gap = f.session.GapOf(door, arc);
+      const auto gap = f.session.rules().GapOf(door, arc);
       ASSERT_TRUE(gap);
       // The jambs are the first hits beside the door: along a wall at 25 deg to the beams, up to
       // a beam's footprint (1 deg at 2.9 m, 0.12 m along the wall) beyond it.
@@ -325,33 +325,34 @@ TEST(Session, ADoorSeenAtASlantNearTheRimIsAFrontierASlitIsNot) {
       EXPECT_NEAR(gap->right.y(), 1.2, 1e-6);
       // The approach stands on the door's axis, 0.3 m beyond the robot's need in front of it,
       // and faces the door's middle.
-      const auto move = f.session.DoorwayApproach(door, {0, 0}, arc, {});
+      const auto move = f.session.paths().DoorwayApproach(f.session.rules(), door, {0, 0}, arc, {});
       ASSERT_EQ(move.has_value(), doorway_goals);
       if (!move) continue;
       ASSERT_TRUE(move->face);
       EXPECT_NEAR(move->face->x(), 2.25, 0.1);
       EXPECT_NEAR(move->face->y(), 1.2, 1e-6);
       EXPECT_NEAR(move->path.back().x(), move->face->x(), 1e-9);
-      EXPECT_NEAR(move->path.back().y(), 1.2 - f.session.Needed() - 0.3, 1e-9);
+      EXPECT_NEAR(move->path.back().y(), 1.2 - f.session.paths().Needed() - 0.3, 1e-9);
     }
     EXPECT_EQ(short_arcs, 1);
-    EXPECT_EQ(ArcsAt(f.session.FrontiersOf(door), door_bearing), doorway_goals ? 1 : 0);
+    EXPECT_EQ(ArcsAt(f.session.rules().FrontiersOf(door), door_bearing), doorway_goals ? 1 : 0);
     // Only as the laser saw it: between two sonar cones a short arc is an artefact of the cone
     // model (the 240 deg of a laser facing away from the door leave it to the sonars).
     const kernel::FrontierArc facing_away{door_bearing + 1.0, door_bearing + 1.0 + 4 * kPi / 3};
     const kernel::FrontierArc facing{door_bearing - 2 * kPi / 3, door_bearing + 2 * kPi / 3};
-    EXPECT_EQ(ArcsAt(f.session.FrontiersOf(door, facing_away), door_bearing), 0);
-    EXPECT_EQ(ArcsAt(f.session.FrontiersOf(door, facing), door_bearing), doorway_goals ? 1 : 0);
+    EXPECT_EQ(ArcsAt(f.session.rules().FrontiersOf(door, facing_away), door_bearing), 0);
+    EXPECT_EQ(ArcsAt(f.session.rules().FrontiersOf(door, facing), door_bearing),
+              doorway_goals ? 1 : 0);
     // A 0.3 m slit is no frontier either way: the robot needs 2 x 0.317 m.
     const kernel::LocalSafeRegion slit =
         kernel::LocalSafeRegion::FromScan(WallWithGap(0.3), Pose2(0, 0, 0), 3.0);
-    EXPECT_EQ(ArcsAt(f.session.FrontiersOf(slit), std::atan2(1.2, 2.05)), 0);
+    EXPECT_EQ(ArcsAt(f.session.rules().FrontiersOf(slit), std::atan2(1.2, 2.05)), 0);
     // One or two beams free past a wall (a junction, range noise at the rim) are no door:
     // min_doorway_arc_m. The door's arc (0.39 m) is far above it; raised above the arc, it goes.
     ExplorerOptions strict = DoorwayGoals(doorway_goals);
     strict.min_doorway_arc_m = 0.45;
     Fixture g(strict);
-    EXPECT_EQ(ArcsAt(g.session.FrontiersOf(door), door_bearing), 0);
+    EXPECT_EQ(ArcsAt(g.session.rules().FrontiersOf(door), door_bearing), 0);
   }
 }
 
@@ -373,16 +374,17 @@ TEST(Session, AShortDoorArcThatNothingCoversStaysAFrontier) {
     Fixture f(DoorwayGoals(doorway_goals));
     const kernel::LocalSafeRegion door = DoorAtASlant();
     ASSERT_TRUE(kernel::Overlaps(door, neighbour));
-    for (const kernel::FrontierArc& arc : f.session.FrontiersOf(door)) {
+    for (const kernel::FrontierArc& arc : f.session.rules().FrontiersOf(door)) {
       if (ArcsAt({arc}, door_bearing) == 0) continue;
-      EXPECT_EQ(f.session.UncoveredParts(door, arc, {&neighbour}).size(), 1u);
+      EXPECT_EQ(f.session.rules().UncoveredParts(door, arc, {&neighbour}).size(), 1u);
       // A region that covers part of it leaves the rest to LongEnough (the door's own: nothing).
-      EXPECT_TRUE(f.session.UncoveredParts(door, arc, {&door}).empty());
+      EXPECT_TRUE(f.session.rules().UncoveredParts(door, arc, {&door}).empty());
     }
     // Kept through the overlap with the option; without it the arc was never a frontier.
     std::vector<kernel::FrontierArc> kept;
-    for (const kernel::FrontierArc& arc : f.session.FrontiersOf(door))
-      for (const kernel::FrontierArc& part : f.session.UncoveredParts(door, arc, {&neighbour}))
+    for (const kernel::FrontierArc& arc : f.session.rules().FrontiersOf(door))
+      for (const kernel::FrontierArc& part :
+           f.session.rules().UncoveredParts(door, arc, {&neighbour}))
         kept.push_back(part);
     EXPECT_EQ(ArcsAt(kept, door_bearing), doorway_goals ? 1 : 0);
   }
@@ -423,8 +425,8 @@ TEST(CurrIntersection, TwoNodesThatSawADoorNearTheirRimsLeaveItAFrontier) {
     Fixture f(options);
     const graph::Vertex a = f.Node(south.translation(), ScanOf("office-doors", south), 1.54);
     const graph::Vertex b = f.Node(west.translation(), ScanOf("office-doors", west), 2.52);
-    f.g[a].frontiers = f.session.FrontiersOf(f.g[a].lsr);
-    f.g[b].frontiers = f.session.FrontiersOf(f.g[b].lsr);
+    f.g[a].frontiers = f.session.rules().FrontiersOf(f.g[a].lsr);
+    f.g[b].frontiers = f.session.rules().FrontiersOf(f.g[b].lsr);
     ASSERT_EQ(into_room(f.g[a]), 1);
     ASSERT_EQ(into_room(f.g[b]), 1);
     CurrIntersection(f.session, &f.g, b);
@@ -435,7 +437,7 @@ TEST(CurrIntersection, TwoNodesThatSawADoorNearTheirRimsLeaveItAFrontier) {
 TEST(Session, FrontiersShorterThanTheMinimumAreDropped) {
   Fixture f;  // min_frontier_m = 0.5 at r = 3 m: arcs narrower than 1/6 rad are slits
   const std::vector<kernel::FrontierArc> arcs = {{0.0, 0.1}, {1.0, 1.2}, {2.0, 3.0}};
-  const auto kept = f.session.LongEnough(arcs);
+  const auto kept = f.session.rules().LongEnough(arcs);
   ASSERT_EQ(kept.size(), 2u);
   EXPECT_EQ(kept[0].start_angle_rad, 1.0);
   EXPECT_EQ(kept[1].start_angle_rad, 2.0);
@@ -461,7 +463,7 @@ TEST(Session, NodesFollowTheLocalisationsRevisedPoses) {
   for (const Pose2& at : {Pose2(0, 0, 0), Pose2(2, 0, 0)}) {
     const graph::Vertex v = graph::AddNode(&g, at);
     g[v].lsr = kernel::LocalSafeRegion::FromScan(wall, at, options.lsr_radius_m);
-    g[v].frontiers = session.LongEnough(g[v].lsr.frontiers());
+    g[v].frontiers = session.rules().LongEnough(g[v].lsr.frontiers());
   }
   graph::AddEdge(&g, 0, 1, {{0, 0}, {1, 0.5}, {2, 0}});
   const graph::NodeData before = g[1];
@@ -516,4 +518,4 @@ TEST(ExplorationGraph, NodesEdgesAndWaypoints) {
 }
 
 }  // namespace
-}  // namespace splam::exploration::internal
+}  // namespace splam::exploration

@@ -1,11 +1,11 @@
-#include "exploration/internal/steps.h"
+#include "exploration/steps.h"
 
 #include <cmath>
 #include <limits>
 
 #include "graph/frontiers.h"
 
-namespace splam::exploration::internal {
+namespace splam::exploration {
 namespace {
 
 using graph::Vertex;
@@ -19,12 +19,13 @@ void RemoveCovered(const Session& session, graph::NodeData* node,
                    const kernel::LocalSafeRegion& other) {
   std::vector<kernel::FrontierArc> kept;
   for (const kernel::FrontierArc& arc : node->frontiers) {
-    for (const kernel::FrontierArc& rest : session.UncoveredParts(node->lsr, arc, {&other}))
+    for (const kernel::FrontierArc& rest : session.rules().UncoveredParts(node->lsr, arc, {&other}))
       kept.push_back(rest);
   }
   node->frontiers = std::move(kept);
-  std::erase_if(node->shadows,
-                [&](std::size_t edge) { return session.ShadowCovered(node->lsr, edge, {&other}); });
+  std::erase_if(node->shadows, [&](std::size_t edge) {
+    return session.rules().ShadowCovered(node->lsr, edge, {&other});
+  });
 }
 
 }  // namespace
@@ -82,7 +83,9 @@ std::optional<std::vector<Eigen::Vector2d>> SafePath(const Session& session,
       const double length = (w - pa).norm() + (pb - w).norm();
       if (length >= best_length) continue;
       if (!g[a].lsr.Contains(w) || !g[b].lsr.Contains(w)) continue;
-      if (!session.LegIsClear(g[a].lsr, pa, w) || !session.LegIsClear(g[b].lsr, pb, w)) continue;
+      if (!session.paths().LegIsClear(g[a].lsr, pa, w) ||
+          !session.paths().LegIsClear(g[b].lsr, pb, w))
+        continue;
       best = std::vector<Eigen::Vector2d>{pa, w, pb};
       best_length = length;
     }
@@ -98,7 +101,8 @@ kernel::FrontierArc FrontRand(const Session& session, std::vector<kernel::Fronti
   const kernel::FrontierArc arc = (*frontiers)[k];
   const kernel::FrontierArc piece = graph::LeadingPiece(arc, max_piece_rad);
   frontiers->erase(frontiers->begin() + static_cast<std::ptrdiff_t>(k));
-  for (const kernel::FrontierArc& rest : session.LongEnough(graph::Subtract(arc, {piece}, 0.0)))
+  for (const kernel::FrontierArc& rest :
+       session.rules().LongEnough(graph::Subtract(arc, {piece}, 0.0)))
     frontiers->push_back(rest);
   return piece;
 }
@@ -125,8 +129,9 @@ std::optional<std::vector<Eigen::Vector2d>> Displacement(const Session& session,
               node.lsr.center() +
               fraction * step * Eigen::Vector2d(std::cos(theta), std::sin(theta));
           if (straight_only) {
-            if (session.LegIsClear(node.lsr, here, q)) return std::vector<Eigen::Vector2d>{q};
-          } else if (auto path = session.PathInside(node.lsr, here, q)) {
+            if (session.paths().LegIsClear(node.lsr, here, q))
+              return std::vector<Eigen::Vector2d>{q};
+          } else if (auto path = session.paths().PathInside(node.lsr, here, q)) {
             return path;
           }
         }
@@ -136,4 +141,4 @@ std::optional<std::vector<Eigen::Vector2d>> Displacement(const Session& session,
   return std::nullopt;
 }
 
-}  // namespace splam::exploration::internal
+}  // namespace splam::exploration

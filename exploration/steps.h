@@ -1,19 +1,20 @@
-#ifndef SPLAM_EXPLORATION_INTERNAL_STEPS_H_
-#define SPLAM_EXPLORATION_INTERNAL_STEPS_H_
+#ifndef SPLAM_EXPLORATION_STEPS_H_
+#define SPLAM_EXPLORATION_STEPS_H_
 
 #include <Eigen/Core>
 #include <optional>
 #include <vector>
 
-#include "exploration/internal/session.h"
+#include "exploration/session.h"
 #include "graph/exploration_graph.h"
 #include "kernel/local_safe_region.h"
 #include "kernel/random.h"
 
 // The named steps of SRT and REG (paper 003 §2.1 and §3.1, SPEC §9) as functions of the graph,
-// so that tests check each on hand-made LSRs. The session gives the robot's geometry (clear
-// legs, paths inside an LSR) and the options.
-namespace splam::exploration::internal {
+// so that tests check each on hand-made LSRs, and a variant of either reuses them. The session
+// gives the robot's geometry (Session::paths: clear legs, paths inside an LSR), the frontier
+// rules (Session::rules) and the options.
+namespace splam::exploration {
 
 // --- SRT -------------------------------------------------------------------------------------
 // RANDOM_DIR: a direction uniform over the union of the arcs (drawing uniform directions until
@@ -44,6 +45,6 @@ std::optional<std::vector<Eigen::Vector2d>> Displacement(const Session& session,
                                                          const graph::NodeData& node,
                                                          const kernel::FrontierArc& piece);
 
-}  // namespace splam::exploration::internal
+}  // namespace splam::exploration
 
-#endif  // SPLAM_EXPLORATION_INTERNAL_STEPS_H_
+#endif  // SPLAM_EXPLORATION_STEPS_H_

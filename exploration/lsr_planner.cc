@@ -1,4 +1,4 @@
-#include "exploration/internal/lsr_planner.h"
+#include "exploration/lsr_planner.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <queue>
 #include <utility>
 
-namespace splam::exploration::internal {
+namespace splam::exploration {
 
 LsrPlanner::LsrPlanner(const kernel::LocalSafeRegion& lsr, const Eigen::Vector2d& from,
                        double needed, const std::vector<Eigen::Vector2d>& escapes)
@@ -151,4 +151,4 @@ std::optional<std::vector<Eigen::Vector2d>> LsrPlanner::CellPath(const Eigen::Ve
   return path;
 }
 
-}  // namespace splam::exploration::internal
+}  // namespace splam::exploration

@@ -1,5 +1,5 @@
-#ifndef SPLAM_EXPLORATION_INTERNAL_LSR_PLANNER_H_
-#define SPLAM_EXPLORATION_INTERNAL_LSR_PLANNER_H_
+#ifndef SPLAM_EXPLORATION_LSR_PLANNER_H_
+#define SPLAM_EXPLORATION_LSR_PLANNER_H_
 
 #include <Eigen/Core>
 #include <functional>
@@ -8,9 +8,9 @@
 
 #include "kernel/local_safe_region.h"
 
-namespace splam::exploration::internal {
+namespace splam::exploration {
 
-// Shortest paths for the robot's disc inside one LSR, from where the robot stands (Session::
+// Shortest paths for the robot's disc inside one LSR, from where the robot stands (SafePaths::
 // PathInside when no straight leg is clear). The LSR is rasterised at cell_m; a cell's clearance
 // is its distance to the nearest cell outside the region; the search (Dijkstra, 8-connected) keeps
 // to cells whose clearance exceeds `needed` (the robot's radius plus margin), and within `needed`
@@ -18,13 +18,13 @@ namespace splam::exploration::internal {
 // than the start's. Doors narrow for the robot, seen at a slant, and rooms behind a corner are
 // reached through as many bends as they need; the two-leg paths of a polar grid of waypoints
 // missed doors off the grid's 10 deg rays (docs/experiments.md, Fig. 18). The raster only finds the
-// way: Session::PathInside checks every leg of the result with the exact clearance test.
+// way: SafePaths::PathInside checks every leg of the result with the exact clearance test.
 //
 // The raster's clearances are a cell off the exact ones, and from a start closer to the boundary
 // than `needed` the cells it leaves by may bring the robot a few millimetres closer than it stands
 // (REG in `office`, seed 7: every path out of a node beside the sonar's boundary was refused by the
 // exact test). Given `escapes`, points that straight legs from the start reach and that the exact
-// test already passed (Session::Escapes), the search begins at them instead, each at the cost of
+// test already passed (SafePaths::Escapes), the search begins at them instead, each at the cost of
 // its leg, and keeps to cells whose clearance exceeds `needed` everywhere.
 class LsrPlanner {
  public:
@@ -68,6 +68,6 @@ class LsrPlanner {
   std::vector<std::pair<int, Eigen::Vector2d>> escape_cells_;
 };
 
-}  // namespace splam::exploration::internal
+}  // namespace splam::exploration
 
-#endif  // SPLAM_EXPLORATION_INTERNAL_LSR_PLANNER_H_
+#endif  // SPLAM_EXPLORATION_LSR_PLANNER_H_
