@@ -1,76 +1,200 @@
-// Tutorial: plug a robot into an explorer, run SRT and REG, and couple REG with a SLAM method.
+// Tutorial: write an explorer of your own, register it in one line, and compare it with REG on a
+// built-in world.
 //
-// An explorer only sees a RobotInterface (velocity commands, odometry, laser, sonar) and a
-// Localization (where the robot believes it is). Here the robot is the built-in simulator behind
-// loop::SimulatedRobot; the localisation is first its ground truth (exploration alone), then a
-// registered SLAM method behind loop::SlamLocalization (the SPLAM loop: the explorer plans with
-// the SLAM estimate). `splam explore` runs exactly these classes.
+// The variant is REG with one step changed: at a node it takes the longest free arc first (REG's
+// FRONT_RAND draws one at random). Everything else comes from the exploration toolkit:
+// exploration::Session (the robot, the localisation, the nodes and the run's record),
+// steps.h (REG's CURR_INTERSECTION and DISPLACEMENT), FrontierRules (what is a frontier, what
+// covers it), Retries (frontiers given up, tried again from other nodes) and
+// graph::BidirectionalAStar (FIND_PATH).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "exploration/explorer.h"
-#include "exploration/localization.h"
-#include "loop/simulated_robot.h"
-#include "loop/slam_localization.h"
+#include "exploration/retries.h"
+#include "exploration/session.h"
+#include "exploration/steps.h"
+#include "graph/bidirectional_astar.h"
+#include "graph/frontiers.h"
+#include "loop/exploration_report.h"
+#include "loop/exploration_run.h"
 #include "sim/builtin_worlds.h"
-#include "sim/ray_caster.h"
-#include "sim/simulator.h"
 
 namespace {
 
-using splam::kernel::Pose2;
+using splam::exploration::ExplorationRun;
+using splam::exploration::ExplorerOptions;
+using splam::exploration::Session;
+using splam::graph::Vertex;
+using splam::kernel::FrontierArc;
 
-// Root mean square of the distance between the estimated and the true positions over a run.
-double PositionRmse(const splam::exploration::ExplorationRun& run, bool odometry) {
-  double sum = 0.0;
-  for (const splam::exploration::TraceSample& s : run.trace) {
-    const Pose2& p = odometry ? s.odometry : s.estimate;
-    sum += (p.translation() - s.truth.translation()).squaredNorm();
+// Step 1: the variant's own options (the shared ones, r, alpha, the caps, ... are
+// ExplorerOptions). VisitFields gives them their YAML form, `--set exploration.longest.KEY=V`.
+struct LongestOptions {
+  // The piece driven towards is the middle of the longest arc, at most this times the arc a new
+  // LSR alpha r away covers, 2 acos(alpha / 2) (REG's piece_factor).
+  double piece_factor = 1.0;
+
+  void VisitFields(splam::kernel::FieldVisitor& v) {
+    v.Field("piece_factor", &piece_factor, "piece length, times 2 acos(alpha / 2)");
   }
-  return std::sqrt(sum / static_cast<double>(run.trace.size()));
+  splam::kernel::Status Validate() const {
+    if (!(piece_factor > 0.0 && piece_factor <= 100.0))
+      return splam::kernel::Status::Error("piece_factor must be in (0, 100]");
+    return splam::kernel::Status::Ok();
+  }
+};
+
+// The middle piece of the longest arc of `arcs`, at most max_piece_rad wide; what is left of that
+// arc on either side goes back (when it is still a frontier by the rules).
+FrontierArc TakeLongest(const splam::exploration::FrontierRules& rules,
+                        std::vector<FrontierArc>* arcs, double max_piece_rad) {
+  const auto longest =
+      std::max_element(arcs->begin(), arcs->end(), [](const FrontierArc& a, const FrontierArc& b) {
+        return a.AngularWidth() < b.AngularWidth();
+      });
+  const FrontierArc arc = *longest;
+  arcs->erase(longest);
+  const double mid = 0.5 * (arc.start_angle_rad + arc.end_angle_rad);
+  const double half = 0.5 * std::min(arc.AngularWidth(), max_piece_rad);
+  const FrontierArc piece{mid - half, mid + half};
+  for (const FrontierArc& rest : rules.LongEnough(splam::graph::Subtract(arc, {piece}, 0.0)))
+    arcs->push_back(rest);
+  return piece;
 }
+
+// Step 2: the explorer. Run() is a loop over a Session: plan (inside a PlanningTimer), drive,
+// add a node, until nothing is left or a cap stops it.
+class LongestFrontierFirst : public splam::exploration::Explorer {
+ public:
+  LongestFrontierFirst(const ExplorerOptions& options, const LongestOptions& own)
+      : options_(options), own_(own) {}
+  std::string name() const override { return "longest"; }
+
+  ExplorationRun Run(splam::exploration::RobotInterface* robot,
+                     splam::exploration::Localization* localization) override {
+    Session session(name(), options_, robot, localization);
+    splam::exploration::Retries retries;
+    if (!session.Start()) return session.Finish();  // bad options: the run says why
+    splam::graph::ExplorationGraph& g = session.graph();
+    const Vertex start = session.AddNodeHere(-1);
+    Vertex current = start;
+    const double max_piece = own_.piece_factor * 2.0 * std::acos(options_.alpha / 2.0);
+    while (!session.CapReached()) {
+      std::optional<std::vector<Eigen::Vector2d>> path;
+      FrontierArc piece;
+      {
+        Session::PlanningTimer timer(&session);
+        // REG's CURR_INTERSECTION: overlapping LSRs remove each other's covered frontier parts
+        // and are joined by safe paths.
+        splam::exploration::CurrIntersection(session, &g, current);
+        std::vector<FrontierArc>& arcs = g[current].frontiers;
+        while (!arcs.empty() && !path) {
+          piece = TakeLongest(session.rules(), &arcs, max_piece);  // the one changed step
+          path = splam::exploration::Displacement(session, g[current], piece);
+          if (!path) session.GiveUp(current, piece, "no clear leg from its node");
+        }
+      }
+      if (path) {
+        const Vertex previous = current;
+        const bool reached = session.Drive(*path).reached;
+        current = reached ? session.AddNodeHere(static_cast<int>(previous))
+                          : session.NodeAfterFailedMove(previous);
+        // What the new LSR does not cover of the piece stays a frontier of the node it left.
+        if (reached) {
+          for (const FrontierArc& rest :
+               session.rules().UncoveredParts(g[previous].lsr, piece, {&g[current].lsr}))
+            g[previous].frontiers.push_back(rest);
+        } else {
+          session.GiveUp(previous, piece, "the move towards it failed");
+        }
+        continue;
+      }
+      // Nothing left here: FIND_PATH to the nearest node with frontiers; when no node has one, a
+      // frontier given up but still open is retried from another node (Retries), and at the end
+      // the robot returns home.
+      std::vector<Vertex> pending;
+      for (Vertex v = 0; v < boost::num_vertices(g); ++v)
+        if (!g[v].frontiers.empty()) pending.push_back(v);
+      if (pending.empty()) {
+        std::optional<splam::exploration::Retry> retry;
+        {
+          Session::PlanningTimer timer(&session);
+          retry = retries.Next(session);
+        }
+        if (retry) {
+          current = splam::exploration::DriveRetry(&session, current, *retry);
+          continue;
+        }
+      }
+      const auto route = splam::graph::BidirectionalAStar(
+          g, current, pending.empty() ? std::vector<Vertex>{start} : pending);
+      if (pending.empty() || !route) {
+        if (route && route->vertices.size() > 1)
+          session.Drive(splam::graph::Waypoints(g, route->vertices));
+        return session.Finish(splam::exploration::Termination::kExplored,
+                              pending.empty() ? "no frontier left; returned to the start"
+                                              : "the nodes with frontiers are unreachable");
+      }
+      current = session.Drive(splam::graph::Waypoints(g, route->vertices)).reached
+                    ? route->vertices.back()
+                    : session.NodeAfterFailedMove(current);
+    }
+    return session.Finish();  // a cap: the run says which
+  }
+
+ private:
+  ExplorerOptions options_;
+  LongestOptions own_;
+};
+
+// Step 3: the one registration line. From here on `longest` is an explorer like SRT and REG:
+// RunExploration, the sweeps and, in a program that calls splam::apps::Main, `splam explore
+// --explorer longest` and `splam config print --explorer longest` find it by name.
+const splam::exploration::ExplorerRegistration<LongestOptions> kLongest(
+    "longest", "REG taking the longest frontier first (examples/exploration)",
+    [](const ExplorerOptions& options, const LongestOptions& own) {
+      return std::make_unique<LongestFrontierFirst>(options, own);
+    });
 
 }  // namespace
 
-int main() {
-  const splam::sim::World world = *splam::sim::BuiltinWorld("complex");
-  const splam::sim::RayCaster caster(world);
-  for (const char* name : {"srt", "reg", "reg+topological"}) {
-    // A fresh simulated robot with sonar, seeded so that runs are reproducible.
-    splam::sim::SimulatorOptions sim_options;
-    sim_options.enable_sonar = true;
-    splam::sim::Simulator simulator(caster, sim_options, *world.start, /*seed=*/1);
-    // Step 1: the robot. A real robot implements exploration::RobotInterface the same way:
-    // Step(v, w), ReadOdometry(), Sense() and a RobotDescription (radius, laser mounting, ...).
-    splam::loop::SimulatedRobot robot(&simulator);
-    // Step 2: the explorer with its options (LSR radius r = 3 m, step alpha * r = 2.4 m, ...)
-    // and the localisation: ground truth, or a SLAM method by its registry name. The SLAM
-    // method's local region uses the explorer's r and alpha, so both are given once.
-    splam::exploration::ExplorerOptions options;
-    options.seed = 1;
-    const bool with_slam = std::string(name) == "reg+topological";
-    splam::exploration::GroundTruthLocalization ground_truth;
-    splam::loop::SlamLocalization my_slam("topological", /*options=*/nullptr,
-                                          {options.lsr_radius_m, options.alpha});
-    splam::exploration::Localization* localization =
-        with_slam ? static_cast<splam::exploration::Localization*>(&my_slam) : &ground_truth;
-    const splam::exploration::ExplorationRun run =
-        (*splam::exploration::ExplorerRegistry::Global().Make(with_slam ? "reg" : name, options)
-              .value)
-            ->Run(&robot, localization);
-    // Step 3: what happened.
-    std::printf("%s: %zu nodes, %zu edges, %.1f m in %.0f s simulated; %s (%s)\n", name,
-                boost::num_vertices(run.graph), boost::num_edges(run.graph), run.distance_m,
-                run.time_s, splam::exploration::TerminationName(run.termination).c_str(),
-                run.message.c_str());
-    if (with_slam) {
-      std::printf("  topological: position RMSE %.3f m (odometry alone %.3f m), %zu map curves\n",
-                  PositionRmse(run, false), PositionRmse(run, true),
-                  my_slam.driver()->method().MapCurves());
-      if (PositionRmse(run, false) >= PositionRmse(run, true)) return 1;
+// Step 4: run it and REG in the same world with the same seed, ground truth as the localisation,
+// and draw the variant's graph (argv[1], default example_exploration.png).
+int main(int argc, char** argv) {
+  const std::string picture = argc > 1 ? argv[1] : "example_exploration.png";
+  const splam::sim::World world = *splam::sim::BuiltinWorld("office");
+  int status = 0;
+  for (const char* explorer : {"longest", "reg"}) {
+    splam::loop::ExploreSetup setup;
+    setup.explorer = explorer;
+    setup.localization = "ground-truth";  // or any registered SLAM method: the SPLAM loop
+    setup.seed = 1;
+    const splam::loop::ExploreOutcome outcome = splam::loop::RunExploration(world, setup);
+    if (!outcome.error.empty()) {
+      std::fprintf(stderr, "%s: %s\n", explorer, outcome.error.c_str());
+      return 1;
     }
-    if (run.termination != splam::exploration::Termination::kExplored) return 1;
+    const ExplorationRun& run = outcome.run;
+    std::printf("%-8s %3zu nodes, %6.1f m, %4.0f s simulated, %5.1f %% explored: %s (%s)\n",
+                explorer, boost::num_vertices(run.graph), run.distance_m, run.time_s,
+                100.0 * outcome.coverage(),
+                splam::exploration::TerminationName(run.termination).c_str(), run.message.c_str());
+    if (std::string(explorer) == "longest") {
+      const std::string error = splam::loop::SaveExplorationPicture(
+          world, outcome, splam::loop::RunTitle(world, setup, outcome), {picture});
+      if (!error.empty()) {
+        std::fprintf(stderr, "%s\n", error.c_str());
+        return 1;
+      }
+      std::printf("wrote %s\n", picture.c_str());
+    }
+    if (outcome.coverage() < 0.9) status = 1;  // the tutorial is also a test
   }
-  return 0;
+  return status;
 }

@@ -11,6 +11,8 @@
 #include "estimation/metrics.h"
 #include "estimation/topological_slam.h"
 #include "exploration/explorer.h"
+#include "exploration/reg.h"
+#include "io/config.h"
 #include "io/simulation_log.h"
 #include "kernel/angle.h"
 #include "loop/association_scoring.h"
@@ -269,6 +271,20 @@ TEST(RunExploration, RunsAnExplorerRegisteredInAnotherUnit) {
   ASSERT_TRUE(outcome.error.empty()) << outcome.error;
   EXPECT_EQ(outcome.run.explorer, "reg-again");
   EXPECT_EQ(boost::num_vertices(outcome.run.graph), 4u);
+  // Its own options, set as `--set exploration.reg-again.node_cap=3` would set them.
+  std::unique_ptr<kernel::AnyOptions> own =
+      exploration::ExplorerRegistry::Global().Find("reg-again")->default_options();
+  ASSERT_TRUE(
+      io::SetConfigValue([&](kernel::FieldVisitor& v) { own->VisitFields(v); }, "node_cap=3").ok());
+  setup.explorer_options = own->Clone();
+  EXPECT_EQ(boost::num_vertices(RunExploration(world, setup).run.graph), 3u);
+  ASSERT_TRUE(
+      io::SetConfigValue([&](kernel::FieldVisitor& v) { own->VisitFields(v); }, "node_cap=0").ok());
+  setup.explorer_options = std::move(own);
+  EXPECT_EQ(RunExploration(world, setup).error, "invalid reg-again options: node_cap must be >= 1");
+  // Another explorer's options are refused by name.
+  setup.explorer_options = std::make_shared<kernel::OptionsOf<exploration::RegOptions>>();
+  EXPECT_EQ(RunExploration(world, setup).error, "the options given are not reg-again's");
 }
 
 TEST(SlamContext, TheRegionReachesTheTopologicalSlam) {
