@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
-#include "estimation/metrics.h"
+#include "estimation/evaluation/metrics.h"
 #include "io/relations.h"
 #include "io/run_picture.h"
 #include "io/trajectory.h"
@@ -89,7 +89,7 @@ int RunEval(EvalArgs args) {
                "poses");
     std::vector<std::tuple<std::string, io::Rgb, kernel::Trajectory>> plotted;
     for (const auto& [label, trajectory] : runs) {
-      const estimation::TrajectoryError e = estimation::CompareToTruth(*truth.value, trajectory);
+      const evaluation::TrajectoryError e = evaluation::CompareToTruth(*truth.value, trajectory);
       if (const std::string problem = NotScored(e.matched, "pose", args.truth, label,
                                                 {e.rmse_position_m, e.rmse_heading_rad});
           !problem.empty()) {
@@ -120,7 +120,7 @@ int RunEval(EvalArgs args) {
     }
   }
   if (!args.relations.empty()) {
-    io::Result<std::vector<estimation::Relation>> relations = io::ReadRelations(args.relations);
+    io::Result<std::vector<evaluation::Relation>> relations = io::ReadRelations(args.relations);
     if (!relations.ok()) {
       fmt::print(stderr, "splam eval: {}\n", relations.error);
       return kExitBadInput;
@@ -129,8 +129,8 @@ int RunEval(EvalArgs args) {
                args.relations, relations.value->size(), "", "translation (m)", "rotation (deg)",
                "used");
     for (const auto& [label, trajectory] : runs) {
-      const estimation::RelationsError r =
-          estimation::EvaluateRelations(*relations.value, trajectory);
+      const evaluation::RelationsError r =
+          evaluation::EvaluateRelations(*relations.value, trajectory);
       if (const std::string problem =
               NotScored(r.used, "relation", args.relations, label,
                         {r.translation_mean, r.translation_std, r.rotation_mean, r.rotation_std});

@@ -14,7 +14,7 @@
 #include "apps/log_input.h"
 #include "apps/run_config.h"
 #include "estimation/chi_square.h"
-#include "estimation/metrics.h"
+#include "estimation/evaluation/metrics.h"
 #include "io/carmen.h"
 #include "io/config.h"
 #include "io/plot.h"
@@ -107,10 +107,10 @@ bool Configure(const SlamArgs& args, const io::LaserMessage& first, SlamConfig* 
 
 // consistency.csv: every scan checked for the map's self-consistency; "" or the error.
 std::string WriteConsistency(const std::string& path,
-                             const estimation::ConsistencyReport& consistency,
+                             const evaluation::ConsistencyReport& consistency,
                              const kernel::Trajectory& estimate) {
   std::string text = "scan,time_s,x_m,y_m,references,contradicting\n";
-  for (const estimation::CheckedScan& c : consistency.checked)
+  for (const evaluation::CheckedScan& c : consistency.checked)
     text += fmt::format("{},{:.3f},{:.3f},{:.3f},{},{:.4f}\n", c.index,
                         estimate[static_cast<std::size_t>(c.index)].time_s, c.position.x(),
                         c.position.y(), c.references, c.contradicting);
@@ -120,8 +120,8 @@ std::string WriteConsistency(const std::string& path,
 // trajectory, odometry, truth, map files and pictures; errors appended to *errors.
 void WriteSlamFiles(const std::string& log, const std::string& out, const std::string& label,
                     const sim::World* world, const estimation::SlamMethod& slam,
-                    const loop::ReplayResult& run, const estimation::ConsistencyReport& consistency,
-                    const estimation::ConsistencyOptions& consistency_options,
+                    const loop::ReplayResult& run, const evaluation::ConsistencyReport& consistency,
+                    const evaluation::ConsistencyOptions& consistency_options,
                     std::vector<std::string>* errors) {
   const estimation::SlamMap map = slam.Map();
   for (std::string& e : io::WriteMap(map, out)) errors->push_back(std::move(e));
@@ -140,7 +140,7 @@ void WriteSlamFiles(const std::string& log, const std::string& out, const std::s
   picture.estimates = {{"estimate", run.estimate}};
   picture.before_optimization = run.online;
   io::DrawMap(map, &picture);
-  for (const estimation::CheckedScan& c : consistency.checked)
+  for (const evaluation::CheckedScan& c : consistency.checked)
     (c.contradicting > consistency_options.inconsistent_share ? picture.inconsistent_scans
                                                               : picture.consistent_scans)
         .push_back(c.position);
@@ -185,8 +185,8 @@ bool PrintSlamSummary(const std::string& label, const estimation::SlamMethod& sl
         "hold a place twice or a local failure (marked in map.png, listed in consistency.csv)\n",
         100 * c["flagged_above"].get<double>());
   if (!run.truth.empty()) {
-    const auto e = estimation::CompareToTruth(run.truth, run.estimate);
-    const auto o = estimation::CompareToTruth(run.truth, run.odometry);
+    const auto e = evaluation::CompareToTruth(run.truth, run.estimate);
+    const auto o = evaluation::CompareToTruth(run.truth, run.odometry);
     if (!std::isfinite(e.rmse_position_m) || !std::isfinite(e.rmse_heading_rad)) {
       fmt::print(stderr, "splam slam: the {} estimate's error against the truth is not finite\n",
                  label);
@@ -239,9 +239,9 @@ int RunSlam(const SlamArgs& args) {
   SlamConfig config;
   estimation::SensorNoise noise;
   if (!Configure(args, *lasers[0], &config, &noise)) return kExitBadInput;
-  std::vector<estimation::Relation> relations;
+  std::vector<evaluation::Relation> relations;
   if (!args.relations.empty()) {
-    io::Result<std::vector<estimation::Relation>> read_relations =
+    io::Result<std::vector<evaluation::Relation>> read_relations =
         io::ReadRelations(args.relations);
     if (!read_relations.ok()) {
       fmt::print(stderr, "splam slam: {}\n", read_relations.error);
@@ -295,9 +295,9 @@ int RunSlam(const SlamArgs& args) {
                run.failed_at_time_s, slam.health().message());
   }
   const estimation::SlamStatistics statistics = slam.Statistics();
-  const estimation::ConsistencyOptions consistency_options;
-  const estimation::ConsistencyReport consistency =
-      estimation::CheckMapConsistency(loop::PlacedScans(log, run.estimate), consistency_options);
+  const evaluation::ConsistencyOptions consistency_options;
+  const evaluation::ConsistencyReport consistency =
+      evaluation::CheckMapConsistency(loop::PlacedScans(log, run.estimate), consistency_options);
   errors.push_back(WriteConsistency(out + "/consistency.csv", consistency, run.estimate));
   const std::string label = statistics.association.empty()
                                 ? config.method
@@ -330,7 +330,7 @@ int RunSlam(const SlamArgs& args) {
   summary["consistency"] = loop::ConsistencyJson(consistency, consistency_options);
   bool scored = true;
   if (!args.relations.empty()) {
-    const estimation::RelationsError r = estimation::EvaluateRelations(relations, run.estimate);
+    const evaluation::RelationsError r = evaluation::EvaluateRelations(relations, run.estimate);
     scored = r.used > 0 && std::isfinite(r.translation_mean) && std::isfinite(r.rotation_mean);
     summary["relations"] = loop::RelationsJson(r);
     summary["relations"]["file"] = args.relations;

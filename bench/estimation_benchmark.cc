@@ -17,11 +17,11 @@
 #include <optional>
 #include <vector>
 
-#include "estimation/ekf_bspline_slam.h"
-#include "estimation/ekf_core.h"
-#include "estimation/ekf_line_slam.h"
+#include "estimation/ekf/ekf_bspline_slam.h"
+#include "estimation/ekf/ekf_core.h"
+#include "estimation/ekf/ekf_line_slam.h"
 #include "estimation/slam_method.h"
-#include "estimation/topological_slam.h"
+#include "estimation/topological/topological_slam.h"
 #include "kernel/angle.h"
 #include "kernel/random.h"
 #include "loop/log_replay.h"

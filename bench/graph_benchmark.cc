@@ -7,12 +7,12 @@
 #include <random>
 #include <vector>
 
-#include "estimation/correlative_matcher.h"
-#include "estimation/distance_grid.h"
-#include "estimation/graph_slam.h"
-#include "estimation/pose_graph.h"
-#include "estimation/scan_registration.h"
-#include "estimation/scan_view.h"
+#include "estimation/pose_graph/correlative_matcher.h"
+#include "estimation/pose_graph/distance_grid.h"
+#include "estimation/pose_graph/graph_slam.h"
+#include "estimation/pose_graph/pose_graph.h"
+#include "estimation/pose_graph/scan_registration.h"
+#include "estimation/pose_graph/scan_view.h"
 #include "kernel/random.h"
 #include "sim/builtin_worlds.h"
 #include "sim/laser.h"

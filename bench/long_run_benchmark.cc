@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "estimation/graph_slam.h"
+#include "estimation/pose_graph/graph_slam.h"
 #include "estimation/slam_method.h"
 #include "sim/builtin_worlds.h"
 #include "sim/ray_caster.h"

@@ -10,9 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "estimation/map_line.h"
-#include "estimation/map_spline.h"
-#include "estimation/pose_graph.h"
+#include "estimation/slam_map.h"
 #include "kernel/local_safe_region.h"
 #include "kernel/options.h"
 #include "kernel/pose2.h"
@@ -26,34 +24,6 @@
 // explorer's localisation all read the registry: adding a method is one header, one source file
 // and one RegisterSlamMethod call (see examples/estimation/).
 namespace splam::estimation {
-
-// The map of a method, in the world frame, as drawing and export need it: lines and corners, or
-// spline curves (with the options that find their features), or nothing (a method without one).
-struct SlamMap {
-  std::vector<MapLine> lines;
-  std::vector<MapCorner> corners;
-  std::vector<MapSpline> splines;
-  kernel::SplineExtractionOptions spline_features;  // how features of `splines` are found
-  // A keyframe graph (graph SLAM): its nodes in order and its loop-closure edges (node indices).
-  std::vector<kernel::Pose2> keyframes;
-  std::vector<std::pair<int, int>> loop_edges;
-  // Every loop-closure search (query and target index `keyframes`) and its outcome.
-  std::vector<LoopSearch> loop_searches;
-};
-
-// Method-independent counters of what a method did, in the order they are reported.
-struct SlamStatistics {
-  std::string association;  // the association's name ("" when the method has none to report)
-  std::vector<std::pair<std::string, long>> map;           // e.g. {"lines", 12}, {"corners", 3}
-  std::vector<std::pair<std::string, long>> associations;  // e.g. {"accepted", 4120}
-  // Nonlinear least-squares solves (Ceres) and those that did not converge.
-  long solver_runs = 0;
-  long solver_failures = 0;
-  // Wall time by part of the method, ms (e.g. {"registration", 812.0}); may be empty.
-  std::vector<std::pair<std::string, double>> time_ms;
-  // Every pose-graph optimisation (graph SLAM), in order.
-  std::vector<PoseGraphSummary> optimizations;
-};
 
 class SlamMethod {
  public:
@@ -173,9 +143,9 @@ SlamMethodInfo MakeSlamMethodInfo(
 }
 
 // Adds a method to the global registry: the one line that makes a new method known to the
-// command line, the experiments and the explorer's localisation. From a function (main, a test,
-// the built-in methods' list in builtin_slam_methods.cc) or, as a SlamMethodRegistration, from a
-// namespace-scope object of any translation unit.
+// command line, the experiments and the explorer's localisation. From a function (main, a test)
+// or, as a SlamMethodRegistration, from a namespace-scope object of any translation unit. (The
+// built-in families add theirs with MakeSlamMethodInfo, e.g. estimation/ekf/ekf_methods.cc.)
 template <class Options>
 void RegisterSlamMethod(
     std::string name, std::string description,

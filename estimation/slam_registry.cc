@@ -1,8 +1,21 @@
+#include "estimation/ekf/ekf_methods.h"
+#include "estimation/pose_graph/graph_method.h"
 #include "estimation/slam_method.h"
+#include "estimation/topological/topological_methods.h"
 
 namespace splam::estimation {
+namespace {
 
-void AddBuiltinSlamMethods(kernel::Registry<SlamMethodInfo>* registry);  // builtin_slam_methods.cc
+// The built-in methods, in the order the command line lists them; each family registers its
+// own beside its code.
+void AddBuiltinSlamMethods(kernel::Registry<SlamMethodInfo>* registry) {
+  AddEkfMethods(registry);
+  AddTopologicalMethod(registry);
+  AddGraphSlamMethod(registry);
+  AddTopologicalGraphMethod(registry);
+}
+
+}  // namespace
 
 SlamRegistry& SlamRegistry::Global() {
   static SlamRegistry registry(AddBuiltinSlamMethods);

@@ -5,10 +5,10 @@
 
 namespace splam::io {
 
-Result<std::vector<estimation::Relation>> ParseRelations(const std::string& text,
+Result<std::vector<evaluation::Relation>> ParseRelations(const std::string& text,
                                                          const std::string& name) {
-  using R = Result<std::vector<estimation::Relation>>;
-  std::vector<estimation::Relation> relations;
+  using R = Result<std::vector<evaluation::Relation>>;
+  std::vector<evaluation::Relation> relations;
   std::vector<double> v;
   const std::string error =
       ForEachDataLine(text, [&](int line, const std::vector<std::string_view>& tokens) {
@@ -27,10 +27,10 @@ Result<std::vector<estimation::Relation>> ParseRelations(const std::string& text
   return R::Ok(std::move(relations));
 }
 
-Result<std::vector<estimation::Relation>> ReadRelations(const std::string& path) {
+Result<std::vector<evaluation::Relation>> ReadRelations(const std::string& path) {
   std::string text;
   if (std::string error = ReadTextFile(path, &text); !error.empty()) {
-    return Result<std::vector<estimation::Relation>>::Fail(error);
+    return Result<std::vector<evaluation::Relation>>::Fail(error);
   }
   return ParseRelations(text, path);
 }

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "estimation/metrics.h"
+#include "estimation/evaluation/metrics.h"
 #include "io/result.h"
 
 namespace splam::io {
@@ -13,8 +13,8 @@ namespace splam::io {
 //   t1 t2 x y z roll pitch yaw
 // the motion from the pose at t1 to the pose at t2 in the frame of the first (z, roll and pitch
 // are 0 in 2-D); '#' starts a comment line. Errors name the file and line.
-Result<std::vector<estimation::Relation>> ReadRelations(const std::string& path);
-Result<std::vector<estimation::Relation>> ParseRelations(const std::string& text,
+Result<std::vector<evaluation::Relation>> ReadRelations(const std::string& path);
+Result<std::vector<evaluation::Relation>> ParseRelations(const std::string& text,
                                                          const std::string& name);
 
 }  // namespace splam::io

@@ -4,7 +4,7 @@
 
 #include <map>
 
-#include "estimation/metrics.h"
+#include "estimation/evaluation/metrics.h"
 #include "io/plot.h"
 #include "io/render.h"
 #include "io/simulation_log.h"
@@ -98,7 +98,7 @@ std::string SaveErrorPlot(
   std::vector<io::PlotPanel> panels = {
       {"x error (m)", {}}, {"y error (m)", {}}, {"theta error (deg)", {}}};
   for (const auto& [label, color, trajectory] : runs) {
-    const estimation::TrajectoryError e = estimation::CompareToTruth(truth, trajectory);
+    const evaluation::TrajectoryError e = evaluation::CompareToTruth(truth, trajectory);
     std::vector<double> deg;
     for (double a : e.error_theta_rad) deg.push_back(kernel::RadToDeg(a));
     panels[0].series.push_back({label, color, e.time_s, e.error_x_m});

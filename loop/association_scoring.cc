@@ -3,7 +3,7 @@
 #include <chrono>
 #include <set>
 
-#include "estimation/metrics.h"
+#include "estimation/evaluation/metrics.h"
 #include "loop/scoring.h"
 
 namespace splam::loop {
@@ -64,7 +64,7 @@ AssociationRun RunBSplineFilter(const std::vector<sim::SensorFrame>& frames,
     for (const auto& c : r.created) record(c, f.beam_obstacles);
     for (const auto& c : r.extended) record(c, f.beam_obstacles);
     result.estimate.push_back({f.time_s, slam.pose()});
-    result.mean_nees += estimation::PoseNees(f.true_pose, slam.pose(), slam.pose_covariance()) /
+    result.mean_nees += evaluation::PoseNees(f.true_pose, slam.pose(), slam.pose_covariance()) /
                         static_cast<double>(frames.size());
   }
   result.ms_per_scan =

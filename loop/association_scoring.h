@@ -4,7 +4,7 @@
 #include <map>
 #include <vector>
 
-#include "estimation/ekf_bspline_slam.h"
+#include "estimation/ekf/ekf_bspline_slam.h"
 #include "kernel/trajectory.h"
 #include "sim/ray_caster.h"
 #include "sim/simulator.h"

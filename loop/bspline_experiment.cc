@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "estimation/ekf_bspline_slam.h"
-#include "estimation/metrics.h"
+#include "estimation/ekf/ekf_bspline_slam.h"
+#include "estimation/evaluation/metrics.h"
 #include "io/plot.h"
 #include "io/render.h"
 #include "io/run_picture.h"
@@ -31,12 +31,12 @@ namespace {
 struct Summary {
   std::vector<double> rmse, max, heading_rmse, map_error, wrong_fraction, wrong_beam_fraction, ms,
       feature_fraction, nees;
-  void Add(const estimation::TrajectoryError& e) {
+  void Add(const evaluation::TrajectoryError& e) {
     rmse.push_back(e.rmse_position_m);
     max.push_back(e.max_position_m);
     heading_rmse.push_back(e.rmse_heading_rad);
   }
-  void Add(const estimation::TrajectoryError& e, const AssociationRun& r) {
+  void Add(const evaluation::TrajectoryError& e, const AssociationRun& r) {
     Add(e);
     map_error.push_back(r.map_error_m);
     wrong_fraction.push_back(
@@ -49,8 +49,8 @@ struct Summary {
     nees.push_back(r.mean_nees);
   }
 };
-double Mean(const std::vector<double>& v) { return estimation::MeanStd(v).first; }
-double Std(const std::vector<double>& v) { return estimation::MeanStd(v).second; }
+double Mean(const std::vector<double>& v) { return evaluation::MeanStd(v).first; }
+double Std(const std::vector<double>& v) { return evaluation::MeanStd(v).second; }
 
 // The first seed's map of one association over the world, with the three trajectories.
 std::string SaveMethodMap(const sim::World& world, const std::string& method, std::uint64_t seed,
@@ -172,7 +172,7 @@ int RunSeedsHere(const BSplineExperimentArgs& args) {
       truth.push_back({f.time_s, f.true_pose});
       odometry.push_back({f.time_s, f.odometry_pose});
     }
-    const estimation::TrajectoryError o = estimation::CompareToTruth(truth, odometry);
+    const evaluation::TrajectoryError o = evaluation::CompareToTruth(truth, odometry);
     odometry_summary.Add(o);
     std::vector<std::tuple<std::string, io::Rgb, kernel::Trajectory>> plotted = {
         {"odometry", io::palette::kOdometry, odometry}};
@@ -186,7 +186,7 @@ int RunSeedsHere(const BSplineExperimentArgs& args) {
         fmt::print(stderr, "splam experiment: seed {}, {}: the filter failed\n", seed, method);
         return kExitIncomplete;
       }
-      const estimation::TrajectoryError e = estimation::CompareToTruth(truth, r.estimate);
+      const evaluation::TrajectoryError e = evaluation::CompareToTruth(truth, r.estimate);
       summaries[method].Add(e, r);
       fmt::print(
           "seed {} {:9}: position RMSE {:.3f} m (odometry {:.3f}), max {:.3f} m, map error {:.3f} "

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "estimation/chi_square.h"
-#include "estimation/metrics.h"
+#include "estimation/evaluation/metrics.h"
 #include "estimation/slam_method.h"
 #include "io/plot.h"
 #include "io/render.h"
@@ -224,7 +224,7 @@ std::string Table1(const CorridorOptions& options, const CorridorResult& result,
       (*report)["distances"].push_back(
           {{"name", distances[k].name}, {"true_m", truth}, {"mapped_runs", 0}});
     } else {
-      const auto [mean, std] = estimation::MeanStd(v);
+      const auto [mean, std] = evaluation::MeanStd(v);
       const double error = 100.0 * std::abs(mean - truth) / truth;
       row = fmt::format("| {} | {:.3f} | {:.3f} +- {:.3f} | {:.2f} | {}/{} |\n", distances[k].name,
                         truth, mean, std, error, v.size(), options.runs);

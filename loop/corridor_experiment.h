@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "estimation/ekf_line_slam.h"
+#include "estimation/ekf/ekf_line_slam.h"
 #include "io/sweep_grid.h"
 #include "kernel/trajectory.h"
 

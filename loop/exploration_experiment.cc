@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "estimation/metrics.h"
+#include "estimation/evaluation/metrics.h"
 #include "io/plot.h"
 #include "loop/exit_status.h"
 #include "loop/experiment_trials.h"
@@ -118,8 +118,8 @@ int RunExplorationExperiment(const ExplorationExperimentArgs& args) {
       for (int i = 0; i < args.runs; ++i)
         reg_lower +=
             values[1][static_cast<std::size_t>(i)] < values[0][static_cast<std::size_t>(i)];
-      const auto [srt_mean, srt_std] = estimation::MeanStd(values[0]);
-      const auto [reg_mean, reg_std] = estimation::MeanStd(values[1]);
+      const auto [srt_mean, srt_std] = evaluation::MeanStd(values[0]);
+      const auto [reg_mean, reg_std] = evaluation::MeanStd(values[1]);
       table +=
           fmt::format("| {} | {} | {:.1f} +- {:.1f} | {:.1f} +- {:.1f} | {}/{} |\n", world_name,
                       panel.y_label, srt_mean, srt_std, reg_mean, reg_std, reg_lower, args.runs);

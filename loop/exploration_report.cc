@@ -7,7 +7,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "estimation/metrics.h"
+#include "estimation/evaluation/metrics.h"
 #include "exploration/coverage.h"
 #include "exploration/perception.h"
 #include "io/plot.h"
@@ -102,8 +102,8 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
   report["wall_s"] = outcome.wall_s;
   const Trajectories t = TrajectoriesOf(run);
   report["trajectory_error"] = {
-      {"estimate", ErrorJson(estimation::CompareToTruth(t.truth, t.estimate))},
-      {"odometry", ErrorJson(estimation::CompareToTruth(t.truth, t.odometry))}};
+      {"estimate", ErrorJson(evaluation::CompareToTruth(t.truth, t.estimate))},
+      {"odometry", ErrorJson(evaluation::CompareToTruth(t.truth, t.odometry))}};
   if (const estimation::SlamMethod* slam = outcome.slam_method()) {
     const SlamDriver& driver = *outcome.slam->driver();
     const std::vector<double>& ms = driver.update_ms();

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
-#include "estimation/metrics.h"
+#include "estimation/evaluation/metrics.h"
 #include "io/simulation_log.h"
 
 namespace splam::loop {
@@ -50,7 +50,7 @@ void Replay(std::size_t count, const Reading& reading, SlamDriver* driver,
     result->odometry.push_back({t, odometry});
     const auto truth = kernel::PoseAt(result->truth, t, 0.0, 1e-3);
     if (const auto covariance = slam.pose_covariance(); truth && covariance)
-      result->nees.push_back(estimation::PoseNees(*truth, slam.pose(), *covariance));
+      result->nees.push_back(evaluation::PoseNees(*truth, slam.pose(), *covariance));
     if (options.progress && (i + 1) % 1000 == 0) options.progress(i + 1, n);
   }
   slam.Finish();
@@ -88,10 +88,10 @@ ReplayResult ReplayLog(const io::CarmenLog& log, SlamDriver* driver, const Repla
   return result;
 }
 
-std::vector<estimation::PlacedScan> PlacedScans(const io::CarmenLog& log,
+std::vector<evaluation::PlacedScan> PlacedScans(const io::CarmenLog& log,
                                                 const kernel::Trajectory& estimate) {
   const auto lasers = log.Lasers();
-  std::vector<estimation::PlacedScan> placed;
+  std::vector<evaluation::PlacedScan> placed;
   for (std::size_t i = 0; i < lasers.size() && i < estimate.size(); ++i) {
     const io::LaserMessage& m = *lasers[i];
     placed.push_back({estimate[i].pose, m.robot_pose.Between(m.laser_pose), &m.scan});

@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "estimation/map_consistency.h"
+#include "estimation/evaluation/map_consistency.h"
 #include "estimation/slam_method.h"
 #include "io/carmen.h"
 #include "kernel/trajectory.h"
@@ -85,7 +85,7 @@ ReplayResult ReplayLog(const io::CarmenLog& log, SlamDriver* driver,
 
 // The log's scans placed by a trajectory of the replay (`estimate`: one pose per scan processed,
 // in order), for CheckMapConsistency; the log must outlive the result.
-std::vector<estimation::PlacedScan> PlacedScans(const io::CarmenLog& log,
+std::vector<evaluation::PlacedScan> PlacedScans(const io::CarmenLog& log,
                                                 const kernel::Trajectory& estimate);
 // The same for simulated frames (a route the simulator drove) seen by a laser at robot_T_laser;
 // the truth is the frames' true poses.

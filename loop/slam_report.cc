@@ -43,7 +43,7 @@ nlohmann::ordered_json StatisticsJson(const estimation::SlamStatistics& statisti
   return json;
 }
 
-nlohmann::ordered_json RelationsJson(const estimation::RelationsError& r) {
+nlohmann::ordered_json RelationsJson(const evaluation::RelationsError& r) {
   return {
       {"relations_used", r.used},
       {"relations_skipped", r.skipped},
@@ -56,8 +56,8 @@ nlohmann::ordered_json RelationsJson(const estimation::RelationsError& r) {
         {"std", kernel::RadToDeg(kernel::RadToDeg(r.rotation_sq_std))}}}};
 }
 
-nlohmann::ordered_json ConsistencyJson(const estimation::ConsistencyReport& report,
-                                       const estimation::ConsistencyOptions& options) {
+nlohmann::ordered_json ConsistencyJson(const evaluation::ConsistencyReport& report,
+                                       const evaluation::ConsistencyOptions& options) {
   return {{"scans_checked", report.scans_checked},
           {"mean_contradicting", report.mean_contradicting},
           {"inconsistent_scans", report.inconsistent},
@@ -71,7 +71,7 @@ nlohmann::ordered_json ConsistencyJson(const estimation::ConsistencyReport& repo
           {"inlier_distance_m", options.inlier_distance_m}};
 }
 
-nlohmann::ordered_json ErrorJson(const estimation::TrajectoryError& e) {
+nlohmann::ordered_json ErrorJson(const evaluation::TrajectoryError& e) {
   return {{"matched_poses", e.matched},
           {"rmse_position_m", e.rmse_position_m},
           {"max_position_m", e.max_position_m},
@@ -122,8 +122,8 @@ nlohmann::ordered_json ReplaySummaryJson(const estimation::SlamMethod& slam,
   }
   if (!run.truth.empty()) {
     summary["error"] = {
-        {"estimate", ErrorJson(estimation::CompareToTruth(run.truth, run.estimate))},
-        {"odometry", ErrorJson(estimation::CompareToTruth(run.truth, run.odometry))}};
+        {"estimate", ErrorJson(evaluation::CompareToTruth(run.truth, run.estimate))},
+        {"odometry", ErrorJson(evaluation::CompareToTruth(run.truth, run.odometry))}};
     const double lo = estimation::ChiSquareQuantile(0.025, 3),
                  hi = estimation::ChiSquareQuantile(0.975, 3);
     double sum = 0.0;

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "estimation/map_consistency.h"
-#include "estimation/metrics.h"
+#include "estimation/evaluation/map_consistency.h"
+#include "estimation/evaluation/metrics.h"
 #include "estimation/slam_method.h"
 #include "io/map_export.h"
 #include "io/run_picture.h"
@@ -20,13 +20,13 @@ namespace splam::loop {
 // {"map": {...}, "associations": {"method": ..., ...}, "least_squares": {...}}
 nlohmann::ordered_json StatisticsJson(const estimation::SlamStatistics& statistics);
 // A trajectory error as summary.json and report.json write it.
-nlohmann::ordered_json ErrorJson(const estimation::TrajectoryError& e);
+nlohmann::ordered_json ErrorJson(const evaluation::TrajectoryError& e);
 // The relations metric as summary.json (`slam --relations`) and eval.json write it: translation
 // in m and m^2, rotation in deg and deg^2.
-nlohmann::ordered_json RelationsJson(const estimation::RelationsError& r);
+nlohmann::ordered_json RelationsJson(const evaluation::RelationsError& r);
 // The map's self-consistency (CheckMapConsistency) for summary.json: totals and the options.
-nlohmann::ordered_json ConsistencyJson(const estimation::ConsistencyReport& report,
-                                       const estimation::ConsistencyOptions& options);
+nlohmann::ordered_json ConsistencyJson(const evaluation::ConsistencyReport& report,
+                                       const evaluation::ConsistencyOptions& options);
 // Median time per step by map size.
 nlohmann::ordered_json TimeBinsJson(const std::vector<TimeBin>& bins);
 

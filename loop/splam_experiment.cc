@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "estimation/metrics.h"
+#include "estimation/evaluation/metrics.h"
 #include "io/plot.h"
 #include "kernel/angle.h"
 #include "loop/exit_status.h"
@@ -79,7 +79,7 @@ Trial TrialOf(const nlohmann::json& report) {
 }
 
 std::string MeanStdText(const std::vector<double>& v, int digits) {
-  const auto [mean, std] = estimation::MeanStd(v);
+  const auto [mean, std] = evaluation::MeanStd(v);
   return fmt::format("{:.{}f} +- {:.{}f}", mean, digits, std, digits);
 }
 

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "estimation/metrics.h"
+#include "estimation/evaluation/metrics.h"
 #include "io/html.h"
 #include "io/plot.h"
 #include "io/text.h"
@@ -127,7 +127,7 @@ FigureStats StatsOf(std::vector<double> values) {
   FigureStats s;
   s.n = static_cast<int>(values.size());
   if (values.empty()) return s;
-  std::tie(s.mean, s.std) = estimation::MeanStd(values);
+  std::tie(s.mean, s.std) = evaluation::MeanStd(values);
   std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
   s.median = n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);

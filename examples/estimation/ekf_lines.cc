@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <string>
 
-#include "estimation/ekf_line_slam.h"
-#include "estimation/metrics.h"
+#include "estimation/ekf/ekf_line_slam.h"
+#include "estimation/evaluation/metrics.h"
 #include "estimation/slam_method.h"
 #include "io/render.h"
 #include "loop/log_replay.h"
@@ -13,6 +13,7 @@
 
 int main(int argc, char** argv) {
   namespace estimation = splam::estimation;
+  namespace evaluation = splam::evaluation;
   namespace sim = splam::sim;
   using splam::kernel::Pose2;
   const std::string picture = argc > 1 ? argv[1] : "example_estimation.png";
@@ -50,8 +51,8 @@ int main(int argc, char** argv) {
   const splam::kernel::Trajectory& odometry = replay.odometry;
 
   // 4. How good is it? Position and heading error against the simulator's ground truth.
-  const estimation::TrajectoryError e = estimation::CompareToTruth(truth, estimate);
-  const estimation::TrajectoryError o = estimation::CompareToTruth(truth, odometry);
+  const evaluation::TrajectoryError e = evaluation::CompareToTruth(truth, estimate);
+  const evaluation::TrajectoryError o = evaluation::CompareToTruth(truth, odometry);
   std::printf("%zu scans; map: %s; filter %s\n", run.frames.size(), slam.MapDescription().c_str(),
               slam.healthy() ? "healthy" : slam.health().message().c_str());
   std::printf(

@@ -4,7 +4,7 @@
 // Usage: example_my_slam_method
 #include <cstdio>
 
-#include "estimation/metrics.h"
+#include "estimation/evaluation/metrics.h"
 #include "estimation/slam_method.h"
 #include "examples/estimation/scan_matcher.h"
 #include "io/simulation_log.h"
@@ -15,6 +15,7 @@
 
 int main() {
   namespace estimation = splam::estimation;
+  namespace evaluation = splam::evaluation;
   namespace sim = splam::sim;
 
   // 1. Register the method: its name, a line for --help, and how to build it from its options.
@@ -44,8 +45,8 @@ int main() {
   }
   splam::loop::SlamDriver driver(std::move(*made.value));
   const splam::loop::ReplayResult replay = splam::loop::ReplayLog(log, &driver);
-  const auto e = estimation::CompareToTruth(replay.truth, replay.estimate);
-  const auto o = estimation::CompareToTruth(replay.truth, replay.odometry);
+  const auto e = evaluation::CompareToTruth(replay.truth, replay.estimate);
+  const auto o = evaluation::CompareToTruth(replay.truth, replay.odometry);
   std::printf("log replay: %zu scans, position RMSE %.3f m (odometry %.3f m), %.2f ms per scan\n",
               replay.estimate.size(), e.rmse_position_m, o.rmse_position_m,
               1e3 * replay.wall_s / static_cast<double>(replay.estimate.size()));
@@ -60,8 +61,8 @@ int main() {
     return 1;
   }
   const splam::loop::Trajectories t = splam::loop::TrajectoriesOf(outcome.run);
-  const auto xe = estimation::CompareToTruth(t.truth, t.estimate);
-  const auto xo = estimation::CompareToTruth(t.truth, t.odometry);
+  const auto xe = evaluation::CompareToTruth(t.truth, t.estimate);
+  const auto xo = evaluation::CompareToTruth(t.truth, t.odometry);
   std::printf("exploration: %s, %.1f %% explored, position RMSE %.3f m (odometry %.3f m)\n",
               splam::exploration::TerminationName(outcome.run.termination).c_str(),
               100.0 * outcome.coverage(), xe.rmse_position_m, xo.rmse_position_m);

@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "estimation/ekf_bspline_slam.h"
+#include "estimation/ekf/ekf_bspline_slam.h"
 #include "sim/ray_caster.h"
 #include "sim/world.h"
 

@@ -8,16 +8,16 @@
 #include <limits>
 #include <vector>
 
-#include "estimation/correlative_matcher.h"
-#include "estimation/distance_grid.h"
-#include "estimation/ekf_bspline_slam.h"
-#include "estimation/graph_slam.h"
+#include "estimation/pose_graph/correlative_matcher.h"
+#include "estimation/pose_graph/distance_grid.h"
+#include "estimation/ekf/ekf_bspline_slam.h"
+#include "estimation/pose_graph/graph_slam.h"
 #include "estimation/models.h"
-#include "estimation/pose_graph.h"
-#include "estimation/scan_registration.h"
+#include "estimation/pose_graph/pose_graph.h"
+#include "estimation/pose_graph/scan_registration.h"
 #include "estimation/slam_method.h"
 #include "estimation/spline_association.h"
-#include "estimation/topological_slam.h"
+#include "estimation/topological/topological_slam.h"
 #include "exploration/explorer.h"
 #include "exploration/motion.h"
 #include "exploration/reg.h"

@@ -3,9 +3,9 @@
 
 #include <algorithm>
 
-#include "estimation/ekf_line_slam.h"
+#include "estimation/ekf/ekf_line_slam.h"
 #include "estimation/slam_method.h"
-#include "estimation/topological_slam.h"
+#include "estimation/topological/topological_slam.h"
 #include "tests/estimation/echo_slam_method.h"
 
 namespace splam::estimation {

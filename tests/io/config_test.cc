@@ -9,7 +9,7 @@
 
 #include "io/result.h"
 
-#include "estimation/topological_slam.h"
+#include "estimation/topological/topological_slam.h"
 #include "exploration/explorer.h"
 #include "sim/simulator.h"
 

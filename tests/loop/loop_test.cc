@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string>
 
-#include "estimation/metrics.h"
-#include "estimation/topological_slam.h"
+#include "estimation/evaluation/metrics.h"
+#include "estimation/topological/topological_slam.h"
 #include "exploration/explorer.h"
 #include "exploration/reg.h"
 #include "io/config.h"
@@ -159,7 +159,7 @@ TEST(ReplayLog, ReplaysARecordedLogLikeItsFrames) {
     EXPECT_NEAR(from_log.estimate[i].pose.x(), from_frames.estimate[i].pose.x(), 1e-6) << i;
   }
   EXPECT_EQ(from_log.nees.size(), 100u);  // truth (TRUEPOS) and covariance at every scan
-  const auto e = estimation::CompareToTruth(from_log.truth, from_log.estimate);
+  const auto e = evaluation::CompareToTruth(from_log.truth, from_log.estimate);
   EXPECT_LT(e.rmse_position_m, 0.05);
 }
 
@@ -524,8 +524,8 @@ TEST(GraphSlam, ClosesTheOfficeLoop) {
   EXPECT_GT(run.loops_accepted, 10);
   const ReplayResult& replay = run.replay;
   ASSERT_EQ(replay.online.size(), replay.estimate.size());  // the past was revised
-  const auto error = estimation::CompareToTruth(replay.truth, replay.estimate);
-  const auto odometry = estimation::CompareToTruth(replay.truth, replay.odometry);
+  const auto error = evaluation::CompareToTruth(replay.truth, replay.estimate);
+  const auto odometry = evaluation::CompareToTruth(replay.truth, replay.odometry);
   EXPECT_LT(error.rmse_position_m, 0.1);
   EXPECT_LT(error.rmse_position_m, odometry.rmse_position_m);
   EXPECT_LT(error.rmse_heading_rad, kernel::DegToRad(1.0));
@@ -587,7 +587,7 @@ TEST(StepTrace, RecordsEachStepsPredictionCorrectionAndValuesWithTheirErrors) {
 // been: 0.20 m RMSE on seed 1 (0.19 +- 0.06 m over seeds 1-10), against 0.007 m now.
 TEST(GraphSlam, FollowsAOneDegreeLaserAlongGrazingWalls) {
   const GraphRun run = RunGraphOnRoute("office", sim::LaserOptions::Lms200(1.0));
-  const auto error = estimation::CompareToTruth(run.replay.truth, run.replay.estimate);
+  const auto error = evaluation::CompareToTruth(run.replay.truth, run.replay.estimate);
   EXPECT_LT(error.rmse_position_m, 0.05);
   EXPECT_LT(error.rmse_heading_rad, kernel::DegToRad(0.5));
 }
@@ -601,8 +601,8 @@ TEST(GraphSlam, ClosesTheComplexLoopSeenFromTheOtherSide) {
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     const GraphRun run = RunGraphOnRoute("complex", sim::LaserOptions::Urg04lx(), seed);
     closed += run.loops_accepted > 0;
-    const auto error = estimation::CompareToTruth(run.replay.truth, run.replay.estimate);
-    const auto odometry = estimation::CompareToTruth(run.replay.truth, run.replay.odometry);
+    const auto error = evaluation::CompareToTruth(run.replay.truth, run.replay.estimate);
+    const auto odometry = evaluation::CompareToTruth(run.replay.truth, run.replay.odometry);
     EXPECT_LT(error.rmse_position_m, 0.7 * odometry.rmse_position_m) << "seed " << seed;
   }
   EXPECT_GE(closed, 3);
