@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "loop/exit_status.h"
+#include "runtime/exit_status.h"
 
 namespace splam::apps {
 
@@ -25,10 +25,10 @@ void AddSweepCommand(CLI::App* app, int* exit_code);
 std::string SplamBinary();
 
 // Exit statuses of every command: 0 done, 2 bad input, 3 stopped early (results written).
-using loop::kExitBadInput;
-using loop::kExitIncomplete;
-using loop::kExitOk;
-using loop::kExitWriteFailed;
+using runtime::kExitBadInput;
+using runtime::kExitIncomplete;
+using runtime::kExitOk;
+using runtime::kExitWriteFailed;
 
 // Number checks for options. CLI::PositiveNumber, NonNegativeNumber and Range let NaN through
 // (every comparison with it is false), and CLI11 reads "-1" as 2^64 - 1 for an unsigned option.

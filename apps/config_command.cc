@@ -49,7 +49,7 @@ void AddConfigCommand(CLI::App* app, int* exit_code) {
       ->add_option("--method", args->method,
                    "SLAM method (or, with --explorer, the localisation):\n" +
                        estimation::SlamRegistry::Global().Describe())
-      ->check(CLI::IsMember(loop::LocalizationChoices()));
+      ->check(CLI::IsMember(runtime::LocalizationChoices()));
   print
       ->add_option("--explorer", args->explorer,
                    "Exploration strategy:\n" + exploration::ExplorerRegistry::Global().Describe())

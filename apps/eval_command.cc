@@ -13,8 +13,8 @@
 #include "io/run_picture.h"
 #include "io/trajectory.h"
 #include "kernel/angle.h"
-#include "loop/json_text.h"
-#include "loop/slam_report.h"
+#include "runtime/json_text.h"
+#include "runtime/slam_report.h"
 
 namespace splam::apps {
 namespace {
@@ -139,7 +139,7 @@ int RunEval(EvalArgs args) {
         status = ReportNotScored(status, problem);
         continue;
       }
-      report["relations"][label] = loop::RelationsJson(r);
+      report["relations"][label] = runtime::RelationsJson(r);
       fmt::print("  {:<10} {:>10.4f} +- {:<9.4f} {:>10.3f} +- {:<9.3f} {:>6}\n", label,
                  r.translation_mean, r.translation_std, kernel::RadToDeg(r.rotation_mean),
                  kernel::RadToDeg(r.rotation_std), r.used);
@@ -148,7 +148,7 @@ int RunEval(EvalArgs args) {
   if (!args.out.empty()) {
     std::filesystem::create_directories(args.out);
     if (const std::string e =
-            io::WriteTextFile(args.out + "/eval.json", loop::JsonText(report, 2) + "\n");
+            io::WriteTextFile(args.out + "/eval.json", runtime::JsonText(report, 2) + "\n");
         !e.empty()) {
       fmt::print(stderr, "splam eval: {}\n", e);
       return kExitWriteFailed;

@@ -10,11 +10,11 @@
 #include "apps/commands.h"
 #include "apps/interrupt.h"
 #include "io/world_file.h"
-#include "loop/bspline_experiment.h"
-#include "loop/corridor_experiment.h"
-#include "loop/exit_status.h"
-#include "loop/exploration_experiment.h"
-#include "loop/splam_experiment.h"
+#include "studies/bspline_experiment.h"
+#include "studies/corridor_experiment.h"
+#include "runtime/exit_status.h"
+#include "studies/exploration_experiment.h"
+#include "studies/splam_experiment.h"
 
 namespace splam::apps {
 namespace {
@@ -39,7 +39,7 @@ struct ExperimentArgs {
 };
 
 int RunCorridorLines(const ExperimentArgs& args) {
-  loop::CorridorOptions options;
+  studies::CorridorOptions options;
   options.runs = args.runs;
   options.steps = args.steps;
   options.speed_mps = args.speed_mps;
@@ -52,7 +52,7 @@ int RunCorridorLines(const ExperimentArgs& args) {
   options.jobs = args.jobs;
   CatchInterrupts();
   options.stop = [] { return Interrupted(); };
-  return loop::RunCorridorLinesExperiment(options, args.out);
+  return studies::RunCorridorLinesExperiment(options, args.out);
 }
 
 template <typename Args>
@@ -126,13 +126,13 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->callback([args, exit_code] {
     if (args->name == "splam") {
-      loop::SplamExperimentArgs s = WithCommonArgs<loop::SplamExperimentArgs>(*args);
+      studies::SplamExperimentArgs s = WithCommonArgs<studies::SplamExperimentArgs>(*args);
       io::FloorPlanOptions floor_plan;
       floor_plan.resolution_m_per_px = args->resolution_m_per_px;
       io::Result<sim::World> world = io::LoadValidWorld(args->world, floor_plan);
       if (!world.ok()) {
         fmt::print(stderr, "splam experiment: {}\n", world.error);
-        *exit_code = loop::kExitBadInput;
+        *exit_code = runtime::kExitBadInput;
         return;
       }
       s.world = std::move(*world.value);
@@ -142,20 +142,20 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       s.jobs = args->jobs;
       CatchInterrupts();
       s.stop = [] { return Interrupted(); };
-      *exit_code = loop::RunSplamExperiment(s);
+      *exit_code = studies::RunSplamExperiment(s);
       return;
     }
     if (args->name == "exploration") {
-      loop::ExplorationExperimentArgs e = WithCommonArgs<loop::ExplorationExperimentArgs>(*args);
+      studies::ExplorationExperimentArgs e = WithCommonArgs<studies::ExplorationExperimentArgs>(*args);
       e.splam_binary = SplamBinary();
       e.jobs = args->jobs;
       CatchInterrupts();
       e.stop = [] { return Interrupted(); };
-      *exit_code = loop::RunExplorationExperiment(e);
+      *exit_code = studies::RunExplorationExperiment(e);
       return;
     }
     if (args->name == "complex-bspline") {
-      loop::BSplineExperimentArgs b = WithCommonArgs<loop::BSplineExperimentArgs>(*args);
+      studies::BSplineExperimentArgs b = WithCommonArgs<studies::BSplineExperimentArgs>(*args);
       b.max_scans = args->max_scans;
       b.odometry_noise_scale = args->odometry_noise_scale;
       b.max_correspondence_distance_m = args->max_correspondence_distance_m;
@@ -163,7 +163,7 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       b.jobs = args->jobs;
       CatchInterrupts();
       b.stop = [] { return Interrupted(); };
-      *exit_code = loop::RunComplexBSpline(b);
+      *exit_code = studies::RunComplexBSpline(b);
       return;
     }
     ExperimentArgs a = *args;

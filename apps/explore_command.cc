@@ -15,13 +15,13 @@
 #include "io/text.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
-#include "loop/exploration_report.h"
+#include "runtime/exploration_report.h"
 
 namespace splam::apps {
 namespace {
 
 struct ExploreArgs {
-  loop::ExploreSetup setup;  // what the command line gave
+  runtime::ExploreSetup setup;  // what the command line gave
   std::string config_file;
   std::vector<std::string> sets;
   std::vector<std::string> given;  // the top-level flags given (explorer, localization, ...)
@@ -40,8 +40,8 @@ kernel::Status Configure(const ExploreArgs& args, ExploreConfig* config) {
     if (!loaded.ok()) return loaded.status();
     file = std::move(*loaded.value);
   }
-  loop::ExploreSetup& setup = config->setup;
-  const loop::ExploreSetup& flags = args.setup;
+  runtime::ExploreSetup& setup = config->setup;
+  const runtime::ExploreSetup& flags = args.setup;
   const auto given = [&](const char* name) {
     return std::find(args.given.begin(), args.given.end(), name) != args.given.end();
   };
@@ -63,9 +63,9 @@ kernel::Status Configure(const ExploreArgs& args, ExploreConfig* config) {
   if (exploration::ExplorerRegistry::Global().Find(setup.explorer) == nullptr)
     return kernel::Status::Error("unknown explorer '" + setup.explorer + "' (" +
                                  exploration::ExplorerRegistry::Global().NameList() + ")");
-  if (!loop::IsLocalization(setup.localization))
+  if (!runtime::IsLocalization(setup.localization))
     return kernel::Status::Error("unknown localisation '" + setup.localization + "' (" +
-                                 loop::LocalizationNames() + ")");
+                                 runtime::LocalizationNames() + ")");
   ResetExploreDefaults(config);
   std::vector<std::string> sets;
   if (given("lsr-radius"))
@@ -78,7 +78,7 @@ kernel::Status Configure(const ExploreArgs& args, ExploreConfig* config) {
   if (given("no-sonar")) sets.push_back("simulator.enable_sonar=false");
   sets.insert(sets.end(), args.sets.begin(), args.sets.end());
   // The whole file, then the top-level values as decided above (the flags win), then --set.
-  const loop::ExploreSetup before = setup;
+  const runtime::ExploreSetup before = setup;
   const auto top_changed = [&] {
     return setup.explorer != before.explorer || setup.localization != before.localization ||
            setup.seed != before.seed || setup.odometry_noise_scale != before.odometry_noise_scale;
@@ -146,7 +146,7 @@ int RunExplore(const ExploreArgs& args) {
     fmt::print(stderr, "splam explore: {}\n", s.message());
     return kExitBadInput;
   }
-  loop::ExploreSetup& setup = config.setup;
+  runtime::ExploreSetup& setup = config.setup;
   setup.trace_steps = args.trace;
   fmt::print("splam explore: {} with {} localisation in '{}', seed {}\n", setup.explorer,
              setup.localization, world.value->name, setup.seed);
@@ -160,7 +160,7 @@ int RunExplore(const ExploreArgs& args) {
   };
   setup.options.stop = Interrupted;
   CatchInterrupts();
-  const loop::ExploreOutcome outcome = RunExploration(*world.value, setup);
+  const runtime::ExploreOutcome outcome = RunExploration(*world.value, setup);
   if (!outcome.error.empty()) {
     fmt::print(stderr, "splam explore: {}\n", outcome.error);
     return kExitBadInput;
@@ -183,10 +183,10 @@ int RunExplore(const ExploreArgs& args) {
   }
   const exploration::ExplorationRun& run = outcome.run;
   const int nodes = static_cast<int>(boost::num_vertices(run.graph));
-  const nlohmann::json report = loop::ExplorationReport(*world.value, setup, outcome);
+  const nlohmann::json report = runtime::ExplorationReport(*world.value, setup, outcome);
   std::vector<std::string> written;
   if (std::string error =
-          loop::WriteExplorationRun(*world.value, setup, outcome, report, out, &written);
+          runtime::WriteExplorationRun(*world.value, setup, outcome, report, out, &written);
       !error.empty()) {
     fmt::print(stderr, "splam explore: {}\n", error);
     return kExitWriteFailed;
@@ -222,7 +222,7 @@ int RunExplore(const ExploreArgs& args) {
 
 void AddExploreCommand(CLI::App* app, int* exit_code) {
   auto args = std::make_shared<ExploreArgs>();
-  loop::ExploreSetup& setup = args->setup;
+  runtime::ExploreSetup& setup = args->setup;
   exploration::ExplorerOptions& o = setup.options;
   CLI::App* cmd = app->add_subcommand(
       "explore",
@@ -254,7 +254,7 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
                       "Where the explorer believes it is: a SLAM method (the SPLAM loop), odometry "
                       "alone, or the simulator's ground truth. SLAM methods:\n" +
                           estimation::SlamRegistry::Global().Describe()))
-      ->check(CLI::IsMember(loop::LocalizationChoices()))
+      ->check(CLI::IsMember(runtime::LocalizationChoices()))
       ->capture_default_str();
   cmd->add_option("--config", args->config_file,
                   "YAML options (splam config print --explorer E); command-line flags override it");

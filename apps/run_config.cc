@@ -21,11 +21,11 @@ io::ConfigRoot ExploreConfigRoot(ExploreConfig* config, bool other_explorers) {
   // The explorer's and the method's sections are named after those chosen when the root is made.
   return [config, other_explorers, explorer = config->setup.explorer,
           name = config->setup.localization](kernel::FieldVisitor& v) {
-    loop::ExploreSetup& s = config->setup;
+    runtime::ExploreSetup& s = config->setup;
     v.Field("explorer", &s.explorer,
             "exploration strategy: " + exploration::ExplorerRegistry::Global().NameList());
     v.Field("localization", &s.localization,
-            "where the explorer believes it is: " + loop::LocalizationNames());
+            "where the explorer believes it is: " + runtime::LocalizationNames());
     v.Field("seed", &s.seed, "simulator noise and the explorer's draws");
     v.Field("odometry_noise_scale", &s.odometry_noise_scale,
             "times the default odometry noise, simulated and modelled (the sections below "
@@ -58,8 +58,8 @@ void ResetExploreDefaults(ExploreConfig* config) {
   const exploration::ExplorerInfo* explorer =
       exploration::ExplorerRegistry::Global().Find(config->setup.explorer);
   config->explorer_options = explorer != nullptr ? explorer->default_options() : nullptr;
-  config->simulator = loop::DefaultSimulator(config->setup);
-  config->slam_options = loop::DefaultSlamOptions(config->setup);
+  config->simulator = runtime::DefaultSimulator(config->setup);
+  config->slam_options = runtime::DefaultSlamOptions(config->setup);
 }
 
 kernel::Status ApplySets(const io::ConfigRoot& root, const std::vector<std::string>& sets) {

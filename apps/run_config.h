@@ -9,7 +9,7 @@
 #include "io/config.h"
 #include "kernel/local_safe_region.h"
 #include "kernel/status.h"
-#include "loop/exploration_run.h"
+#include "runtime/exploration_run.h"
 
 // The configuration documents of `splam slam` and `splam explore` (and `splam config print`):
 // which keys they hold, in one place, so that printing, reading, --set and the run's own
@@ -29,7 +29,7 @@ io::ConfigRoot SlamConfigRoot(SlamConfig* config);
 // exploration (the options every explorer shares, and the explorer's own under its name),
 // simulator, and the SLAM method's options under its name when the localisation is one.
 struct ExploreConfig {
-  loop::ExploreSetup setup;
+  runtime::ExploreSetup setup;
   std::unique_ptr<kernel::AnyOptions> explorer_options;  // the explorer's own
   sim::SimulatorOptions simulator;
   std::unique_ptr<estimation::SlamOptions> slam_options;

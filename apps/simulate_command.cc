@@ -11,8 +11,8 @@
 #include "io/simulation_log.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
-#include "loop/json_text.h"
-#include "loop/run_html.h"
+#include "runtime/json_text.h"
+#include "runtime/run_html.h"
 #include "sim/ray_caster.h"
 #include "sim/simulator.h"
 
@@ -186,9 +186,9 @@ int RunSimulate(const SimulateArgs& args) {
       io::WriteWorldFile(out + "/world.yaml", *world.value),
       io::SaveRunPicture(picture, {out + "/run.svg", out + "/run.png"}),
   };
-  errors.push_back(io::WriteTextFile(out + "/summary.json", loop::JsonText(summary, 2) + "\n"));
+  errors.push_back(io::WriteTextFile(out + "/summary.json", runtime::JsonText(summary, 2) + "\n"));
   errors.push_back(
-      loop::WriteRunHtml(out, "splam simulate: " + world.value->name + " world").message());
+      runtime::WriteRunHtml(out, "splam simulate: " + world.value->name + " world").message());
   for (const std::string& e : errors) {
     if (!e.empty()) {
       fmt::print(stderr, "splam simulate: {}\n", e);

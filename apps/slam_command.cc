@@ -24,11 +24,11 @@
 #include "io/text.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
-#include "loop/json_text.h"
-#include "loop/log_replay.h"
-#include "loop/run_html.h"
-#include "loop/slam_report.h"
-#include "loop/step_trace.h"
+#include "runtime/json_text.h"
+#include "runtime/log_replay.h"
+#include "runtime/run_html.h"
+#include "runtime/slam_report.h"
+#include "runtime/step_trace.h"
 
 namespace splam::apps {
 namespace {
@@ -46,8 +46,8 @@ struct SlamArgs {
   int max_scans = 0;
   bool trace = false;
   LogInput input;
-  // The sensors' noise; negative: chosen from the log's laser type (loop::SensorNoiseOf).
-  loop::SensorNoiseOverrides noise;
+  // The sensors' noise; negative: chosen from the log's laser type (runtime::SensorNoiseOf).
+  runtime::SensorNoiseOverrides noise;
   bool method_given = false;
 };
 
@@ -73,7 +73,7 @@ bool Configure(const SlamArgs& args, const io::LaserMessage& first, SlamConfig* 
                estimation::SlamRegistry::Global().NameList());
     return false;
   }
-  *noise = loop::SensorNoiseOf(first);
+  *noise = runtime::SensorNoiseOf(first);
   config->options = info->default_options(*noise);
   std::vector<std::string> sets = args.sets;
   if (!args.association.empty())
@@ -90,7 +90,7 @@ bool Configure(const SlamArgs& args, const io::LaserMessage& first, SlamConfig* 
     status = kernel::Status::Error("--set method: choose the method with --method");
   }
   if (status.ok() && args.noise.any()) {
-    *noise = loop::SensorNoiseOf(first, args.noise);
+    *noise = runtime::SensorNoiseOf(first, args.noise);
     info->adapt_to_sensors(*noise, config->options.get());
   }
   if (status.ok()) status = config->options->Validate().Prefixed(config->method);
@@ -120,7 +120,7 @@ std::string WriteConsistency(const std::string& path,
 // trajectory, odometry, truth, map files and pictures; errors appended to *errors.
 void WriteSlamFiles(const std::string& log, const std::string& out, const std::string& label,
                     const sim::World* world, const estimation::SlamMethod& slam,
-                    const loop::ReplayResult& run, const evaluation::ConsistencyReport& consistency,
+                    const runtime::ReplayResult& run, const evaluation::ConsistencyReport& consistency,
                     const evaluation::ConsistencyOptions& consistency_options,
                     std::vector<std::string>* errors) {
   const estimation::SlamMap map = slam.Map();
@@ -157,7 +157,7 @@ void WriteSlamFiles(const std::string& log, const std::string& out, const std::s
 // Prints the run's figures; false when an error against the truth is not finite (an estimate
 // that diverged): never "RMSE inf m" with a successful exit.
 bool PrintSlamSummary(const std::string& label, const estimation::SlamMethod& slam,
-                      const loop::ReplayResult& run, const nlohmann::ordered_json& summary) {
+                      const runtime::ReplayResult& run, const nlohmann::ordered_json& summary) {
   fmt::print(
       "{} scans ({:.0f} s of data) in {:.1f} s: {:.1f}x real time, {:.2f} ms per scan (median "
       "{:.2f}, slowest {:.1f}); peak memory {:.0f} MB\n",
@@ -171,7 +171,7 @@ bool PrintSlamSummary(const std::string& label, const estimation::SlamMethod& sl
         "time span)\n",
         run.backward_time_stamps());
   fmt::print("map: {}; associations: {}\n", slam.MapDescription(),
-             loop::JsonText(summary["associations"]));
+             runtime::JsonText(summary["associations"]));
   const nlohmann::ordered_json& c = summary["consistency"];
   fmt::print(
       "self-consistency: {:.1f} % of the points of {} scans checked against other passes lie in "
@@ -273,9 +273,9 @@ int RunSlam(const SlamArgs& args) {
                                                          out + "/config.yaml " + args.log)
                                          .message()};
 
-  loop::SlamDriver driver(std::move(*made.value));
+  runtime::SlamDriver driver(std::move(*made.value));
   driver.RecordSteps(args.trace);
-  loop::ReplayOptions replay_options;
+  runtime::ReplayOptions replay_options;
   replay_options.max_scans = static_cast<std::size_t>(args.max_scans);
   const estimation::SlamMethod& slam = driver.method();
   replay_options.progress = [&slam](std::size_t done, std::size_t total) {
@@ -283,7 +283,7 @@ int RunSlam(const SlamArgs& args) {
     std::fflush(stdout);
   };
   replay_options.stop = Interrupted;
-  const loop::ReplayResult run = loop::ReplayLog(log, &driver, replay_options);
+  const runtime::ReplayResult run = runtime::ReplayLog(log, &driver, replay_options);
   if (run.stopped_at) {
     fmt::print(stderr,
                "splam slam: interrupted before scan {} of {}: the results so far are written and "
@@ -297,7 +297,7 @@ int RunSlam(const SlamArgs& args) {
   const estimation::SlamStatistics statistics = slam.Statistics();
   const evaluation::ConsistencyOptions consistency_options;
   const evaluation::ConsistencyReport consistency =
-      evaluation::CheckMapConsistency(loop::PlacedScans(log, run.estimate), consistency_options);
+      evaluation::CheckMapConsistency(runtime::PlacedScans(log, run.estimate), consistency_options);
   errors.push_back(WriteConsistency(out + "/consistency.csv", consistency, run.estimate));
   const std::string label = statistics.association.empty()
                                 ? config.method
@@ -308,7 +308,7 @@ int RunSlam(const SlamArgs& args) {
     std::vector<double> times;
     for (const kernel::StampedPose& p : run.online.empty() ? run.estimate : run.online)
       times.push_back(p.time_s);
-    errors.push_back(loop::WriteStepTrace(out + "/steps.csv", driver.steps(), times, run.truth));
+    errors.push_back(runtime::WriteStepTrace(out + "/steps.csv", driver.steps(), times, run.truth));
   }
 
   nlohmann::ordered_json summary;
@@ -326,13 +326,13 @@ int RunSlam(const SlamArgs& args) {
   if (truncated) summary["stopped_early"] = read.log.error;
   if (run.stopped_at)
     summary["stopped_early"] = "interrupted before scan " + std::to_string(*run.stopped_at + 1);
-  summary.update(loop::ReplaySummaryJson(slam, statistics, run, driver));
-  summary["consistency"] = loop::ConsistencyJson(consistency, consistency_options);
+  summary.update(runtime::ReplaySummaryJson(slam, statistics, run, driver));
+  summary["consistency"] = runtime::ConsistencyJson(consistency, consistency_options);
   bool scored = true;
   if (!args.relations.empty()) {
     const evaluation::RelationsError r = evaluation::EvaluateRelations(relations, run.estimate);
     scored = r.used > 0 && std::isfinite(r.translation_mean) && std::isfinite(r.rotation_mean);
-    summary["relations"] = loop::RelationsJson(r);
+    summary["relations"] = runtime::RelationsJson(r);
     summary["relations"]["file"] = args.relations;
     if (scored) {
       fmt::print(
@@ -345,8 +345,8 @@ int RunSlam(const SlamArgs& args) {
                  args.relations);
     }
   }
-  errors.push_back(io::WriteTextFile(out + "/summary.json", loop::JsonText(summary, 2) + "\n"));
-  errors.push_back(loop::WriteRunHtml(out, "splam slam: " + label + " on " + args.log).message());
+  errors.push_back(io::WriteTextFile(out + "/summary.json", runtime::JsonText(summary, 2) + "\n"));
+  errors.push_back(runtime::WriteRunHtml(out, "splam slam: " + label + " on " + args.log).message());
   for (const std::string& e : errors) {
     if (!e.empty()) {
       fmt::print(stderr, "splam slam: {}\n", e);

@@ -9,9 +9,9 @@
 #include "apps/commands.h"
 #include "apps/interrupt.h"
 #include "io/sweep_grid.h"
-#include "loop/slurm.h"
-#include "loop/sweep.h"
-#include "loop/sweep_merge.h"
+#include "studies/slurm.h"
+#include "studies/sweep.h"
+#include "studies/sweep_merge.h"
 
 namespace splam::apps {
 namespace {
@@ -20,35 +20,35 @@ struct SweepArgs {
   std::string grid, out, dir;
   int jobs = 0;
   bool slurm = false, merge = true;
-  loop::SlurmOptions slurm_options;
+  studies::SlurmOptions slurm_options;
   std::vector<int> cells;  // sweep cell
 };
 
 int Merge(const std::string& dir) {
-  kernel::Result<loop::MergedSweep> merged = loop::MergeSweep(dir);
+  kernel::Result<studies::MergedSweep> merged = studies::MergeSweep(dir);
   if (!merged.ok()) {
     fmt::print(stderr, "splam sweep merge: {}\n", merged.error);
     return kExitBadInput;
   }
-  kernel::Result<std::vector<std::string>> written = loop::WriteMergedSweep(*merged.value);
+  kernel::Result<std::vector<std::string>> written = studies::WriteMergedSweep(*merged.value);
   if (!written.ok()) {
     fmt::print(stderr, "splam sweep merge: {}\n", written.error);
     return kExitBadInput;
   }
   int missing = 0;
-  for (const loop::MergedCell& c : merged.value->cells) missing += !c.record || !c.record->ok();
+  for (const studies::MergedCell& c : merged.value->cells) missing += !c.record || !c.record->ok();
   fmt::print("merged {} cells ({} without results) into {}/{{table.csv, table.md, report.html}}\n",
              merged.value->cells.size(), missing, dir);
   return missing ? kExitIncomplete : kExitOk;
 }
 
 int Status(const std::string& dir) {
-  kernel::Result<loop::SweepStatus> status = loop::ReadSweepStatus(dir);
+  kernel::Result<studies::SweepStatus> status = studies::ReadSweepStatus(dir);
   if (!status.ok()) {
     fmt::print(stderr, "splam sweep status: {}\n", status.error);
     return kExitBadInput;
   }
-  const loop::SweepStatus& s = *status.value;
+  const studies::SweepStatus& s = *status.value;
   fmt::print("{}: {} cells: {} done, {} failed, {} running, {} not started\n", dir, s.total, s.done,
              s.failed, s.running, s.pending);
   for (const auto& [name, record] : s.failures)
@@ -57,7 +57,7 @@ int Status(const std::string& dir) {
 }
 
 int RunCells(const SweepArgs& args) {
-  kernel::Result<loop::SweepPlan> plan = loop::ReadSweepPlan(args.dir);
+  kernel::Result<studies::SweepPlan> plan = studies::ReadSweepPlan(args.dir);
   if (!plan.ok()) {
     fmt::print(stderr, "splam sweep cell: {}\n", plan.error);
     return kExitBadInput;
@@ -69,8 +69,8 @@ int RunCells(const SweepArgs& args) {
                  plan.value->cells.size() - 1);
       return kExitBadInput;
     }
-    const loop::SweepCell& cell = plan.value->cells[static_cast<std::size_t>(index)];
-    const loop::CellRecord r = loop::RunCell(args.dir, cell, SplamBinary());
+    const studies::SweepCell& cell = plan.value->cells[static_cast<std::size_t>(index)];
+    const studies::CellRecord r = studies::RunCell(args.dir, cell, SplamBinary());
     fmt::print("{}: exit {} in {:.1f} s{}\n", cell.name, r.exit_status, r.wall_s,
                r.ok() ? "" : ": " + r.message);
     if (!r.ok()) worst = r.exit_status;
@@ -88,25 +88,25 @@ int RunGrid(const SweepArgs& args) {
                               ? "runs/sweep-" + std::filesystem::path(args.grid).stem().string()
                               : args.out;
   if (args.slurm) {  // before the plan is written: a path a job script cannot carry
-    if (kernel::Status s = loop::CheckSlurmPaths(dir, SplamBinary()); !s.ok()) {
+    if (kernel::Status s = studies::CheckSlurmPaths(dir, SplamBinary()); !s.ok()) {
       fmt::print(stderr, "splam sweep: {}\n", s.message());
       return kExitBadInput;
     }
   }
   bool write_failed = false;
-  if (kernel::Status s = loop::WriteSweepPlan(dir, *grid.value, &write_failed); !s.ok()) {
+  if (kernel::Status s = studies::WriteSweepPlan(dir, *grid.value, &write_failed); !s.ok()) {
     fmt::print(stderr, "splam sweep: {}\n", s.message());
     return write_failed ? kExitWriteFailed : kExitBadInput;
   }
   if (args.slurm) {
-    kernel::Result<loop::SweepPlan> plan = loop::ReadSweepPlan(dir);
+    kernel::Result<studies::SweepPlan> plan = studies::ReadSweepPlan(dir);
     if (!plan.ok()) {
       fmt::print(stderr, "splam sweep: {}\n", plan.error);
       return kExitBadInput;
     }
-    const std::vector<int> pending = loop::CellsToRun(dir, *plan.value);
+    const std::vector<int> pending = studies::CellsToRun(dir, *plan.value);
     kernel::Result<std::string> job =
-        loop::SubmitSweepToSlurm(dir, SplamBinary(), pending, args.slurm_options);
+        studies::SubmitSweepToSlurm(dir, SplamBinary(), pending, args.slurm_options);
     if (!job.ok()) {
       fmt::print(stderr, "splam sweep: {}\n", job.error);
       return kExitBadInput;
@@ -118,17 +118,17 @@ int RunGrid(const SweepArgs& args) {
     return kExitOk;
   }
   CatchInterrupts();
-  loop::SweepRunOptions options;
+  studies::SweepRunOptions options;
   options.splam_binary = SplamBinary();
   options.jobs = args.jobs;
   options.stop = [] { return Interrupted(); };
-  options.progress = loop::PrintSweepProgress();
-  kernel::Result<loop::SweepRunSummary> run = loop::RunSweepLocally(dir, options);
+  options.progress = studies::PrintSweepProgress();
+  kernel::Result<studies::SweepRunSummary> run = studies::RunSweepLocally(dir, options);
   if (!run.ok()) {
     fmt::print(stderr, "splam sweep: {}\n", run.error);
     return kExitBadInput;
   }
-  const loop::SweepRunSummary& s = *run.value;
+  const studies::SweepRunSummary& s = *run.value;
   fmt::print(
       "\n{}: {} cells: {} run now ({} failed), {} skipped (done before), {} left; {:.1f} s "
       "wall for {:.1f} s of cells ({:.2f})\n",

@@ -24,7 +24,7 @@
 #include "estimation/topological/topological_slam.h"
 #include "kernel/angle.h"
 #include "kernel/random.h"
-#include "loop/log_replay.h"
+#include "runtime/log_replay.h"
 #include "sim/builtin_worlds.h"
 #include "sim/simulator.h"
 
@@ -118,7 +118,7 @@ void BM_EkfBSplineComplexScan(benchmark::State& state) {
   splam::estimation::SlamOptionsOf<splam::estimation::EkfBSplineSlamOptions> options;
   options.options().association = state.range(0) == 0 ? "pedraza" : "curvature";
   std::size_t i = 0, control_points = 0;
-  std::optional<splam::loop::SlamDriver> driver;
+  std::optional<splam::runtime::SlamDriver> driver;
   for (auto _ : state) {
     if (i % frames.size() == 0) {  // start the route again
       state.PauseTiming();
@@ -147,10 +147,10 @@ void BM_TopologicalComplexScan(benchmark::State& state) {
   // First pass: the map of the world.
   std::vector<splam::kernel::SplineCurve> room;
   {
-    splam::loop::SlamDriver driver(std::move(*splam::estimation::SlamRegistry::Global()
+    splam::runtime::SlamDriver driver(std::move(*splam::estimation::SlamRegistry::Global()
                                                   .Make("topological", nullptr, {start, {}})
                                                   .value));
-    splam::loop::ReplayFrames(frames, Pose2(), &driver);
+    splam::runtime::ReplayFrames(frames, Pose2(), &driver);
     for (const splam::estimation::MapSpline& s : driver.method().Map().splines)
       room.push_back(splam::kernel::DescribeCurve(s.spline));
   }

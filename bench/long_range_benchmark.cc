@@ -3,7 +3,7 @@
 // BM_LongRangeRun/<method>: the `long_corridors` world (bench/worlds/long_corridors.yaml, a
 // 60 m x 40 m ring of 2.5 m corridors) with a 181-beam SICK at 1 deg and an 80 m range, its route
 // (once round and 28 m on) driven twice, simulated once: the second lap sees nothing new. Each
-// iteration runs one SLAM method over the whole log through loop::SlamDriver, as `splam slam`
+// iteration runs one SLAM method over the whole log through runtime::SlamDriver, as `splam slam`
 // does. The time is the whole run's; the counters give what a user worries about on a long log:
 // - median_step_ms, max_step_ms: the median and the slowest step (predict + update) of the run;
 // - heap_peak_mb: the largest heap in use over the run (glibc's mallinfo2, sampled every 100
@@ -24,7 +24,7 @@
 
 #include "estimation/slam_method.h"
 #include "io/world_file.h"
-#include "loop/slam_driver.h"
+#include "runtime/slam_driver.h"
 #include "sim/ray_caster.h"
 #include "sim/simulator.h"
 
@@ -74,7 +74,7 @@ void BM_LongRangeRun(benchmark::State& state) {
   double growth = 0.0;
   for (auto _ : state) {
     const double before = HeapMb();
-    splam::loop::SlamDriver driver(std::move(
+    splam::runtime::SlamDriver driver(std::move(
         *splam::estimation::SlamRegistry::Global().Make(method, nullptr, {log.start, {}}).value));
     quarters.clear();
     quarter_maps.clear();

@@ -9,7 +9,7 @@
 
 // What an explorer needs from a robot, simulated or real: velocity commands, odometry, a laser
 // and (optionally) a ring of sonars. The simulator is plugged in by a few lines of glue (see
-// loop/simulated_robot.h and examples/exploration).
+// runtime/simulated_robot.h and examples/exploration).
 namespace splam::exploration {
 
 // The fixed facts about the robot that planning and perception use.

@@ -16,7 +16,7 @@ bash scripts/configure_sanitized.sh
 suites=(io_test sim_test kernel_test graph_test)
 extra=()
 if [[ ${SANITIZE_ALL:-0} == 1 ]]; then
-  extra=(estimation_test exploration_test loop_test apps_test)
+  extra=(estimation_test exploration_test runtime_test apps_test)
 fi
 cmake --build build-san --parallel "$jobs" --target fuzzers splam "${suites[@]}" "${extra[@]}"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1

@@ -7,7 +7,7 @@
 #include "estimation/evaluation/metrics.h"
 #include "estimation/slam_method.h"
 #include "io/render.h"
-#include "loop/log_replay.h"
+#include "runtime/log_replay.h"
 #include "sim/builtin_worlds.h"
 #include "sim/simulator.h"
 
@@ -42,9 +42,9 @@ int main(int argc, char** argv) {
   // 3. Every scan: the driver predicts with the odometry increment, then updates with the scan's
   //    lines and corners (extraction, Mahalanobis association with a chi-square gate, EKF
   //    correction, new landmarks). `splam slam` replays logs through the same driver.
-  splam::loop::SlamDriver driver(std::move(*made.value));
-  const splam::loop::ReplayResult replay =
-      splam::loop::ReplayFrames(run.frames, sim_options.laser.robot_T_laser, &driver);
+  splam::runtime::SlamDriver driver(std::move(*made.value));
+  const splam::runtime::ReplayResult replay =
+      splam::runtime::ReplayFrames(run.frames, sim_options.laser.robot_T_laser, &driver);
   const estimation::SlamMethod& slam = driver.method();
   const splam::kernel::Trajectory& truth = replay.truth;
   const splam::kernel::Trajectory& estimate = replay.estimate;

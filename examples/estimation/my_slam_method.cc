@@ -8,8 +8,8 @@
 #include "estimation/slam_method.h"
 #include "examples/estimation/scan_matcher.h"
 #include "io/simulation_log.h"
-#include "loop/exploration_run.h"
-#include "loop/log_replay.h"
+#include "runtime/exploration_run.h"
+#include "runtime/log_replay.h"
 #include "sim/builtin_worlds.h"
 #include "sim/simulator.h"
 
@@ -43,8 +43,8 @@ int main() {
     std::fprintf(stderr, "%s\n", made.error.c_str());
     return 1;
   }
-  splam::loop::SlamDriver driver(std::move(*made.value));
-  const splam::loop::ReplayResult replay = splam::loop::ReplayLog(log, &driver);
+  splam::runtime::SlamDriver driver(std::move(*made.value));
+  const splam::runtime::ReplayResult replay = splam::runtime::ReplayLog(log, &driver);
   const auto e = evaluation::CompareToTruth(replay.truth, replay.estimate);
   const auto o = evaluation::CompareToTruth(replay.truth, replay.odometry);
   std::printf("log replay: %zu scans, position RMSE %.3f m (odometry %.3f m), %.2f ms per scan\n",
@@ -52,15 +52,15 @@ int main() {
               1e3 * replay.wall_s / static_cast<double>(replay.estimate.size()));
 
   // 4. The same method as the explorer's localisation: REG plans with its estimate.
-  splam::loop::ExploreSetup setup;
+  splam::runtime::ExploreSetup setup;
   setup.explorer = "reg";
   setup.localization = "scan-matcher";
-  const splam::loop::ExploreOutcome outcome = splam::loop::RunExploration(world, setup);
+  const splam::runtime::ExploreOutcome outcome = splam::runtime::RunExploration(world, setup);
   if (!outcome.error.empty()) {
     std::fprintf(stderr, "%s\n", outcome.error.c_str());
     return 1;
   }
-  const splam::loop::Trajectories t = splam::loop::TrajectoriesOf(outcome.run);
+  const splam::runtime::Trajectories t = splam::runtime::TrajectoriesOf(outcome.run);
   const auto xe = evaluation::CompareToTruth(t.truth, t.estimate);
   const auto xo = evaluation::CompareToTruth(t.truth, t.odometry);
   std::printf("exploration: %s, %.1f %% explored, position RMSE %.3f m (odometry %.3f m)\n",

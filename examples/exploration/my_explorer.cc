@@ -21,8 +21,8 @@
 #include "exploration/steps.h"
 #include "graph/bidirectional_astar.h"
 #include "graph/frontiers.h"
-#include "loop/exploration_report.h"
-#include "loop/exploration_run.h"
+#include "runtime/exploration_report.h"
+#include "runtime/exploration_run.h"
 #include "sim/builtin_worlds.h"
 
 namespace {
@@ -171,11 +171,11 @@ int main(int argc, char** argv) {
   const splam::sim::World world = *splam::sim::BuiltinWorld("office");
   int status = 0;
   for (const char* explorer : {"longest", "reg"}) {
-    splam::loop::ExploreSetup setup;
+    splam::runtime::ExploreSetup setup;
     setup.explorer = explorer;
     setup.localization = "ground-truth";  // or any registered SLAM method: the SPLAM loop
     setup.seed = 1;
-    const splam::loop::ExploreOutcome outcome = splam::loop::RunExploration(world, setup);
+    const splam::runtime::ExploreOutcome outcome = splam::runtime::RunExploration(world, setup);
     if (!outcome.error.empty()) {
       std::fprintf(stderr, "%s: %s\n", explorer, outcome.error.c_str());
       return 1;
@@ -186,8 +186,8 @@ int main(int argc, char** argv) {
                 100.0 * outcome.coverage(),
                 splam::exploration::TerminationName(run.termination).c_str(), run.message.c_str());
     if (std::string(explorer) == "longest") {
-      const std::string error = splam::loop::SaveExplorationPicture(
-          world, outcome, splam::loop::RunTitle(world, setup, outcome), {picture});
+      const std::string error = splam::runtime::SaveExplorationPicture(
+          world, outcome, splam::runtime::RunTitle(world, setup, outcome), {picture});
       if (!error.empty()) {
         std::fprintf(stderr, "%s\n", error.c_str());
         return 1;

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "io/sweep_grid.h"
-#include "loop/sweep.h"
-#include "loop/sweep_merge.h"
+#include "studies/sweep.h"
+#include "studies/sweep_merge.h"
 
 int main(int argc, char** argv) {
   using namespace splam;
@@ -38,18 +38,18 @@ figures: [coverage_fraction, distance_m, nodes]
   }
 
   // 2. The plan: grid.yaml and cells.tsv in the sweep directory, one line per cell.
-  for (const loop::SweepCell& cell : loop::GridCells(*grid.value))
+  for (const studies::SweepCell& cell : studies::GridCells(*grid.value))
     fmt::print("cell {}: splam {}\n", cell.name, fmt::join(cell.args, " "));
-  if (kernel::Status s = loop::WriteSweepPlan(dir, *grid.value); !s.ok()) {
+  if (kernel::Status s = studies::WriteSweepPlan(dir, *grid.value); !s.ok()) {
     fmt::print(stderr, "{}\n", s.message());
     return 2;
   }
 
   // 3. Run the cells, one per core; cells that finished in an earlier run are skipped.
-  loop::SweepRunOptions options;
+  studies::SweepRunOptions options;
   options.splam_binary = splam_binary;
-  options.progress = loop::PrintSweepProgress();
-  const kernel::Result<loop::SweepRunSummary> run = loop::RunSweepLocally(dir, options);
+  options.progress = studies::PrintSweepProgress();
+  const kernel::Result<studies::SweepRunSummary> run = studies::RunSweepLocally(dir, options);
   if (!run.ok()) {
     fmt::print(stderr, "{}\n", run.error);
     return 2;
@@ -59,11 +59,11 @@ figures: [coverage_fraction, distance_m, nodes]
 
   // 4. Merge: a group per alpha, statistics of every figure over the seeds; table.csv,
   //    table.md and report.html in the sweep directory.
-  const kernel::Result<loop::MergedSweep> merged = loop::MergeSweep(dir);
-  if (!merged.ok() || !loop::WriteMergedSweep(*merged.value).ok()) return 2;
-  for (const loop::MergedGroup& g : merged.value->groups) {
-    const loop::FigureStats& coverage = g.figures.at("coverage_fraction");
-    const loop::FigureStats& distance = g.figures.at("distance_m");
+  const kernel::Result<studies::MergedSweep> merged = studies::MergeSweep(dir);
+  if (!merged.ok() || !studies::WriteMergedSweep(*merged.value).ok()) return 2;
+  for (const studies::MergedGroup& g : merged.value->groups) {
+    const studies::FigureStats& coverage = g.figures.at("coverage_fraction");
+    const studies::FigureStats& distance = g.figures.at("distance_m");
     fmt::print("alpha {}: coverage {:.1f} +- {:.1f} %, distance {:.1f} m (median) over {} seeds\n",
                g.values[0].second, 100 * coverage.mean, 100 * coverage.std, distance.median,
                coverage.n);

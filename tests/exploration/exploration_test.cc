@@ -16,7 +16,7 @@
 #include "io/floor_plan.h"
 #include "kernel/angle.h"
 #include "kernel/random.h"
-#include "loop/simulated_robot.h"
+#include "runtime/simulated_robot.h"
 #include "sim/builtin_worlds.h"
 #include "sim/ray_caster.h"
 
@@ -150,7 +150,7 @@ Trial ExploreWorld(const std::string& explorer, const sim::World& world, std::ui
   sim::SimulatorOptions sim_options;
   sim_options.enable_sonar = true;
   sim::Simulator simulator(caster, sim_options, *world.start, seed);
-  loop::SimulatedRobot robot(&simulator);
+  runtime::SimulatedRobot robot(&simulator);
   GroundTruthLocalization truth;
   OdometryLocalization dead_reckoning;
   ExplorerOptions o = options;

@@ -22,7 +22,7 @@
 #include "estimation/slam_method.h"
 #include "exploration/explorer.h"
 #include "kernel/options.h"
-#include "loop/exploration_run.h"
+#include "runtime/exploration_run.h"
 #include "sim/builtin_worlds.h"
 #include "sim/ray_caster.h"
 #include "sim/simulator.h"
@@ -182,7 +182,7 @@ void RunSlam(const std::string& name, Bytes* in) {
 
 void RunExplorer(Bytes* in) {
   static const sim::World world = *sim::BuiltinWorld("complex");
-  loop::ExploreSetup setup;
+  runtime::ExploreSetup setup;
   setup.explorer = in->Byte() % 2 ? "reg" : "srt";
   setup.localization = "ground-truth";
   Fuzz([&](kernel::FieldVisitor& v) { setup.options.VisitFields(v); }, in);
@@ -190,7 +190,7 @@ void RunExplorer(Bytes* in) {
   // The caps' own domains are part of Validate; the run itself is kept short.
   setup.options.max_nodes = std::min(setup.options.max_nodes, 2);
   setup.options.max_time_s = std::min(setup.options.max_time_s, 60.0);
-  static_cast<void>(loop::RunExploration(world, setup));
+  static_cast<void>(runtime::RunExploration(world, setup));
 }
 
 }  // namespace

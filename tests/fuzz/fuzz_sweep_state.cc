@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "loop/run_html.h"
-#include "loop/sweep.h"
-#include "loop/sweep_merge.h"
+#include "runtime/run_html.h"
+#include "studies/sweep.h"
+#include "studies/sweep_merge.h"
 
 namespace {
 
@@ -51,7 +51,8 @@ void WriteCellFiles(const std::string& cell_dir, const std::vector<std::string>&
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  namespace loop = splam::loop;
+  namespace runtime = splam::runtime;
+  namespace studies = splam::studies;
   std::vector<std::string> parts(1);
   for (std::size_t i = 0; i < size; ++i) {
     if (data[i] == 0 && parts.size() < 5) {
@@ -70,16 +71,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   const std::string loose = dir + "/loose";
   WriteCellFiles(loose, parts);
-  static_cast<void>(loop::ReadCellRecord(loose));
-  static_cast<void>(loop::RunFigures(loose));
+  static_cast<void>(studies::ReadCellRecord(loose));
+  static_cast<void>(runtime::RunFigures(loose));
 
-  const auto plan = loop::ReadSweepPlan(dir);
+  const auto plan = studies::ReadSweepPlan(dir);
   if (!plan.ok()) return 0;
   for (std::size_t c = 0; c < plan.value->cells.size() && c < 2; ++c)
-    WriteCellFiles(loop::CellDir(dir, plan.value->cells[c]), parts);
-  static_cast<void>(loop::CellsToRun(dir, *plan.value));
-  static_cast<void>(loop::ReadSweepStatus(dir));
-  const auto merged = loop::MergeSweep(dir);
-  if (merged.ok()) static_cast<void>(loop::WriteMergedSweep(*merged.value));
+    WriteCellFiles(studies::CellDir(dir, plan.value->cells[c]), parts);
+  static_cast<void>(studies::CellsToRun(dir, *plan.value));
+  static_cast<void>(studies::ReadSweepStatus(dir));
+  const auto merged = studies::MergeSweep(dir);
+  if (merged.ok()) static_cast<void>(studies::WriteMergedSweep(*merged.value));
   return 0;
 }

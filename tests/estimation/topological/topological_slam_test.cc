@@ -15,7 +15,7 @@
 #include "kernel/angle.h"
 #include "kernel/random.h"
 #include "kernel/shapes.h"
-#include "loop/log_replay.h"
+#include "runtime/log_replay.h"
 #include "sim/builtin_worlds.h"
 #include "sim/ray_caster.h"
 #include "sim/simulator.h"
@@ -162,9 +162,9 @@ DriveResult Drive(const sim::World& world, int max_scans, std::uint64_t seed,
   const SlamOptionsOf<TopologicalGraphSlamOptions> wrapped_graph(with_graph);
   const SlamOptions* chosen =
       method == "topological" ? static_cast<const SlamOptions*>(&wrapped) : &wrapped_graph;
-  loop::SlamDriver driver(std::move(
+  runtime::SlamDriver driver(std::move(
       *SlamRegistry::Global().Make(method, chosen, {*world.start, options.region}).value));
-  const loop::ReplayResult replay = loop::ReplayFrames(r.frames, kernel::Pose2(), &driver);
+  const runtime::ReplayResult replay = runtime::ReplayFrames(r.frames, kernel::Pose2(), &driver);
   DriveResult run{replay.truth, replay.estimate, replay.odometry, driver.method().Map().splines};
   for (const auto& [name, count] : driver.method().Statistics().associations) {
     if (name == "localized_scans") run.localized = static_cast<int>(count);

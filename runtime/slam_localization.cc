@@ -1,0 +1,32 @@
+#include "runtime/slam_localization.h"
+
+#include <utility>
+
+namespace splam::runtime {
+
+SlamLocalization::SlamLocalization(std::string method,
+                                   std::shared_ptr<const estimation::SlamOptions> options,
+                                   const kernel::LocalRegionOptions& region)
+    : method_(std::move(method)), options_(std::move(options)), region_(region) {}
+
+std::string SlamLocalization::Start(const exploration::RobotDescription& robot,
+                                    const kernel::Pose2& start,
+                                    const exploration::Perception& first) {
+  auto made = estimation::SlamRegistry::Global().Make(method_, options_.get(), {start, region_});
+  if (!made.ok()) return made.error;
+  driver_.emplace(std::move(*made.value));
+  driver_->SetOdometryOrigin(first.odometry_pose);
+  driver_->RecordSteps(record_steps_);
+  robot_T_laser_ = robot.robot_T_laser;
+  return "";
+}
+
+kernel::Pose2 SlamLocalization::Update(const exploration::Perception& perception) {
+  driver_->Step(perception.odometry_pose, &perception.scan, robot_T_laser_);
+  if (record_steps_) step_times_.push_back(perception.time_s);
+  return driver_->method().pose();
+}
+
+void SlamLocalization::AtNode(const kernel::LocalSafeRegion& lsr) { driver_->method().AtNode(lsr); }
+
+}  // namespace splam::runtime
