@@ -1,11 +1,11 @@
 // EKF-SLAM cost against map size.
-// - BM_EkfLinesScan (issue 4): one prediction and the update with 5 re-observed lines, in a map
+// - BM_EkfLinesScan: one prediction and the update with 5 re-observed lines, in a map
 //   of N line landmarks (state size 3 + 2N).
-// - BM_EkfCorrection (issue 5): one correction with 30 beams against one spline of 20 control
+// - BM_EkfCorrection: one correction with 30 beams against one spline of 20 control
 //   points in a state of N control points: the step that dominates the B-spline EKF, O(N^2).
-// - BM_EkfBSplineComplexScan (issue 5): a whole B-spline EKF step (prediction, curve extraction,
+// - BM_EkfBSplineComplexScan: a whole B-spline EKF step (prediction, curve extraction,
 //   association, corrections) on URG-04LX scans of the `complex` route, with the map built so far.
-// - BM_TopologicalComplexScan (issue 7): a whole topological B-spline SLAM step on the same
+// - BM_TopologicalComplexScan: a whole topological B-spline SLAM step on the same
 //   scans, in a map of max(N, M) curves: the M curves of `complex` mapped on a first pass of the
 //   route, completed to N by copies of them in far rooms. Association looks only at the local
 //   region, so the time must not grow with N.
@@ -148,8 +148,8 @@ void BM_TopologicalComplexScan(benchmark::State& state) {
   std::vector<splam::kernel::SplineCurve> room;
   {
     splam::runtime::SlamDriver driver(std::move(*splam::estimation::SlamRegistry::Global()
-                                                  .Make("topological", nullptr, {start, {}})
-                                                  .value));
+                                                     .Make("topological", nullptr, {start, {}})
+                                                     .value));
     splam::runtime::ReplayFrames(frames, Pose2(), &driver);
     for (const splam::estimation::MapSpline& s : driver.method().Map().splines)
       room.push_back(splam::kernel::DescribeCurve(s.spline));

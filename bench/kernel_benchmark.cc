@@ -1,4 +1,4 @@
-// Feature-extraction cost per scan (issue 3 targets): a URG-04LX scan of the `complex` world
+// Feature-extraction cost per scan: a URG-04LX scan of the `complex` world
 // through segmentation, B-spline fitting, resampling, smoothing, curvature and features in at
 // most 1 ms, and line extraction from an LMS-200 scan in at most 0.5 ms, on one core.
 #include <benchmark/benchmark.h>

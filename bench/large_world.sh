@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The graph SLAM in a large simulated world (issue 47, item 4): simulates bench/worlds/WORLD.yaml
+# The graph SLAM in a large simulated world: simulates bench/worlds/WORLD.yaml
 # (campus_loop: a 140 m x 60 m ring of self-similar corridors, once round and 40 m on;
 # hospital_floor: two wings of wards, ten people walking) with the laser of a long-range log (a
 # SICK at 1 deg, 80 m, interlacing four start angles a quarter degree apart), seeds 1..N, at the

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Worst-case step and memory of every SLAM method on a long-range laser (issue 17, item 5):
+# Worst-case step and memory of every SLAM method on a long-range laser:
 # simulates bench/worlds/long_corridors.yaml (once round and 28 m on, 215 m) with a 181-beam SICK
 # at 1 deg and an 80 m range, then runs each method over the log and prints its median and slowest step
 # and its peak memory. Usage: bench/long_range.sh [BUILD_DIR] [OUT_DIR]

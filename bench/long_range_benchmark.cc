@@ -1,4 +1,4 @@
-// Worst-case step and memory over a long run with a long-range laser (issue 17, item 5).
+// Worst-case step and memory over a long run with a long-range laser.
 //
 // BM_LongRangeRun/<method>: the `long_corridors` world (bench/worlds/long_corridors.yaml, a
 // 60 m x 40 m ring of 2.5 m corridors) with a 181-beam SICK at 1 deg and an 80 m range, its route

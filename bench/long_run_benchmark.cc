@@ -1,4 +1,4 @@
-// Cost over a long run (issue 49, item 2): does a method slow down, or its memory grow, as the
+// Cost over a long run: does a method slow down, or its memory grow, as the
 // log gets longer in a world it has already mapped?
 //
 // BM_LongRun/<method>/<hours>: `office-long` (a 30 m x 12 m floor of eleven rooms off a corridor)

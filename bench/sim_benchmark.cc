@@ -1,4 +1,4 @@
-// Ray casting cost of the simulator. The target of issue 2: one URG-04LX scan (667 beams) in the
+// Ray casting cost of the simulator. The target: one URG-04LX scan (667 beams) in the
 // `complex` world in at most 100 microseconds on one core.
 #include <benchmark/benchmark.h>
 

@@ -52,12 +52,9 @@ struct LoopClosureOptions {
   // candidate_sigmas standard deviations (radius_m + along the largest axis, window_rad + the
   // heading's), at most max_window_m and max_window_rad. It runs only when that window is at
   // least wide_window_ratio times the first, and at every ceil(window / stride_window_m)-th
-  // keyframe. On MIT Killian Court the robot came back to its start after a 200 m loop 6 m off
-  // and every corridor was drawn twice with the first search alone; the wide windows there reached
-  // 11-12 m. Searching by the uncertainty alone (every keyframe) closed Killian as well but made
-  // the explorations of `complex` and `office` worse (0.054 -> 0.083-0.100 m and 0.040 ->
-  // 0.106-0.121 m over seeds 1-10): wider windows near the estimate let look-alike places in
-  // (docs/graph_slam.md).
+  // keyframe. A robot back at its start after a long loop can be metres off, beyond the first
+  // search's reach; searching by the uncertainty alone (every keyframe) instead lets look-alike
+  // places near the estimate in through the wider windows (measured in docs/graph_slam.md).
   double reach_m = 3.0;
   double candidate_sigmas = 3.0;
   double max_window_m = 12.0;
@@ -115,8 +112,8 @@ struct LoopClosureOptions {
   // search took the ward one period (6.2 m) along the corridor, where nearly all the query's
   // points fell on the target's walls and 34 of 346 where its beams had passed, over the truth,
   // where a third fell where it never looked and 2 where its beams had passed. What only
-  // no-returns crossed does not count (glass, dark or grazing surfaces return nothing too:
-  // counted, MIT Killian ended 0.33 m off instead of 0.03 m).
+  // no-returns crossed does not count (glass, dark or grazing surfaces return nothing too;
+  // docs/graph_slam.md).
   double seen_free_score = -1.0;
   // Agreement between closures. A closure that would move the graph (its whitened residual at
   // the current poses above max_chi2) is added only with another closure found within
@@ -166,8 +163,8 @@ struct GraphSlamOptions {
   // field truncated at truncation_m (DistanceGrid), from their curves' samples (raster_curves)
   // and their scan points (raster_points). Every rasterised point stands for a piece of outline
   // along its tangent: a curve's, or for scan points the one through its neighbours at most
-  // normal_max_gap_m away. 0.1 m cells: the pieces keep the sub-cell position of the outline, and
-  // 0.05 m was slower and no more accurate on intel and mit-csail (docs/graph_slam.md).
+  // normal_max_gap_m away. 0.1 m cells: the pieces keep the sub-cell position of the outline, so
+  // finer cells cost time without accuracy (docs/graph_slam.md).
   int submap_keyframes = 30;
   // With submap_insert_keyframes > 0 the submap is built anew from its last submap_keyframes
   // keyframes only after that many new keyframes (and when the graph has moved them, when moving
@@ -175,10 +172,9 @@ struct GraphSlamOptions {
   // (DistanceGrid::Insert: its points join their cells' means, new cells make new pieces, its
   // view raises what the submap has seen). A build makes room for the inserts (its grid reaches
   // submap_insert_keyframes * keyframe_distance_m farther, at most 5 m); a keyframe that does
-  // not fit makes a build. Off by default (0: built anew at every keyframe): with 4, intel's
-  // submaps took 30 % less time at 0.0191 m, but MIT Killian Court ended 0.124 m off (0.031 m
-  // built anew) and scans 0.5 m apart in `complex` 0.059 m (0.019 m): each change of the submap
-  // moves a long log's chaotic course of closures (docs/graph_slam.md, "Speed").
+  // not fit makes a build. Off by default (0: built anew at every keyframe): inserting saves
+  // submap time, but each change of the submap moves a long log's course of closures, which
+  // cost accuracy on the long loops (docs/graph_slam.md, "Speed").
   int submap_insert_keyframes = 0;
   double grid_resolution_m = 0.1;
   double truncation_m = 0.5;
@@ -233,10 +229,9 @@ struct GraphSlamOptions {
   // A registration that passes the test but leaves more than verify_misfit_fraction of the scan's
   // points where the submap saw, away from its outlines (RegistrationResult::misfit_fraction), is
   // suspect: the recovery search runs, and its pose replaces the registration's when more points
-  // lie near the submap there and fewer contradict it. A right pose leaves 0-2 % of a scan so; a
-  // fast turn (2 rad/s) whose odometry heading was 0.19 rad off converged to a local minimum
-  // with 21 % (mit-csail, scan 1350), and the log's map then broke or not with a 1 cm change of
-  // keyframe_distance_m (docs/graph_slam.md). 1: never.
+  // lie near the submap there and fewer contradict it. A right pose leaves a few per cent of a
+  // scan so; a fast turn whose odometry heading was far off can converge to a local minimum that
+  // leaves a fifth (docs/graph_slam.md). 1: never.
   double verify_misfit_fraction = 0.05;
   // The front-end edge into the next keyframe after a recovery gets the loop closures' robust
   // loss: a search over a window can take the wrong basin (a 16 deg turn where the robot drove
@@ -271,8 +266,8 @@ struct GraphSlamOptions {
   // (and at least each closure's newer keyframe), the earlier ones held, so that the front end's
   // recent keyframes are pulled onto the map as at every flush and its submaps do not drift from
   // it; the next whole optimisation takes out what holding the rest bent. 100 keyframes (30 m of
-  // path) hold the submap and the keyframes a flush closes. 0: none. The measurements behind
-  // both defaults are in docs/graph_slam.md ("Speed, session 35").
+  // path) hold the submap and the keyframes a flush closes. 0: none. Both defaults are measured
+  // in docs/graph_slam.md ("Speed").
   int local_optimization_keyframes = 100;
   // A keyframe's loop-closure search reads the graph as it was when the keyframe was made, and
   // what it found is added when the next keyframe is made (before it), so that the search can run

@@ -83,7 +83,7 @@ class PoseGraph {
   // nodes left is unchanged. Otherwise the offset is taken as exact, as a reduced pose graph
   // does for a revisit tied to the place: a node of several edges has no marginal in separate
   // edges, and counting the offset's error once per edge weakened the closures and a revisit's
-  // odometry (docs/graph_slam.md, "Memory, session 36"). An edge parallel to an edge of the same
+  // odometry (docs/graph_slam.md, "Memory"). An edge parallel to an edge of the same
   // kind (loop, robust) is fused into it (FusedEdge), so that the edges follow the pairs of
   // places joined. The edges that did not reach j keep their order.
   void MergeNode(int j, int into);

@@ -23,9 +23,8 @@ struct RegistrationOptions {
   double point_sigma_m = 0.03;  // the distance residual's scale, m
   // The bicubic interpolation of an unsigned field at 0.1 m cells moves its valley off the
   // outline by up to a few cm depending on where the outline crosses the cells, a bias that
-  // changes with every new submap. Measured with the defaults otherwise (docs/graph_slam.md):
-  // `complex` with perfect laser and odometry 0.049 m RMSE against 0.030 m exact, with the
-  // URG's noise 0.172 m against 0.096 m, intel 0.025 m against 0.022 m.
+  // changes with every new submap; the grid's exact distance to the nearest outline piece has no
+  // such bias (measured in docs/graph_slam.md). false: the exact distance.
   bool bicubic_field = false;
   // Beyond loss_scale_m farther points count linearly (Huber) or, with cauchy_loss, their pull
   // fades (Cauchy).
@@ -61,7 +60,7 @@ struct RegistrationOptions {
   // nearest piece belongs to another surface and would pull the scan askew. Points or pieces
   // without a normal are always matched; pi disables the test. 1 rad: the normals of one
   // surface, fitted over 0.3 m of a URG's noise or turning along a pillar's piece, stay well
-  // within it; 0.8 already refused good points on mit-csail (docs/graph_slam.md).
+  // within it; tighter refuses good points (docs/graph_slam.md).
   double max_normal_angle_rad = 1.0;
   // Where the map saw an outline from both sides (DistanceGrid::BackNormal: a thin wall, a door's
   // leaf), a point facing either side is matched. One normal per cell showed only the side seen

@@ -45,11 +45,9 @@ enum class TopologicalPrediction {
 
 struct TopologicalSlamOptions {
   // The prediction. scan_matching, because the curves alone localise too few scans to hold the
-  // odometry's drift: the association verifies a correction in 20 % of intel's scans, and
-  // 86 % of intel's scans pair no point with a map curve (the map is only extended after a
-  // localisation). With the odometry's prediction the topological SLAM was worse than odometry
-  // in rotation on both real logs (intel 41.9 against 39.2 deg, mit-csail 8.1 against 5.1 deg);
-  // with scan matching it is better in both (docs/real_data.md).
+  // odometry's drift on real logs: most scans pair no point with a map curve (the map is only
+  // extended after a localisation), and with the odometry's prediction the method ends worse
+  // than odometry in rotation (docs/real_data.md).
   TopologicalPrediction prediction = TopologicalPrediction::kScanMatching;
   // scan_matching: the front end (registration, submap, odometry test, recovery search). Its
   // loop closure is off; `topological-graph` adds the graph SLAM's loop closure behind the
@@ -124,7 +122,7 @@ struct TopologicalSlamOptions {
   // at its nodes). Applied at every scan of a 10 Hz laser, the full correction passes the
   // centimetre jitter of the two-step solution into the pose and, through map extension, into
   // the map; a gain below 1 averages it over a few scans (a constant-gain observer).
-  double correction_gain = 0.3;  // correction: paper only; measured on `complex`: 1 drifts
+  double correction_gain = 0.3;
   // A correction larger than this cannot come from odometry drift since the last update: it is
   // a wrong association (a round obstacle fits any rotation about its centre) and fails
   // verification. Radians and metres.

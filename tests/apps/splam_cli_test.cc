@@ -148,7 +148,7 @@ TEST(SplamCli, RenderDrawsWorldsAndLogs) {
   EXPECT_GT(fs::file_size(dir / "r.png"), 1000u);
   EXPECT_GT(fs::file_size(dir / "r.svg"), 1000u);
   EXPECT_EQ(Splam("render").status, 2);
-  // Issue 19: an empty log, a directory or binary junk drew a blank picture with exit 0.
+  // An empty log, a directory or binary junk drew a blank picture with exit 0.
   ASSERT_EQ(io::WriteTextFile((dir / "empty.clf").string(), ""), "");
   ASSERT_EQ(io::WriteTextFile((dir / "junk.clf").string(), std::string("\x7f\x01\x02\0x", 5)), "");
   for (const std::string log : {"empty.clf", "junk.clf", "."}) {
@@ -159,7 +159,7 @@ TEST(SplamCli, RenderDrawsWorldsAndLogs) {
   }
 }
 
-// Issue 19: a ROS bag in, the same trajectory out. A simulated log converted to a bag and back:
+// A ROS bag in, the same trajectory out. A simulated log converted to a bag and back:
 // SLAM on the bag and on the bag's CARMEN conversion give the same file; against the original
 // log (float32 ranges in the bag) it agrees to 0.1 mm when both use the same laser noise (a bag
 // carries no laser model, so the defaults differ).
@@ -298,7 +298,7 @@ TEST(SplamCli, ComplexBSplineExperimentComparesBothAssociations) {
     EXPECT_TRUE(fs::exists(dir / file)) << file;
 }
 
-// Issue 19: option values that are not numbers a run can use. CLI11's PositiveNumber and
+// Option values that are not numbers a run can use. CLI11's PositiveNumber and
 // NonNegativeNumber let NaN through, and an unsigned seed read "-1" as 2^64 - 1.
 TEST(SplamCli, OptionValuesMustBeFiniteAndInRange) {
   const std::vector<std::pair<std::string, std::string>> cases = {
@@ -313,7 +313,7 @@ TEST(SplamCli, OptionValuesMustBeFiniteAndInRange) {
       {"simulate --resolution 1e300", "--resolution: must be a finite number in [0.0001, 10]"},
       {"explore --alpha nan", "--alpha: must be a finite number in [0, 1]"},
       {"explore --odometry-noise inf", "--odometry-noise: must be a finite number in [0, 100]"},
-      // Issue 48, item 7: wrote poses of 1e304 m, a log its own readers refuse.
+      // Wrote poses of 1e304 m, a log its own readers refuse.
       {"simulate --odometry-noise 1e308", "--odometry-noise: must be a finite number in [0, 100]"},
       {"experiment complex-bspline --odometry-noise 1e308",
        "--odometry-noise: must be a finite number in [0, 100]"},
@@ -326,7 +326,7 @@ TEST(SplamCli, OptionValuesMustBeFiniteAndInRange) {
   }
 }
 
-// Issue 19: worlds that were accepted and then broke the run, and explore on a floor-plan image
+// Worlds that were accepted and then broke the run, and explore on a floor-plan image
 // (it always said "has no start pose", with no way to give one).
 TEST(SplamCli, WorldsThatCannotBeRunAreRefusedAndAFloorPlanTakesAStart) {
   const fs::path dir = Temp("worlds");
@@ -354,7 +354,7 @@ TEST(SplamCli, WorldsThatCannotBeRunAreRefusedAndAFloorPlanTakesAStart) {
                  "start: [100, 100, 0]\nobstacles:\n  - polyline: [[0, 0], [10, 0], [10, 8], [0, "
                  "8], [0, 0]]\n"),
        "lies outside the world"},
-      // Issue 48, item 2: a 200 km world's coverage grid of 0.1 m cells (4e12) was allocated;
+      // A 200 km world's coverage grid of 0.1 m cells (4e12) was allocated;
       // it now has at most 2^22 cells, and says so when the start is lost in one.
       {"explore --localization ground-truth --world " +
            write("huge.yaml",
@@ -389,7 +389,7 @@ TEST(SplamCli, WorldsThatCannotBeRunAreRefusedAndAFloorPlanTakesAStart) {
   EXPECT_GT(report["coverage_fraction"].get<double>(), 0.9) << r.text;
 }
 
-// Issue 19: work already done is written. A malformed line halfway through a log: the scans
+// Work already done is written. A malformed line halfway through a log: the scans
 // before it are processed and written, exit 3. Ctrl-C during slam or explore: the same.
 TEST(SplamCli, ABadLineHalfwayOrCtrlCStillWritesTheWorkDone) {
   const fs::path dir = Temp("partial");
@@ -443,7 +443,7 @@ TEST(SplamCli, ABadLineHalfwayOrCtrlCStillWritesTheWorkDone) {
   EXPECT_TRUE(fs::exists(dir / "explore" / "graph.png"));
 }
 
-// Issue 48, item 1: bytes that are not UTF-8 (a world's Latin-1 name, a log's Latin-1 file
+// Bytes that are not UTF-8 (a world's Latin-1 name, a log's Latin-1 file
 // name, a binary junk line quoted in an error) aborted the run with nlohmann's type_error.316
 // and left its JSON empty. They are written as U+FFFD now, and every JSON stays valid.
 TEST(SplamCli, BytesThatAreNotUtf8AreWrittenAsReplacementCharacters) {
@@ -481,7 +481,7 @@ TEST(SplamCli, BytesThatAreNotUtf8AreWrittenAsReplacementCharacters) {
       << stopped["stopped_early"];
 }
 
-// Issue 48, item 6: a write that fails when the file is closed (a full disk: here the file is a
+// A write that fails when the file is closed (a full disk: here the file is a
 // link to /dev/full) left an empty summary.json, map.txt or eval.json and exit 0. Each now gives
 // exit status 4 (kExitWriteFailed) and names the file.
 TEST(SplamCli, AFullDiskGivesExitStatus4NamingTheFile) {
@@ -489,7 +489,7 @@ TEST(SplamCli, AFullDiskGivesExitStatus4NamingTheFile) {
   const fs::path dir = Temp("full_disk");
   ASSERT_EQ(Splam("simulate --world corridor --out " + (dir / "sim").string()).status, 0);
   const std::string log = (dir / "sim" / "log.clf").string();
-  // config.yaml: read back for report.html, /dev/full grew the page to 24 GB (issue 48, item 6).
+  // config.yaml: read back for report.html, /dev/full grew the page to 24 GB.
   for (const std::string file : {"summary.json", "map.txt", "config.yaml"}) {
     const fs::path out = dir / ("slam-" + file);
     fs::create_directories(out);
@@ -512,7 +512,7 @@ TEST(SplamCli, AFullDiskGivesExitStatus4NamingTheFile) {
             (dir / "sim" / "odometry.txt").string() + " --out " + eval.string());
   EXPECT_EQ(evaluated.status, 4) << evaluated.text;
   EXPECT_NE(evaluated.text.find("eval.json: write failed"), std::string::npos) << evaluated.text;
-  // Issue 48, item 6: written with unchecked streams before, exit 0 with an empty file.
+  // Written with unchecked streams before, exit 0 with an empty file.
   const auto full = [&](const std::string& name, const std::string& file) {
     const fs::path out = dir / name;
     fs::create_directories(out);
@@ -543,7 +543,7 @@ TEST(SplamCli, AFullDiskGivesExitStatus4NamingTheFile) {
   EXPECT_EQ(converted.status, 4) << converted.text;
   EXPECT_NE(converted.text.find("converted.clf: write failed"), std::string::npos)
       << converted.text;
-  // A bag: rosbag's exception (an abort before issue 48) is caught and named.
+  // A bag: rosbag's exception (it aborted before) is caught and named.
   fs::create_symlink("/dev/full", dir / "converted.bag");
   const Output bagged = Splam("convert " + log + " " + (dir / "converted.bag").string());
   EXPECT_EQ(bagged.status, 4) << bagged.text;
@@ -551,7 +551,7 @@ TEST(SplamCli, AFullDiskGivesExitStatus4NamingTheFile) {
       << bagged.text;
 }
 
-// Issue 48, item 6: standard output on a full disk (`config print > /dev/full`) aborted with
+// Standard output on a full disk (`config print > /dev/full`) aborted with
 // std::system_error; `--help` and `slam` lost their output and exited 0. Now exit 4, said on
 // standard error.
 TEST(SplamCli, AFullStandardOutputGivesExitStatus4) {
@@ -577,7 +577,7 @@ TEST(SplamCli, AFullStandardOutputGivesExitStatus4) {
   }
 }
 
-// Issue 48, item 5: `sweep --slurm` with a newline in its sweep directory is refused before the
+// `sweep --slurm` with a newline in its sweep directory is refused before the
 // sweep's plan is written (it made the directory, grid.yaml and cells.tsv, then refused).
 TEST(SplamCli, SweepSlurmRefusesANewlineInItsDirectoryBeforeWritingIt) {
   const fs::path dir = Temp("slurm_path");
@@ -590,7 +590,7 @@ TEST(SplamCli, SweepSlurmRefusesANewlineInItsDirectoryBeforeWritingIt) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-// Issue 48, items 2 and 7: time stamps that go backwards gave "-12 s of data, -250x real time".
+// Time stamps that go backwards gave "-12 s of data, -250x real time".
 // The second half of a log stamped so that its last scan is 12 s before its first: the span is
 // the latest stamp minus the earliest, and the backward step is counted in summary.json.
 TEST(SplamCli, BackwardTimeStampsAreCountedNotANegativeSpan) {
@@ -616,7 +616,7 @@ TEST(SplamCli, BackwardTimeStampsAreCountedNotANegativeSpan) {
   EXPECT_GT(summary["real_time_factor"].get<double>(), 0.0);
 }
 
-// Issue 19: eval gave "0.0000 +- 0.0000, used 0" and exit 0 for an empty or non-matching
+// Eval gave "0.0000 +- 0.0000, used 0" and exit 0 for an empty or non-matching
 // relations file, a directory, an empty estimate; a huge estimate wrote null. A metric over
 // nothing, or one that is not finite, is an error (exit 2, the reason in eval.json).
 TEST(SplamCli, EvalScoresNothingFromNothing) {
@@ -671,7 +671,7 @@ TEST(SplamCli, SlamAndEvalRejectBadInput) {
   EXPECT_NE(r.text.find("no laser scans"), std::string::npos) << r.text;
   r = Splam("slam --method magic " + (dir / "empty.clf").string());
   EXPECT_EQ(r.status, 2);
-  // A device never ends: read, it aborted with bad_alloc (issue 48).
+  // A device never ends: read, it aborted with bad_alloc.
   if (fs::exists("/dev/zero")) {
     r = Splam("slam /dev/zero --out " + (dir / "zero").string());
     EXPECT_EQ(r.status, 2);
@@ -697,7 +697,7 @@ TEST(SplamCli, CorridorExperimentRecoversTheMapDistancesConsistently) {
     ASSERT_GT(d["mapped_runs"].get<int>(), 0) << d["name"];
     EXPECT_LT(d["error_percent"].get<double>(), 1.0) << d["name"];
   }
-  // Filter consistency (issue 4): the average NEES over 20 runs inside the 95 % band for at
+  // Filter consistency: the average NEES over 20 runs inside the 95 % band for at
   // least 90 % of the steps.
   EXPECT_TRUE(report["nees"]["passed"].get<bool>());
   EXPECT_GE(report["nees"]["fraction_of_steps_inside"].get<double>(), 0.9);

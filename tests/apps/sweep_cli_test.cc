@@ -1,4 +1,4 @@
-// End-to-end tests of `splam sweep` (issue 20): a grid on all cores, resumed, interrupted, merged,
+// End-to-end tests of `splam sweep`: a grid on all cores, resumed, interrupted, merged,
 // and its report opened in a real browser.
 #include <fmt/core.h>
 #include <gtest/gtest.h>
@@ -107,7 +107,7 @@ TEST(SweepCli, CtrlCKeepsFinishedCellsAndTheNextRunResumes) {
       << again.text;
 }
 
-// Issue 20: the reports open in a real browser without errors, and show their plots.
+// The reports open in a real browser without errors, and show their plots.
 TEST(SweepCli, ReportsOpenInHeadlessChromiumWithTheirPlots) {
   if (Splam("--help").status != 0 || std::system("chromium --version > /dev/null 2>&1") != 0)
     GTEST_SKIP() << "chromium is not installed (scripts/setup.sh installs it)";

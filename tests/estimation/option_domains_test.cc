@@ -1,5 +1,5 @@
 // Option values that passed Validate and then crashed, hung or allocated without bound, found by
-// tests/fuzz/fuzz_option_values.cc (issue 48, item 3): each is refused now, or made harmless
+// tests/fuzz/fuzz_option_values.cc: each is refused now, or made harmless
 // where it is used.
 #include <gtest/gtest.h>
 
@@ -8,11 +8,11 @@
 #include <limits>
 #include <vector>
 
+#include "estimation/ekf/ekf_bspline_slam.h"
+#include "estimation/models.h"
 #include "estimation/pose_graph/correlative_matcher.h"
 #include "estimation/pose_graph/distance_grid.h"
-#include "estimation/ekf/ekf_bspline_slam.h"
 #include "estimation/pose_graph/graph_slam.h"
-#include "estimation/models.h"
 #include "estimation/pose_graph/pose_graph.h"
 #include "estimation/pose_graph/scan_registration.h"
 #include "estimation/slam_method.h"

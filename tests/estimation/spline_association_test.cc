@@ -68,8 +68,9 @@ TEST(SplineAssociation, BothMethodsMatchAPartOfAMapCurve) {
       EXPECT_NEAR(m->observed.end_m - m->observed.start_m, m->map.end_m - m->map.start_m, 1e-9);
     }
   }
-  // Which association is more accurate is what issue 5's experiment measures; on this
-  // noise-free shape both are within 6 cm (measured: 3.3 cm end points, 5.9 cm features).
+  // Which association is more accurate is what the B-spline experiment measures
+  // (docs/experiments.md); on this noise-free shape both are within 6 cm (measured: 3.3 cm end
+  // points, 5.9 cm features).
 }
 
 TEST(SplineAssociation, ObservationRunningTheOtherWay) {

@@ -184,9 +184,10 @@ bool NodeIn(const ExplorationRun& run, const Eigen::Vector2d& lo, const Eigen::V
   return false;
 }
 
-// Issue 18's causes, each on a small hand-made world. A corridor 1.8 m wide with a 4 m x 6.5 m room
-// south of it behind a 0.9 m door at x 5.6-6.5, deeper than the LSR radius; the robot starts at
-// the corridor's west end, so its first nodes see the door at a slant.
+// The causes of rooms left unexplored (docs/experiments.md, Fig. 18), each on a small hand-made
+// world. A corridor 1.8 m wide with a 4 m x 6.5 m room south of it behind a 0.9 m door at
+// x 5.6-6.5, deeper than the LSR radius; the robot starts at the corridor's west end, so its first
+// nodes see the door at a slant.
 sim::World CorridorAndRoom() {
   sim::World w;
   w.name = "corridor-and-room";

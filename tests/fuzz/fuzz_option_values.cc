@@ -1,4 +1,4 @@
-// libFuzzer harness: option values, in and out of range, through short runs (issue 48, item 3;
+// libFuzzer harness: option values, in and out of range, through short runs (
 // tests/fuzz/README.md). The bytes pick a SLAM method or the explorer, then up to eight of its
 // options (every field its VisitFields lists, nested groups included) and a value for each:
 // zero, negative, tiny, huge, NaN, infinite, the default scaled, or any double. Options that

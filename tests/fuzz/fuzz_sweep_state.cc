@@ -1,5 +1,5 @@
 // libFuzzer harness: a sweep directory's state, which a user, a crashed cell or a full disk may
-// have changed (issue 48, items 3 and 4), through what `sweep status`, resume and `sweep merge`
+// have changed, through what `sweep status`, resume and `sweep merge`
 // read: grid.yaml, cells.tsv and, for the first two cells, cell.json, summary.json and
 // report.json. The input is those five files separated by NUL bytes. The cells' files are also
 // read in a fixed directory without a plan (ReadCellRecord, RunFigures), so that the JSON

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The installed package as a user meets it (issue 50, item 3): `cmake --install` the build into
+# The installed package as a user meets it: `cmake --install` the build into
 # a fresh prefix, build examples/out_of_tree against it (find_package(splam), splam::cli), and
 # run its program: a SLAM variant and an explorer variant registered in a line each, offered by
 # splam's subcommands. Usage: out_of_tree_test.sh BUILD_DIR SOURCE_DIR

@@ -239,13 +239,13 @@ INSTANTIATE_TEST_SUITE_P(
                 "line ends early"},
         BadLine{"TRUEPOS 1 2 3 4 5 6 7 h", "line ends early"},
         BadLine{"SONAR 0.5 2 1 1 2 0 0 0 1 h 1", "expected a number for sonar pose"},
-        // Physically meaningless values (issue 19): refused at the reader.
+        // Physically meaningless values: refused at the reader.
         BadLine{"ODOM 1e300 2 0.5 0 0 0 1.0 h 1.0", "pose 1e+300 is beyond +-1e+06 m"},
         BadLine{"ODOM 1 2 1e300 0 0 0 1.0 h 1.0", "is beyond +-10000 rad"},
         BadLine{"FLASER 2 1 2 1e300 0 0 0 0 0 1 h 1", "laser pose 1e+300"},
         BadLine{"ROBOTLASER1 0 -1.5 3 0 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
                 "angular resolution 0 rad is not positive"},
-        // Issue 48, item 7: passed, every beam at one bearing.
+        // Passed, every beam at one bearing.
         BadLine{"ROBOTLASER1 0 -1.5 3 1e-30 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
                 "angular resolution 1e-30 rad is below 1e-4 rad"},
         BadLine{"ROBOTLASER1 0 -1.5 3 0.01 0 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
@@ -265,7 +265,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "field of view -3 rad is negative"},
         BadLine{"ROBOTLASER1 0 -1.5 3 7 8 0.01 0 2 1 1 0 0 0 0 0 0 0 0 0 0 0 0 1 h 1",
                 "more than a full turn"},
-        // Binary junk was skipped as an unknown message type, uncounted (issue 19); control
+        // Binary junk was skipped as an unknown message type, uncounted; control
         // bytes are escaped in the message.
         BadLine{"\x7f\x01"
                 "ELF\x02 1 2",

@@ -69,7 +69,7 @@ TEST(MapExport, DxfReadsBackWithDxflib) {
   EXPECT_FALSE(ReadDxf("/nonexistent.dxf").ok());
 }
 
-// Issue 19: a map coordinate of 1e300 crashed dxflib's number formatting (SIGABRT, a truncated
+// A map coordinate of 1e300 crashed dxflib's number formatting (SIGABRT, a truncated
 // map.dxf). It is refused, naming the file, and nothing is written.
 TEST(MapExport, DxfRefusesCoordinatesBeyondAMillionMetres) {
   const std::string path = ::testing::TempDir() + "/map_export_huge.dxf";
@@ -84,7 +84,7 @@ TEST(MapExport, DxfRefusesCoordinatesBeyondAMillionMetres) {
   }
 }
 
-// Issue 19: the same map gives the same bytes. The dimension style's text-style handle was read
+// The same map gives the same bytes. The dimension style's text-style handle was read
 // uninitialised (valgrind); the CTest test DxfIsValgrindClean runs this one under valgrind.
 TEST(MapExport, DxfIsDeterministic) {
   const std::string a = ::testing::TempDir() + "/map_export_a.dxf";

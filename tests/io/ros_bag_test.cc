@@ -116,7 +116,7 @@ TEST(RosBag, OdometryFromTfAndTheMountingThroughAChainOfStaticTransforms) {
   EXPECT_EQ(lasers[0]->scan.min_range_m, static_cast<float>(0.05));
 }
 
-// A LaserScan whose range_min lies above its range_max, or without ranges (issue 48, item 7):
+// A LaserScan whose range_min lies above its range_max, or without ranges:
 // refused, naming the scan and the topic, instead of running as if valid.
 TEST(RosBag, ScansWithoutBeamsOrWithRangesUpsideDownAreRefused) {
   for (const bool empty : {false, true}) {
@@ -245,7 +245,7 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
   EXPECT_NE(read.log.error.find(": an index entry that is not a message of its chunk"),
             std::string::npos)
       << read.log.error;
-  // Issue 48, item 2: a bzip2 chunk claiming 4 GiB uncompressed made rosbag allocate it (an
+  // A bzip2 chunk claiming 4 GiB uncompressed made rosbag allocate it (an
   // abort where the allocation failed). The size field of the first chunk gets 0xf0000000.
   {
     internal::RosBagMessages small;

@@ -66,7 +66,7 @@ TEST(Route, StartPoseOrFirstWaypoint) {
 }
 
 TEST(Route, AByteOrderMarkIsSkipped) {
-  // Issue 19: a route saved by an editor with a UTF-8 BOM was refused ("'\xEF\xBB\xBF0' is
+  // A route saved by an editor with a UTF-8 BOM was refused ("'\xEF\xBB\xBF0' is
   // not a finite number") while logs and YAML with one were read.
   const Result<Route> r = ParseRoute(
       "\xEF\xBB\xBF"

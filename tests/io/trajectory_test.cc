@@ -51,7 +51,7 @@ TEST(Trajectory, FileRoundTrip) {
   EXPECT_EQ(back.value->at(0).pose.x(), 1.0);
 }
 
-// Issue 48, item 6: a result file linked to /dev/full, read back for the report, grew to 24 GB
+// A result file linked to /dev/full, read back for the report, grew to 24 GB
 // (killed). A device is no text file, and no text file is read past its bound, which holds
 // byte for byte up to it, through a pipe too.
 TEST(ReadTextFile, DevicesAreRefusedAndFilesAreBounded) {

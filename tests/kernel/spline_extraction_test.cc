@@ -36,7 +36,7 @@ TEST(ExtractCurve, DegenerateInputIsAnError) {
   EXPECT_TRUE(ExtractCurves(Scan()).empty());
 }
 
-// Issue 19: scans whose beams wrap past a full turn (a resolution in degrees read as radians)
+// Scans whose beams wrap past a full turn (a resolution in degrees read as radians)
 // crashed with a 26 GB allocation or hung. Every curve extracted from them is bounded by its
 // points' path, whatever the beams' order.
 TEST(ExtractCurves, PropertyScansThatWrapGiveBoundedCurves) {

@@ -44,7 +44,7 @@ TEST(World, ValidateNamesTheObstacleAndTheProblem) {
   World w = One(kernel::Circle2{{0, 0}, 1.0});
   w.route = {{INFINITY, 0}};
   EXPECT_EQ(w.Validate().message(), "route waypoint is not finite or beyond +-1e6 m");
-  // Issue 19: worlds that were accepted and then broke the run.
+  // Worlds that were accepted and then broke the run.
   EXPECT_EQ(One(Polyline{{{0, 0}, {1e300, 0}, {0, 1}}, true}).Validate().message(),
             "obstacle 0 (polygon): not finite or beyond +-1e6 m");
   EXPECT_EQ(One(kernel::Circle2{{0, 0}, 1e300}).Validate().message(),

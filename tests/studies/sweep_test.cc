@@ -163,7 +163,7 @@ axes:
 
 // The experiments' grids are the ones shipped in experiments/: `splam sweep experiments/X.yaml`
 // runs the trials of `splam experiment X`.
-// Issue 48, item 4: a truncated or edited cells.tsv ran other command lines than grid.yaml says
+// A truncated or edited cells.tsv ran other command lines than grid.yaml says
 // and filed their figures under other cells; the cells now come from grid.yaml and cells.tsv
 // must match it.
 TEST(SweepState, CellsTsvMustSayWhatGridYamlSays) {
@@ -188,7 +188,7 @@ TEST(SweepState, CellsTsvMustSayWhatGridYamlSays) {
   fs::remove_all(dir);
 }
 
-// Issue 48, item 4: sweep state is read with a schema. A cell.json whose message is a number or
+// Sweep state is read with a schema. A cell.json whose message is a number or
 // wall time a string aborted `sweep status`, resume and merge; such a record is now none (the cell
 // runs again). A summary.json nested 10^6 deep segfaulted `merge`; values deeper than
 // kMaxJsonDepth are now left out.

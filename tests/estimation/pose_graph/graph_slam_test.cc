@@ -1099,7 +1099,7 @@ TEST(GraphSlam, ABackgroundLoopSearchGivesTheSameTrajectory) {
   EXPECT_LT(background.rmse_m, 0.1);
 }
 
-// What real logs contain (issue 47, item 3), one condition at a time against the same lap of
+// What real logs contain, one condition at a time against the same lap of
 // `complex` without it: every run within 0.08 m and at most 0.03 m worse than the plain lap.
 // Measured (session 34; plain lap 0.035 m): an interlaced SICK 0.008 m, scans 0.5 m apart
 // 0.019 m, glass walls 0.036 m, a third of the returns missing 0.034 m.
