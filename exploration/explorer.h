@@ -27,8 +27,8 @@ namespace splam::exploration {
 struct ExplorerOptions {
   double lsr_radius_m = 3.0;  // r: LSRs are clipped here (below the URG-04LX's 4 m range)
   // A new node lies alpha * r from the current one, 0 < alpha < 1, and alpha * r plus the robot's
-  // radius and clearance margin must stay inside r. Paper 003 gives no value; with 0.6 SRT's
-  // VALID_CONF starves early in `complex` (docs/experiments.md), 0.8 lets both explorers finish.
+  // radius and clearance margin must stay inside r. Paper 003 gives no value; a small alpha
+  // starves SRT's VALID_CONF early (new nodes fall inside old LSRs; docs/experiments.md).
   double alpha = 0.8;
   // Every straight leg the robot drives keeps its radius plus this margin from the LSR
   // boundary (covers range noise and the obstacle parts between two beams), m.
@@ -42,18 +42,17 @@ struct ExplorerOptions {
   // beyond the point, or up to an obstacle or its own free arc, not to a shadow edge (a depth
   // jump over shadow_edge_m long, kernel::IsShadowEdge). 1 m is about two robot diameters: space a
   // robot could enter. 0: the point lying inside the other LSR is enough (Oriolo et al., paper
-  // 003); in `office` a node that looked into a room through its door at a slant then covered the
-  // frontier through the door of the node that faced it, and REG never entered the room
+  // 003), and a node that looked into a room through its door at a slant then covers the
+  // frontier through that door of a node that faces it, though neither saw the room
   // (docs/experiments.md, Fig. 18). m.
   double frontier_view_depth_m = 1.0;
   double shadow_edge_m = 0.2;
   // With frontier_view_depth_m, a point whose ray leaves the other LSR across that LSR's own free
   // arc counts as seen only where that arc, outside the owner's circle, is at least
   // min_frontier_m long (kernel::CoverOptions::min_free_arc_m): a shorter piece is dropped as a
-  // frontier, so nothing carries on there. In `office-doors` two nodes that each saw a door near
-  // the rims of their LSRs covered each other's arc through it, and the room behind was never
-  // entered while the run said `explored` (docs/experiments.md, Fig. 18). false: any free arc
-  // carries on.
+  // frontier, so nothing carries on there: two nodes that each saw a door near the rims of their
+  // LSRs would otherwise cover each other's arc through it, and nobody enters the room
+  // (docs/experiments.md, Fig. 18). false: any free arc carries on.
   bool frontiers_carry_on = true;
   // The space an LSR's sensor could not see behind an occluder (an occlusion edge at least
   // frontier_view_depth_m long, kernel::OcclusionEdges) is a frontier too, until other LSRs see
@@ -71,25 +70,24 @@ struct ExplorerOptions {
   // When the grid path from a robot standing closer to the LSR boundary than its radius plus
   // margin fails the exact clearance test (the raster's clearances are a cell off, and its first
   // cells came 2-4 mm closer than the robot stood), the robot leaves by a straight leg that the
-  // exact test passed (SafePaths::Escapes) and the grid search goes on from its end. REG in
-  // `office`, seed 7, gave up the east of a room from a node beside the sonar's boundary
-  // (docs/experiments.md, Fig. 18). false: only the grid's own way out (needs grid_paths).
+  // exact test passed (SafePaths::Escapes) and the grid search goes on from its end: otherwise a
+  // node beside the sonars' boundary has no way out (docs/experiments.md, Fig. 18). false: only
+  // the grid's own way out (needs grid_paths).
   bool exact_escapes = true;
   // A free arc that a node saw only through a gap at a slant (a door: the wedge between the two
   // jambs' shadow edges is narrower than the robot near the door) is approached on the gap's axis:
   // the robot stands in front of the door's middle and faces through it
   // (SafePaths::DoorwayApproach), before the plain approach to the reachable point nearest the
-  // arc, which stopped beside the door and looked past it again. SRT in `office`, seed 1, left
-  // a room whose door the corridor nodes saw only at a slant (docs/experiments.md, Fig. 18).
+  // arc, which stops beside the door and looks past it again (docs/experiments.md, Fig. 18).
   // With it, a free arc shorter than min_frontier_m seen through such a gap is a frontier
   // (FrontierRules::FrontiersOf), and stays one until another LSR covers part of it
-  // (FrontierRules::UncoveredParts; REG dropped it at its node's first overlap: `office`, seed 8).
-  // false: only the plain approach (needs grid_paths).
+  // (FrontierRules::UncoveredParts), not only until its node's first overlap. false: only the
+  // plain approach (needs grid_paths).
   bool doorway_goals = true;
   // doorway_goals keeps a free arc shorter than min_frontier_m only when it is at least this long
   // at radius r: one or two beams free past a wall that lies at the LSR radius (range noise), at
   // the edge of the laser's field of view, or through a wall junction are no view through a door,
-  // and as frontiers nobody could reach they turned `explored` runs into `incomplete` at 99-100 %
+  // and as frontiers nobody can reach they would keep a run from ending `explored`
   // (docs/experiments.md, Fig. 18). A 0.8 m door seen from 3 m at 85 deg off its axis still spans
   // 0.07 m. m.
   double min_doorway_arc_m = 0.05;
@@ -103,7 +101,7 @@ struct ExplorerOptions {
   // After REG's approaches and every retry (grid_paths), the robot turns in place to face the
   // frontier before it senses, when the frontier is in sight (Session::InSight): its laser
   // covers 240 deg, and the sonars that see the rest leave blind spikes between their cones
-  // (0.27 m), which in a doorway closed the way through the door or back into the corridor
+  // (0.27 m), which in a doorway can close the way through the door or back into the corridor
   // (docs/experiments.md, Fig. 18). false: the robot senses as it arrived.
   bool face_frontiers = true;
   // A stretch of an LSR's boundary that only the sonars bounded (the 120 deg behind the laser)
@@ -111,8 +109,8 @@ struct ExplorerOptions {
   // frontier too (GivenUpFrontiers, frontier_map.h): once nothing else is left the robot looks at
   // it, turning in place at the nearest node that sees it (Retries), and the done check counts it
   // open. A sonar echo may come from anywhere in its 30 deg cone: the first echoes off a desk
-  // corner closed half a room the laser never looked at, and the run said `explored` at 88 %
-  // (docs/experiments.md, Fig. 18). false: a sonar boundary counts as a seen obstacle.
+  // corner can close half a room the laser never looked at (docs/experiments.md, Fig. 18).
+  // false: a sonar boundary counts as a seen obstacle.
   bool unseen_frontiers = true;
   // Caps, each a stated termination reason: nodes, simulated seconds, moves in a row that fail.
   int max_nodes = 400;

@@ -14,9 +14,8 @@ struct RegOptions {
   // senses again (a new node at the same place, Session::LookTowards) before it approaches the
   // piece or gives it up; once per place. A robot that stopped in a doorway facing along the wall
   // sees the room through the door in a wedge whose apex the edge of its laser's 240 deg cuts: too
-  // narrow near the robot for its disc, so no path led in (REG + ekf-lines in `office`, seed 5).
-  // Off by default: on, it drove the floor-plan test's seed 1 into a room facing away from its
-  // far half, which the sonars' first echoes closed, and that run ended `explored` at 88 %
+  // narrow near the robot for its disc, so no path leads in. Off by default: turning can also
+  // face the robot away from the far half of a room, which the sonars' first echoes then close
   // (docs/experiments.md, Fig. 18). false: the robot plans with what it sensed on arrival, as
   // published.
   bool look_before_giving_up = false;
