@@ -93,11 +93,8 @@ std::optional<std::vector<Eigen::Vector2d>> SafePath(const Session& session,
   return best;
 }
 
-kernel::FrontierArc FrontRand(const Session& session, std::vector<kernel::FrontierArc>* frontiers,
-                              kernel::Random* random, double max_piece_rad) {
-  const std::size_t k = std::min(
-      frontiers->size() - 1,
-      static_cast<std::size_t>(random->Uniform(0.0, static_cast<double>(frontiers->size()))));
+kernel::FrontierArc TakePiece(const Session& session, std::vector<kernel::FrontierArc>* frontiers,
+                              std::size_t k, double max_piece_rad) {
   const kernel::FrontierArc arc = (*frontiers)[k];
   const kernel::FrontierArc piece = graph::LeadingPiece(arc, max_piece_rad);
   frontiers->erase(frontiers->begin() + static_cast<std::ptrdiff_t>(k));
@@ -105,6 +102,14 @@ kernel::FrontierArc FrontRand(const Session& session, std::vector<kernel::Fronti
        session.rules().LongEnough(graph::Subtract(arc, {piece}, 0.0)))
     frontiers->push_back(rest);
   return piece;
+}
+
+kernel::FrontierArc FrontRand(const Session& session, std::vector<kernel::FrontierArc>* frontiers,
+                              kernel::Random* random, double max_piece_rad) {
+  const std::size_t k = std::min(
+      frontiers->size() - 1,
+      static_cast<std::size_t>(random->Uniform(0.0, static_cast<double>(frontiers->size()))));
+  return TakePiece(session, frontiers, k, max_piece_rad);
 }
 
 std::optional<std::vector<Eigen::Vector2d>> Displacement(const Session& session,

@@ -34,8 +34,11 @@ void CurrIntersection(const Session& session, graph::ExplorationGraph* g, graph:
 std::optional<std::vector<Eigen::Vector2d>> SafePath(const Session& session,
                                                      const graph::ExplorationGraph& g,
                                                      graph::Vertex a, graph::Vertex b);
-// FRONT_RAND: takes the random arc of `frontiers`, returns its leading piece (at most
-// max_piece_rad wide) and puts the rest of the arc back when it is long enough.
+// Takes arc k of `frontiers`, returns its leading piece (at most max_piece_rad wide) and puts the
+// rest of the arc back when it is long enough (FrontierRules::LongEnough).
+kernel::FrontierArc TakePiece(const Session& session, std::vector<kernel::FrontierArc>* frontiers,
+                              std::size_t k, double max_piece_rad);
+// FRONT_RAND: TakePiece of a random arc of `frontiers`.
 kernel::FrontierArc FrontRand(const Session& session, std::vector<kernel::FrontierArc>* frontiers,
                               kernel::Random* random, double max_piece_rad);
 // DISPLACEMENT: the path to q_dest, alpha r from the node towards the piece's midpoint, or

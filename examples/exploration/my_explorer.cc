@@ -20,7 +20,6 @@
 #include "exploration/session.h"
 #include "exploration/steps.h"
 #include "graph/bidirectional_astar.h"
-#include "graph/frontiers.h"
 #include "runtime/exploration_report.h"
 #include "runtime/exploration_run.h"
 #include "sim/builtin_worlds.h"
@@ -36,8 +35,8 @@ using splam::kernel::FrontierArc;
 // Step 1: the variant's own options (the shared ones, r, alpha, the caps, ... are
 // ExplorerOptions). VisitFields gives them their YAML form, `--set exploration.longest.KEY=V`.
 struct LongestOptions {
-  // The piece driven towards is the middle of the longest arc, at most this times the arc a new
-  // LSR alpha r away covers, 2 acos(alpha / 2) (REG's piece_factor).
+  // The piece driven towards is the leading part of the longest arc, at most this times the arc a
+  // new LSR alpha r away covers, 2 acos(alpha / 2) (REG's piece_factor).
   double piece_factor = 1.0;
 
   void VisitFields(splam::kernel::FieldVisitor& v) {
@@ -50,22 +49,13 @@ struct LongestOptions {
   }
 };
 
-// The middle piece of the longest arc of `arcs`, at most max_piece_rad wide; what is left of that
-// arc on either side goes back (when it is still a frontier by the rules).
-FrontierArc TakeLongest(const splam::exploration::FrontierRules& rules,
-                        std::vector<FrontierArc>* arcs, double max_piece_rad) {
+// The index of the longest arc of `arcs` (not empty).
+std::size_t Longest(const std::vector<FrontierArc>& arcs) {
   const auto longest =
-      std::max_element(arcs->begin(), arcs->end(), [](const FrontierArc& a, const FrontierArc& b) {
+      std::max_element(arcs.begin(), arcs.end(), [](const FrontierArc& a, const FrontierArc& b) {
         return a.AngularWidth() < b.AngularWidth();
       });
-  const FrontierArc arc = *longest;
-  arcs->erase(longest);
-  const double mid = 0.5 * (arc.start_angle_rad + arc.end_angle_rad);
-  const double half = 0.5 * std::min(arc.AngularWidth(), max_piece_rad);
-  const FrontierArc piece{mid - half, mid + half};
-  for (const FrontierArc& rest : rules.LongEnough(splam::graph::Subtract(arc, {piece}, 0.0)))
-    arcs->push_back(rest);
-  return piece;
+  return static_cast<std::size_t>(longest - arcs.begin());
 }
 
 // Step 2: the explorer. Run() is a loop over a Session: plan (inside a PlanningTimer), drive,
@@ -95,7 +85,8 @@ class LongestFrontierFirst : public splam::exploration::Explorer {
         splam::exploration::CurrIntersection(session, &g, current);
         std::vector<FrontierArc>& arcs = g[current].frontiers;
         while (!arcs.empty() && !path) {
-          piece = TakeLongest(session.rules(), &arcs, max_piece);  // the one changed step
+          // The one changed step: REG's FrontRand takes a random arc's piece.
+          piece = splam::exploration::TakePiece(session, &arcs, Longest(arcs), max_piece);
           path = splam::exploration::Displacement(session, g[current], piece);
           if (!path) session.GiveUp(current, piece, "no clear leg from its node");
         }
