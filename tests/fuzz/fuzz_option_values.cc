@@ -1,10 +1,11 @@
-// libFuzzer harness: option values, in and out of range, through short runs (
-// tests/fuzz/README.md). The bytes pick a SLAM method or the explorer, then up to eight of its
-// options (every field its VisitFields lists, nested groups included) and a value for each:
-// zero, negative, tiny, huge, NaN, infinite, the default scaled, or any double. Options that
-// pass Validate run: the method over the first scans of a simulated lap of `complex`, the
-// explorer (with the simulator and ground truth) for up to two nodes. A crash, a hang or an
-// allocation past the limit is a defect: Validate must cover every option's whole domain.
+// libFuzzer harness: option values, in and out of range, through short runs
+// (tests/fuzz/README.md). The bytes pick a SLAM method or an explorer, then up to eight of its
+// options (every field its VisitFields lists, nested groups included; an explorer's shared options
+// and its own) and a value for each: zero, negative, tiny, huge, NaN, infinite, the default scaled,
+// or any double. Options that pass Validate run: the method over the first scans of a simulated lap
+// of `complex`, the explorer (with the simulator and ground truth) for up to two nodes. A crash, a
+// hang or an allocation past the limit is a defect: Validate must cover every option's whole
+// domain.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -183,9 +184,15 @@ void RunSlam(const std::string& name, Bytes* in) {
 void RunExplorer(Bytes* in) {
   static const sim::World world = *sim::BuiltinWorld("complex");
   runtime::ExploreSetup setup;
-  setup.explorer = in->Byte() % 2 ? "reg" : "srt";
+  const auto& explorers = exploration::ExplorerRegistry::Global();
+  const std::vector<std::string> names = explorers.Names();
+  setup.explorer = names[in->Byte() % names.size()];
   setup.localization = "ground-truth";
   Fuzz([&](kernel::FieldVisitor& v) { setup.options.VisitFields(v); }, in);
+  // The explorer's own options (SrtOptions, RegOptions) through their YAML form too.
+  std::unique_ptr<kernel::AnyOptions> own = explorers.Find(setup.explorer)->default_options();
+  Fuzz([&](kernel::FieldVisitor& v) { own->VisitFields(v); }, in);
+  setup.explorer_options = std::move(own);
   Fuzz([&](kernel::FieldVisitor& v) { setup.region.VisitFields(v); }, in);
   // The caps' own domains are part of Validate; the run itself is kept short.
   setup.options.max_nodes = std::min(setup.options.max_nodes, 2);
