@@ -25,9 +25,9 @@ int RunConvert(const ConvertArgs& args) {
   }
   if (io::IsRosBagPath(args.out)) {
     io::RosBagWriteStats stats;
-    if (std::string error = io::WriteRosBag(log, args.out, args.input.bag, &stats);
-        !error.empty()) {
-      fmt::print(stderr, "splam convert: {}\n", error);
+    if (kernel::Status error = io::WriteRosBag(log, args.out, args.input.bag, &stats);
+        !error.ok()) {
+      fmt::print(stderr, "splam convert: {}\n", error.message());
       return stats.write_failed ? kExitWriteFailed : kExitBadInput;
     }
     fmt::print("wrote {}: {} scans, {} odometry poses, {} true poses", args.out, stats.scans,
@@ -37,8 +37,8 @@ int RunConvert(const ConvertArgs& args) {
                  stats.sonar_skipped);
     fmt::print("\n");
   } else {
-    if (std::string error = io::WriteCarmenLog(args.out, log); !error.empty()) {
-      fmt::print(stderr, "splam convert: {}\n", error);
+    if (kernel::Status error = io::WriteCarmenLog(args.out, log); !error.ok()) {
+      fmt::print(stderr, "splam convert: {}\n", error.message());
       return kExitWriteFailed;
     }
     fmt::print("wrote {}: {} scans, {} odometry poses, {} true poses\n", args.out,

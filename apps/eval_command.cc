@@ -110,11 +110,11 @@ int RunEval(EvalArgs args) {
     }
     if (!args.out.empty()) {
       std::filesystem::create_directories(args.out);
-      if (std::string e =
+      if (kernel::Status e =
               io::SaveErrorPlot("error against ground truth", *truth.value, plotted,
                                 {args.out + "/eval_errors.svg", args.out + "/eval_errors.png"});
-          !e.empty()) {
-        fmt::print(stderr, "splam eval: {}\n", e);
+          !e.ok()) {
+        fmt::print(stderr, "splam eval: {}\n", e.message());
         return kExitBadInput;
       }
     }
@@ -147,10 +147,10 @@ int RunEval(EvalArgs args) {
   }
   if (!args.out.empty()) {
     std::filesystem::create_directories(args.out);
-    if (const std::string e =
+    if (const kernel::Status e =
             io::WriteTextFile(args.out + "/eval.json", runtime::JsonText(report, 2) + "\n");
-        !e.empty()) {
-      fmt::print(stderr, "splam eval: {}\n", e);
+        !e.ok()) {
+      fmt::print(stderr, "splam eval: {}\n", e.message());
       return kExitWriteFailed;
     }
     fmt::print("wrote {}/eval.json{}\n", args.out,

@@ -10,9 +10,9 @@
 #include "apps/commands.h"
 #include "apps/interrupt.h"
 #include "io/world_file.h"
+#include "runtime/exit_status.h"
 #include "studies/bspline_experiment.h"
 #include "studies/corridor_experiment.h"
-#include "runtime/exit_status.h"
 #include "studies/exploration_experiment.h"
 #include "studies/splam_experiment.h"
 
@@ -146,7 +146,8 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       return;
     }
     if (args->name == "exploration") {
-      studies::ExplorationExperimentArgs e = WithCommonArgs<studies::ExplorationExperimentArgs>(*args);
+      studies::ExplorationExperimentArgs e =
+          WithCommonArgs<studies::ExplorationExperimentArgs>(*args);
       e.splam_binary = SplamBinary();
       e.jobs = args->jobs;
       CatchInterrupts();

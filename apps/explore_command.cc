@@ -84,8 +84,7 @@ kernel::Status Configure(const ExploreArgs& args, ExploreConfig* config) {
            setup.seed != before.seed || setup.odometry_noise_scale != before.odometry_noise_scale;
   };
   if (file) {
-    if (kernel::Status s = file->Read(ExploreConfigRoot(config, /*other_explorers=*/true));
-        !s.ok())
+    if (kernel::Status s = file->Read(ExploreConfigRoot(config, /*other_explorers=*/true)); !s.ok())
       return s;
     setup.explorer = before.explorer;
     setup.localization = before.localization;
@@ -100,8 +99,7 @@ kernel::Status Configure(const ExploreArgs& args, ExploreConfig* config) {
   setup.sonar = config->simulator.enable_sonar;
   setup.simulator = config->simulator;
   setup.slam_options = config->slam_options ? config->slam_options->Clone() : nullptr;
-  setup.explorer_options =
-      config->explorer_options ? config->explorer_options->Clone() : nullptr;
+  setup.explorer_options = config->explorer_options ? config->explorer_options->Clone() : nullptr;
   if (kernel::Status p = setup.region.Validate(); !p.ok()) return p.Prefixed("local_region");
   exploration::ExplorerOptions checked = setup.options;
   checked.lsr_radius_m = setup.region.radius_m;
@@ -136,9 +134,9 @@ int RunExplore(const ExploreArgs& args) {
     fmt::print(stderr, "splam explore: --start: {}\n", problem.message());
     return kExitBadInput;
   }
-  if (std::string problem = io::StartProblem(args.world, floor_plan, *world.value->start);
-      !problem.empty()) {
-    fmt::print(stderr, "splam explore: {}\n", problem);
+  if (kernel::Status problem = io::StartProblem(args.world, floor_plan, *world.value->start);
+      !problem.ok()) {
+    fmt::print(stderr, "splam explore: {}\n", problem.message());
     return kExitBadInput;
   }
   ExploreConfig config;
@@ -185,10 +183,10 @@ int RunExplore(const ExploreArgs& args) {
   const int nodes = static_cast<int>(boost::num_vertices(run.graph));
   const nlohmann::json report = runtime::ExplorationReport(*world.value, setup, outcome);
   std::vector<std::string> written;
-  if (std::string error =
+  if (kernel::Status error =
           runtime::WriteExplorationRun(*world.value, setup, outcome, report, out, &written);
-      !error.empty()) {
-    fmt::print(stderr, "splam explore: {}\n", error);
+      !error.ok()) {
+    fmt::print(stderr, "splam explore: {}\n", error.message());
     return kExitWriteFailed;
   }
   fmt::print(

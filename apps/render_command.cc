@@ -73,8 +73,8 @@ int RunRender(const RenderArgs& args) {
     picture.estimates.emplace_back(std::filesystem::path(path).stem().string(),
                                    std::move(*read.value));
   }
-  if (std::string error = io::SaveRunPicture(picture, args.out); !error.empty()) {
-    fmt::print(stderr, "splam render: {}\n", error);
+  if (kernel::Status error = io::SaveRunPicture(picture, args.out); !error.ok()) {
+    fmt::print(stderr, "splam render: {}\n", error.message());
     return kExitWriteFailed;
   }
   for (const std::string& path : args.out) fmt::print("wrote {}\n", path);

@@ -42,7 +42,8 @@ io::ConfigRoot ExploreConfigRoot(ExploreConfig* config, bool other_explorers) {
               const auto& registry = exploration::ExplorerRegistry::Global();
               for (const std::string& other : registry.Names()) {
                 if (!other_explorers || other == explorer) continue;
-                std::unique_ptr<kernel::AnyOptions> unused = registry.Find(other)->default_options();
+                std::unique_ptr<kernel::AnyOptions> unused =
+                    registry.Find(other)->default_options();
                 f.Group(other, "", [&](kernel::FieldVisitor& e) { unused->VisitFields(e); });
               }
             });

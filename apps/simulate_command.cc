@@ -115,9 +115,9 @@ int RunSimulate(const SimulateArgs& args) {
     return kExitBadInput;
   }
 
-  if (std::string problem = io::StartProblem(args.world, floor_plan, route.start);
-      !problem.empty()) {
-    fmt::print(stderr, "splam simulate: {}\n", problem);
+  if (kernel::Status problem = io::StartProblem(args.world, floor_plan, route.start);
+      !problem.ok()) {
+    fmt::print(stderr, "splam simulate: {}\n", problem.message());
     return kExitBadInput;
   }
   const sim::RayCaster caster(*world.value);
@@ -179,7 +179,7 @@ int RunSimulate(const SimulateArgs& args) {
                                      {"heading_rad", std::abs(drift.theta())}};
   summary["files"] = {"log.clf", "truth.txt", "odometry.txt", "world.yaml", "run.svg", "run.png"};
 
-  std::vector<std::string> errors = {
+  std::vector<kernel::Status> errors = {
       io::WriteCarmenLog(out + "/log.clf", log),
       io::WriteTrajectory(out + "/truth.txt", truth, "ground truth of " + world.value->name),
       io::WriteTrajectory(out + "/odometry.txt", odometry, "odometry of " + world.value->name),
@@ -187,13 +187,10 @@ int RunSimulate(const SimulateArgs& args) {
       io::SaveRunPicture(picture, {out + "/run.svg", out + "/run.png"}),
   };
   errors.push_back(io::WriteTextFile(out + "/summary.json", runtime::JsonText(summary, 2) + "\n"));
-  errors.push_back(
-      runtime::WriteRunHtml(out, "splam simulate: " + world.value->name + " world").message());
-  for (const std::string& e : errors) {
-    if (!e.empty()) {
-      fmt::print(stderr, "splam simulate: {}\n", e);
-      return kExitWriteFailed;
-    }
+  errors.push_back(runtime::WriteRunHtml(out, "splam simulate: " + world.value->name + " world"));
+  if (const kernel::Status e = kernel::FirstError(errors); !e.ok()) {
+    fmt::print(stderr, "splam simulate: {}\n", e.message());
+    return kExitWriteFailed;
   }
   fmt::print(
       "{} scans over {:.1f} s, {:.1f} m travelled, {}/{} waypoints; odometry drift at the end "

@@ -105,10 +105,10 @@ bool Configure(const SlamArgs& args, const io::LaserMessage& first, SlamConfig* 
   return true;
 }
 
-// consistency.csv: every scan checked for the map's self-consistency; "" or the error.
-std::string WriteConsistency(const std::string& path,
-                             const evaluation::ConsistencyReport& consistency,
-                             const kernel::Trajectory& estimate) {
+// consistency.csv: every scan checked for the map's self-consistency.
+kernel::Status WriteConsistency(const std::string& path,
+                                const evaluation::ConsistencyReport& consistency,
+                                const kernel::Trajectory& estimate) {
   std::string text = "scan,time_s,x_m,y_m,references,contradicting\n";
   for (const evaluation::CheckedScan& c : consistency.checked)
     text += fmt::format("{},{:.3f},{:.3f},{:.3f},{},{:.4f}\n", c.index,
@@ -120,11 +120,12 @@ std::string WriteConsistency(const std::string& path,
 // trajectory, odometry, truth, map files and pictures; errors appended to *errors.
 void WriteSlamFiles(const std::string& log, const std::string& out, const std::string& label,
                     const sim::World* world, const estimation::SlamMethod& slam,
-                    const runtime::ReplayResult& run, const evaluation::ConsistencyReport& consistency,
+                    const runtime::ReplayResult& run,
+                    const evaluation::ConsistencyReport& consistency,
                     const evaluation::ConsistencyOptions& consistency_options,
-                    std::vector<std::string>* errors) {
+                    std::vector<kernel::Status>* errors) {
   const estimation::SlamMap map = slam.Map();
-  for (std::string& e : io::WriteMap(map, out)) errors->push_back(std::move(e));
+  errors->push_back(io::WriteMap(map, out));
   errors->push_back(
       io::WriteTrajectory(out + "/trajectory.txt", run.estimate, label + " estimate of " + log));
   errors->push_back(io::WriteTrajectory(out + "/odometry.txt", run.odometry, "odometry of " + log));
@@ -267,11 +268,10 @@ int RunSlam(const SlamArgs& args) {
   }
   // From here a Ctrl-C stops the run with what is done written (config.yaml marks the moment).
   CatchInterrupts();
-  std::vector<std::string> errors = {io::WriteConfig(out + "/config.yaml", SlamConfigRoot(&config),
-                                                     "splam slam " + args.log +
-                                                         "\nrepeat with: splam slam --config " +
-                                                         out + "/config.yaml " + args.log)
-                                         .message()};
+  std::vector<kernel::Status> errors = {
+      io::WriteConfig(out + "/config.yaml", SlamConfigRoot(&config),
+                      "splam slam " + args.log + "\nrepeat with: splam slam --config " + out +
+                          "/config.yaml " + args.log)};
 
   runtime::SlamDriver driver(std::move(*made.value));
   driver.RecordSteps(args.trace);
@@ -346,12 +346,10 @@ int RunSlam(const SlamArgs& args) {
     }
   }
   errors.push_back(io::WriteTextFile(out + "/summary.json", runtime::JsonText(summary, 2) + "\n"));
-  errors.push_back(runtime::WriteRunHtml(out, "splam slam: " + label + " on " + args.log).message());
-  for (const std::string& e : errors) {
-    if (!e.empty()) {
-      fmt::print(stderr, "splam slam: {}\n", e);
-      return kExitWriteFailed;
-    }
+  errors.push_back(runtime::WriteRunHtml(out, "splam slam: " + label + " on " + args.log));
+  if (const kernel::Status e = kernel::FirstError(errors); !e.ok()) {
+    fmt::print(stderr, "splam slam: {}\n", e.message());
+    return kExitWriteFailed;
   }
   const bool finite = PrintSlamSummary(label, slam, run, summary);
   fmt::print(

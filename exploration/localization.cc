@@ -4,11 +4,13 @@
 
 namespace splam::exploration {
 
-std::string GroundTruthLocalization::Start(const RobotDescription& /*robot*/,
-                                           const kernel::Pose2& /*start*/,
-                                           const Perception& first) {
-  if (!first.true_pose) return "ground-truth localisation needs a robot that reports its true pose";
-  return "";
+kernel::Status GroundTruthLocalization::Start(const RobotDescription& /*robot*/,
+                                              const kernel::Pose2& /*start*/,
+                                              const Perception& first) {
+  if (!first.true_pose)
+    return kernel::Status::Error(
+        "ground-truth localisation needs a robot that reports its true pose");
+  return {};
 }
 
 kernel::Pose2 GroundTruthLocalization::Update(const Perception& perception) {
@@ -16,10 +18,10 @@ kernel::Pose2 GroundTruthLocalization::Update(const Perception& perception) {
   return *perception.true_pose;
 }
 
-std::string OdometryLocalization::Start(const RobotDescription& /*robot*/,
-                                        const kernel::Pose2& start, const Perception& first) {
+kernel::Status OdometryLocalization::Start(const RobotDescription& /*robot*/,
+                                           const kernel::Pose2& start, const Perception& first) {
   world_T_odometry_ = start * first.odometry_pose.Inverse();
-  return "";
+  return {};
 }
 
 kernel::Pose2 OdometryLocalization::Update(const Perception& perception) {

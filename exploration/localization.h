@@ -6,6 +6,7 @@
 #include "exploration/robot_interface.h"
 #include "kernel/local_safe_region.h"
 #include "kernel/pose2.h"
+#include "kernel/status.h"
 
 namespace splam::exploration {
 
@@ -19,9 +20,9 @@ class Localization {
   // driving (faster) and senses the laser only at the nodes.
   virtual bool needs_scans() const { return false; }
   // Starts at `start` (world frame, assumed known, as the papers do) with the first reading of
-  // `robot`. Empty when ready, else why this localisation cannot run on this robot.
-  virtual std::string Start(const RobotDescription& robot, const kernel::Pose2& start,
-                            const Perception& first) = 0;
+  // `robot`. Ok when ready, else why this localisation cannot run on this robot.
+  virtual kernel::Status Start(const RobotDescription& robot, const kernel::Pose2& start,
+                               const Perception& first) = 0;
   // The estimate after a new reading (odometry always, laser when needs_scans()).
   virtual kernel::Pose2 Update(const Perception& perception) = 0;
   // The explorer added a node here; `lsr` is its local safe region, placed at the estimate.
@@ -38,8 +39,8 @@ class Localization {
 class GroundTruthLocalization : public Localization {
  public:
   std::string name() const override { return "ground-truth"; }
-  std::string Start(const RobotDescription& robot, const kernel::Pose2& start,
-                    const Perception& first) override;
+  kernel::Status Start(const RobotDescription& robot, const kernel::Pose2& start,
+                       const Perception& first) override;
   kernel::Pose2 Update(const Perception& perception) override;
 };
 
@@ -47,8 +48,8 @@ class GroundTruthLocalization : public Localization {
 class OdometryLocalization : public Localization {
  public:
   std::string name() const override { return "odometry"; }
-  std::string Start(const RobotDescription& robot, const kernel::Pose2& start,
-                    const Perception& first) override;
+  kernel::Status Start(const RobotDescription& robot, const kernel::Pose2& start,
+                       const Perception& first) override;
   kernel::Pose2 Update(const Perception& perception) override;
 
  private:

@@ -50,10 +50,10 @@ bool Session::Start() {
   }
   const Perception first = robot_->ReadOdometry();
   const kernel::Pose2 start = first.true_pose.value_or(first.odometry_pose);
-  if (const std::string problem = localization_->Start(robot_->description(), start, first);
-      !problem.empty()) {
+  if (const kernel::Status problem = localization_->Start(robot_->description(), start, first);
+      !problem.ok()) {
     run_.termination = Termination::kInvalidInput;
-    run_.message = problem;
+    run_.message = problem.message();
     return false;
   }
   estimate_ = localization_->Update(first);

@@ -66,8 +66,8 @@ class Cursor {
     return true;
   }
   bool ScanGeometry(const kernel::Scan& s) {
-    if (std::string problem = internal::ScanGeometryProblem(s); !problem.empty())
-      return Fail(problem);
+    if (kernel::Status problem = internal::ScanGeometryProblem(s); !problem.ok())
+      return Fail(problem.message());
     return true;
   }
   bool Stamp(LogStamp* out) {
@@ -312,12 +312,12 @@ CarmenReadResult ParseCarmenLog(const std::string& text, const std::string& name
 
 CarmenReadResult ReadCarmenLog(const std::string& path, const CarmenReadOptions& options) {
   std::string text;
-  std::string error = std::filesystem::is_directory(path)
-                          ? FileError(path, 0, "is a directory, not a log")
-                          : ReadTextFile(path, &text);
-  if (!error.empty()) {
+  const kernel::Status read = std::filesystem::is_directory(path)
+                                  ? FileError(path, 0, "is a directory, not a log")
+                                  : ReadTextFile(path, &text);
+  if (!read.ok()) {
     CarmenReadResult result;
-    result.log = Result<CarmenLog>::Fail(std::move(error));
+    result.log = Result<CarmenLog>::Fail(read);
     return result;
   }
   return ParseCarmenLog(text, path, options);
@@ -381,7 +381,7 @@ std::string FormatCarmenLog(const CarmenLog& log) {
   return out;
 }
 
-std::string WriteCarmenLog(const std::string& path, const CarmenLog& log) {
+kernel::Status WriteCarmenLog(const std::string& path, const CarmenLog& log) {
   return WriteTextFile(path, FormatCarmenLog(log));
 }
 

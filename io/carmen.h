@@ -130,8 +130,8 @@ CarmenReadResult ParseCarmenLog(const std::string& text, const std::string& name
                                 const CarmenReadOptions& options = {});
 
 std::string FormatCarmenLog(const CarmenLog& log);
-// Empty on success, else why the file could not be written.
-std::string WriteCarmenLog(const std::string& path, const CarmenLog& log);
+// Ok, else why the file could not be written.
+kernel::Status WriteCarmenLog(const std::string& path, const CarmenLog& log);
 
 }  // namespace splam::io
 

@@ -216,8 +216,7 @@ class YamlReader : public kernel::FieldVisitor {
   }
   void Fail(const YAML::Node& at, std::string_view key, const std::string& message) {
     if (status_->ok())
-      *status_ = kernel::Status::Error(
-          FileError(path_, lines_ ? LineOf(at) : 0, Qualified(key) + ": " + message));
+      *status_ = FileError(path_, lines_ ? LineOf(at) : 0, Qualified(key) + ": " + message);
   }
   template <class Convert>
   void Scalar(std::string_view key, Convert convert, const char* expected) {
@@ -278,9 +277,7 @@ std::string ConfigToYaml(const ConfigRoot& root, const std::string& header) {
 
 kernel::Status WriteConfig(const std::string& path, const ConfigRoot& root,
                            const std::string& header) {
-  if (std::string error = WriteTextFile(path, ConfigToYaml(root, header)); !error.empty())
-    return kernel::Status::Error(error);
-  return kernel::Status::Ok();
+  return WriteTextFile(path, ConfigToYaml(root, header));
 }
 
 struct ConfigFile::Impl {
@@ -310,7 +307,7 @@ kernel::Result<ConfigFile> ConfigFile::Parse(const std::string& text, const std:
 
 kernel::Result<ConfigFile> ConfigFile::Load(const std::string& path) {
   std::string text;
-  if (std::filesystem::is_directory(path) || !ReadTextFile(path, &text).empty())
+  if (std::filesystem::is_directory(path) || !ReadTextFile(path, &text).ok())
     return kernel::Result<ConfigFile>::Fail(FileError(path, 0, "cannot read the file"));
   return Parse(text, path);
 }

@@ -99,8 +99,7 @@ void HtmlPage::Image(const std::string& src, const std::string& caption) {
 
 kernel::Status HtmlPage::EmbedImage(const std::string& path, const std::string& caption) {
   std::string bytes;
-  if (std::string error = ReadTextFile(path, &bytes); !error.empty())
-    return kernel::Status::Error(error);
+  if (kernel::Status read = ReadTextFile(path, &bytes); !read.ok()) return read;
   const std::string mime = path.ends_with(".svg") ? "image/svg+xml" : "image/png";
   body_ += "<figure><img src=\"data:" + mime + ";base64," + Base64(bytes) + "\" alt=\"" +
            HtmlEscape(caption) + "\"><figcaption>" + HtmlEscape(caption) +
@@ -114,10 +113,6 @@ std::string HtmlPage::Html() const {
          "</body>\n</html>\n";
 }
 
-kernel::Status HtmlPage::Save(const std::string& path) const {
-  if (std::string error = WriteTextFile(path, Html()); !error.empty())
-    return kernel::Status::Error(error);
-  return kernel::Status::Ok();
-}
+kernel::Status HtmlPage::Save(const std::string& path) const { return WriteTextFile(path, Html()); }
 
 }  // namespace splam::io

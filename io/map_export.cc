@@ -46,8 +46,9 @@ std::string FormatLineMapText(const std::vector<estimation::MapLine>& lines,
   return out;
 }
 
-std::string WriteLineMapText(const std::string& path, const std::vector<estimation::MapLine>& lines,
-                             const std::vector<estimation::MapCorner>& corners) {
+kernel::Status WriteLineMapText(const std::string& path,
+                                const std::vector<estimation::MapLine>& lines,
+                                const std::vector<estimation::MapCorner>& corners) {
   return WriteTextFile(path, FormatLineMapText(lines, corners));
 }
 
@@ -79,7 +80,7 @@ std::string OutOfRange(const std::vector<DxfLayer>& layers) {
 
 // The minimal complete AutoCAD 2000 file of the dxflib documentation with these layers. Nothing is
 // written when a coordinate is out of range (OutOfRange).
-std::string WriteDxf(const std::string& path, const std::vector<DxfLayer>& layers) {
+kernel::Status WriteDxf(const std::string& path, const std::vector<DxfLayer>& layers) {
   if (const std::string problem = OutOfRange(layers); !problem.empty())
     return FileError(path, 0, problem);
   // Header, tables (viewport, line types, layers, style, view, UCS, application id, dimension
@@ -139,13 +140,14 @@ std::string WriteDxf(const std::string& path, const std::vector<DxfLayer>& layer
   dxf.writeObjectsEnd(*dw);
   dw->dxfEOF();
   dw->close();
-  return "";
+  return {};
 }
 
 }  // namespace
 
-std::string WriteLineMapDxf(const std::string& path, const std::vector<estimation::MapLine>& lines,
-                            const std::vector<estimation::MapCorner>& corners) {
+kernel::Status WriteLineMapDxf(const std::string& path,
+                               const std::vector<estimation::MapLine>& lines,
+                               const std::vector<estimation::MapCorner>& corners) {
   DxfLayer line_layer{"lines", DL_Codes::black, {}, {}};
   for (const estimation::MapLine& l : lines) line_layer.segments.emplace_back(l.start, l.end);
   DxfLayer corner_layer{"corners", DL_Codes::red, {}, {}};
@@ -168,13 +170,14 @@ std::string FormatSplineMapText(const std::vector<estimation::MapSpline>& spline
   return out;
 }
 
-std::string WriteSplineMapText(const std::string& path,
-                               const std::vector<estimation::MapSpline>& splines) {
+kernel::Status WriteSplineMapText(const std::string& path,
+                                  const std::vector<estimation::MapSpline>& splines) {
   return WriteTextFile(path, FormatSplineMapText(splines));
 }
 
-std::string WriteSplineMapDxf(const std::string& path,
-                              const std::vector<estimation::MapSpline>& splines, double spacing_m) {
+kernel::Status WriteSplineMapDxf(const std::string& path,
+                                 const std::vector<estimation::MapSpline>& splines,
+                                 double spacing_m) {
   DxfLayer curves{"splines", DL_Codes::black, {}, {}};
   DxfLayer control{"control_points", DL_Codes::red, {}, {}};
   for (const estimation::MapSpline& s : splines) {
@@ -197,7 +200,7 @@ Result<DxfContent> ReadDxf(const std::string& path) {
   return Result<DxfContent>::Ok(std::move(collector.content));
 }
 
-std::string WriteLoopSearches(const std::string& path, const estimation::SlamMap& map) {
+kernel::Status WriteLoopSearches(const std::string& path, const estimation::SlamMap& map) {
   std::string text =
       "query,target,query_scan,target_scan,query_x,query_y,query_theta,target_x,target_y,"
       "target_theta,window_m,window_rad,searched_x,searched_y,searched_theta,match_x,match_y,"
@@ -222,17 +225,17 @@ std::string WriteLoopSearches(const std::string& path, const estimation::SlamMap
   return WriteTextFile(path, text);
 }
 
-std::vector<std::string> WriteMap(const estimation::SlamMap& map, const std::string& dir) {
-  std::vector<std::string> errors;
+kernel::Status WriteMap(const estimation::SlamMap& map, const std::string& dir) {
+  std::vector<kernel::Status> written;
   if (!map.splines.empty() || (map.lines.empty() && map.corners.empty())) {
-    errors = {WriteSplineMapText(dir + "/map.txt", map.splines),
-              WriteSplineMapDxf(dir + "/map.dxf", map.splines)};
+    written = {WriteSplineMapText(dir + "/map.txt", map.splines),
+               WriteSplineMapDxf(dir + "/map.dxf", map.splines)};
   } else {
-    errors = {WriteLineMapText(dir + "/map.txt", map.lines, map.corners),
-              WriteLineMapDxf(dir + "/map.dxf", map.lines, map.corners)};
+    written = {WriteLineMapText(dir + "/map.txt", map.lines, map.corners),
+               WriteLineMapDxf(dir + "/map.dxf", map.lines, map.corners)};
   }
-  if (!map.loop_searches.empty()) errors.push_back(WriteLoopSearches(dir + "/loops.csv", map));
-  return errors;
+  if (!map.loop_searches.empty()) written.push_back(WriteLoopSearches(dir + "/loops.csv", map));
+  return kernel::FirstError(written);
 }
 
 }  // namespace splam::io

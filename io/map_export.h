@@ -22,22 +22,24 @@ namespace splam::io {
 // "lines" and POINT entities on layer "corners".
 std::string FormatLineMapText(const std::vector<estimation::MapLine>& lines,
                               const std::vector<estimation::MapCorner>& corners);
-// Empty on success, else the error.
-std::string WriteLineMapText(const std::string& path, const std::vector<estimation::MapLine>& lines,
-                             const std::vector<estimation::MapCorner>& corners);
-std::string WriteLineMapDxf(const std::string& path, const std::vector<estimation::MapLine>& lines,
-                            const std::vector<estimation::MapCorner>& corners);
+// Ok, else why the file could not be written.
+kernel::Status WriteLineMapText(const std::string& path,
+                                const std::vector<estimation::MapLine>& lines,
+                                const std::vector<estimation::MapCorner>& corners);
+kernel::Status WriteLineMapDxf(const std::string& path,
+                               const std::vector<estimation::MapLine>& lines,
+                               const std::vector<estimation::MapCorner>& corners);
 
 // B-spline maps of the EKF with B-splines. Text: '#' comments, then one spline a line:
 //   spline id n x_0 y_0 ... x_(n-1) y_(n-1) knot_0 ... knot_(n+3)
 // DXF: each curve as LINE segments spacing_m long on layer "splines", its control points as
 // POINT entities on layer "control_points".
 std::string FormatSplineMapText(const std::vector<estimation::MapSpline>& splines);
-std::string WriteSplineMapText(const std::string& path,
-                               const std::vector<estimation::MapSpline>& splines);
-std::string WriteSplineMapDxf(const std::string& path,
-                              const std::vector<estimation::MapSpline>& splines,
-                              double spacing_m = 0.05);
+kernel::Status WriteSplineMapText(const std::string& path,
+                                  const std::vector<estimation::MapSpline>& splines);
+kernel::Status WriteSplineMapDxf(const std::string& path,
+                                 const std::vector<estimation::MapSpline>& splines,
+                                 double spacing_m = 0.05);
 
 // The segments and corners of a DXF file (LINE and POINT entities of any layer), for checking
 // exports and reading maps back.
@@ -49,12 +51,12 @@ Result<DxfContent> ReadDxf(const std::string& path);
 
 // Every loop-closure search of a keyframe graph, one line each: the query and target keyframes
 // with their poses, the search's window, the pose the search proposed for the query (empty when
-// none) and the outcome (LoopSearch::Outcome's name). "" on success, else the error.
-std::string WriteLoopSearches(const std::string& path, const estimation::SlamMap& map);
+// none) and the outcome (LoopSearch::Outcome's name). Ok, else the error.
+kernel::Status WriteLoopSearches(const std::string& path, const estimation::SlamMap& map);
 
 // map.txt and map.dxf of a SLAM map (splines, or lines and corners) into dir, and loops.csv when
-// the map has loop-closure searches; the errors, if any (empty strings for success).
-std::vector<std::string> WriteMap(const estimation::SlamMap& map, const std::string& dir);
+// the map has loop-closure searches; every file is tried, the first error is returned.
+kernel::Status WriteMap(const estimation::SlamMap& map, const std::string& dir);
 
 }  // namespace splam::io
 

@@ -45,8 +45,8 @@ kernel::Status PlotOptions::Validate() const {
   return kernel::Status::Ok();
 }
 
-std::string SavePlot(const std::vector<PlotPanel>& panels, const PlotOptions& options,
-                     const std::vector<std::string>& paths) {
+kernel::Status SavePlot(const std::vector<PlotPanel>& panels, const PlotOptions& options,
+                        const std::vector<std::string>& paths) {
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
   for (const PlotPanel& panel : panels) {
     for (const PlotSeries& s : panel.series) {
@@ -185,10 +185,10 @@ std::string SavePlot(const std::vector<PlotPanel>& panels, const PlotOptions& op
     }
   };
   for (const std::string& path : paths) {
-    if (std::string error = internal::WriteCairo(path, width, height, paint); !error.empty())
+    if (kernel::Status error = internal::WriteCairo(path, width, height, paint); !error.ok())
       return error;
   }
-  return "";
+  return {};
 }
 
 }  // namespace splam::io

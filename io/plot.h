@@ -38,9 +38,9 @@ struct PlotOptions {
 };
 
 // Draws line charts (axes with ticks, a zero line, a legend per panel) to each path (.svg or
-// .png). Empty on success, else the first error. Panels without data are drawn empty.
-std::string SavePlot(const std::vector<PlotPanel>& panels, const PlotOptions& options,
-                     const std::vector<std::string>& paths);
+// .png). Ok, else the first error. Panels without data are drawn empty.
+kernel::Status SavePlot(const std::vector<PlotPanel>& panels, const PlotOptions& options,
+                        const std::vector<std::string>& paths);
 
 }  // namespace splam::io
 

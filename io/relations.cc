@@ -10,26 +10,26 @@ Result<std::vector<evaluation::Relation>> ParseRelations(const std::string& text
   using R = Result<std::vector<evaluation::Relation>>;
   std::vector<evaluation::Relation> relations;
   std::vector<double> v;
-  const std::string error =
+  const kernel::Status error =
       ForEachDataLine(text, [&](int line, const std::vector<std::string_view>& tokens) {
         if (tokens.size() != 8) {
           return FileError(name, line,
                            "expected 8 values 't1 t2 x y z roll pitch yaw', found " +
                                std::to_string(tokens.size()));
         }
-        if (std::string bad = ParseFiniteNumbers(tokens, &v); !bad.empty())
-          return FileError(name, line, bad);
+        if (kernel::Status bad = ParseFiniteNumbers(tokens, &v); !bad.ok())
+          return FileError(name, line, bad.message());
         relations.push_back({v[0], v[1], kernel::Pose2(v[2], v[3], v[7])});
-        return std::string();
+        return kernel::Status::Ok();
       });
-  if (!error.empty()) return R::Fail(error);
+  if (!error.ok()) return R::Fail(error);
   if (relations.empty()) return R::Fail(FileError(name, 0, "no relations"));
   return R::Ok(std::move(relations));
 }
 
 Result<std::vector<evaluation::Relation>> ReadRelations(const std::string& path) {
   std::string text;
-  if (std::string error = ReadTextFile(path, &text); !error.empty()) {
+  if (kernel::Status error = ReadTextFile(path, &text); !error.ok()) {
     return Result<std::vector<evaluation::Relation>>::Fail(error);
   }
   return ParseRelations(text, path);

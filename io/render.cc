@@ -371,7 +371,7 @@ void Figure::Impl::Paint(cairo_t* target) const {
   }
 }
 
-std::string Figure::Save(const std::string& path) const {
+kernel::Status Figure::Save(const std::string& path) const {
   return internal::WriteCairo(path, impl_->width, impl_->Height(),
                               [&](cairo_t* cr) { impl_->Paint(cr); });
 }

@@ -74,8 +74,8 @@ class Figure {
   // The robot's disc and a heading tick.
   void DrawRobot(const kernel::Pose2& pose, double radius_m, Rgb color);
 
-  // Writes path.svg or path.png by the extension; empty on success, else the error.
-  std::string Save(const std::string& path) const;
+  // Writes path.svg or path.png by the extension.
+  kernel::Status Save(const std::string& path) const;
 
  private:
   struct Impl;

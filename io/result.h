@@ -11,8 +11,8 @@ namespace splam::io {
 template <class T>
 using Result = kernel::Result<T>;
 
-// "path:line: message" (line omitted when 0).
-std::string FileError(const std::string& path, int line, const std::string& message);
+// The failure "path:line: message" (line omitted when 0).
+kernel::Status FileError(const std::string& path, int line, const std::string& message);
 
 }  // namespace splam::io
 

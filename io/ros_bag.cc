@@ -314,22 +314,23 @@ std::string RecordFramingProblem(const ReadBytes& read, std::uint64_t size, std:
 
 }  // namespace
 
-std::string RosBagFramingProblem(const std::string& path) {
+kernel::Status RosBagFramingProblem(const std::string& path) {
   constexpr std::string_view kMagic = "#ROSBAG V2.0\n";
   std::ifstream in(path, std::ios::binary);
   std::string magic(kMagic.size(), '\0');
   if (!in.read(magic.data(), static_cast<std::streamsize>(magic.size())) || magic != kMagic)
-    return "does not start with #ROSBAG V2.0";
+    return kernel::Status::Error("does not start with #ROSBAG V2.0");
   std::error_code error;
   const std::uint64_t size = std::filesystem::file_size(path, error);
-  if (error) return "cannot read its size: " + error.message();
+  if (error) return kernel::Status::Error("cannot read its size: " + error.message());
   const ReadBytes from_file = [&](std::uint64_t at, std::uint64_t n) {
     std::string bytes(n, '\0');
     in.seekg(static_cast<std::streamoff>(kMagic.size() + at));
     in.read(bytes.data(), static_cast<std::streamsize>(n));
     return bytes;
   };
-  return RecordFramingProblem(from_file, size - kMagic.size(), kMagic.size());
+  const std::string problem = RecordFramingProblem(from_file, size - kMagic.size(), kMagic.size());
+  return problem.empty() ? kernel::Status::Ok() : kernel::Status::Error(problem);
 }
 
 bool IsRosBagPath(const std::string& path) { return path.ends_with(".bag"); }
@@ -347,8 +348,8 @@ RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& option
   std::string scan_topic;
   std::optional<std::string> odom_topic;
   bool has_truth = false;
-  if (std::string problem = RosBagFramingProblem(path); !problem.empty())
-    return fail("not a readable ROS bag: " + problem);
+  if (kernel::Status problem = RosBagFramingProblem(path); !problem.ok())
+    return fail("not a readable ROS bag: " + problem.message());
   try {
     const internal::RosBagFile file(path);
     topics = file.Topics();
@@ -393,8 +394,8 @@ RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& option
                                                     options.base_frame + " transform in /tf"));
   }
   for (const OdometrySample& s : odometry) {
-    if (std::string problem = internal::PoseProblem(s.pose, "odometry pose"); !problem.empty())
-      return fail(problem);
+    if (kernel::Status problem = internal::PoseProblem(s.pose, "odometry pose"); !problem.ok())
+      return fail(problem.message());
   }
   std::map<std::string, std::pair<std::string, kernel::Pose2>> static_transforms;
   for (const internal::RosPose& p : bag.tf_static)
@@ -407,8 +408,8 @@ RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& option
     const internal::RosScan& s = bag.scans[i];
     LaserMessage laser;
     laser.scan = ScanOf(s);
-    if (std::string problem = internal::ScanGeometryProblem(laser.scan); !problem.empty())
-      return fail("scan " + std::to_string(i + 1) + " on " + scan_topic + ": " + problem);
+    if (kernel::Status problem = internal::ScanGeometryProblem(laser.scan); !problem.ok())
+      return fail("scan " + std::to_string(i + 1) + " on " + scan_topic + ": " + problem.message());
     if (!base_T_laser) {
       const std::string frame = Frame(s.frame);
       const Result<kernel::Pose2> mounting =
@@ -438,8 +439,8 @@ RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& option
   }
   for (const internal::RosPose& p : bag.truth) {
     const kernel::Pose2 pose(p.x, p.y, p.yaw);
-    if (std::string problem = internal::PoseProblem(pose, "true pose"); !problem.empty())
-      return fail(problem);
+    if (kernel::Status problem = internal::PoseProblem(pose, "true pose"); !problem.ok())
+      return fail(problem.message());
     const std::optional<OdometrySample> at = Interpolate(odometry, p.time_s);
     messages.emplace_back(p.time_s, TruePoseMessage{pose, at ? at->pose : pose, Stamp(p.time_s)});
     ++stats.true_poses;
@@ -462,8 +463,8 @@ RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& option
   return result;
 }
 
-std::string WriteRosBag(const CarmenLog& log, const std::string& path, const RosBagOptions& options,
-                        RosBagWriteStats* stats) {
+kernel::Status WriteRosBag(const CarmenLog& log, const std::string& path,
+                           const RosBagOptions& options, RosBagWriteStats* stats) {
   RosBagWriteStats counts;
   internal::RosBagMessages bag;
   const auto pose = [&](double t, const std::string& parent, const kernel::Pose2& p, double tv,
@@ -524,7 +525,7 @@ std::string WriteRosBag(const CarmenLog& log, const std::string& path, const Ros
     return FileError(path, 0, std::string("cannot write the bag: ") + e.what());
   }
   if (stats) *stats = counts;
-  return "";
+  return {};
 }
 
 }  // namespace splam::io

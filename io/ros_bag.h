@@ -57,18 +57,18 @@ struct RosBagWriteStats {
   int sonar_skipped = 0;
   bool write_failed = false;  // the error is the file's (a full disk), not the log's
 };
-// Empty on success, else why the bag could not be written (*stats then says whether the log or
+// Ok, else why the bag could not be written (*stats then says whether the log or
 // the file was at fault).
-std::string WriteRosBag(const CarmenLog& log, const std::string& path,
-                        const RosBagOptions& options = {}, RosBagWriteStats* stats = nullptr);
+kernel::Status WriteRosBag(const CarmenLog& log, const std::string& path,
+                           const RosBagOptions& options = {}, RosBagWriteStats* stats = nullptr);
 
 // True when `path` names a bag (it ends in ".bag").
 bool IsRosBagPath(const std::string& path);
-// Empty when the file's records are framed as rosbag 2.0 says (every length within its record and
+// Ok when the file's records are framed as rosbag 2.0 says (every length within its record and
 // the file, also inside uncompressed chunks), else what is wrong. ReadRosBag checks this before
 // Debian's rosbag reads the file: rosbag trusts the lengths (fuzz_bag found it reading past a
 // buffer). Inside compressed chunks only rosbag's own checks apply.
-std::string RosBagFramingProblem(const std::string& path);
+kernel::Status RosBagFramingProblem(const std::string& path);
 
 }  // namespace splam::io
 

@@ -29,7 +29,7 @@ std::vector<Eigen::Vector2d> ScanPointsInWorld(const io::CarmenLog& log, int eve
   return points;
 }
 
-std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::string>& paths) {
+kernel::Status SaveRunPicture(const RunPicture& picture, const std::vector<std::string>& paths) {
   kernel::Box2 area;
   if (picture.world != nullptr) area.Extend(picture.world->Bounds());
   auto extend = [&](const io::Trajectory& t) {
@@ -85,13 +85,13 @@ std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::str
       figure.DrawRobot(last.back().pose, picture.robot_radius_m, io::palette::kTrue);
   }
   for (const std::string& path : paths) {
-    if (std::string error = figure.Save(path); !error.empty()) return error;
+    if (kernel::Status error = figure.Save(path); !error.ok()) return error;
   }
-  return "";
+  return {};
 }
 
 // Writes x, y and theta errors over time of each trajectory against the truth.
-std::string SaveErrorPlot(
+kernel::Status SaveErrorPlot(
     const std::string& title, const kernel::Trajectory& truth,
     const std::vector<std::tuple<std::string, io::Rgb, kernel::Trajectory>>& runs,
     const std::vector<std::string>& paths) {

@@ -11,6 +11,7 @@
 #include "io/carmen.h"
 #include "io/render.h"
 #include "io/trajectory.h"
+#include "kernel/status.h"
 #include "sim/world.h"
 
 namespace splam::io {
@@ -53,14 +54,14 @@ std::vector<Eigen::Vector2d> ScanPointsInWorld(const io::CarmenLog& log, int eve
 // draw them; and a keyframe graph (nodes, loop closures) when the map has one.
 void DrawMap(const estimation::SlamMap& map, RunPicture* picture);
 
-// Draws the picture into each path (.svg or .png); empty on success, else the first error. The
+// Draws the picture into each path (.svg or .png); ok, else the first error. The
 // frame holds the world, the truth, the estimates and the map; the odometry, which drifts far
 // off on real logs, widens it only when there is nothing else to frame, and is clipped.
-std::string SaveRunPicture(const RunPicture& picture, const std::vector<std::string>& paths);
+kernel::Status SaveRunPicture(const RunPicture& picture, const std::vector<std::string>& paths);
 
 // Plots the x, y and theta errors over time of each (label, colour, trajectory) against the
-// truth, to each path; empty on success.
-std::string SaveErrorPlot(
+// truth, to each path; ok, else the first error.
+kernel::Status SaveErrorPlot(
     const std::string& title, const kernel::Trajectory& truth,
     const std::vector<std::tuple<std::string, io::Rgb, kernel::Trajectory>>& runs,
     const std::vector<std::string>& paths);

@@ -47,7 +47,7 @@ CarmenLog MakeCarmenLog(const std::vector<sim::SensorFrame>& frames,
     laser.tv_mps = f.linear_velocity_mps;
     laser.rv_radps = f.angular_velocity_radps;
     laser.stamp = stamp;
-    log.messages.push_back(std::move(laser));
+    log.messages.emplace_back(std::in_place_type<LaserMessage>, std::move(laser));
 
     if (!f.sonar_ranges_m.empty()) {
       SonarMessage sonar;
@@ -83,7 +83,7 @@ Result<Route> ParseRoute(const std::string& text, const std::string& name) {
   Route route;
   bool has_start = false;
   std::vector<double> v;
-  const std::string error =
+  const kernel::Status error =
       ForEachDataLine(text, [&](int line, const std::vector<std::string_view>& tokens) {
         const bool first = route.waypoints.empty() && !has_start;
         if (tokens.size() != 2 && !(first && tokens.size() == 3)) {
@@ -91,8 +91,8 @@ Result<Route> ParseRoute(const std::string& text, const std::string& name) {
               name, line,
               first ? "expected 'x y' or a start pose 'x y theta'" : "expected a waypoint 'x y'");
         }
-        if (std::string bad = ParseFiniteNumbers(tokens, &v); !bad.empty()) {
-          return FileError(name, line, bad);
+        if (kernel::Status bad = ParseFiniteNumbers(tokens, &v); !bad.ok()) {
+          return FileError(name, line, bad.message());
         }
         if (v.size() == 3) {
           route.start = kernel::Pose2(v[0], v[1], v[2]);
@@ -100,9 +100,9 @@ Result<Route> ParseRoute(const std::string& text, const std::string& name) {
         } else {
           route.waypoints.emplace_back(v[0], v[1]);
         }
-        return std::string();
+        return kernel::Status::Ok();
       });
-  if (!error.empty()) return Result<Route>::Fail(error);
+  if (!error.ok()) return Result<Route>::Fail(error);
   if (!has_start) {
     if (route.waypoints.size() < 2) {
       return Result<Route>::Fail(
@@ -121,7 +121,7 @@ Result<Route> ParseRoute(const std::string& text, const std::string& name) {
 
 Result<Route> ReadRoute(const std::string& path) {
   std::string text;
-  if (std::string error = ReadTextFile(path, &text); !error.empty())
+  if (kernel::Status error = ReadTextFile(path, &text); !error.ok())
     return Result<Route>::Fail(error);
   return ParseRoute(text, path);
 }

@@ -206,7 +206,7 @@ Result<Grid> ParseGrid(const std::string& text, const std::string& path) {
 
 Result<Grid> ReadGrid(const std::string& path) {
   std::string text;
-  if (std::string error = ReadTextFile(path, &text); !error.empty())
+  if (kernel::Status error = ReadTextFile(path, &text); !error.ok())
     return Result<Grid>::Fail(error);
   return ParseGrid(text, path);
 }

@@ -7,9 +7,9 @@
 
 namespace splam::io {
 
-std::string FileError(const std::string& path, int line, const std::string& message) {
-  if (line <= 0) return path + ": " + message;
-  return path + ":" + std::to_string(line) + ": " + message;
+kernel::Status FileError(const std::string& path, int line, const std::string& message) {
+  if (line <= 0) return kernel::Status::Error(path + ": " + message);
+  return kernel::Status::Error(path + ":" + std::to_string(line) + ": " + message);
 }
 
 std::vector<std::string_view> SplitTokens(std::string_view line) {
@@ -44,9 +44,9 @@ std::size_t TextStart(std::string_view text) {
   return text.starts_with(kByteOrderMark) ? kByteOrderMark.size() : 0;
 }
 
-std::string ForEachDataLine(
+kernel::Status ForEachDataLine(
     const std::string& text,
-    const std::function<std::string(int, const std::vector<std::string_view>&)>& visit) {
+    const std::function<kernel::Status(int, const std::vector<std::string_view>&)>& visit) {
   std::size_t pos = TextStart(text);
   int line_number = 0;
   while (pos < text.size()) {
@@ -57,22 +57,22 @@ std::string ForEachDataLine(
     pos = end + 1;
     ++line_number;
     if (tokens.empty() || tokens[0].front() == '#') continue;
-    if (std::string error = visit(line_number, tokens); !error.empty()) return error;
+    if (kernel::Status status = visit(line_number, tokens); !status.ok()) return status;
   }
-  return "";
+  return {};
 }
 
-std::string ParseFiniteNumbers(const std::vector<std::string_view>& tokens,
-                               std::vector<double>* values) {
+kernel::Status ParseFiniteNumbers(const std::vector<std::string_view>& tokens,
+                                  std::vector<double>* values) {
   values->clear();
   for (std::string_view token : tokens) {
     const std::optional<double> value = ParseDouble(token);
     if (!value || !std::isfinite(*value)) {
-      return Quoted(token) + " is not a finite number";
+      return kernel::Status::Error(Quoted(token) + " is not a finite number");
     }
     values->push_back(*value);
   }
-  return "";
+  return {};
 }
 
 std::string Quoted(std::string_view token) {

@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "kernel/status.h"
+
 namespace splam::io {
 
 // Whitespace-separated tokens of a line.
@@ -18,14 +20,14 @@ std::optional<long> ParseInteger(std::string_view token);
 std::size_t TextStart(std::string_view text);
 // Calls visit(line_number, tokens) for every line of `text` that is neither blank nor a '#'
 // comment, counting lines from 1 (a leading UTF-8 byte order mark is skipped). Stops at the first
-// non-empty message `visit` returns and returns it; empty when every line was accepted.
-std::string ForEachDataLine(
+// failure `visit` returns and returns it; ok when every line was accepted.
+kernel::Status ForEachDataLine(
     const std::string& text,
-    const std::function<std::string(int, const std::vector<std::string_view>&)>& visit);
+    const std::function<kernel::Status(int, const std::vector<std::string_view>&)>& visit);
 // Every token as a finite number; on failure *values is unspecified and the message is
 // "'token' is not a finite number".
-std::string ParseFiniteNumbers(const std::vector<std::string_view>& tokens,
-                               std::vector<double>* values);
+kernel::Status ParseFiniteNumbers(const std::vector<std::string_view>& tokens,
+                                  std::vector<double>* values);
 // `token` in single quotes for an error message: control bytes (a NUL, an escape) written as
 // \xNN, and cut to its first 40 bytes with "..." (binary junk must not reach the terminal).
 std::string Quoted(std::string_view token);

@@ -8,7 +8,7 @@
 
 namespace splam::io {
 
-std::string ReadTextFile(const std::string& path, std::string* text, std::size_t max_bytes) {
+kernel::Status ReadTextFile(const std::string& path, std::string* text, std::size_t max_bytes) {
   // A directory opens as an empty stream: it read as an empty file.
   if (std::filesystem::is_directory(path)) return FileError(path, 0, "is a directory, not a file");
   // /dev/zero or /dev/full (a result file linked to it and read back) would never end.
@@ -32,41 +32,42 @@ std::string ReadTextFile(const std::string& path, std::string* text, std::size_t
     text->append(piece, 0, got);
   }
   if (in.bad()) return FileError(path, 0, "read failed");
-  return "";
+  return {};
 }
 
-std::string WriteTextFile(const std::string& path, const std::string& text) {
+kernel::Status WriteTextFile(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   if (!out) return FileError(path, 0, "cannot open for writing");
   out << text;
   // The buffer reaches the disk at close: a full disk fails there, not at the write.
   out.close();
-  return out ? "" : FileError(path, 0, "write failed (disk full?)");
+  return out ? kernel::Status::Ok() : FileError(path, 0, "write failed (disk full?)");
 }
 
 Result<Trajectory> ParseTrajectory(const std::string& text, const std::string& name) {
   Trajectory trajectory;
   std::vector<double> v;
-  const std::string error = ForEachDataLine(text, [&](int line,
-                                                      const std::vector<std::string_view>& tokens) {
-    if (tokens.size() != 4) {
-      return FileError(
-          name, line, "expected 4 values 'time x y theta', found " + std::to_string(tokens.size()));
-    }
-    if (std::string bad = ParseFiniteNumbers(tokens, &v); !bad.empty()) {
-      return FileError(name, line, bad);
-    }
-    trajectory.push_back({v[0], kernel::Pose2(v[1], v[2], v[3])});
-    return std::string();
-  });
-  if (!error.empty()) return Result<Trajectory>::Fail(error);
+  const kernel::Status error =
+      ForEachDataLine(text, [&](int line, const std::vector<std::string_view>& tokens) {
+        if (tokens.size() != 4) {
+          return FileError(
+              name, line,
+              "expected 4 values 'time x y theta', found " + std::to_string(tokens.size()));
+        }
+        if (kernel::Status bad = ParseFiniteNumbers(tokens, &v); !bad.ok()) {
+          return FileError(name, line, bad.message());
+        }
+        trajectory.push_back({v[0], kernel::Pose2(v[1], v[2], v[3])});
+        return kernel::Status::Ok();
+      });
+  if (!error.ok()) return Result<Trajectory>::Fail(error);
   if (trajectory.empty()) return Result<Trajectory>::Fail(FileError(name, 0, "no poses"));
   return Result<Trajectory>::Ok(std::move(trajectory));
 }
 
 Result<Trajectory> ReadTrajectory(const std::string& path) {
   std::string text;
-  if (std::string error = ReadTextFile(path, &text); !error.empty()) {
+  if (kernel::Status error = ReadTextFile(path, &text); !error.ok()) {
     return Result<Trajectory>::Fail(error);
   }
   return ParseTrajectory(text, path);
@@ -83,8 +84,8 @@ std::string FormatTrajectory(const Trajectory& trajectory, const std::string& co
   return out;
 }
 
-std::string WriteTrajectory(const std::string& path, const Trajectory& trajectory,
-                            const std::string& comment) {
+kernel::Status WriteTrajectory(const std::string& path, const Trajectory& trajectory,
+                               const std::string& comment) {
   return WriteTextFile(path, FormatTrajectory(trajectory, comment));
 }
 

@@ -21,9 +21,9 @@ using kernel::Trajectory;
 Result<Trajectory> ReadTrajectory(const std::string& path);
 Result<Trajectory> ParseTrajectory(const std::string& text, const std::string& name);
 std::string FormatTrajectory(const Trajectory& trajectory, const std::string& comment = "");
-// Empty on success, else why the file could not be written.
-std::string WriteTrajectory(const std::string& path, const Trajectory& trajectory,
-                            const std::string& comment = "");
+// Ok, else why the file could not be written.
+kernel::Status WriteTrajectory(const std::string& path, const Trajectory& trajectory,
+                               const std::string& comment = "");
 
 // The most a text file (a log, a world, options, a trajectory) may hold: 4 GiB, about 13 hours
 // of a 181-beam SICK logged at its full 75 Hz as CARMEN text (1.2 kB a scan), 500 hours at MIT
@@ -32,12 +32,12 @@ std::string WriteTrajectory(const std::string& path, const Trajectory& trajector
 // until memory runs out.
 inline constexpr std::size_t kMaxTextFileBytes = std::size_t{4} << 30;
 
-// Reads a whole file (or a pipe) into *text; empty on success, else "path: cannot open ...",
+// Reads a whole file (or a pipe) into *text; ok, else "path: cannot open ...",
 // "is a device", or, past max_bytes, "holds more than N bytes".
-std::string ReadTextFile(const std::string& path, std::string* text,
-                         std::size_t max_bytes = kMaxTextFileBytes);
-// Writes text to a file; empty on success.
-std::string WriteTextFile(const std::string& path, const std::string& text);
+kernel::Status ReadTextFile(const std::string& path, std::string* text,
+                            std::size_t max_bytes = kMaxTextFileBytes);
+// Writes text to a file; ok, else why it could not.
+kernel::Status WriteTextFile(const std::string& path, const std::string& text);
 
 }  // namespace splam::io
 

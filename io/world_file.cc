@@ -203,7 +203,7 @@ Result<sim::World> ParseWorld(const std::string& yaml, const std::string& name,
 
 Result<sim::World> ReadWorldFile(const std::string& path) {
   std::string text;
-  if (std::string error = ReadTextFile(path, &text); !error.empty())
+  if (kernel::Status error = ReadTextFile(path, &text); !error.ok())
     return Result<sim::World>::Fail(error);
   return ParseWorld(text, path, std::filesystem::path(path).parent_path().string());
 }
@@ -260,7 +260,7 @@ std::string FormatWorld(const sim::World& world) {
   return std::string(out.c_str()) + "\n";
 }
 
-std::string WriteWorldFile(const std::string& path, const sim::World& world) {
+kernel::Status WriteWorldFile(const std::string& path, const sim::World& world) {
   return WriteTextFile(path, FormatWorld(world));
 }
 
@@ -286,12 +286,12 @@ Result<sim::World> LoadValidWorld(const std::string& name_or_path,
   return world;
 }
 
-std::string StartProblem(const std::string& name_or_path, const FloorPlanOptions& floor_plan,
-                         const kernel::Pose2& start) {
-  if (sim::BuiltinWorld(name_or_path) || !IsImagePath(name_or_path)) return "";
+kernel::Status StartProblem(const std::string& name_or_path, const FloorPlanOptions& floor_plan,
+                            const kernel::Pose2& start) {
+  if (sim::BuiltinWorld(name_or_path) || !IsImagePath(name_or_path)) return {};
   const Result<bool> dark = FloorPlanIsDarkAt(name_or_path, floor_plan, start.translation());
-  if (!dark.ok()) return dark.error;
-  if (!*dark.value) return "";
+  if (!dark.ok()) return dark.status();
+  if (!*dark.value) return {};
   return FileError(name_or_path, 0,
                    "the start pose (" + FormatDouble(start.x()) + ", " + FormatDouble(start.y()) +
                        ") lies on a dark pixel: inside a wall or a solid region");

@@ -30,8 +30,8 @@ Result<sim::World> ReadWorldFile(const std::string& path);
 Result<sim::World> ParseWorld(const std::string& yaml, const std::string& name,
                               const std::string& base_directory = ".");
 std::string FormatWorld(const sim::World& world);
-// Empty on success.
-std::string WriteWorldFile(const std::string& path, const sim::World& world);
+// Ok, else why the file could not be written.
+kernel::Status WriteWorldFile(const std::string& path, const sim::World& world);
 
 // A world by name or path: a built-in name ("complex"), a .yaml/.yml world file, or a floor-plan
 // image (.png, .jpg, .pgm, .bmp) read with `floor_plan`.
@@ -41,11 +41,11 @@ Result<sim::World> LoadWorld(const std::string& name_or_path,
 // reported as "name_or_path: problem".
 Result<sim::World> LoadValidWorld(const std::string& name_or_path,
                                   const FloorPlanOptions& floor_plan = {});
-// Empty when a run can start at `start` in the world `name_or_path` names, as far as its source
+// Ok when a run can start at `start` in the world `name_or_path` names, as far as its source
 // tells beyond the obstacles: for a floor-plan image, not on a dark pixel (inside a wall or a
 // solid region, which the outlines alone take for free space); else why not.
-std::string StartProblem(const std::string& name_or_path, const FloorPlanOptions& floor_plan,
-                         const kernel::Pose2& start);
+kernel::Status StartProblem(const std::string& name_or_path, const FloorPlanOptions& floor_plan,
+                            const kernel::Pose2& start);
 
 }  // namespace splam::io
 

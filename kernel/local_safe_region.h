@@ -20,7 +20,7 @@ struct LocalRegionOptions {
   double radius_m = 3.0;  // r: LSRs are clipped here (below the URG-04LX's 4 m range), m
   double alpha = 0.8;     // a new node lies alpha r from the current one, 0 < alpha < 1
   void VisitFields(FieldVisitor& v);
-  // Empty when valid, else the first problem.
+  // Ok when valid, else the first problem.
   Status Validate() const;
 };
 

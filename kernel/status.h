@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 // The one error convention of splam: an expected failure (bad input, invalid options, a solver
 // that did not converge) comes back as a value with a message; bugs are assertions.
@@ -37,6 +38,13 @@ Status FirstError(const S&... statuses) {
   Status first;
   ((first = first.ok() ? statuses : first), ...);
   return first;
+}
+
+// The first failure of a list, or success (for writing several files, each tried).
+inline Status FirstError(const std::vector<Status>& statuses) {
+  for (const Status& s : statuses)
+    if (!s.ok()) return s;
+  return {};
 }
 
 // The value of an operation that can fail, or the message saying why.

@@ -166,16 +166,16 @@ std::string RunTitle(const sim::World& world, const ExploreSetup& setup,
                      outcome.run.time_s, 100.0 * outcome.coverage());
 }
 
-std::string WriteExplorationRun(const sim::World& world, const ExploreSetup& setup,
-                                const ExploreOutcome& outcome, const nlohmann::json& report,
-                                const std::string& dir, std::vector<std::string>* written) {
+kernel::Status WriteExplorationRun(const sim::World& world, const ExploreSetup& setup,
+                                   const ExploreOutcome& outcome, const nlohmann::json& report,
+                                   const std::string& dir, std::vector<std::string>* written) {
   const std::string title = RunTitle(world, setup, outcome);
   const Trajectories t = TrajectoriesOf(outcome.run);
-  const auto save = [&](const std::string& name, std::string error) {
-    if (error.empty()) written->push_back(name);
-    return error;
+  const auto save = [&](const std::string& name, kernel::Status status) {
+    if (status.ok()) written->push_back(name);
+    return status;
   };
-  std::vector<std::string> errors = {
+  std::vector<kernel::Status> errors = {
       save("report.json", io::WriteTextFile(dir + "/report.json", JsonText(report, 2) + "\n")),
       save("graph.svg/png",
            SaveExplorationPicture(world, outcome, title, {dir + "/graph.svg", dir + "/graph.png"})),
@@ -191,25 +191,21 @@ std::string WriteExplorationRun(const sim::World& world, const ExploreSetup& set
   if (const estimation::SlamMethod* slam = outcome.slam_method()) {
     errors.push_back(save("map.svg/png", SaveSlamMapPicture(world, outcome, title,
                                                             {dir + "/map.svg", dir + "/map.png"})));
-    const std::vector<std::string> map_errors = io::WriteMap(slam->Map(), dir);
-    errors.insert(errors.end(), map_errors.begin(), map_errors.end());
-    if (std::all_of(map_errors.begin(), map_errors.end(), [](auto& e) { return e.empty(); }))
-      written->insert(written->end(), {"map.txt", "map.dxf"});
+    const kernel::Status map = io::WriteMap(slam->Map(), dir);
+    errors.push_back(map);
+    if (map.ok()) written->insert(written->end(), {"map.txt", "map.dxf"});
     if (setup.trace_steps)
       errors.push_back(
           save("steps.csv", WriteStepTrace(dir + "/steps.csv", outcome.slam->driver()->steps(),
                                            outcome.slam->step_times(), t.truth)));
   }
-  errors.push_back(save("report.html", WriteRunHtml(dir, "splam explore: " + title).message()));
-  for (const std::string& error : errors) {
-    if (!error.empty()) return error;
-  }
-  return "";
+  errors.push_back(save("report.html", WriteRunHtml(dir, "splam explore: " + title)));
+  return kernel::FirstError(errors);
 }
 
-std::string SaveExplorationPicture(const sim::World& world, const ExploreOutcome& outcome,
-                                   const std::string& title,
-                                   const std::vector<std::string>& paths) {
+kernel::Status SaveExplorationPicture(const sim::World& world, const ExploreOutcome& outcome,
+                                      const std::string& title,
+                                      const std::vector<std::string>& paths) {
   const exploration::ExplorationRun& run = outcome.run;
   const graph::ExplorationGraph& g = run.graph;
   kernel::Box2 area = world.Bounds();
@@ -274,15 +270,15 @@ std::string SaveExplorationPicture(const sim::World& world, const ExploreOutcome
   if (!run.trace.empty())
     figure.DrawRobot(run.trace.back().truth, outcome.robot_radius_m, io::palette::kTrue);
   for (const std::string& path : paths) {
-    if (std::string error = figure.Save(path); !error.empty()) return error;
+    if (kernel::Status error = figure.Save(path); !error.ok()) return error;
   }
-  return "";
+  return {};
 }
 
-std::string SaveSlamMapPicture(const sim::World& world, const ExploreOutcome& outcome,
-                               const std::string& title, const std::vector<std::string>& paths) {
+kernel::Status SaveSlamMapPicture(const sim::World& world, const ExploreOutcome& outcome,
+                                  const std::string& title, const std::vector<std::string>& paths) {
   const estimation::SlamMethod* slam = outcome.slam_method();
-  if (slam == nullptr) return "no SLAM map to draw";
+  if (slam == nullptr) return kernel::Status::Error("no SLAM map to draw");
   const Trajectories t = TrajectoriesOf(outcome.run);
   io::RunPicture picture;
   picture.title = title + " | " + slam->MapDescription();
@@ -296,8 +292,8 @@ std::string SaveSlamMapPicture(const sim::World& world, const ExploreOutcome& ou
   return io::SaveRunPicture(picture, paths);
 }
 
-std::string SaveTrajectoryErrorPlot(const ExploreOutcome& outcome, const std::string& title,
-                                    const std::vector<std::string>& paths) {
+kernel::Status SaveTrajectoryErrorPlot(const ExploreOutcome& outcome, const std::string& title,
+                                       const std::vector<std::string>& paths) {
   const Trajectories t = TrajectoriesOf(outcome.run);
   return io::SaveErrorPlot(title, t.truth,
                            {{"odometry", io::palette::kOdometry, t.odometry},
@@ -305,8 +301,8 @@ std::string SaveTrajectoryErrorPlot(const ExploreOutcome& outcome, const std::st
                            paths);
 }
 
-std::string SaveCoveragePlot(const ExploreOutcome& outcome, const std::string& title,
-                             const std::vector<std::string>& paths) {
+kernel::Status SaveCoveragePlot(const ExploreOutcome& outcome, const std::string& title,
+                                const std::vector<std::string>& paths) {
   io::PlotSeries coverage{"explored", io::palette::kTrue, outcome.coverage_time_s, {}};
   for (double f : outcome.coverage_fraction) coverage.y.push_back(100.0 * f);
   io::PlotSeries nodes{"nodes", io::palette::kEstimate, outcome.coverage_time_s, {}};

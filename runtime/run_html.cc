@@ -82,12 +82,12 @@ kernel::Status WriteRunHtml(const std::string& dir, const std::string& title) {
   constexpr std::size_t kMaxShownBytes = std::size_t{1} << 20;
   for (const char* table_file : {"table.md", "table1.md"}) {
     std::string table;
-    if (!io::ReadTextFile(dir + "/" + table_file, &table, kMaxShownBytes).empty()) continue;
+    if (!io::ReadTextFile(dir + "/" + table_file, &table, kMaxShownBytes).ok()) continue;
     page.Heading(std::string("Table (") + table_file + ")");
     page.Preformatted(table);
   }
   std::string config;
-  if (io::ReadTextFile(dir + "/config.yaml", &config, kMaxShownBytes).empty()) {
+  if (io::ReadTextFile(dir + "/config.yaml", &config, kMaxShownBytes).ok()) {
     page.Heading("Options (config.yaml)");
     page.Preformatted(config);
   }

@@ -9,16 +9,16 @@ SlamLocalization::SlamLocalization(std::string method,
                                    const kernel::LocalRegionOptions& region)
     : method_(std::move(method)), options_(std::move(options)), region_(region) {}
 
-std::string SlamLocalization::Start(const exploration::RobotDescription& robot,
-                                    const kernel::Pose2& start,
-                                    const exploration::Perception& first) {
+kernel::Status SlamLocalization::Start(const exploration::RobotDescription& robot,
+                                       const kernel::Pose2& start,
+                                       const exploration::Perception& first) {
   auto made = estimation::SlamRegistry::Global().Make(method_, options_.get(), {start, region_});
-  if (!made.ok()) return made.error;
+  if (!made.ok()) return made.status();
   driver_.emplace(std::move(*made.value));
   driver_->SetOdometryOrigin(first.odometry_pose);
   driver_->RecordSteps(record_steps_);
   robot_T_laser_ = robot.robot_T_laser;
-  return "";
+  return {};
 }
 
 kernel::Pose2 SlamLocalization::Update(const exploration::Perception& perception) {

@@ -8,6 +8,7 @@
 
 #include "estimation/slam_method.h"
 #include "exploration/localization.h"
+#include "kernel/status.h"
 #include "runtime/slam_driver.h"
 
 namespace splam::runtime {
@@ -24,8 +25,8 @@ class SlamLocalization : public exploration::Localization {
 
   std::string name() const override { return method_; }
   bool needs_scans() const override { return true; }
-  std::string Start(const exploration::RobotDescription& robot, const kernel::Pose2& start,
-                    const exploration::Perception& first) override;
+  kernel::Status Start(const exploration::RobotDescription& robot, const kernel::Pose2& start,
+                       const exploration::Perception& first) override;
   kernel::Pose2 Update(const exploration::Perception& perception) override;
   void AtNode(const kernel::LocalSafeRegion& lsr) override;
   std::vector<kernel::Pose2> NodePoses() const override {

@@ -9,8 +9,8 @@
 
 namespace splam::runtime {
 
-std::string WriteStepTrace(const std::string& path, const std::vector<StepRecord>& steps,
-                           const std::vector<double>& times, const kernel::Trajectory& truth) {
+kernel::Status WriteStepTrace(const std::string& path, const std::vector<StepRecord>& steps,
+                              const std::vector<double>& times, const kernel::Trajectory& truth) {
   std::ostringstream out;
   std::vector<std::string> names;
   for (const StepRecord& s : steps) {

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "kernel/status.h"
 #include "kernel/trajectory.h"
 #include "runtime/slam_driver.h"
 
@@ -14,9 +15,9 @@ namespace splam::runtime {
 // the true pose and both poses' position error (m) and signed heading error (estimate - truth,
 // deg), so that a correction that made the pose worse shows as a row whose error grew; then
 // the method's own values (SlamMethod::LastUpdate; the columns of the first step that has
-// them, empty where a step has none). Returns "" or what went wrong, naming the file.
-std::string WriteStepTrace(const std::string& path, const std::vector<StepRecord>& steps,
-                           const std::vector<double>& times, const kernel::Trajectory& truth);
+// them, empty where a step has none). Ok, or what went wrong, naming the file.
+kernel::Status WriteStepTrace(const std::string& path, const std::vector<StepRecord>& steps,
+                              const std::vector<double>& times, const kernel::Trajectory& truth);
 
 }  // namespace splam::runtime
 

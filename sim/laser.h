@@ -42,7 +42,7 @@ struct LaserOptions {
   static LaserOptions Urg04lx();
   // SICK LMS-200: 180 deg at `resolution_deg` (0.5 -> 361 beams, 1 -> 181), 8 m, sigma 1 cm.
   static LaserOptions Lms200(double resolution_deg = 0.5);
-  // Empty when valid, else the first problem.
+  // Ok when valid, else the first problem.
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
   kernel::Status Validate() const;

@@ -71,7 +71,7 @@ struct World {
   std::optional<kernel::Pose2> start;
   std::vector<Eigen::Vector2d> route;
 
-  // Empty when valid, else what is wrong and with which obstacle: polylines need >= 2 vertices
+  // Ok when valid, else what is wrong and with which obstacle: polylines need >= 2 vertices
   // (polygons 3) without zero-length edges, circles and ellipses positive radii, open splines
   // >= 4 and closed splines >= 3 control points; people as Walker says, at most kMaxPeople;
   // glass indices those of obstacles; all coordinates finite.

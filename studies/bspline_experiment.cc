@@ -59,11 +59,11 @@ double Mean(const std::vector<double>& v) { return evaluation::MeanStd(v).first;
 double Std(const std::vector<double>& v) { return evaluation::MeanStd(v).second; }
 
 // The first seed's map of one association over the world, with the three trajectories.
-std::string SaveMethodMap(const sim::World& world, const std::string& method, std::uint64_t seed,
-                          const kernel::Trajectory& truth, const kernel::Trajectory& odometry,
-                          const AssociationRun& r,
-                          const kernel::SplineExtractionOptions& extraction,
-                          const std::string& base) {
+kernel::Status SaveMethodMap(const sim::World& world, const std::string& method, std::uint64_t seed,
+                             const kernel::Trajectory& truth, const kernel::Trajectory& odometry,
+                             const AssociationRun& r,
+                             const kernel::SplineExtractionOptions& extraction,
+                             const std::string& base) {
   io::RunPicture picture;
   picture.title = fmt::format("complex, URG-04LX, {} association (seed {}): {} splines", method,
                               seed, r.map.size());
@@ -203,20 +203,20 @@ int RunSeedsHere(const BSplineExperimentArgs& args) {
                            method == "pedraza" ? io::Rgb{0.95, 0.55, 0.0} : io::palette::kEstimate,
                            r.estimate);
       if (run == 0) {
-        if (std::string err = SaveMethodMap(world, method, seed, truth, odometry, r,
-                                            options.extraction, args.out + "/map_" + method);
-            !err.empty()) {
-          fmt::print(stderr, "splam experiment: {}\n", err);
+        if (kernel::Status err = SaveMethodMap(world, method, seed, truth, odometry, r,
+                                               options.extraction, args.out + "/map_" + method);
+            !err.ok()) {
+          fmt::print(stderr, "splam experiment: {}\n", err.message());
           return kExitBadInput;
         }
       }
     }
     if (run == 0) {
-      if (std::string err = io::SaveErrorPlot(
+      if (kernel::Status err = io::SaveErrorPlot(
               fmt::format("complex, URG-04LX: errors against ground truth (seed {})", seed), truth,
               plotted, {args.out + "/errors.svg", args.out + "/errors.png"});
-          !err.empty()) {
-        fmt::print(stderr, "splam experiment: {}\n", err);
+          !err.ok()) {
+        fmt::print(stderr, "splam experiment: {}\n", err.message());
         return kExitBadInput;
       }
     }
@@ -275,12 +275,12 @@ int RunComplexBSpline(const BSplineExperimentArgs& args) {
     for (const std::string& method : methods)
       AddFromReport((*report)[method], true, &summaries[method]);
     if (i > 0) continue;
-    if (std::string error = CopyTrialFiles(  // the first seed's pictures
+    if (kernel::Status error = CopyTrialFiles(  // the first seed's pictures
             dir, args.out,
             {"errors.svg", "errors.png", "map_pedraza.svg", "map_pedraza.png", "map_curvature.svg",
              "map_curvature.png"});
-        !error.empty()) {
-      fmt::print(stderr, "splam experiment: {}\n", error);
+        !error.ok()) {
+      fmt::print(stderr, "splam experiment: {}\n", error.message());
       return kExitBadInput;
     }
   }

@@ -183,8 +183,8 @@ CorridorResult RunCorridorExperiment(const CorridorOptions& args) {
 namespace {
 
 // The first run's map over the world and its errors over time; empty on success.
-std::string SaveCorridorPictures(const CorridorOptions& options, const CorridorResult& result,
-                                 const std::string& out) {
+kernel::Status SaveCorridorPictures(const CorridorOptions& options, const CorridorResult& result,
+                                    const std::string& out) {
   const sim::World world = *sim::BuiltinWorld("corridor");
   io::RunPicture picture;
   picture.title =
@@ -199,15 +199,12 @@ std::string SaveCorridorPictures(const CorridorOptions& options, const CorridorR
   map.lines = result.lines;
   map.corners = result.corners;
   io::DrawMap(map, &picture);
-  for (const std::string& e :
-       {io::SaveRunPicture(picture, {out + "/map.svg", out + "/map.png"}),
-        io::SaveErrorPlot("corridor run, seed " + std::to_string(options.seed), result.truth,
-                          {{"odometry", io::palette::kOdometry, result.odometry},
-                           {"ekf-lines", io::palette::kEstimate, result.estimate}},
-                          {out + "/errors.svg", out + "/errors.png"})}) {
-    if (!e.empty()) return e;
-  }
-  return "";
+  return kernel::FirstError(
+      io::SaveRunPicture(picture, {out + "/map.svg", out + "/map.png"}),
+      io::SaveErrorPlot("corridor run, seed " + std::to_string(options.seed), result.truth,
+                        {{"odometry", io::palette::kOdometry, result.odometry},
+                         {"ekf-lines", io::palette::kEstimate, result.estimate}},
+                        {out + "/errors.svg", out + "/errors.png"}));
 }
 
 // 001 Table 1: the nine distances, true and mapped (mean +- std over the runs mapping them);
@@ -328,9 +325,10 @@ int WriteCorridorResult(const CorridorOptions& options, const CorridorResult& re
       {{"average NEES", io::palette::kEstimate, steps, average},
        {"95 % band", io::palette::kOdometry, {0.0, static_cast<double>(options.steps)}, {lo, lo}},
        {"", io::palette::kOdometry, {0.0, static_cast<double>(options.steps)}, {hi, hi}}}};
-  if (std::string e = io::SavePlot({panel}, plot_options, {out + "/nees.svg", out + "/nees.png"});
-      !e.empty()) {
-    fmt::print(stderr, "splam experiment: {}\n", e);
+  if (kernel::Status e =
+          io::SavePlot({panel}, plot_options, {out + "/nees.svg", out + "/nees.png"});
+      !e.ok()) {
+    fmt::print(stderr, "splam experiment: {}\n", e.message());
     return kExitBadInput;
   }
   report["per_run"] = PerRunJson(result);
@@ -382,8 +380,8 @@ int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string
       fmt::print(stderr, "splam experiment: {}\n", result.error);
       return kExitIncomplete;
     }
-    if (std::string e = SaveCorridorPictures(options, result, out); !e.empty()) {
-      fmt::print(stderr, "splam experiment: {}\n", e);
+    if (kernel::Status e = SaveCorridorPictures(options, result, out); !e.ok()) {
+      fmt::print(stderr, "splam experiment: {}\n", e.message());
       return kExitBadInput;
     }
     return WriteCorridorResult(options, result, out);
@@ -400,10 +398,10 @@ int RunCorridorLinesExperiment(const CorridorOptions& options, const std::string
     if (!report) return kExitIncomplete;
     reports.push_back(std::move(*report));
     if (i > 0) continue;
-    if (std::string error =  // the first seed's pictures
+    if (kernel::Status error =  // the first seed's pictures
         CopyTrialFiles(dir, out, {"map.svg", "map.png", "errors.svg", "errors.png"});
-        !error.empty()) {
-      fmt::print(stderr, "splam experiment: {}\n", error);
+        !error.ok()) {
+      fmt::print(stderr, "splam experiment: {}\n", error.message());
       return kExitBadInput;
     }
   }

@@ -59,21 +59,23 @@ std::optional<nlohmann::json> TrialReport(const std::string& cell_dir) {
   return report;
 }
 
-std::string CopyTrialFiles(const std::string& cell_dir, const std::string& out,
-                           const std::vector<std::string>& names, const std::string& prefix) {
+kernel::Status CopyTrialFiles(const std::string& cell_dir, const std::string& out,
+                              const std::vector<std::string>& names, const std::string& prefix) {
   for (const std::string& name : names) {
     std::error_code ec;
     std::filesystem::copy_file(cell_dir + "/" + name, out + "/" + prefix + name,
                                std::filesystem::copy_options::overwrite_existing, ec);
-    if (ec) return fmt::format("cannot copy {}/{}: {}", cell_dir, name, ec.message());
+    if (ec)
+      return kernel::Status::Error(
+          fmt::format("cannot copy {}/{}: {}", cell_dir, name, ec.message()));
   }
-  return "";
+  return {};
 }
 
 int WriteExperimentFiles(const std::vector<std::pair<std::string, std::string>>& files) {
   for (const auto& [path, text] : files) {
-    if (std::string error = io::WriteTextFile(path, text); !error.empty()) {
-      fmt::print(stderr, "splam experiment: {}\n", error);
+    if (kernel::Status error = io::WriteTextFile(path, text); !error.ok()) {
+      fmt::print(stderr, "splam experiment: {}\n", error.message());
       return kExitWriteFailed;
     }
   }

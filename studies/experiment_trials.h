@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/sweep_grid.h"
+#include "kernel/status.h"
 
 // The experiments' trials as cells of a grid (experiments/*.yaml): run on the sweep engine, read
 // back from their run directories.
@@ -32,9 +33,10 @@ std::optional<nlohmann::json> TrialReport(const std::string& cell_dir);
 int WriteExperimentFiles(const std::vector<std::pair<std::string, std::string>>& files);
 
 // Copies each of `names` from a trial's directory to <out>/<prefix><name> (a figure of the
-// experiment from one of its trials); the first error, or empty.
-std::string CopyTrialFiles(const std::string& cell_dir, const std::string& out,
-                           const std::vector<std::string>& names, const std::string& prefix = "");
+// experiment from one of its trials); ok, else the first error.
+kernel::Status CopyTrialFiles(const std::string& cell_dir, const std::string& out,
+                              const std::vector<std::string>& names,
+                              const std::string& prefix = "");
 
 }  // namespace splam::studies
 

@@ -138,11 +138,11 @@ int RunExplorationExperiment(const ExplorationExperimentArgs& args) {
         fmt::format("{}: SRT vs REG, {} trials (paper 003 Fig. 18)", world_name, args.runs);
     plot.x_label = "trial";
     plot.panel_height_px = 150.0;
-    if (std::string error = io::SavePlot(panels, plot,
-                                         {fmt::format("{}/fig18-{}.svg", args.out, world_name),
-                                          fmt::format("{}/fig18-{}.png", args.out, world_name)});
-        !error.empty()) {
-      fmt::print(stderr, "splam experiment: {}\n", error);
+    if (kernel::Status error = io::SavePlot(panels, plot,
+                                            {fmt::format("{}/fig18-{}.svg", args.out, world_name),
+                                             fmt::format("{}/fig18-{}.png", args.out, world_name)});
+        !error.ok()) {
+      fmt::print(stderr, "splam experiment: {}\n", error.message());
       return kExitBadInput;
     }
   }

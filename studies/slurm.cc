@@ -108,13 +108,13 @@ kernel::Result<std::string> SubmitSweepToSlurm(const std::string& dir,
   if (ec) return R::Fail("cannot create " + abs_dir + "/slurm: " + ec.message());
   std::string list;
   for (const int c : cells) list += std::to_string(c) + "\n";
-  if (std::string error = io::WriteTextFile(abs_dir + "/slurm-cells.txt", list); !error.empty())
+  if (kernel::Status error = io::WriteTextFile(abs_dir + "/slurm-cells.txt", list); !error.ok())
     return R::Fail(error);
   const std::string script_path = abs_dir + "/sweep.sbatch";
-  if (std::string error = io::WriteTextFile(
+  if (kernel::Status error = io::WriteTextFile(
           script_path,
           SlurmScript(abs_dir, binary, static_cast<int>(cells.size()), workdir, options));
-      !error.empty())
+      !error.ok())
     return R::Fail(error);
   const auto [status, output] = Capture(options.sbatch + " --parsable " + ShellQuoted(script_path));
   if (status != 0)

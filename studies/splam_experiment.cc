@@ -183,10 +183,10 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
           trial.coverage_percent, trial.rmse_m, trial.odometry_rmse_m, trial.rmse_heading_deg,
           trial.map, trial.wall_s);
       if (i == 0) {  // Figs. 19-21: the first seed's pictures
-        if (std::string error =
+        if (kernel::Status error =
                 CopyTrialFiles(dir, args.out, Pictures(), strategies[s].figure + "-");
-            !error.empty()) {
-          fmt::print(stderr, "splam experiment: {}\n", error);
+            !error.ok()) {
+          fmt::print(stderr, "splam experiment: {}\n", error.message());
           return kExitBadInput;
         }
       }
@@ -202,10 +202,10 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
                          [](const Trial& a, const Trial& b) { return a.rmse_m < b.rmse_m; });
     const std::string dir = TrialDir(
         args.out, strategies[s], args.seed + static_cast<std::uint64_t>(worst - trials[s].begin()));
-    if (std::string error =
+    if (kernel::Status error =
             CopyTrialFiles(dir, args.out, Pictures(), strategies[s].figure + "-worst-");
-        !error.empty()) {
-      fmt::print(stderr, "splam experiment: {}\n", error);
+        !error.ok()) {
+      fmt::print(stderr, "splam experiment: {}\n", error.message());
       return kExitBadInput;
     }
   }
@@ -233,10 +233,10 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
       fmt::format("{}: SPLAM strategies, {} trials (paper 003 Fig. 22)", world.name, args.runs);
   plot.x_label = "trial";
   plot.panel_height_px = 150.0;
-  if (std::string error =
+  if (kernel::Status error =
           io::SavePlot(panels, plot, {args.out + "/fig22.svg", args.out + "/fig22.png"});
-      !error.empty()) {
-    fmt::print(stderr, "splam experiment: {}\n", error);
+      !error.ok()) {
+    fmt::print(stderr, "splam experiment: {}\n", error.message());
     return kExitBadInput;
   }
 

@@ -149,15 +149,15 @@ CellRecord FinishCell(const std::string& cell_dir, int exit_status, double wall_
   if (exit_status > 128 && record.message.empty())
     record.message = "killed by signal " + std::to_string(exit_status - 128);
   // Unwritten, the cell counts as not finished and runs again on resume: say why.
-  if (std::string error = io::WriteTextFile(
+  if (kernel::Status error = io::WriteTextFile(
           cell_dir + "/cell.json", JsonText(nlohmann::json{{"exit_status", record.exit_status},
                                                            {"wall_s", record.wall_s},
                                                            {"message", record.message},
                                                            {"host", record.host}},
                                             2) +
                                        "\n");
-      !error.empty())
-    record.message = error + "; " + record.message;
+      !error.ok())
+    record.message = error.message() + "; " + record.message;
   return record;
 }
 
@@ -247,13 +247,11 @@ kernel::Status WriteSweepPlan(const std::string& dir, const io::Grid& grid, bool
     for (const std::string& a : cells[i].args) tsv << "\t" << a;
     tsv << "\n";
   }
-  for (const std::string& error : {io::WriteTextFile(grid_path, io::GridToYaml(grid)),
-                                   io::WriteTextFile(dir + "/cells.tsv", tsv.str())}) {
-    if (error.empty()) continue;
-    if (write_failed != nullptr) *write_failed = true;
-    return kernel::Status::Error(error);
-  }
-  return kernel::Status::Ok();
+  const kernel::Status written =
+      kernel::FirstError(io::WriteTextFile(grid_path, io::GridToYaml(grid)),
+                         io::WriteTextFile(dir + "/cells.tsv", tsv.str()));
+  if (!written.ok() && write_failed != nullptr) *write_failed = true;
+  return written;
 }
 
 kernel::Result<SweepPlan> ReadSweepPlan(const std::string& dir) {
@@ -267,7 +265,7 @@ kernel::Result<SweepPlan> ReadSweepPlan(const std::string& dir) {
   std::vector<SweepCell> cells = GridCells(plan.grid);
   std::string text;
   const std::string path = dir + "/cells.tsv";
-  if (std::string error = io::ReadTextFile(path, &text); !error.empty()) return R::Fail(error);
+  if (kernel::Status error = io::ReadTextFile(path, &text); !error.ok()) return R::Fail(error);
   std::istringstream lines(text);
   int number = 0;
   for (std::string line; std::getline(lines, line);) {

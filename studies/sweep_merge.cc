@@ -57,8 +57,8 @@ std::string ShortName(const std::string& figure, const std::vector<std::string>&
 
 // Strip plot of the figures against one axis: a panel per figure, a dot per successful cell at
 // its value of the axis (spread sideways by its index in the group), the medians in red.
-std::string AxisPlot(const MergedSweep& m, const std::vector<std::string>& figures,
-                     std::size_t axis, const std::string& path) {
+kernel::Status AxisPlot(const MergedSweep& m, const std::vector<std::string>& figures,
+                        std::size_t axis, const std::string& path) {
   const io::GridAxis& a = m.plan.grid.axes[axis];
   io::PlotOptions options;
   options.title = fmt::format("figures against {} ({} cells)", a.name, m.cells.size());
@@ -241,7 +241,7 @@ kernel::Result<std::vector<std::string>> WriteMergedSweep(const MergedSweep& m) 
     });
   }
   for (const auto& [name, text] : {std::pair{"table.csv", &csv}, std::pair{"table.md", &md}}) {
-    if (std::string error = io::WriteTextFile(m.dir + "/" + name, *text); !error.empty())
+    if (kernel::Status error = io::WriteTextFile(m.dir + "/" + name, *text); !error.ok())
       return R::Fail(error);
     written.push_back(m.dir + "/" + name);
   }
@@ -285,7 +285,7 @@ kernel::Result<std::vector<std::string>> WriteMergedSweep(const MergedSweep& m) 
                  "differ between cells).");
   for (std::size_t a = 0; a < m.plan.grid.axes.size() && !plotted.empty(); ++a) {
     const std::string path = m.dir + "/plot-" + std::to_string(a + 1) + ".svg";
-    if (std::string error = AxisPlot(m, plotted, a, path); !error.empty()) return R::Fail(error);
+    if (kernel::Status error = AxisPlot(m, plotted, a, path); !error.ok()) return R::Fail(error);
     if (kernel::Status s = page.EmbedImage(path, "figures against " + m.plan.grid.axes[a].name);
         !s.ok())
       return R::Fail(s.message());

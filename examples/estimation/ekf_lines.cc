@@ -75,8 +75,8 @@ int main(int argc, char** argv) {
   figure.DrawPath(splam::kernel::Poses(odometry), splam::io::palette::kOdometry, 1.5, "odometry");
   figure.DrawPath(splam::kernel::Poses(estimate), splam::io::palette::kEstimate, 1.5, "estimate");
   figure.DrawPath(splam::kernel::Poses(truth), splam::io::palette::kTrue, 1.0, "ground truth");
-  if (const std::string error = figure.Save(picture); !error.empty()) {
-    std::fprintf(stderr, "%s\n", error.c_str());
+  if (const splam::kernel::Status error = figure.Save(picture); !error.ok()) {
+    std::fprintf(stderr, "%s\n", error.message().c_str());
     return 1;
   }
   std::printf("wrote %s\n", picture.c_str());

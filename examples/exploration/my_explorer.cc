@@ -177,10 +177,10 @@ int main(int argc, char** argv) {
                 100.0 * outcome.coverage(),
                 splam::exploration::TerminationName(run.termination).c_str(), run.message.c_str());
     if (std::string(explorer) == "longest") {
-      const std::string error = splam::runtime::SaveExplorationPicture(
+      const splam::kernel::Status error = splam::runtime::SaveExplorationPicture(
           world, outcome, splam::runtime::RunTitle(world, setup, outcome), {picture});
-      if (!error.empty()) {
-        std::fprintf(stderr, "%s\n", error.c_str());
+      if (!error.ok()) {
+        std::fprintf(stderr, "%s\n", error.message().c_str());
         return 1;
       }
       std::printf("wrote %s\n", picture.c_str());

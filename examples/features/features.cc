@@ -150,8 +150,8 @@ int main(int argc, char** argv) {
   for (const auto& [figure, name] :
        {std::pair{splines.get(), "-splines"}, std::pair{line_figure.get(), "-lines"}}) {
     for (const char* ext : {".svg", ".png"}) {
-      if (const std::string error = figure->Save(out + name + ext); !error.empty())
-        return Fail(error);
+      if (const kernel::Status error = figure->Save(out + name + ext); !error.ok())
+        return Fail(error.message());
       std::printf("wrote %s%s%s\n", out.c_str(), name, ext);
     }
   }

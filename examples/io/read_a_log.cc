@@ -24,9 +24,9 @@ std::string SimulateSmallLog(const std::string& path) {
   sim::Simulator simulator(caster, options, *world.start, 1);
   const sim::RouteRun run =
       sim::FollowRoute(&simulator, {world.route[0], world.route[1]}, sim::RouteOptions());
-  const std::string error =
+  const splam::kernel::Status error =
       splam::io::WriteCarmenLog(path, splam::io::MakeCarmenLog(run.frames, options));
-  return error.empty() ? path : "";
+  return error.ok() ? path : "";
 }
 
 }  // namespace
@@ -93,8 +93,8 @@ int main(int argc, char** argv) {
   io::Figure figure(area, figure_options);
   figure.DrawPoints(points, io::palette::kScan, 0.8, "scans (every 20th)");
   figure.DrawPath(io::Poses(odometry), io::palette::kOdometry, 1.0, "odometry");
-  if (const std::string error = figure.Save(picture); !error.empty()) {
-    std::fprintf(stderr, "%s\n", error.c_str());
+  if (const splam::kernel::Status error = figure.Save(picture); !error.ok()) {
+    std::fprintf(stderr, "%s\n", error.message().c_str());
     return 2;
   }
   std::printf("wrote %s\n", picture.c_str());
@@ -103,8 +103,8 @@ int main(int argc, char** argv) {
   const std::string bag =
       (std::filesystem::path(picture).parent_path() / "example_io.bag").string();
   io::RosBagWriteStats written;
-  if (const std::string error = io::WriteRosBag(log, bag, {}, &written); !error.empty()) {
-    std::fprintf(stderr, "%s\n", error.c_str());
+  if (const splam::kernel::Status error = io::WriteRosBag(log, bag, {}, &written); !error.ok()) {
+    std::fprintf(stderr, "%s\n", error.message().c_str());
     return 2;
   }
   std::printf("wrote %s: %d scans, %d odometry poses\n", bag.c_str(), written.scans,

@@ -73,8 +73,8 @@ int main(int argc, char** argv) {
   figure.DrawPath(odometry, splam::io::palette::kOdometry, 1.5, "odometry");
   figure.DrawPath(truth, splam::io::palette::kTrue, 1.5, "ground truth");
   figure.DrawRobot(last.true_pose, options.robot.radius_m, splam::io::palette::kTrue);
-  if (const std::string error_message = figure.Save(picture); !error_message.empty()) {
-    std::fprintf(stderr, "%s\n", error_message.c_str());
+  if (const splam::kernel::Status error_message = figure.Save(picture); !error_message.ok()) {
+    std::fprintf(stderr, "%s\n", error_message.message().c_str());
     return 1;
   }
   std::printf("wrote %s\n", picture.c_str());

@@ -9,8 +9,8 @@
 
 namespace splam::io::internal {
 
-std::string WriteCairo(const std::string& path, double width, double height,
-                       const std::function<void(cairo_t*)>& paint) {
+kernel::Status WriteCairo(const std::string& path, double width, double height,
+                          const std::function<void(cairo_t*)>& paint) {
   const std::string ext = std::filesystem::path(path).extension().string();
   cairo_surface_t* surface = nullptr;
   if (ext == ".svg") {
@@ -36,7 +36,7 @@ std::string WriteCairo(const std::string& path, double width, double height,
     return FileError(path, 0,
                      std::string("cannot write picture: ") + cairo_status_to_string(status));
   }
-  return "";
+  return {};
 }
 
 }  // namespace splam::io::internal

@@ -8,40 +8,47 @@
 
 namespace splam::io::internal {
 
-std::string ScanGeometryProblem(const kernel::Scan& s) {
-  if (s.size() == 0) return "a scan without beams";
+kernel::Status ScanGeometryProblem(const kernel::Scan& s) {
+  if (s.size() == 0) return kernel::Status::Error("a scan without beams");
   if (s.size() > kMaxBeams)
-    return std::to_string(s.size()) + " beams: more than the " + std::to_string(kMaxBeams) +
-           " of any 2-D laser";
+    return kernel::Status::Error(std::to_string(s.size()) + " beams: more than the " +
+                                 std::to_string(kMaxBeams) + " of any 2-D laser");
   if (!(s.max_range_m > 0.0 && s.max_range_m <= kMaxRangeM))
-    return "maximum range " + FormatDouble(s.max_range_m) + " m is not in (0, 1e4]";
+    return kernel::Status::Error("maximum range " + FormatDouble(s.max_range_m) +
+                                 " m is not in (0, 1e4]");
   if (!(s.min_range_m >= 0.0 && s.min_range_m < s.max_range_m))
-    return "minimum range " + FormatDouble(s.min_range_m) + " m is not in [0, " +
-           FormatDouble(s.max_range_m) + ") (the maximum range)";
+    return kernel::Status::Error("minimum range " + FormatDouble(s.min_range_m) +
+                                 " m is not in [0, " + FormatDouble(s.max_range_m) +
+                                 ") (the maximum range)");
   if (!(std::abs(s.start_angle_rad) <= 2.0 * kernel::kPi))
-    return "start angle " + FormatDouble(s.start_angle_rad) + " rad is not in [-2 pi, 2 pi]";
+    return kernel::Status::Error("start angle " + FormatDouble(s.start_angle_rad) +
+                                 " rad is not in [-2 pi, 2 pi]");
   if (s.size() > 1 && !(s.angular_step_rad > 0.0))
-    return "angular resolution " + FormatDouble(s.angular_step_rad) + " rad is not positive";
+    return kernel::Status::Error("angular resolution " + FormatDouble(s.angular_step_rad) +
+                                 " rad is not positive");
   if (s.size() > 1 && s.angular_step_rad < kMinAngularStepRad)
-    return "angular resolution " + FormatDouble(s.angular_step_rad) +
-           " rad is below 1e-4 rad (0.006 deg): no laser resolves that";
+    return kernel::Status::Error("angular resolution " + FormatDouble(s.angular_step_rad) +
+                                 " rad is below 1e-4 rad (0.006 deg): no laser resolves that");
   const double span =
       s.angular_step_rad * static_cast<double>(std::max<std::size_t>(s.size(), 1) - 1);
   if (span > 2.0 * kernel::kPi + 1e-9)
-    return std::to_string(s.size()) + " beams " + FormatDouble(s.angular_step_rad) +
-           " rad apart span " + FormatDouble(span * 180.0 / kernel::kPi) +
-           " deg, more than a full turn (a resolution in degrees instead of radians?)";
-  return "";
+    return kernel::Status::Error(
+        std::to_string(s.size()) + " beams " + FormatDouble(s.angular_step_rad) +
+        " rad apart span " + FormatDouble(span * 180.0 / kernel::kPi) +
+        " deg, more than a full turn (a resolution in degrees instead of radians?)");
+  return {};
 }
 
-std::string PoseProblem(const kernel::Pose2& pose, const std::string& what) {
+kernel::Status PoseProblem(const kernel::Pose2& pose, const std::string& what) {
   for (const double c : {pose.x(), pose.y()}) {
     if (!(std::abs(c) <= kMaxCoordinateM))
-      return what + " " + FormatDouble(c) + " is not finite or beyond +-1e+06 m";
+      return kernel::Status::Error(what + " " + FormatDouble(c) +
+                                   " is not finite or beyond +-1e+06 m");
   }
   if (!(std::abs(pose.theta()) <= kMaxHeadingRad))
-    return what + " heading " + FormatDouble(pose.theta()) + " is not finite or beyond +-1e4 rad";
-  return "";
+    return kernel::Status::Error(what + " heading " + FormatDouble(pose.theta()) +
+                                 " is not finite or beyond +-1e4 rad");
+  return {};
 }
 
 }  // namespace splam::io::internal

@@ -6,6 +6,7 @@
 
 #include "kernel/pose2.h"
 #include "kernel/scan.h"
+#include "kernel/status.h"
 
 // What the readers accept as a robot's: beyond these a value is not physical (coordinates of
 // 1000 km, headings of 1600 turns, ranges of 10 km) and larger ones overflowed the map's
@@ -22,14 +23,14 @@ inline constexpr double kMinAngularStepRad = 1e-4;
 // turn); one scan of 200,000 beams took 30-60 s through a SLAM step.
 inline constexpr std::size_t kMaxBeams = 20000;
 
-// Empty when the beams' geometry is plausible: at least one beam, a maximum range in (0, 10 km]
+// Ok when the beams' geometry is plausible: at least one beam, a maximum range in (0, 10 km]
 // above a minimum range of 0 or more, a start angle in [-2 pi, 2 pi], a positive step and beams
 // within one turn (an angular resolution written in
 // degrees, 0.36 for 0.36 deg, wrapped the scan 360 times and made the curve fits run out of
 // memory); else what is wrong.
-std::string ScanGeometryProblem(const kernel::Scan& scan);
-// Empty when the pose's coordinates and heading are finite and within the bounds above.
-std::string PoseProblem(const kernel::Pose2& pose, const std::string& what);
+kernel::Status ScanGeometryProblem(const kernel::Scan& scan);
+// Ok when the pose's coordinates and heading are finite and within the bounds above.
+kernel::Status PoseProblem(const kernel::Pose2& pose, const std::string& what);
 
 }  // namespace splam::io::internal
 

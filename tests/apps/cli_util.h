@@ -49,13 +49,13 @@ inline fs::path Temp(const std::string& name) {
 
 // Writes `text` to dir/name and returns the path.
 inline std::string WriteIn(const fs::path& dir, const std::string& name, const std::string& text) {
-  EXPECT_EQ(io::WriteTextFile((dir / name).string(), text), "");
+  EXPECT_EQ(io::WriteTextFile((dir / name).string(), text).message(), "");
   return (dir / name).string();
 }
 
 inline std::string Slurp(const fs::path& p) {
   std::string text;
-  EXPECT_EQ(io::ReadTextFile(p.string(), &text), "") << p;
+  EXPECT_EQ(io::ReadTextFile(p.string(), &text).message(), "") << p;
   return text;
 }
 

@@ -65,7 +65,8 @@ TEST(SplamCli, SimulateWithRouteFileLaserChoiceAndSonar) {
   const fs::path dir = Temp("route");
   fs::create_directories(dir);
   ASSERT_EQ(
-      io::WriteTextFile((dir / "route.txt").string(), "# start pose then waypoints\n1 6 0\n5 6\n"),
+      io::WriteTextFile((dir / "route.txt").string(), "# start pose then waypoints\n1 6 0\n5 6\n")
+          .message(),
       "");
   const Output r = Splam("simulate --world office --route " + (dir / "route.txt").string() +
                          " --laser lms200 --sonar --out " + (dir / "run").string());
@@ -83,7 +84,8 @@ TEST(SplamCli, BadInputGivesAClearMessageAndExitCode2) {
   const fs::path dir = Temp("bad");
   fs::create_directories(dir);
   ASSERT_EQ(io::WriteTextFile((dir / "w.yaml").string(),
-                              "obstacles:\n  - circle: {center: [1, 1], radius: -2}\n"),
+                              "obstacles:\n  - circle: {center: [1, 1], radius: -2}\n")
+                .message(),
             "");
   Output r =
       Splam("simulate --world " + (dir / "w.yaml").string() + " --out " + (dir / "o").string());
@@ -96,19 +98,20 @@ TEST(SplamCli, BadInputGivesAClearMessageAndExitCode2) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.text.find("atlantis: not a built-in world"), std::string::npos) << r.text;
 
-  ASSERT_EQ(io::WriteTextFile((dir / "route.txt").string(), "1 6 0\n5 six\n"), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "route.txt").string(), "1 6 0\n5 six\n").message(), "");
   r = Splam("simulate --world office --route " + (dir / "route.txt").string() + " --out " +
             (dir / "o").string());
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.text.find("route.txt:2: 'six' is not a finite number"), std::string::npos) << r.text;
 
-  ASSERT_EQ(io::WriteTextFile((dir / "bad.clf").string(), "ODOM 1 2 3 0 0 0 1 h 1\nFLASER 3 1 2\n"),
+  ASSERT_EQ(io::WriteTextFile((dir / "bad.clf").string(), "ODOM 1 2 3 0 0 0 1 h 1\nFLASER 3 1 2\n")
+                .message(),
             "");
   r = Splam("render --log " + (dir / "bad.clf").string() + " --out " + (dir / "x.png").string());
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.text.find("bad.clf:2: FLASER: line ends early"), std::string::npos) << r.text;
 
-  ASSERT_EQ(io::WriteTextFile((dir / "plan.png").string(), "not an image"), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "plan.png").string(), "not an image").message(), "");
   r = Splam("simulate --world " + (dir / "plan.png").string() + " --route " +
             (dir / "route.txt").string());
   EXPECT_EQ(r.status, 2);
@@ -126,7 +129,7 @@ TEST(SplamCli, CollisionStopsTheRunButWritesWhatWasDone) {
   const fs::path dir = Temp("collide");
   fs::create_directories(dir);
   // Straight through the office wall at y = 5.
-  ASSERT_EQ(io::WriteTextFile((dir / "route.txt").string(), "1 6 -1.5707963\n1 2\n"), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "route.txt").string(), "1 6 -1.5707963\n1 2\n").message(), "");
   const Output r = Splam("simulate --world office --route " + (dir / "route.txt").string() +
                          " --out " + (dir / "o").string());
   EXPECT_EQ(r.status, 3) << r.text;
@@ -149,8 +152,10 @@ TEST(SplamCli, RenderDrawsWorldsAndLogs) {
   EXPECT_GT(fs::file_size(dir / "r.svg"), 1000u);
   EXPECT_EQ(Splam("render").status, 2);
   // An empty log, a directory or binary junk drew a blank picture with exit 0.
-  ASSERT_EQ(io::WriteTextFile((dir / "empty.clf").string(), ""), "");
-  ASSERT_EQ(io::WriteTextFile((dir / "junk.clf").string(), std::string("\x7f\x01\x02\0x", 5)), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "empty.clf").string(), "").message(), "");
+  ASSERT_EQ(
+      io::WriteTextFile((dir / "junk.clf").string(), std::string("\x7f\x01\x02\0x", 5)).message(),
+      "");
   for (const std::string log : {"empty.clf", "junk.clf", "."}) {
     const Output bad =
         Splam("render --log " + (dir / log).string() + " --out " + (dir / "bad.png").string());
@@ -237,7 +242,7 @@ TEST(SplamCli, SlamWithLinesOnASimulatedOfficeBeatsOdometry) {
                  io::FormatDouble(m.x()) + " " + io::FormatDouble(m.y()) + " 0 0 0 " +
                  io::FormatDouble(m.theta()) + "\n";
   }
-  ASSERT_EQ(io::WriteTextFile((dir / "run.relations").string(), relations), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "run.relations").string(), relations).message(), "");
   const Output e =
       Splam("eval " + (dir / "ekf").string() + " --relations " + (dir / "run.relations").string());
   ASSERT_EQ(e.status, 0) << e.text;
@@ -400,7 +405,7 @@ TEST(SplamCli, ABadLineHalfwayOrCtrlCStillWritesTheWorkDone) {
   text.insert(half + 1, "ODOM 1 2\n");
   const int bad_line =
       static_cast<int>(std::count(text.begin(), text.begin() + half + 1, '\n')) + 1;
-  ASSERT_EQ(io::WriteTextFile((dir / "cut.clf").string(), text), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "cut.clf").string(), text).message(), "");
   Output r = Splam("slam --method ekf-lines " + (dir / "cut.clf").string() + " --out " +
                    (dir / "cut").string());
   EXPECT_EQ(r.status, 3) << r.text;
@@ -452,7 +457,8 @@ TEST(SplamCli, BytesThatAreNotUtf8AreWrittenAsReplacementCharacters) {
   const std::string replaced = "caf\xef\xbf\xbd";  // "caf" and U+FFFD
   ASSERT_EQ(io::WriteTextFile((dir / "w.yaml").string(),
                               "name: caf\xe9\nstart: [1, 1, 0]\nroute: [[4, 1]]\nobstacles:\n"
-                              "  - polyline: [[0, 0], [5, 0], [5, 3], [0, 3], [0, 0]]\n"),
+                              "  - polyline: [[0, 0], [5, 0], [5, 3], [0, 3], [0, 0]]\n")
+                .message(),
             "");
   const Output simulated =
       Splam("simulate --world " + (dir / "w.yaml").string() + " --out " + (dir / "sim").string());
@@ -471,7 +477,7 @@ TEST(SplamCli, BytesThatAreNotUtf8AreWrittenAsReplacementCharacters) {
   const std::size_t half = text.find("\nROBOTLASER1", text.size() / 2);
   ASSERT_NE(half, std::string::npos);
   text.insert(half + 1, "\xff\xfe\x01 junk\n");
-  ASSERT_EQ(io::WriteTextFile((dir / "junk.clf").string(), text), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "junk.clf").string(), text).message(), "");
   const Output junk = Splam("slam --method graph " + (dir / "junk.clf").string() + " --out " +
                             (dir / "junk").string());
   EXPECT_EQ(junk.status, 3) << junk.text;
@@ -604,7 +610,7 @@ TEST(SplamCli, BackwardTimeStampsAreCountedNotANegativeSpan) {
   ASSERT_GT(span, 30.0);
   for (std::size_t i = log.messages.size() / 2; i < log.messages.size(); ++i)
     std::visit([&](auto& m) { m.stamp.ipc_timestamp_s -= span + 12.0; }, log.messages[i]);
-  ASSERT_EQ(io::WriteCarmenLog((dir / "back.clf").string(), log), "");
+  ASSERT_EQ(io::WriteCarmenLog((dir / "back.clf").string(), log).message(), "");
   const Output r = Splam("slam --method graph " + (dir / "back.clf").string() + " --out " +
                          (dir / "slam").string());
   ASSERT_EQ(r.status, 0) << r.text;
@@ -654,18 +660,19 @@ TEST(SplamCli, SlamAndEvalRejectBadInput) {
   const fs::path dir = Temp("slam_bad");
   fs::create_directories(dir);
   ASSERT_EQ(io::WriteTextFile((dir / "bad.clf").string(),
-                              "FLASER 3 1 2 3 0 0 0 0 0 0 1 h 1\nFLASER 2 1\n"),
+                              "FLASER 3 1 2 3 0 0 0 0 0 0 1 h 1\nFLASER 2 1\n")
+                .message(),
             "");
   // The scan before the bad line is processed and written: exit 3, stopped early.
   Output r = Splam("slam " + (dir / "bad.clf").string() + " --out " + (dir / "o").string());
   EXPECT_EQ(r.status, 3);
   EXPECT_NE(r.text.find("bad.clf:2: FLASER: line ends early"), std::string::npos) << r.text;
   EXPECT_TRUE(fs::exists(dir / "o" / "trajectory.txt"));
-  ASSERT_EQ(io::WriteTextFile((dir / "bad_first.clf").string(), "FLASER 2 1\n"), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "bad_first.clf").string(), "FLASER 2 1\n").message(), "");
   r = Splam("slam " + (dir / "bad_first.clf").string() + " --out " + (dir / "o1").string());
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.text.find("bad_first.clf:1: FLASER: line ends early"), std::string::npos) << r.text;
-  ASSERT_EQ(io::WriteTextFile((dir / "empty.clf").string(), "# nothing\n"), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "empty.clf").string(), "# nothing\n").message(), "");
   r = Splam("slam " + (dir / "empty.clf").string());
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.text.find("no laser scans"), std::string::npos) << r.text;
@@ -677,8 +684,8 @@ TEST(SplamCli, SlamAndEvalRejectBadInput) {
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.text.find("/dev/zero: is a device, not a file"), std::string::npos) << r.text;
   }
-  ASSERT_EQ(io::WriteTextFile((dir / "t.txt").string(), "0 0 0 0\n"), "");
-  ASSERT_EQ(io::WriteTextFile((dir / "r.relations").string(), "0 1 2\n"), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "t.txt").string(), "0 0 0 0\n").message(), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "r.relations").string(), "0 1 2\n").message(), "");
   r = Splam("eval --estimate " + (dir / "t.txt").string() + " --relations " +
             (dir / "r.relations").string());
   EXPECT_EQ(r.status, 2);
@@ -912,7 +919,7 @@ TEST(SplamCli, ConfigFileEditedChangesTheRunAndAMisspeltKeyIsRefused) {
   // One value edited: the run uses it and writes it into its own config.yaml.
   std::string edited = printed.text;
   edited.replace(edited.find("correction_gain: 0.3"), 20, "correction_gain: 0.55");
-  ASSERT_EQ(io::WriteTextFile((dir / "t.yaml").string(), edited), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "t.yaml").string(), edited).message(), "");
   const Output run =
       Splam("slam --method topological --max-scans 150 --config " + (dir / "t.yaml").string() +
             " --out " + (dir / "a").string() + " " + log);
@@ -938,7 +945,7 @@ TEST(SplamCli, ConfigFileEditedChangesTheRunAndAMisspeltKeyIsRefused) {
   const std::size_t at = misspelt.find("correction_gain");
   misspelt.replace(at, 15, "corection_gain");
   const int line = 1 + static_cast<int>(std::count(misspelt.begin(), misspelt.begin() + at, '\n'));
-  ASSERT_EQ(io::WriteTextFile((dir / "bad.yaml").string(), misspelt), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "bad.yaml").string(), misspelt).message(), "");
   const Output bad = Splam("slam --config " + (dir / "bad.yaml").string() + " --out " +
                            (dir / "d").string() + " " + log);
   EXPECT_EQ(bad.status, 2);
@@ -973,7 +980,7 @@ TEST(SplamCli, ExploreReadsItsConfigAndWritesTheOneItUsed) {
   EXPECT_NE(printed.text.find("ekf-lines:"), std::string::npos);
   std::string edited = printed.text;
   edited.replace(edited.find("max_nodes: 400"), 14, "max_nodes: 4");
-  ASSERT_EQ(io::WriteTextFile((dir / "e.yaml").string(), edited), "");
+  ASSERT_EQ(io::WriteTextFile((dir / "e.yaml").string(), edited).message(), "");
   const Output run = Splam("explore --world corridor --lsr-radius 2.5 --config " +
                            (dir / "e.yaml").string() + " --out " + (dir / "run").string());
   EXPECT_EQ(run.status, 3) << run.text;  // the node cap stops it

@@ -55,7 +55,7 @@ TEST(MoveTo, PropertyReachesTheGoalAlongTheLegFromAnyHeading) {
         random.Uniform(0.5, 3.0) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
     FreeRobot robot(start);
     OdometryLocalization localization;
-    ASSERT_EQ(localization.Start(robot.description(), start, robot.ReadOdometry()), "");
+    ASSERT_EQ(localization.Start(robot.description(), start, robot.ReadOdometry()).message(), "");
     kernel::Pose2 estimate = start;
     std::vector<TraceSample> trace;
     const MoveResult result =
@@ -83,7 +83,7 @@ TEST(TurnTowards, PropertyFacesTheTargetInPlace) {
         random.Uniform(0.3, 3.0) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
     FreeRobot robot(start);
     OdometryLocalization localization;
-    ASSERT_EQ(localization.Start(robot.description(), start, robot.ReadOdometry()), "");
+    ASSERT_EQ(localization.Start(robot.description(), start, robot.ReadOdometry()).message(), "");
     kernel::Pose2 estimate = start;
     std::vector<TraceSample> trace;
     ASSERT_TRUE(TurnTowards(target, options, &robot, &localization, &estimate, &trace));

@@ -313,11 +313,11 @@ TEST(CarmenLog, WritesAndReadsFiles) {
   const std::string path = ::testing::TempDir() + "/carmen_test.clf";
   CarmenLog log;
   log.messages.push_back(OdometryMessage{Pose2(1, 2, 0.5), 0, 0, 0, {}});
-  ASSERT_EQ(WriteCarmenLog(path, log), "");
+  ASSERT_EQ(WriteCarmenLog(path, log).message(), "");
   const CarmenReadResult r = ReadCarmenLog(path);
   ASSERT_TRUE(r.log.ok());
   EXPECT_EQ(r.log.value->Odometry()[0]->pose.ToVector(), Pose2(1, 2, 0.5).ToVector());
-  EXPECT_NE(WriteCarmenLog("/nonexistent/dir/x.clf", log), "");
+  EXPECT_NE(WriteCarmenLog("/nonexistent/dir/x.clf", log).message(), "");
   std::filesystem::remove(path);
 }
 

@@ -52,7 +52,7 @@ TEST(FloorPlan, RoomWithHoleGivesOuterAndInnerOutlines) {
 
 TEST(FloorPlan, BadInputsAreClearErrors) {
   const std::string text_file = TempPath("not_an_image.png");
-  ASSERT_EQ(WriteTextFile(text_file, "this is not a PNG"), "");
+  ASSERT_EQ(WriteTextFile(text_file, "this is not a PNG").message(), "");
   const Result<sim::World> garbage = ReadFloorPlan(text_file, FloorPlanOptions());
   ASSERT_FALSE(garbage.ok());
   EXPECT_EQ(garbage.error, text_file + ": not a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF image");
@@ -69,12 +69,12 @@ TEST(FloorPlan, BadInputsAreClearErrors) {
        {std::pair{"dicom.png", with_dicm_at_128("DICM", '\0')},
         std::pair{"dicom_at_128.pgm", with_dicm_at_128("P24\n+0 30\n255\n", '\xff')}}) {
     const std::string file = TempPath(name);
-    ASSERT_EQ(WriteTextFile(file, bytes), "");
+    ASSERT_EQ(WriteTextFile(file, bytes).message(), "");
     EXPECT_EQ(ReadFloorPlan(file, FloorPlanOptions()).error,
               file + ": not a PNG, JPEG, PGM/PPM/PBM, BMP or TIFF image");
   }
   const std::string truncated_png = TempPath("truncated.png");
-  ASSERT_EQ(WriteTextFile(truncated_png, std::string("\x89PNG\r\n\x1a\n\0\0", 10)), "");
+  ASSERT_EQ(WriteTextFile(truncated_png, std::string("\x89PNG\r\n\x1a\n\0\0", 10)).message(), "");
   EXPECT_EQ(ReadFloorPlan(truncated_png, FloorPlanOptions()).error,
             truncated_png + ": cannot decode image (not a PNG/JPEG/... file?)");
 

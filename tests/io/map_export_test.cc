@@ -32,14 +32,14 @@ TEST(MapExport, TextListsSegmentsAndCornersExactly) {
       {Eigen::Vector2d(0.1, 0.2), Eigen::Matrix2d::Identity(), 3}};
   const std::string text = FormatLineMapText(lines, corners);
   std::vector<std::vector<double>> segments, points;
-  const std::string error =
+  const kernel::Status error =
       ForEachDataLine(text, [&](int, const std::vector<std::string_view>& tokens) {
         std::vector<double> v;
-        EXPECT_EQ(ParseFiniteNumbers({tokens.begin() + 1, tokens.end()}, &v), "");
+        EXPECT_EQ(ParseFiniteNumbers({tokens.begin() + 1, tokens.end()}, &v).message(), "");
         (tokens[0] == "segment" ? segments : points).push_back(v);
-        return std::string();
+        return kernel::Status::Ok();
       });
-  ASSERT_EQ(error, "");
+  ASSERT_EQ(error.message(), "");
   ASSERT_EQ(segments.size(), 5u);
   ASSERT_EQ(points.size(), 1u);
   EXPECT_EQ(segments[3], (std::vector<double>{3.75, -1.5, 6.75, 0.375}));
@@ -52,7 +52,7 @@ TEST(MapExport, DxfReadsBackWithDxflib) {
   const std::vector<estimation::MapCorner> corners = {
       {Eigen::Vector2d(1, 2), Eigen::Matrix2d::Identity(), 1},
       {Eigen::Vector2d(-3, 4.5), Eigen::Matrix2d::Identity(), 1}};
-  ASSERT_EQ(WriteLineMapDxf(path, lines, corners), "");
+  ASSERT_EQ(WriteLineMapDxf(path, lines, corners).message(), "");
   const Result<DxfContent> back = ReadDxf(path);
   ASSERT_TRUE(back.ok()) << back.error;
   ASSERT_EQ(back.value->segments.size(), lines.size());
@@ -63,9 +63,9 @@ TEST(MapExport, DxfReadsBackWithDxflib) {
   ASSERT_EQ(back.value->points.size(), 2u);
   EXPECT_LT((back.value->points[1] - Eigen::Vector2d(-3, 4.5)).norm(), 1e-9);
   std::string text;
-  ASSERT_EQ(ReadTextFile(path, &text), "");
+  ASSERT_EQ(ReadTextFile(path, &text).message(), "");
   EXPECT_NE(text.find("AC1015"), std::string::npos);  // AutoCAD 2000
-  EXPECT_NE(WriteLineMapDxf("/nonexistent/dir/m.dxf", lines, corners), "");
+  EXPECT_NE(WriteLineMapDxf("/nonexistent/dir/m.dxf", lines, corners).message(), "");
   EXPECT_FALSE(ReadDxf("/nonexistent.dxf").ok());
 }
 
@@ -77,9 +77,9 @@ TEST(MapExport, DxfRefusesCoordinatesBeyondAMillionMetres) {
   for (const double huge : {1e300, 2e6, std::numeric_limits<double>::quiet_NaN()}) {
     auto lines = SomeLines();
     lines[2].end.y() = huge;
-    const std::string error = WriteLineMapDxf(path, lines, {});
-    EXPECT_EQ(error.rfind(path + ": ", 0), 0u) << huge << " " << error;
-    EXPECT_NE(error.find("not within +-1e6 m"), std::string::npos) << error;
+    const kernel::Status error = WriteLineMapDxf(path, lines, {});
+    EXPECT_EQ(error.message().rfind(path + ": ", 0), 0u) << huge << " " << error.message();
+    EXPECT_NE(error.message().find("not within +-1e6 m"), std::string::npos) << error.message();
     EXPECT_FALSE(std::filesystem::exists(path));
   }
 }
@@ -89,11 +89,11 @@ TEST(MapExport, DxfRefusesCoordinatesBeyondAMillionMetres) {
 TEST(MapExport, DxfIsDeterministic) {
   const std::string a = ::testing::TempDir() + "/map_export_a.dxf";
   const std::string b = ::testing::TempDir() + "/map_export_b.dxf";
-  ASSERT_EQ(WriteLineMapDxf(a, SomeLines(), {}), "");
-  ASSERT_EQ(WriteLineMapDxf(b, SomeLines(), {}), "");
+  ASSERT_EQ(WriteLineMapDxf(a, SomeLines(), {}).message(), "");
+  ASSERT_EQ(WriteLineMapDxf(b, SomeLines(), {}).message(), "");
   std::string text_a, text_b;
-  ASSERT_EQ(ReadTextFile(a, &text_a), "");
-  ASSERT_EQ(ReadTextFile(b, &text_b), "");
+  ASSERT_EQ(ReadTextFile(a, &text_a).message(), "");
+  ASSERT_EQ(ReadTextFile(b, &text_b).message(), "");
   EXPECT_EQ(text_a, text_b);
 }
 
@@ -119,11 +119,11 @@ TEST(Plot, WritesSvgAndPngWithTheRightSize) {
   const std::vector<PlotPanel> panels = {{"a", {{"one", palette::kTrue, {0, 1, 2}, {0, 1, 0}}}},
                                          {"b", {{"two", palette::kOdometry, {0, 2}, {-1, 1}}}},
                                          {"empty", {}}};
-  ASSERT_EQ(SavePlot(panels, options, {svg, png}), "");
+  ASSERT_EQ(SavePlot(panels, options, {svg, png}).message(), "");
   std::string text;
-  ASSERT_EQ(ReadTextFile(svg, &text), "");
+  ASSERT_EQ(ReadTextFile(svg, &text).message(), "");
   EXPECT_NE(text.find("<svg"), std::string::npos);
-  ASSERT_EQ(ReadTextFile(png, &text), "");
+  ASSERT_EQ(ReadTextFile(png, &text).message(), "");
   ASSERT_GT(text.size(), 24u);
   // PNG header: width and height, big endian, at bytes 16-23.
   auto be32 = [&](std::size_t at) {
@@ -134,7 +134,7 @@ TEST(Plot, WritesSvgAndPngWithTheRightSize) {
   };
   EXPECT_EQ(be32(16), 900);
   EXPECT_EQ(be32(20), 30 + 3 * (200 + 18) + 45);
-  EXPECT_NE(SavePlot(panels, options, {::testing::TempDir() + "/plot.bmp"}), "");
+  EXPECT_NE(SavePlot(panels, options, {::testing::TempDir() + "/plot.bmp"}).message(), "");
 }
 
 }  // namespace

@@ -24,7 +24,7 @@ std::string Draw(const std::string& file) {
   figure.DrawPoints({{5, 5}}, palette::kScan, 3.0, "points");
   figure.DrawRobot(kernel::Pose2(7.5, 2, 0), 0.267, palette::kTrue);
   const std::string path = ::testing::TempDir() + "/" + file;
-  EXPECT_EQ(figure.Save(path), "");
+  EXPECT_EQ(figure.Save(path).message(), "");
   return path;
 }
 
@@ -48,8 +48,8 @@ TEST(Figure, PngHasTheExpectedSizeAndContent) {
 TEST(Figure, SvgIsWrittenAndDeterministic) {
   const std::string a = Draw("render_a.svg"), b = Draw("render_b.svg");
   std::string ta, tb;
-  ASSERT_EQ(ReadTextFile(a, &ta), "");
-  ASSERT_EQ(ReadTextFile(b, &tb), "");
+  ASSERT_EQ(ReadTextFile(a, &ta).message(), "");
+  ASSERT_EQ(ReadTextFile(b, &tb).message(), "");
   EXPECT_NE(ta.find("<svg"), std::string::npos);
   EXPECT_NE(ta.find(" C "), std::string::npos);  // curved walls are drawn as Bezier curves
   // cairo numbers surfaces with a per-process counter; separate runs give identical files (see
@@ -67,9 +67,9 @@ TEST(Figure, SvgIsWrittenAndDeterministic) {
 
 TEST(Figure, UnknownFormatAndUnwritablePathAreErrors) {
   Figure figure(kernel::Box2{{0, 0}, {1, 1}});
-  EXPECT_NE(figure.Save(::testing::TempDir() + "/x.gif").find("unknown picture format"),
+  EXPECT_NE(figure.Save(::testing::TempDir() + "/x.gif").message().find("unknown picture format"),
             std::string::npos);
-  EXPECT_NE(figure.Save("/nonexistent/dir/x.png"), "");
+  EXPECT_NE(figure.Save("/nonexistent/dir/x.png").message(), "");
 }
 
 TEST(FigureOptions, Validate) {

@@ -50,7 +50,7 @@ TEST(RosBag, WriteThenReadGivesTheSameScansPosesAndMounting) {
   const CarmenLog log = ShortLog(20);
   const std::string path = TempBag("round_trip");
   RosBagWriteStats written;
-  ASSERT_EQ(WriteRosBag(log, path, {}, &written), "");
+  ASSERT_EQ(WriteRosBag(log, path, {}, &written).message(), "");
   EXPECT_EQ(written.scans, 20);
   EXPECT_EQ(written.odometry, 20);  // ODOM and the scans' poses share their times
   EXPECT_EQ(written.true_poses, 20);
@@ -189,14 +189,14 @@ bool SharedObjectLoaded(const char* name) {
 // second) does not load and unload four libraries for each.
 TEST(RosBag, TheEncryptorPluginsAreLoadedOncePerProcess) {
   const std::string path = TempBag("plugins");
-  ASSERT_EQ(WriteRosBag(ShortLog(2), path, {}, nullptr), "");
+  ASSERT_EQ(WriteRosBag(ShortLog(2), path, {}, nullptr).message(), "");
   ASSERT_TRUE(ReadRosBag(path).log.ok());
   EXPECT_TRUE(SharedObjectLoaded("rosbag_default_encryption_plugins"));
 }
 
 TEST(RosBag, WhatIsNotABagIsRefused) {
   const std::string junk = ::testing::TempDir() + "/junk.bag";
-  ASSERT_EQ(WriteTextFile(junk, "#ROSBAG V2.0\nnot really\n"), "");
+  ASSERT_EQ(WriteTextFile(junk, "#ROSBAG V2.0\nnot really\n").message(), "");
   RosBagReadResult read = ReadRosBag(junk);
   ASSERT_FALSE(read.log.ok());
   EXPECT_EQ(read.log.error.rfind(junk + ": not a readable ROS bag", 0), 0u) << read.log.error;
@@ -207,13 +207,13 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
   // Found by fuzz_bag: a header field longer than its header made Debian's rosbag read past its
   // buffer (ASan). The framing is checked before rosbag reads the file.
   const std::string good = TempBag("good");
-  ASSERT_EQ(WriteRosBag(ShortLog(3), good), "");
+  ASSERT_EQ(WriteRosBag(ShortLog(3), good).message(), "");
   std::string bytes;
-  ASSERT_EQ(ReadTextFile(good, &bytes), "");
-  EXPECT_EQ(RosBagFramingProblem(good), "");
+  ASSERT_EQ(ReadTextFile(good, &bytes).message(), "");
+  EXPECT_EQ(RosBagFramingProblem(good).message(), "");
   bytes[13 + 4] = '\x7f';  // the first field's length, past the first record's header
   const std::string broken = TempBag("broken");
-  ASSERT_EQ(WriteTextFile(broken, bytes), "");
+  ASSERT_EQ(WriteTextFile(broken, bytes).message(), "");
   read = ReadRosBag(broken);
   ASSERT_FALSE(read.log.ok());
   EXPECT_NE(read.log.error.find("record 1: a header field runs past its header"), std::string::npos)
@@ -221,7 +221,7 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
   // Found by fuzz_bag: an index entry whose offset is not a message of its chunk made rosbag's
   // Bag::readHeaderFromBuffer read outside the chunk (ASan). Walk the records to the first
   // index data record (op 4) and move its first entry's offset by one byte.
-  ASSERT_EQ(ReadTextFile(good, &bytes), "");
+  ASSERT_EQ(ReadTextFile(good, &bytes).message(), "");
   const auto u32 = [&](std::size_t at) {
     std::uint32_t v = 0;
     for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
@@ -239,7 +239,7 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
   std::size_t data = data_of_first('\x04');
   ASSERT_NE(data, std::string::npos) << "no index data record in the bag";
   ++bytes[data + 8];
-  ASSERT_EQ(WriteTextFile(broken, bytes), "");
+  ASSERT_EQ(WriteTextFile(broken, bytes).message(), "");
   read = ReadRosBag(broken);
   ASSERT_FALSE(read.log.ok());
   EXPECT_NE(read.log.error.find(": an index entry that is not a message of its chunk"),
@@ -256,13 +256,13 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
     internal::WriteMessages(compressed, "/scan", "/odom", "/ground_truth", small, true);
     ASSERT_TRUE(ReadRosBag(compressed).log.ok());
     std::string raw;
-    ASSERT_EQ(ReadTextFile(compressed, &raw), "");
+    ASSERT_EQ(ReadTextFile(compressed, &raw).message(), "");
     const std::size_t bz2 = raw.find("compression=bz2");
     ASSERT_NE(bz2, std::string::npos);
     const std::size_t size = raw.find("size=", bz2 > 40 ? bz2 - 40 : 0);
     ASSERT_LT(size, bz2 + 40);
     raw.replace(size + 5, 4, std::string("\x00\x00\x00\xf0", 4));
-    ASSERT_EQ(WriteTextFile(broken, raw), "");
+    ASSERT_EQ(WriteTextFile(broken, raw).message(), "");
     read = ReadRosBag(broken);
     ASSERT_FALSE(read.log.ok());
     EXPECT_NE(read.log.error.find("a compressed chunk claiming 4026531840 bytes uncompressed"),
@@ -281,11 +281,11 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
   // Found by fuzz_bag (in CI): a connection record's own header with a field past its end made
   // ros::Header::parse read past its buffer (ASan). The first connection record (op 7) of the
   // good bag gets a first field of 0x7f7f7f7f bytes in its data, the connection's header.
-  ASSERT_EQ(ReadTextFile(good, &bytes), "");
+  ASSERT_EQ(ReadTextFile(good, &bytes).message(), "");
   data = data_of_first('\x07');
   ASSERT_NE(data, std::string::npos) << "no connection record in the bag";
   bytes.replace(data, 4, "\x7f\x7f\x7f\x7f");
-  ASSERT_EQ(WriteTextFile(broken, bytes), "");
+  ASSERT_EQ(WriteTextFile(broken, bytes).message(), "");
   read = ReadRosBag(broken);
   ASSERT_FALSE(read.log.ok());
   EXPECT_NE(read.log.error.find(": its connection header: a header field runs past its header"),
@@ -296,12 +296,12 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
   bag.scans.front().angle_increment = 0.01;
   const std::string lying = TempBag("lying");
   internal::WriteMessages(lying, "/scan", "/odom", "/ground_truth", bag);
-  ASSERT_EQ(ReadTextFile(lying, &bytes), "");
+  ASSERT_EQ(ReadTextFile(lying, &bytes).message(), "");
   const std::string count("\xb5\0\0\0\0\0\0\x40", 8);  // 181 ranges, the first 2.0f
   const std::size_t ranges = bytes.find(count);
   ASSERT_NE(ranges, std::string::npos);
   bytes.replace(ranges, 4, "\xff\xff\xff\x7f");
-  ASSERT_EQ(WriteTextFile(lying, bytes), "");
+  ASSERT_EQ(WriteTextFile(lying, bytes).message(), "");
   read = ReadRosBag(lying);
   ASSERT_FALSE(read.log.ok());
   EXPECT_NE(read.log.error.find("a sensor_msgs/LaserScan message on /scan whose array lengths run "
@@ -311,7 +311,8 @@ TEST(RosBag, WhatIsNotABagIsRefused) {
   // Negative times have no ROS time.
   CarmenLog log = ShortLog(2);
   std::get<OdometryMessage>(log.messages[0]).stamp.ipc_timestamp_s = -1.0;
-  EXPECT_NE(WriteRosBag(log, TempBag("negative")).find("outside ROS time"), std::string::npos);
+  EXPECT_NE(WriteRosBag(log, TempBag("negative")).message().find("outside ROS time"),
+            std::string::npos);
 }
 
 }  // namespace

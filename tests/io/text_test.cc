@@ -46,8 +46,8 @@ TEST(FormatDouble, PropertyRoundTripsExactly) {
 }
 
 TEST(FileError, NamesFileAndLine) {
-  EXPECT_EQ(FileError("a.clf", 3, "bad"), "a.clf:3: bad");
-  EXPECT_EQ(FileError("a.clf", 0, "bad"), "a.clf: bad");
+  EXPECT_EQ(FileError("a.clf", 3, "bad").message(), "a.clf:3: bad");
+  EXPECT_EQ(FileError("a.clf", 0, "bad").message(), "a.clf: bad");
 }
 
 }  // namespace

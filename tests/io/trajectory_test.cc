@@ -45,7 +45,7 @@ TEST(Trajectory, BadLinesNameFileAndLine) {
 
 TEST(Trajectory, FileRoundTrip) {
   const std::string path = ::testing::TempDir() + "/trajectory_test.txt";
-  ASSERT_EQ(WriteTrajectory(path, {{0.0, kernel::Pose2(1, 2, 3)}}), "");
+  ASSERT_EQ(WriteTrajectory(path, {{0.0, kernel::Pose2(1, 2, 3)}}).message(), "");
   const auto back = ReadTrajectory(path);
   ASSERT_TRUE(back.ok());
   EXPECT_EQ(back.value->at(0).pose.x(), 1.0);
@@ -58,21 +58,22 @@ TEST(ReadTextFile, DevicesAreRefusedAndFilesAreBounded) {
   std::string text = "left over";
   for (const char* device : {"/dev/zero", "/dev/full", "/dev/null"}) {
     if (!std::filesystem::exists(device)) continue;
-    EXPECT_EQ(ReadTextFile(device, &text), std::string(device) + ": is a device, not a file");
+    EXPECT_EQ(ReadTextFile(device, &text).message(),
+              std::string(device) + ": is a device, not a file");
   }
   const std::string path = ::testing::TempDir() + "/read_text_file_test.txt";
-  ASSERT_EQ(WriteTextFile(path, std::string(3'000'000, 'x') + "end"), "");
-  ASSERT_EQ(ReadTextFile(path, &text, 3'000'003), "");
+  ASSERT_EQ(WriteTextFile(path, std::string(3'000'000, 'x') + "end").message(), "");
+  ASSERT_EQ(ReadTextFile(path, &text, 3'000'003).message(), "");
   EXPECT_EQ(text.size(), 3'000'003u);
   EXPECT_TRUE(text.ends_with("xend"));
-  EXPECT_EQ(ReadTextFile(path, &text, 3'000'002),
+  EXPECT_EQ(ReadTextFile(path, &text, 3'000'002).message(),
             path + ": holds more than 3000002 bytes, the most a text file may hold");
   EXPECT_TRUE(text.empty());
   const std::string fifo = ::testing::TempDir() + "/read_text_file_test.fifo";
   std::filesystem::remove(fifo);
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
   std::thread writer([&] { std::ofstream(fifo) << "0 1 2 3\n"; });
-  EXPECT_EQ(ReadTextFile(fifo, &text), "");
+  EXPECT_EQ(ReadTextFile(fifo, &text).message(), "");
   writer.join();
   EXPECT_EQ(text, "0 1 2 3\n");
 }

@@ -153,13 +153,15 @@ TEST(WorldFile, FloorPlanEntryIsRelativeToTheFile) {
   ASSERT_TRUE(cv::imwrite((dir / "plan.png").string(), image));
   ASSERT_EQ(WriteTextFile((dir / "w.yaml").string(),
                           "obstacles:\n  - floor_plan: {image: plan.png, resolution: 0.1}\n  - "
-                          "circle: {center: [0, 0], radius: 1}\n"),
+                          "circle: {center: [0, 0], radius: 1}\n")
+                .message(),
             "");
   const Result<sim::World> w = ReadWorldFile((dir / "w.yaml").string());
   ASSERT_TRUE(w.ok()) << w.error;
   EXPECT_EQ(w.value->obstacles.size(), 2u);
   ASSERT_EQ(WriteTextFile((dir / "bad.yaml").string(),
-                          "obstacles:\n  - floor_plan: {image: nothere.png, resolution: 0.1}\n"),
+                          "obstacles:\n  - floor_plan: {image: nothere.png, resolution: 0.1}\n")
+                .message(),
             "");
   const Result<sim::World> bad = ReadWorldFile((dir / "bad.yaml").string());
   ASSERT_FALSE(bad.ok());
@@ -192,7 +194,7 @@ TEST(LoadWorld, BuiltinNamesFilesAndErrors) {
             "atlantis: not a built-in world (corridor, office, office-long, office-doors, complex) "
             "and no such file");
   const std::string path = ::testing::TempDir() + "/load_world_test.yaml";
-  ASSERT_EQ(WriteWorldFile(path, *sim::BuiltinWorld("office")), "");
+  ASSERT_EQ(WriteWorldFile(path, *sim::BuiltinWorld("office")).message(), "");
   const Result<sim::World> office = LoadWorld(path);
   ASSERT_TRUE(office.ok()) << office.error;
   EXPECT_EQ(office.value->name, "office");

@@ -468,7 +468,7 @@ TEST(StepTrace, RecordsEachStepsPredictionCorrectionAndValuesWithTheirErrors) {
   const std::string path = ::testing::TempDir() + "/steps.csv";
   std::vector<double> times;
   for (const auto& p : replay.estimate) times.push_back(p.time_s);
-  ASSERT_EQ(WriteStepTrace(path, driver.steps(), times, replay.truth), "");
+  ASSERT_EQ(WriteStepTrace(path, driver.steps(), times, replay.truth).message(), "");
   std::ifstream in(path);
   std::string header, line;
   std::getline(in, header);

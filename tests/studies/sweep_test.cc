@@ -150,11 +150,11 @@ axes:
   kernel::Result<std::vector<std::string>> written = WriteMergedSweep(*merged.value);
   ASSERT_TRUE(written.ok()) << written.error;
   std::string csv;
-  ASSERT_EQ(io::ReadTextFile(dir + "/table.csv", &csv), "");
+  ASSERT_EQ(io::ReadTextFile(dir + "/table.csv", &csv).message(), "");
   EXPECT_EQ(csv.rfind("world,figure,n,mean,std,median,min,max,cells,failed,not_run\n", 0), 0u);
   EXPECT_NE(csv.find("\ncorridor," + figure + ",2,"), std::string::npos) << csv;
   std::string html;
-  ASSERT_EQ(io::ReadTextFile(dir + "/report.html", &html), "");
+  ASSERT_EQ(io::ReadTextFile(dir + "/report.html", &html).message(), "");
   EXPECT_NE(html.find("data:image/svg+xml;base64,"), std::string::npos);
   EXPECT_NE(html.find("cells/world-corridor_seed-1"), std::string::npos);
   EXPECT_EQ(html.find("http://"), std::string::npos);
@@ -174,7 +174,7 @@ TEST(SweepState, CellsTsvMustSayWhatGridYamlSays) {
   ASSERT_TRUE(WriteSweepPlan(dir.string(), grid).ok());
   const std::string tsv = (dir / "cells.tsv").string();
   std::string text;
-  ASSERT_EQ(io::ReadTextFile(tsv, &text), "");
+  ASSERT_EQ(io::ReadTextFile(tsv, &text).message(), "");
   const kernel::Result<SweepPlan> plan = ReadSweepPlan(dir.string());
   ASSERT_TRUE(plan.ok()) << plan.error;
   EXPECT_EQ(plan.value->cells.size(), 3u);
