@@ -25,10 +25,6 @@ double PieceLength(const CubicBezier& piece, double a, double b) {
   return half * sum;
 }
 
-void SetError(std::string* error, std::string message) {
-  if (error != nullptr) *error = std::move(message);
-}
-
 std::vector<CubicBezier> DecomposeToBezier(const std::vector<Eigen::Vector2d>& control_points,
                                            const std::vector<double>& knots) {
   // Algorithm A5.6 of Piegl & Tiller, The NURBS Book: insert every interior knot up to
@@ -71,43 +67,38 @@ std::vector<CubicBezier> DecomposeToBezier(const std::vector<Eigen::Vector2d>& c
 
 }  // namespace
 
-std::optional<CubicBSpline> CubicBSpline::Create(std::vector<Eigen::Vector2d> control_points,
-                                                 std::vector<double> knots, std::string* error) {
+Result<CubicBSpline> CubicBSpline::Create(std::vector<Eigen::Vector2d> control_points,
+                                          std::vector<double> knots) {
+  using R = Result<CubicBSpline>;
   const std::size_t n = control_points.size();
   if (n < 4) {
-    SetError(error, "a cubic B-spline needs at least 4 control points, got " + std::to_string(n));
-    return std::nullopt;
+    return R::Fail("a cubic B-spline needs at least 4 control points, got " + std::to_string(n));
   }
   if (knots.size() != n + 4) {
-    SetError(error,
-             "expected " + std::to_string(n + 4) + " knots, got " + std::to_string(knots.size()));
-    return std::nullopt;
+    return R::Fail("expected " + std::to_string(n + 4) + " knots, got " +
+                   std::to_string(knots.size()));
   }
   for (const Eigen::Vector2d& p : control_points) {
     if (!p.allFinite()) {
-      SetError(error, "control point is not finite");
-      return std::nullopt;
+      return R::Fail("control point is not finite");
     }
   }
   for (std::size_t i = 0; i < knots.size(); ++i) {
     if (!std::isfinite(knots[i]) || (i > 0 && knots[i] < knots[i - 1])) {
-      SetError(error, "knots must be finite and non-decreasing");
-      return std::nullopt;
+      return R::Fail("knots must be finite and non-decreasing");
     }
   }
   if (knots[0] != knots[3] || knots[n] != knots[n + 3] || knots[3] >= knots[n]) {
-    SetError(error, "knot vector must be clamped (end multiplicity 4) with a non-empty domain");
-    return std::nullopt;
+    return R::Fail("knot vector must be clamped (end multiplicity 4) with a non-empty domain");
   }
-  return CubicBSpline(std::move(control_points), std::move(knots));
+  return R::Ok(CubicBSpline(std::move(control_points), std::move(knots)));
 }
 
-std::optional<CubicBSpline> CubicBSpline::ClampedUniform(
-    std::vector<Eigen::Vector2d> control_points, std::string* error) {
+Result<CubicBSpline> CubicBSpline::ClampedUniform(std::vector<Eigen::Vector2d> control_points) {
+  using R = Result<CubicBSpline>;
   const std::size_t n = control_points.size();
   if (n < 4) {
-    SetError(error, "a cubic B-spline needs at least 4 control points, got " + std::to_string(n));
-    return std::nullopt;
+    return R::Fail("a cubic B-spline needs at least 4 control points, got " + std::to_string(n));
   }
   std::vector<double> knots(n + 4, 0.0);
   const std::size_t spans = n - 3;
@@ -115,7 +106,7 @@ std::optional<CubicBSpline> CubicBSpline::ClampedUniform(
     knots[i] = static_cast<double>(i - 3) / static_cast<double>(spans);
   }
   std::fill(knots.begin() + static_cast<std::ptrdiff_t>(n), knots.end(), 1.0);
-  return Create(std::move(control_points), std::move(knots), error);
+  return Create(std::move(control_points), std::move(knots));
 }
 
 void CubicBasis(const std::vector<double>& knots, std::size_t span, double t, double values[4]) {

@@ -9,6 +9,7 @@
 #include "kernel/cubic_bezier.h"
 #include "kernel/pose2.h"
 #include "kernel/shapes.h"
+#include "kernel/status.h"
 
 namespace splam::kernel {
 
@@ -21,13 +22,11 @@ class CubicBSpline {
   static constexpr int kDegree = 3;
 
   // Validates: at least 4 control points, knots.size() == control_points.size() + 4,
-  // non-decreasing, clamped, finite. Returns nullopt and sets *error otherwise.
-  static std::optional<CubicBSpline> Create(std::vector<Eigen::Vector2d> control_points,
-                                            std::vector<double> knots,
-                                            std::string* error = nullptr);
+  // non-decreasing, clamped, finite; else fails saying which.
+  static Result<CubicBSpline> Create(std::vector<Eigen::Vector2d> control_points,
+                                     std::vector<double> knots);
   // Clamped uniform knots on [0, 1]: 0,0,0,0, 1/(n-2), ..., 1,1,1,1. Needs >= 4 points.
-  static std::optional<CubicBSpline> ClampedUniform(std::vector<Eigen::Vector2d> control_points,
-                                                    std::string* error = nullptr);
+  static Result<CubicBSpline> ClampedUniform(std::vector<Eigen::Vector2d> control_points);
 
   const std::vector<Eigen::Vector2d>& control_points() const { return control_points_; }
   const std::vector<double>& knots() const { return knots_; }

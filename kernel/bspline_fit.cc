@@ -24,23 +24,17 @@ Status BSplineFitOptions::Validate() const {
 
 namespace {
 
-void SetError(std::string* error, std::string message) {
-  if (error != nullptr) *error = std::move(message);
-}
-
-// Chord-length parameters t_k and knots of the fit; false (with *error) for degenerate points.
-bool FitParametersAndKnots(const std::vector<Eigen::Vector2d>& points,
-                           const BSplineFitOptions& options, std::vector<double>* t_out,
-                           std::vector<double>* knots_out, std::string* error) {
+// Chord-length parameters t_k and knots of the fit; fails for degenerate points.
+Status FitParametersAndKnots(const std::vector<Eigen::Vector2d>& points,
+                             const BSplineFitOptions& options, std::vector<double>* t_out,
+                             std::vector<double>* knots_out) {
   const std::size_t m = points.size();
   if (m < 4) {
-    SetError(error, "a cubic B-spline fit needs at least 4 points, got " + std::to_string(m));
-    return false;
+    return Status::Error("a cubic B-spline fit needs at least 4 points, got " + std::to_string(m));
   }
   for (const Eigen::Vector2d& p : points) {
     if (!p.allFinite()) {
-      SetError(error, "point is not finite");
-      return false;
+      return Status::Error("point is not finite");
     }
   }
   // Chord-length parameters along a moving average of the points: on noisy data the raw chords
@@ -61,8 +55,7 @@ bool FitParametersAndKnots(const std::vector<Eigen::Vector2d>& points,
   std::size_t distinct = 1;
   for (std::size_t k = 1; k < m; ++k) distinct += t[k] > t[k - 1];
   if (!(length > 0.0) || distinct < 4) {
-    SetError(error, "the points are not spread along a curve (fewer than 4 distinct points)");
-    return false;
+    return Status::Error("the points are not spread along a curve (fewer than 4 distinct points)");
   }
   for (double& v : t) v /= length;
 
@@ -92,12 +85,11 @@ bool FitParametersAndKnots(const std::vector<Eigen::Vector2d>& points,
     if (knots[j] <= knots[j - 1]) knots[j] = std::nextafter(knots[j - 1], 2.0);
   }
   if (n > 4 && knots[n - 1] >= 1.0) {
-    SetError(error, "cannot place knots for these points");
-    return false;
+    return Status::Error("cannot place knots for these points");
   }
   *t_out = std::move(t);
   *knots_out = std::move(knots);
-  return true;
+  return Status::Ok();
 }
 
 // The normal matrix N^T N of the fit and the basis rows: row k of N is nonzero in columns
@@ -129,10 +121,12 @@ NormalEquations BuildNormalEquations(const std::vector<double>& t,
 
 }  // namespace
 
-std::optional<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& points,
-                                            const BSplineFitOptions& options, std::string* error) {
+Result<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& points,
+                                     const BSplineFitOptions& options) {
+  using R = Result<CubicBSpline>;
   std::vector<double> t, knots;
-  if (!FitParametersAndKnots(points, options, &t, &knots, error)) return std::nullopt;
+  if (Status bad = FitParametersAndKnots(points, options, &t, &knots); !bad.ok())
+    return R::Fail(bad);
   // Normal equations N^T N X = N^T D for all control points. The ends are not pinned to the
   // first and last measurement: a noisy end point would bend the end of the curve into a hook.
   const NormalEquations e = BuildNormalEquations(t, knots);
@@ -142,29 +136,27 @@ std::optional<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& 
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(e.ntn);
   const Eigen::MatrixXd x = ldlt.solve(ntd);
   if (ldlt.info() != Eigen::Success || !x.allFinite()) {
-    SetError(error, "the least-squares system is singular");
-    return std::nullopt;
+    return R::Fail("the least-squares system is singular");
   }
   std::vector<Eigen::Vector2d> control(static_cast<std::size_t>(x.rows()));
   for (Eigen::Index i = 0; i < x.rows(); ++i) control[static_cast<std::size_t>(i)] = x.row(i);
-  std::optional<CubicBSpline> spline =
-      CubicBSpline::Create(std::move(control), std::move(knots), error);
+  R spline = CubicBSpline::Create(std::move(control), std::move(knots));
   // A curve longer than max_length_ratio times the points' polyline (which noise only lengthens)
   // rings between them: refused, so that no later step samples a curve of kilometres.
   const double polyline = PolylineLength(points);
   if (spline && spline->Length() > options.max_length_ratio * polyline) {
-    SetError(error, "the fitted curve is " + std::to_string(spline->Length() / polyline) +
-                        " times as long as its points' polyline");
-    return std::nullopt;
+    return R::Fail("the fitted curve is " + std::to_string(spline->Length() / polyline) +
+                   " times as long as its points' polyline");
   }
   return spline;
 }
 
-std::optional<BSplineFitOperator> CubicBSplineFitOperator(
-    const std::vector<Eigen::Vector2d>& points, const BSplineFitOptions& options,
-    std::string* error) {
+Result<BSplineFitOperator> CubicBSplineFitOperator(const std::vector<Eigen::Vector2d>& points,
+                                                   const BSplineFitOptions& options) {
+  using R = Result<BSplineFitOperator>;
   std::vector<double> t, knots;
-  if (!FitParametersAndKnots(points, options, &t, &knots, error)) return std::nullopt;
+  if (Status bad = FitParametersAndKnots(points, options, &t, &knots); !bad.ok())
+    return R::Fail(bad);
   const NormalEquations e = BuildNormalEquations(t, knots);
   Eigen::MatrixXd nt = Eigen::MatrixXd::Zero(e.ntn.rows(), static_cast<Eigen::Index>(t.size()));
   for (std::size_t k = 0; k < t.size(); ++k)
@@ -172,10 +164,9 @@ std::optional<BSplineFitOperator> CubicBSplineFitOperator(
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(e.ntn);
   BSplineFitOperator op{std::move(knots), ldlt.solve(nt)};
   if (ldlt.info() != Eigen::Success || !op.m.allFinite()) {
-    SetError(error, "the least-squares system is singular");
-    return std::nullopt;
+    return R::Fail("the least-squares system is singular");
   }
-  return op;
+  return R::Ok(std::move(op));
 }
 
 void BSplineFitOptions::VisitFields(FieldVisitor& v) {

@@ -40,12 +40,11 @@ struct BSplineFitOptions {
 // minimising sum_k |C(t_k) - D_k|^2 (the curve's ends are fitted too, not pinned to noisy end
 // points). The number of control points is round(chord length / spacing) + 1, clamped to
 // [min_control_points, max_control_points] and to distinct / points_per_control_point (at least 4).
-// Fails (nullopt, *error set) for fewer than 4 points, non-finite points, fewer than 4
+// Fails, saying why, for fewer than 4 points, non-finite points, fewer than 4
 // distinct points along the chord (e.g. all points equal), or a curve longer than
 // max_length_ratio times the points' polyline.
-std::optional<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& points,
-                                            const BSplineFitOptions& options = {},
-                                            std::string* error = nullptr);
+Result<CubicBSpline> FitCubicBSpline(const std::vector<Eigen::Vector2d>& points,
+                                     const BSplineFitOptions& options = {});
 
 // The fit as a linear operator, for propagating covariances (EKF-SLAM with B-splines, SPEC §8):
 // with the parameters and knots of FitCubicBSpline, the control points are X_i = sum_k M(i, k) D_k
@@ -55,9 +54,8 @@ struct BSplineFitOperator {
   std::vector<double> knots;  // control points + 4
   Eigen::MatrixXd m;          // control points x data points
 };
-std::optional<BSplineFitOperator> CubicBSplineFitOperator(
-    const std::vector<Eigen::Vector2d>& points, const BSplineFitOptions& options = {},
-    std::string* error = nullptr);
+Result<BSplineFitOperator> CubicBSplineFitOperator(const std::vector<Eigen::Vector2d>& points,
+                                                   const BSplineFitOptions& options = {});
 
 }  // namespace splam::kernel
 

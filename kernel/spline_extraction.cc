@@ -19,22 +19,19 @@ Status SplineExtractionOptions::Validate() const {
   return Status::Ok();
 }
 
-std::optional<SplineCurve> ExtractCurve(const std::vector<Eigen::Vector2d>& points,
-                                        const SplineExtractionOptions& options,
-                                        std::string* error) {
-  std::optional<CubicBSpline> spline = FitCubicBSpline(points, options.fit, error);
-  if (!spline) return std::nullopt;
+Result<SplineCurve> ExtractCurve(const std::vector<Eigen::Vector2d>& points,
+                                 const SplineExtractionOptions& options) {
+  using R = Result<SplineCurve>;
+  Result<CubicBSpline> spline = FitCubicBSpline(points, options.fit);
+  if (!spline) return R::Fail(spline.error);
   const double polyline_m = PolylineLength(points);
-  if (!(spline->Length() <= kMaxLengthRatio * polyline_m)) {
-    if (error != nullptr)
-      *error = "the fit is " + std::to_string(spline->Length()) + " m long, more than " +
-               std::to_string(kMaxLengthRatio) + " times its points' path of " +
-               std::to_string(polyline_m) + " m";
-    return std::nullopt;
-  }
+  if (!(spline->Length() <= kMaxLengthRatio * polyline_m))
+    return R::Fail("the fit is " + std::to_string(spline->Length()) + " m long, more than " +
+                   std::to_string(kMaxLengthRatio) + " times its points' path of " +
+                   std::to_string(polyline_m) + " m");
   SplineCurve curve = DescribeCurve(std::move(*spline), options);
   curve.points = points;
-  return curve;
+  return R::Ok(std::move(curve));
 }
 
 SplineCurve DescribeCurve(CubicBSpline spline, const SplineExtractionOptions& options) {
@@ -58,7 +55,7 @@ SplineCurve Transformed(const SplineCurve& curve, const Pose2& a_T_b) {
 std::vector<SplineCurve> ExtractCurves(const Scan& scan, const SplineExtractionOptions& options) {
   std::vector<SplineCurve> curves;
   for (ScanSegment& segment : SegmentScan(scan, options.segmentation)) {
-    std::optional<SplineCurve> curve = ExtractCurve(segment.points, options);
+    Result<SplineCurve> curve = ExtractCurve(segment.points, options);
     if (!curve) continue;  // degenerate segment (e.g. repeated points): nothing to fit
     curve->beams = std::move(segment.beams);
     curves.push_back(std::move(*curve));

@@ -49,9 +49,8 @@ struct SplineCurve {
 // kMaxLengthRatio times longer than the polyline through them (a fit that diverged, e.g. on the
 // points of a scan whose beams wrap past a full turn: its samples once asked for 26 GB).
 inline constexpr double kMaxLengthRatio = 10.0;
-std::optional<SplineCurve> ExtractCurve(const std::vector<Eigen::Vector2d>& points,
-                                        const SplineExtractionOptions& options = {},
-                                        std::string* error = nullptr);
+Result<SplineCurve> ExtractCurve(const std::vector<Eigen::Vector2d>& points,
+                                 const SplineExtractionOptions& options = {});
 
 // The samples, curvature profile and features of a given spline (e.g. a map curve); `points`
 // and `beams` stay empty.

@@ -58,6 +58,12 @@ struct Result {
   static Result Fail(const Status& status) { return Fail(status.message()); }
   bool ok() const { return value.has_value(); }
   Status status() const { return ok() ? Status::Ok() : Status::Error(error); }
+  // The value, as std::optional gives it (ok() first).
+  explicit operator bool() const { return ok(); }
+  T& operator*() { return *value; }
+  const T& operator*() const { return *value; }
+  T* operator->() { return &*value; }
+  const T* operator->() const { return &*value; }
 };
 
 }  // namespace splam::kernel

@@ -42,9 +42,9 @@ struct LaserOptions {
   static LaserOptions Urg04lx();
   // SICK LMS-200: 180 deg at `resolution_deg` (0.5 -> 361 beams, 1 -> 181), 8 m, sigma 1 cm.
   static LaserOptions Lms200(double resolution_deg = 0.5);
-  // Ok when valid, else the first problem.
   // Describes every field (key, unit, comment) to a visitor: the YAML form.
   void VisitFields(kernel::FieldVisitor& v);
+  // Ok when valid, else the first problem.
   kernel::Status Validate() const;
 };
 

@@ -123,7 +123,7 @@ std::optional<CubicBSpline> EkfBSplineSlam::TrySplineOf(const Landmark& landmark
   std::vector<Eigen::Vector2d> control(static_cast<std::size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i)
     control[static_cast<std::size_t>(i)] = ekf_.state().segment<2>(landmark.index + 2 * i);
-  return CubicBSpline::Create(std::move(control), landmark.knots);
+  return CubicBSpline::Create(std::move(control), landmark.knots).value;
 }
 
 CubicBSpline EkfBSplineSlam::SplineOf(const Landmark& landmark) const {
@@ -406,7 +406,7 @@ void EkfBSplineSlam::SelectBeams(const kernel::Scan& scan, const kernel::Pose2& 
 bool EkfBSplineSlam::AddSpline(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                                const std::vector<std::size_t>& beams) {
   const BeamPoints b = Beams(scan, robot_T_laser, beams);
-  const std::optional<kernel::BSplineFitOperator> op =
+  const kernel::Result<kernel::BSplineFitOperator> op =
       kernel::CubicBSplineFitOperator(b.points, options_.map_fit);
   if (!op) return false;
   const Eigen::Index n = op->m.rows();
@@ -461,7 +461,7 @@ bool EkfBSplineSlam::ExtendSpline(Landmark* landmark, const kernel::Scan& scan,
     points.push_back(old.Point(u));
   }
   if (at_end) points.insert(points.end(), b.points.begin(), b.points.end());
-  const std::optional<kernel::BSplineFitOperator> op =
+  const kernel::Result<kernel::BSplineFitOperator> op =
       kernel::CubicBSplineFitOperator(points, options_.map_fit);
   if (!op) return false;
 

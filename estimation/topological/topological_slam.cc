@@ -58,7 +58,7 @@ std::optional<CubicBSpline> Spliced(const CubicBSpline& map, std::size_t drop_fr
   points.insert(points.end(), kept.begin() + static_cast<std::ptrdiff_t>(drop_front),
                 kept.end() - static_cast<std::ptrdiff_t>(drop_back));
   points.insert(points.end(), tail.begin(), tail.end());
-  return CubicBSpline::Create(std::move(points), std::move(knots));
+  return CubicBSpline::Create(std::move(points), std::move(knots)).value;
 }
 
 // The parts of an observed curve (world frame) that continue a map curve beyond the matched

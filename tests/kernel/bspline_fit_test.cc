@@ -26,9 +26,8 @@ TEST(FitCubicBSpline, PropertyPointsFromAKnownSplineAreFittedBack) {
     // Control points about as dense as the true curve's, so that the fit can follow it.
     BSplineFitOptions options;
     options.control_point_spacing_m = 0.1;
-    std::string error;
-    const auto fit = FitCubicBSpline(points, options, &error);
-    ASSERT_TRUE(fit.has_value()) << error;
+    const auto fit = FitCubicBSpline(points, options);
+    ASSERT_TRUE(fit) << fit.error;
     // Every data point is within 2 mm of the fit, and the fit within 2 mm of the true curve.
     double worst = 0.0;
     for (const auto& q : points) worst = std::max(worst, fit->Closest(q).distance);
@@ -55,19 +54,21 @@ TEST(FitCubicBSpline, ControlPointCountGrowsWithLength) {
 }
 
 TEST(FitCubicBSpline, DegenerateInputsGiveDefinedResults) {
-  std::string error;
-  EXPECT_FALSE(FitCubicBSpline({{0, 0}, {1, 0}, {2, 0}}, {}, &error));
-  EXPECT_NE(error.find("at least 4 points"), std::string::npos);
-  EXPECT_FALSE(
-      FitCubicBSpline(std::vector<Eigen::Vector2d>(10, Eigen::Vector2d(1, 1)), {}, &error));
-  EXPECT_NE(error.find("fewer than 4 distinct"), std::string::npos);
-  EXPECT_FALSE(FitCubicBSpline({{0, 0}, {1, NAN}, {2, 0}, {3, 0}}, {}, &error));
+  const auto three = FitCubicBSpline({{0, 0}, {1, 0}, {2, 0}});
+  EXPECT_FALSE(three);
+  EXPECT_NE(three.error.find("at least 4 points"), std::string::npos);
+  const auto same = FitCubicBSpline(std::vector<Eigen::Vector2d>(10, Eigen::Vector2d(1, 1)));
+  EXPECT_FALSE(same);
+  EXPECT_NE(same.error.find("fewer than 4 distinct"), std::string::npos);
+  const auto nan = FitCubicBSpline({{0, 0}, {1, NAN}, {2, 0}, {3, 0}});
+  EXPECT_FALSE(nan);
+  EXPECT_NE(nan.error.find("not finite"), std::string::npos);
   // Duplicates among distinct points and collinear points are fine, and nothing is NaN.
   const auto dup =
       FitCubicBSpline({{0, 0}, {0, 0}, {1, 0}, {1, 0}, {2, 0}, {3, 0}, {3, 0}, {4, 0}});
-  ASSERT_TRUE(dup.has_value());
+  ASSERT_TRUE(dup.ok());
   const auto line = FitCubicBSpline({{0, 0}, {1, 1}, {2, 2}, {3, 3}, {4, 4}});
-  ASSERT_TRUE(line.has_value());
+  ASSERT_TRUE(line.ok());
   for (const auto* s : {&*dup, &*line}) {
     for (const auto& c : s->control_points()) EXPECT_TRUE(c.allFinite());
     for (const auto& q : s->ResampleByArcLength(0.01)) EXPECT_TRUE(q.allFinite());
@@ -104,9 +105,8 @@ TEST(FitCubicBSpline, PropertySparsePointsDoNotRing) {
     interpolating.max_length_ratio = 1e9;
     const auto old = FitCubicBSpline(points, interpolating);
     rang += old && old->Length() > 2 * polyline;
-    std::string error;
-    const auto fit = FitCubicBSpline(points, {}, &error);
-    ASSERT_TRUE(fit.has_value()) << "trial " << trial << ": " << error;
+    const auto fit = FitCubicBSpline(points);
+    ASSERT_TRUE(fit) << "trial " << trial << ": " << fit.error;
     EXPECT_LT(fit->Length(), 1.05 * polyline) << "trial " << trial;
     // It still follows the wall: every point within 0.1 m of the curve's samples.
     const std::vector<Eigen::Vector2d> samples = fit->ResampleByArcLength(0.02);
@@ -126,11 +126,11 @@ TEST(FitCubicBSpline, RingingFitsAreRefused) {
   int refused = 0;
   for (int trial = 0; trial < 300; ++trial) {
     const std::vector<Eigen::Vector2d> points = GrazingWall(random);
-    std::string error;
-    const auto fit = FitCubicBSpline(points, interpolating, &error);
+    const auto fit = FitCubicBSpline(points, interpolating);
     if (fit) continue;
     ++refused;
-    EXPECT_NE(error.find("times as long as its points' polyline"), std::string::npos) << error;
+    EXPECT_NE(fit.error.find("times as long as its points' polyline"), std::string::npos)
+        << fit.error;
   }
   EXPECT_GT(refused, 10);
 }
@@ -161,7 +161,7 @@ TEST(CubicBSplineFitOperator, PropertyReproducesTheFitAndIsAffine) {
       EXPECT_NEAR(op->m.row(i).sum(), 1.0, 1e-9);
     }
   }
-  EXPECT_FALSE(CubicBSplineFitOperator({{0, 0}, {0, 0}, {0, 0}, {0, 0}}).has_value());
+  EXPECT_FALSE(CubicBSplineFitOperator({{0, 0}, {0, 0}, {0, 0}, {0, 0}}).ok());
 }
 
 TEST(BSplineFitOptions, Validate) {

@@ -16,7 +16,7 @@ std::vector<Eigen::Vector2d> RandomPoints(Random* random, int n) {
 TEST(CubicBSpline, ClampedUniformPassesThroughItsEnds) {
   const std::vector<Eigen::Vector2d> control = {{0, 0}, {1, 2}, {2, -1}, {3, 1}, {4, 0}};
   const auto spline = CubicBSpline::ClampedUniform(control);
-  ASSERT_TRUE(spline.has_value());
+  ASSERT_TRUE(spline.ok());
   EXPECT_TRUE(spline->PointDeBoor(spline->DomainStart()).isApprox(control.front()));
   EXPECT_TRUE(spline->Point(spline->DomainStart()).isApprox(control.front()));
   EXPECT_TRUE(spline->Point(spline->DomainEnd()).isApprox(control.back()));
@@ -44,7 +44,7 @@ TEST(CubicBSpline, PropertyBezierPiecesReproduceDeBoor) {
     knots.insert(knots.end(), interior.begin(), interior.end());
     knots.insert(knots.end(), {1, 1, 1, 1});
     const auto spline = CubicBSpline::Create(RandomPoints(&random, n), knots);
-    ASSERT_TRUE(spline.has_value());
+    ASSERT_TRUE(spline.ok());
     const auto& pieces = spline->pieces();
     // Distinct spans in order.
     std::vector<double> spans = {0.0};
@@ -64,16 +64,20 @@ TEST(CubicBSpline, PropertyBezierPiecesReproduceDeBoor) {
 }
 
 TEST(CubicBSpline, CreateRejectsBadInput) {
-  std::string error;
-  EXPECT_FALSE(CubicBSpline::ClampedUniform({{0, 0}, {1, 1}, {2, 2}}, &error));
-  EXPECT_NE(error.find("at least 4"), std::string::npos);
+  const auto few = CubicBSpline::ClampedUniform({{0, 0}, {1, 1}, {2, 2}});
+  EXPECT_FALSE(few);
+  EXPECT_NE(few.error.find("at least 4"), std::string::npos);
   const std::vector<Eigen::Vector2d> four = {{0, 0}, {1, 1}, {2, 2}, {3, 3}};
-  EXPECT_FALSE(CubicBSpline::Create(four, {0, 0, 0, 0, 1, 1, 1}, &error));       // count
-  EXPECT_FALSE(CubicBSpline::Create(four, {0, 0, 0, 0.5, 1, 1, 1, 1}, &error));  // not clamped
-  EXPECT_FALSE(CubicBSpline::Create(four, {0, 0, 0, 0, 1, 1, 1, 0.5}, &error));  // decreasing
-  EXPECT_FALSE(
-      CubicBSpline::Create({{0, 0}, {NAN, 1}, {2, 2}, {3, 3}}, {0, 0, 0, 0, 1, 1, 1, 1}, &error));
-  EXPECT_TRUE(CubicBSpline::Create(four, {0, 0, 0, 0, 1, 1, 1, 1}, &error));
+  const auto says = [](const Result<CubicBSpline>& made, const std::string& why) {
+    return !made && made.error.find(why) != std::string::npos;
+  };
+  EXPECT_TRUE(says(CubicBSpline::Create(four, {0, 0, 0, 0, 1, 1, 1}), "expected 8 knots"));
+  EXPECT_TRUE(says(CubicBSpline::Create(four, {0, 0, 0, 0.5, 1, 1, 1, 1}), "clamped"));
+  EXPECT_TRUE(says(CubicBSpline::Create(four, {0, 0, 0, 0, 1, 1, 1, 0.5}), "non-decreasing"));
+  EXPECT_TRUE(
+      says(CubicBSpline::Create({{0, 0}, {NAN, 1}, {2, 2}, {3, 3}}, {0, 0, 0, 0, 1, 1, 1, 1}),
+           "not finite"));
+  EXPECT_TRUE(CubicBSpline::Create(four, {0, 0, 0, 0, 1, 1, 1, 1}));
 }
 
 TEST(ClosedUniformBSpline, PiecesJoinWithContinuousTangents) {

@@ -35,7 +35,7 @@ TEST(FindFeatures, PropertyRightAngleGivesExactlyOneCornerAtTheRightPlace) {
   for (int trial = 0; trial < 100; ++trial) {
     const Pose2 pose(random.Uniform(-5, 5), random.Uniform(-5, 5), random.Uniform(-kPi, kPi));
     const auto curve = ExtractCurve(pose * LCorner(&random, 0.01));
-    ASSERT_TRUE(curve.has_value());
+    ASSERT_TRUE(curve.ok());
     const auto corners = OfType(curve->features, FeatureType::kCorner);
     ASSERT_EQ(corners.size(), 1u) << "trial " << trial;
     EXPECT_LT((corners[0].position - pose.translation()).norm(), 0.06) << "trial " << trial;
@@ -52,7 +52,7 @@ TEST(FindFeatures, PropertySCurveGivesItsInflectionPoint) {
     for (double x = 0; x <= 2.0; x += 0.015)
       pts.push_back(Eigen::Vector2d(x, 0.3 * std::sin(kPi * x)) + Noise(&random, 0.005));
     const auto curve = ExtractCurve(pts);
-    ASSERT_TRUE(curve.has_value());
+    ASSERT_TRUE(curve.ok());
     const auto inflections = OfType(curve->features, FeatureType::kInflection);
     ASSERT_EQ(inflections.size(), 1u) << "trial " << trial;
     EXPECT_NEAR(inflections[0].position.x(), 1.0, 0.06);
@@ -74,7 +74,7 @@ TEST(FindFeatures, NoisyStraightWallsGiveAlmostNoFeatures) {
       pts.push_back(range * Eigen::Vector2d(std::cos(a), std::sin(a)));
     }
     const auto curve = ExtractCurve(pts);
-    ASSERT_TRUE(curve.has_value());
+    ASSERT_TRUE(curve.ok());
     corners += static_cast<int>(OfType(curve->features, FeatureType::kCorner).size());
     inflections += static_cast<int>(OfType(curve->features, FeatureType::kInflection).size());
   }
@@ -127,7 +127,7 @@ TEST(FindFeatures, RoundCornersAndGentleBendsAreNotCorners) {
     pts.emplace_back(0.5 * std::sin(a), 0.5 - 0.5 * std::cos(a));
   for (double y = 0.5; y <= 1.5; y += 0.015) pts.emplace_back(0.5, y);
   const auto curve = ExtractCurve(pts);
-  ASSERT_TRUE(curve.has_value());
+  ASSERT_TRUE(curve.ok());
   EXPECT_TRUE(OfType(curve->features, FeatureType::kCorner).empty());
   // A 17 degree bend (163 deg between the arms): too flat to be a corner.
   std::vector<Eigen::Vector2d> bend;
@@ -148,7 +148,7 @@ TEST(FindFeatures, InflectionBoundRuleIsASwitch) {
   for (double x = 0; x <= 2.0; x += 0.015) zig.emplace_back(x, 0.3 * std::sin(kPi * x));
   for (double s = 0.015; s <= 2.0; s += 0.015) zig.emplace_back(2.0 - 0.3 * std::sin(kPi * s), -s);
   const auto curve = ExtractCurve(zig, strict);
-  ASSERT_TRUE(curve.has_value());
+  ASSERT_TRUE(curve.ok());
   EXPECT_EQ(OfType(curve->features, FeatureType::kCorner).size(), 1u);
   EXPECT_GE(OfType(curve->features, FeatureType::kInflection).size(), 2u);
 }

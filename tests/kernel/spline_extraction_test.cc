@@ -30,9 +30,9 @@ TEST(ExtractCurves, CurvesFollowTheirSegments) {
 }
 
 TEST(ExtractCurve, DegenerateInputIsAnError) {
-  std::string error;
-  EXPECT_FALSE(ExtractCurve({{0, 0}, {0, 0}, {0, 0}, {0, 0}}, {}, &error));
-  EXPECT_FALSE(error.empty());
+  const Result<SplineCurve> curve = ExtractCurve({{0, 0}, {0, 0}, {0, 0}, {0, 0}});
+  EXPECT_FALSE(curve);
+  EXPECT_NE(curve.error.find("distinct"), std::string::npos) << curve.error;
   EXPECT_TRUE(ExtractCurves(Scan()).empty());
 }
 
@@ -62,12 +62,11 @@ TEST(ExtractCurves, PropertyScansThatWrapGiveBoundedCurves) {
 // A curve whose length overflows (control points at 1e300) samples to nothing instead of asking
 // for an allocation sized by it.
 TEST(CubicBSpline, ResamplingAnOverflowingCurveAllocatesNothing) {
-  const std::optional<CubicBSpline> huge =
+  const Result<CubicBSpline> huge =
       CubicBSpline::ClampedUniform({{0, 0}, {1e300, 0}, {-1e300, 1e300}, {1e300, -1e300}});
   ASSERT_TRUE(huge);
   EXPECT_TRUE(huge->ResampleByArcLength(0.01).empty());
-  const std::optional<CubicBSpline> fine =
-      CubicBSpline::ClampedUniform({{0, 0}, {1, 0}, {2, 0}, {3, 0}});
+  const Result<CubicBSpline> fine = CubicBSpline::ClampedUniform({{0, 0}, {1, 0}, {2, 0}, {3, 0}});
   ASSERT_TRUE(fine);
   EXPECT_EQ(fine->ResampleByArcLength(0.01).size(), 301u);
 }

@@ -137,7 +137,7 @@ TEST(AddBeamColumns, PropertyNewControlPointJacobiansMatchNumericDifferentiation
     const auto [g, m] = controls_at(pose, ranges, nullptr, &d_pose, &d_ranges);
     // The fit reproduces the points: the control points are those of FitCubicBSpline.
     const auto fit = kernel::FitCubicBSpline(BeamPointsInWorld(pose, laser, ranges, angles).points);
-    ASSERT_TRUE(fit.has_value());
+    ASSERT_TRUE(fit.ok());
     for (std::size_t i = 0; i < fit->control_points().size(); ++i)
       EXPECT_LT((g.segment<2>(2 * static_cast<Eigen::Index>(i)) - fit->control_points()[i]).norm(),
                 1e-9);
