@@ -180,7 +180,7 @@ int RunExplore(const ExploreArgs& args) {
     return kExitBadInput;
   }
   const exploration::ExplorationRun& run = outcome.run;
-  const int nodes = static_cast<int>(boost::num_vertices(run.graph));
+  const int nodes = static_cast<int>(run.graph.num_nodes());
   const nlohmann::json report = runtime::ExplorationReport(*world.value, setup, outcome);
   std::vector<std::string> written;
   if (kernel::Status error =
@@ -192,7 +192,7 @@ int RunExplore(const ExploreArgs& args) {
   fmt::print(
       "{} nodes, {} edges, {:.1f} m, {:.1f} s simulated, {:.1f} % of {:.0f} m^2 reachable free "
       "space explored\nterminated: {} ({})\nplanning {:.2f} ms per node, wall time {:.2f} s\n",
-      nodes, boost::num_edges(run.graph), run.distance_m, run.time_s, 100.0 * outcome.coverage(),
+      nodes, run.graph.num_edges(), run.distance_m, run.time_s, 100.0 * outcome.coverage(),
       outcome.reachable_area_m2, exploration::TerminationName(run.termination), run.message,
       nodes > 0 ? 1e3 * run.planning_wall_s / nodes : 0.0, outcome.wall_s);
   const nlohmann::json& e = report["trajectory_error"];

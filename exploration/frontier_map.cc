@@ -117,7 +117,7 @@ std::vector<const kernel::LocalSafeRegion*> OthersNear(const FrontierRules& rule
   const ExplorerOptions& options = rules.options();
   const kernel::LocalSafeRegion& owner = g[v].lsr;
   std::vector<const kernel::LocalSafeRegion*> others;
-  for (graph::Vertex w = 0; w < boost::num_vertices(g); ++w) {
+  for (graph::Vertex w = 0; w < g.num_nodes(); ++w) {
     const kernel::LocalSafeRegion& other = g[w].lsr;
     const double reach = other.radius() + owner.radius() + options.frontier_view_depth_m;
     if (w != v && (other.center() - owner.center()).norm() <= reach) others.push_back(&other);
@@ -139,7 +139,7 @@ bool ShadowOpen(const FrontierRules& rules, const graph::ExplorationGraph& g, gr
 bool InSight(const FrontierRules& rules, const graph::ExplorationGraph& g,
              const Eigen::Vector2d& from, const Eigen::Vector2d& point) {
   std::vector<const kernel::LocalSafeRegion*> regions;
-  for (graph::Vertex v = 0; v < boost::num_vertices(g); ++v)
+  for (graph::Vertex v = 0; v < g.num_nodes(); ++v)
     if ((g[v].lsr.center() - point).norm() <= g[v].lsr.radius() + (point - from).norm())
       regions.push_back(&g[v].lsr);
   return kernel::UnionLineOfSight(regions, from, point, rules.options().shadow_edge_m);
@@ -147,7 +147,7 @@ bool InSight(const FrontierRules& rules, const graph::ExplorationGraph& g,
 
 std::vector<Eigen::Vector2d> NodePositions(const graph::ExplorationGraph& g) {
   std::vector<Eigen::Vector2d> nodes;
-  for (graph::Vertex v = 0; v < boost::num_vertices(g); ++v)
+  for (graph::Vertex v = 0; v < g.num_nodes(); ++v)
     nodes.push_back(g[v].configuration.translation());
   return nodes;
 }
@@ -158,7 +158,7 @@ std::vector<GivenUpFrontier> GivenUpFrontiers(const FrontierRules& rules, const 
   const graph::ExplorationGraph& g = run.graph;
   const LaserHits hits = NodeLaserHits(run, robot_T_laser);
   std::vector<GivenUpFrontier> list;
-  for (graph::Vertex v = 0; v < boost::num_vertices(g); ++v) {
+  for (graph::Vertex v = 0; v < g.num_nodes(); ++v) {
     const kernel::LocalSafeRegion& owner = g[v].lsr;
     for (const graph::GivenUpArc& given_up : g[v].given_up) {
       if (given_up.shadow_edge >= 0) {

@@ -53,7 +53,7 @@ class Reg {
   // approached once (popped when tried); new nodes bring their own, checked at the next sweep.
   void Sweep() {
     sweeping_ = true;
-    for (Vertex v = 0; v < boost::num_vertices(g_); ++v) {
+    for (Vertex v = 0; v < g_.num_nodes(); ++v) {
       std::erase_if(g_[v].shadows, [&](std::size_t edge) { return !session_.ShadowOpen(v, edge); });
       if (!g_[v].shadows.empty()) List(v);
     }
@@ -180,7 +180,7 @@ ExplorationRun Reg::Run() {
     }
     if (list_.empty()) {
       // Nothing left: return home.
-      if (path && path->vertices.size() > 1) session_.Drive(graph::Waypoints(g_, path->vertices));
+      if (path && path->vertices.size() > 1) session_.Drive(g_.Waypoints(path->vertices));
       return session_.Finish(Termination::kExplored, "no frontier left; returned to the start");
     }
     if (!path) {
@@ -196,7 +196,7 @@ ExplorationRun Reg::Run() {
     }
     // FIND_PATH found the nearest listed node: drive there; it leaves the list.
     const Vertex target = path->vertices.back();
-    if (session_.Drive(graph::Waypoints(g_, path->vertices)).reached) {
+    if (session_.Drive(g_.Waypoints(path->vertices)).reached) {
       Unlist(target);
       current = target;
     } else {

@@ -95,7 +95,7 @@ graph::Vertex DriveRetry(Session* session, graph::Vertex current, const Retry& r
     const std::optional<graph::GraphPath> path =
         graph::BidirectionalAStar(session->graph(), current, {retry.node});
     if (!path) return current;
-    if (!session->Drive(graph::Waypoints(session->graph(), path->vertices)).reached)
+    if (!session->Drive(session->graph().Waypoints(path->vertices)).reached)
       return session->NodeAfterFailedMove(current);
   }
   if (retry.approach.empty()) return session->LookTowards(retry.node, retry.target);

@@ -81,7 +81,7 @@ graph::Vertex Session::AddNodeHere(int parent) {
   record.safe_region_scan = SafeRegionScan(perception, robot_->description());
   record.laser_beams = perception.scan.size();
   record.parent = parent;
-  const graph::Vertex v = graph::AddNode(&run_.graph, estimate_);
+  const graph::Vertex v = run_.graph.AddNode(estimate_);
   graph::NodeData& node = run_.graph[v];
   node.lsr = SafeRegionAt(record.safe_region_scan, estimate_, robot_->description(),
                           options_.lsr_radius_m);
@@ -105,14 +105,14 @@ graph::Vertex Session::AddNodeHere(int parent) {
     }
     if ((estimate_.translation() - path.back()).norm() > 1e-9)
       path.push_back(estimate_.translation());
-    graph::AddEdge(&run_.graph, static_cast<graph::Vertex>(parent), v, std::move(path));
+    run_.graph.AddEdge(static_cast<graph::Vertex>(parent), v, std::move(path));
   }
   run_.nodes.push_back(std::move(record));
   if (options_.on_node) options_.on_node(static_cast<int>(run_.nodes.size()), perception.time_s);
   return v;
 }
 
-void Session::FollowRevisedNodes() { graph::MoveNodes(&run_.graph, localization_->NodePoses()); }
+void Session::FollowRevisedNodes() { run_.graph.MoveNodes(localization_->NodePoses()); }
 
 graph::Vertex Session::NodeAfterFailedMove(graph::Vertex from) {
   constexpr double kProgress = 0.3;  // m
@@ -181,7 +181,7 @@ bool Session::CapReached() {
     run_.message = std::to_string(failures_in_a_row_) + " moves in a row failed";
     return true;
   }
-  if (static_cast<int>(boost::num_vertices(run_.graph)) >= options_.max_nodes) {
+  if (static_cast<int>(run_.graph.num_nodes()) >= options_.max_nodes) {
     run_.termination = Termination::kNodeLimit;
     run_.message = "node limit of " + std::to_string(options_.max_nodes) + " reached";
     return true;

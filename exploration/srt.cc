@@ -149,7 +149,7 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
     // Backtrack along the tree edge; a failed move leaves the robot between the two nodes,
     // where a new node (child of the one it left) is perceived.
     const graph::Vertex target = static_cast<graph::Vertex>(parent);
-    if (session.Drive(graph::Waypoints(g, {current, target})).reached) {
+    if (session.Drive(g.Waypoints({current, target})).reached) {
       current = target;
     } else if (++failed_returns[current] >= options_.max_failed_moves) {
       // Each failure adds a node next to `current`, which returns to it and tries again: without

@@ -43,7 +43,7 @@ double RandomDirection(const std::vector<kernel::FrontierArc>& arcs, kernel::Ran
 
 bool OutsideOtherLsrs(const graph::ExplorationGraph& g, Vertex current,
                       const Eigen::Vector2d& candidate) {
-  for (Vertex v = 0; v < boost::num_vertices(g); ++v) {
+  for (Vertex v = 0; v < g.num_nodes(); ++v) {
     if (v == current) continue;
     const kernel::LocalSafeRegion& other = g[v].lsr;
     if ((candidate - other.center()).norm() <= other.radius() && other.Contains(candidate))
@@ -55,16 +55,15 @@ bool OutsideOtherLsrs(const graph::ExplorationGraph& g, Vertex current,
 void CurrIntersection(const Session& session, graph::ExplorationGraph* graph, Vertex current) {
   graph::ExplorationGraph& g = *graph;
   const kernel::LocalSafeRegion& here = g[current].lsr;
-  for (Vertex v = 0; v < boost::num_vertices(g); ++v) {
+  for (Vertex v = 0; v < g.num_nodes(); ++v) {
     if (v == current) continue;
     const kernel::LocalSafeRegion& there = g[v].lsr;
     if ((there.center() - here.center()).norm() > there.radius() + here.radius()) continue;
     if (!kernel::Overlaps(here, there)) continue;
     RemoveCovered(session, &g[v], here);
     RemoveCovered(session, &g[current], there);
-    if (!graph::HasEdge(g, v, current)) {
-      if (auto path = SafePath(session, g, v, current))
-        graph::AddEdge(&g, v, current, std::move(*path));
+    if (!g.HasEdge(v, current)) {
+      if (auto path = SafePath(session, g, v, current)) g.AddEdge(v, current, std::move(*path));
     }
   }
 }

@@ -42,7 +42,7 @@ struct Side {
 std::optional<GraphPath> BidirectionalAStar(const ExplorationGraph& graph, Vertex source,
                                             const std::vector<Vertex>& targets,
                                             SearchStats* stats) {
-  const std::size_t n = boost::num_vertices(graph);
+  const std::size_t n = graph.num_nodes();
   if (targets.empty() || source >= n) return std::nullopt;
   // Vertex n is the virtual target T, joined to every target by a zero-length edge.
   const std::size_t t_star = n;
@@ -92,12 +92,11 @@ std::optional<GraphPath> BidirectionalAStar(const ExplorationGraph& graph, Verte
       forward.settled[u] = true;
       ++expanded;
       if (is_target[u]) connect(u, t_star, p(t_star) - p(u));  // u -> T, length 0
-      for (const auto e : boost::make_iterator_range(boost::out_edges(u, graph))) {
-        const std::size_t v = boost::target(e, graph);
-        const double reduced = graph[e].length_m - p(u) + p(v);
+      graph.ForEachNeighbour(u, [&](Vertex v, const EdgeData& edge) {
+        const double reduced = edge.length_m - p(u) + p(v);
         forward.Relax(v, u, forward.distance[u] + reduced);
         if (backward.distance[v] < kInf) connect(u, v, reduced);
-      }
+      });
     } else {  // expand backward
       const std::size_t v = backward.queue.top().second;
       backward.queue.pop();
@@ -112,12 +111,11 @@ std::optional<GraphPath> BidirectionalAStar(const ExplorationGraph& graph, Verte
         }
         continue;
       }
-      for (const auto e : boost::make_iterator_range(boost::out_edges(v, graph))) {
-        const std::size_t u = boost::target(e, graph);
-        const double reduced = graph[e].length_m - p(u) + p(v);  // u -> v
+      graph.ForEachNeighbour(v, [&](Vertex u, const EdgeData& edge) {
+        const double reduced = edge.length_m - p(u) + p(v);  // u -> v
         backward.Relax(u, v, backward.distance[v] + reduced);
         if (forward.distance[u] < kInf) connect(u, v, reduced);
-      }
+      });
     }
   }
   if (stats != nullptr) stats->expanded = expanded;
@@ -130,8 +128,8 @@ std::optional<GraphPath> BidirectionalAStar(const ExplorationGraph& graph, Verte
   for (std::size_t v = meet_backward; v != t_star && v != kNone; v = backward.parent[v])
     path.vertices.push_back(v);
   for (std::size_t k = 1; k < path.vertices.size(); ++k) {
-    const auto [e, found] = boost::edge(path.vertices[k - 1], path.vertices[k], graph);
-    path.length_m += found ? graph[e].length_m : 0.0;
+    const EdgeData* edge = graph.Edge(path.vertices[k - 1], path.vertices[k]);
+    path.length_m += edge != nullptr ? edge->length_m : 0.0;
   }
   return path;
 }

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <boost/graph/adjacency_list.hpp>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -37,30 +38,61 @@ struct EdgeData {
   double length_m = 0.0;
 };
 
-// Undirected, vertices in a vector (stable indices: exploration never removes nodes).
-using ExplorationGraph =
-    boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, NodeData, EdgeData>;
-using Vertex = boost::graph_traits<ExplorationGraph>::vertex_descriptor;
+// A node's index: nodes are numbered 0, 1, ... in the order they were added and never removed.
+using Vertex = std::size_t;
 
-// Adds a node at configuration q; returns its vertex.
-Vertex AddNode(ExplorationGraph* graph, const kernel::Pose2& q);
-// Adds an edge along `path` from a to b (its ends should be the two configurations; it is stored
-// from the lower to the higher vertex); its length is the polyline's length, or the straight-line
-// distance when the path is empty.
-void AddEdge(ExplorationGraph* graph, Vertex a, Vertex b, std::vector<Eigen::Vector2d> path = {});
-// Moves the nodes to `poses` (one per vertex, in order; nothing when the sizes differ), as when a
-// pose graph revises where the nodes were: each node's configuration, LSR and frontiers (open and
-// given up) by its own rigid correction, and every point of a stored path by the blend of its two
-// ends' corrections in proportion to its arc length along the path, so the path joins the moved
-// nodes; edge lengths follow.
-void MoveNodes(ExplorationGraph* graph, const std::vector<kernel::Pose2>& poses);
-// True when a and b are joined by an edge.
-bool HasEdge(const ExplorationGraph& graph, Vertex a, Vertex b);
-// The waypoints that lead along the vertex path `vertices` (consecutive vertices must be joined):
-// every edge's path oriented in the direction of travel, without the starting configuration;
-// straight lines for edges without a path.
-std::vector<Eigen::Vector2d> Waypoints(const ExplorationGraph& graph,
-                                       const std::vector<Vertex>& vertices);
+// An edge as ExplorationGraph::Edges lists it: its ends, a < b, and its data.
+struct EdgeRef {
+  Vertex a = 0, b = 0;
+  const EdgeData* data = nullptr;
+};
+
+// Undirected; Boost.Graph's adjacency list inside (vertices in a vector: stable indices).
+class ExplorationGraph {
+ public:
+  std::size_t num_nodes() const { return boost::num_vertices(graph_); }
+  std::size_t num_edges() const { return boost::num_edges(graph_); }
+  NodeData& operator[](Vertex v) { return graph_[v]; }
+  const NodeData& operator[](Vertex v) const { return graph_[v]; }
+
+  // Adds a node at configuration q; returns its vertex.
+  Vertex AddNode(const kernel::Pose2& q);
+  // Adds an edge along `path` from a to b (its ends should be the two configurations; it is
+  // stored from the lower to the higher vertex); its length is the polyline's length, or the
+  // straight-line distance when the path is empty.
+  void AddEdge(Vertex a, Vertex b, std::vector<Eigen::Vector2d> path = {});
+  // True when a and b are joined by an edge.
+  bool HasEdge(Vertex a, Vertex b) const { return Edge(a, b) != nullptr; }
+  // The edge joining a and b, or null.
+  const EdgeData* Edge(Vertex a, Vertex b) const;
+  // Every edge once.
+  std::vector<EdgeRef> Edges() const;
+  // Calls visit(w, edge) for every neighbour w of v and the edge that joins them.
+  template <class Visit>
+  void ForEachNeighbour(Vertex v, Visit visit) const {
+    for (auto [e, end] = boost::out_edges(v, graph_); e != end; ++e)
+      visit(static_cast<Vertex>(boost::target(*e, graph_)), graph_[*e]);
+  }
+
+  // Moves the nodes to `poses` (one per vertex, in order; nothing when the sizes differ), as when
+  // a pose graph revises where the nodes were: each node's configuration, LSR and frontiers (open
+  // and given up) by its own rigid correction, and every point of a stored path by the blend of
+  // its two ends' corrections in proportion to its arc length along the path, so the path joins
+  // the moved nodes; edge lengths follow.
+  void MoveNodes(const std::vector<kernel::Pose2>& poses);
+  // The waypoints that lead along the vertex path `vertices` (consecutive vertices must be
+  // joined): every edge's path oriented in the direction of travel, without the starting
+  // configuration; straight lines for edges without a path.
+  std::vector<Eigen::Vector2d> Waypoints(const std::vector<Vertex>& vertices) const;
+
+ private:
+  using Graph =
+      boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, NodeData, EdgeData>;
+  // The length of `path`, or the straight-line distance between a and b without one.
+  double EdgeLength(Vertex a, Vertex b, const std::vector<Eigen::Vector2d>& path) const;
+
+  Graph graph_;
+};
 
 }  // namespace splam::graph
 

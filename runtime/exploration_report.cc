@@ -63,14 +63,14 @@ class JsonWriter : public kernel::FieldVisitor {
 nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& setup,
                                  const ExploreOutcome& outcome) {
   const exploration::ExplorationRun& run = outcome.run;
-  const int nodes = static_cast<int>(boost::num_vertices(run.graph));
+  const int nodes = static_cast<int>(run.graph.num_nodes());
   nlohmann::json report;
   report["world"] = world.name;
   report["explorer"] = setup.explorer;
   report["localization"] = setup.localization;
   report["seed"] = setup.seed;
   report["nodes"] = nodes;
-  report["edges"] = boost::num_edges(run.graph);
+  report["edges"] = run.graph.num_edges();
   report["distance_m"] = run.distance_m;
   report["time_s"] = run.time_s;
   report["coverage_fraction"] = outcome.coverage();
@@ -162,8 +162,8 @@ std::string RunTitle(const sim::World& world, const ExploreSetup& setup,
                      const ExploreOutcome& outcome) {
   return fmt::format("{} | {} | {} | seed {} | {} nodes, {:.0f} m, {:.0f} s, {:.1f} % explored",
                      world.name, setup.explorer, setup.localization, setup.seed,
-                     boost::num_vertices(outcome.run.graph), outcome.run.distance_m,
-                     outcome.run.time_s, 100.0 * outcome.coverage());
+                     outcome.run.graph.num_nodes(), outcome.run.distance_m, outcome.run.time_s,
+                     100.0 * outcome.coverage());
 }
 
 kernel::Status WriteExplorationRun(const sim::World& world, const ExploreSetup& setup,
@@ -216,17 +216,15 @@ kernel::Status SaveExplorationPicture(const sim::World& world, const ExploreOutc
   constexpr io::Rgb kEdge{0.90, 0.45, 0.05};
   constexpr io::Rgb kShortcut{0.55, 0.25, 0.70};
   constexpr io::Rgb kFrontier{0.0, 0.75, 0.0};
-  for (graph::Vertex v = 0; v < boost::num_vertices(g); ++v)
+  for (graph::Vertex v = 0; v < g.num_nodes(); ++v)
     figure.DrawPolygon(g[v].lsr.boundary(), kRegion, 0.06, 0.3, "local safe regions");
   figure.DrawWorld(world);
   std::vector<kernel::Pose2> truth;
   for (const exploration::TraceSample& s : run.trace) truth.push_back(s.truth);
   figure.DrawPath(truth, io::palette::kTrue, 1.0, "true path");
-  for (auto [e, end] = boost::edges(g); e != end; ++e) {
-    const graph::Vertex a = boost::source(*e, g), b = boost::target(*e, g);
-    const graph::Vertex child = std::max(a, b);
-    const bool driven = run.nodes[child].parent == static_cast<int>(std::min(a, b));
-    std::vector<Eigen::Vector2d> path = g[*e].path;
+  for (const auto& [a, b, edge] : g.Edges()) {
+    const bool driven = run.nodes[b].parent == static_cast<int>(a);
+    std::vector<Eigen::Vector2d> path = edge->path;
     if (path.size() < 2)
       path = {g[a].configuration.translation(), g[b].configuration.translation()};
     if (driven) {
@@ -236,14 +234,14 @@ kernel::Status SaveExplorationPicture(const sim::World& world, const ExploreOutc
     }
   }
   std::vector<Eigen::Vector2d> nodes;
-  for (graph::Vertex v = 0; v < boost::num_vertices(g); ++v)
+  for (graph::Vertex v = 0; v < g.num_nodes(); ++v)
     nodes.push_back(g[v].configuration.translation());
   figure.DrawMarkers(nodes, io::Figure::Marker::kCircle, kEdge, 3.0, "nodes");
   if (!nodes.empty())
     figure.DrawMarkers({nodes.front()}, io::Figure::Marker::kDiamond, io::palette::kEstimate, 7.0,
                        "start");
   // SRT keeps no frontier bookkeeping: its free arcs never shrink, so only REG's are drawn.
-  for (graph::Vertex v = 0; run.explorer == "reg" && v < boost::num_vertices(g); ++v) {
+  for (graph::Vertex v = 0; run.explorer == "reg" && v < g.num_nodes(); ++v) {
     for (const kernel::FrontierArc& arc : g[v].frontiers) {
       std::vector<Eigen::Vector2d> points;
       const int n = std::max(2, static_cast<int>(std::ceil(arc.AngularWidth() / 0.02)));

@@ -175,7 +175,7 @@ ExploreOutcome RunExploration(const sim::World& world, const ExploreSetup& setup
   // explorer used.
   if (outcome.slam && outcome.slam->driver() != nullptr) {
     outcome.slam->Finish();
-    graph::MoveNodes(&outcome.run.graph, outcome.slam->NodePoses());
+    outcome.run.graph.MoveNodes(outcome.slam->NodePoses());
   }
   if (outcome.run.termination == exploration::Termination::kInvalidInput) {
     outcome.error = outcome.run.message;

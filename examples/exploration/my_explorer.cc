@@ -110,7 +110,7 @@ class LongestFrontierFirst : public splam::exploration::Explorer {
       // frontier given up but still open is retried from another node (Retries), and at the end
       // the robot returns home.
       std::vector<Vertex> pending;
-      for (Vertex v = 0; v < boost::num_vertices(g); ++v)
+      for (Vertex v = 0; v < g.num_nodes(); ++v)
         if (!g[v].frontiers.empty()) pending.push_back(v);
       if (pending.empty()) {
         std::optional<splam::exploration::Retry> retry;
@@ -126,13 +126,12 @@ class LongestFrontierFirst : public splam::exploration::Explorer {
       const auto route = splam::graph::BidirectionalAStar(
           g, current, pending.empty() ? std::vector<Vertex>{start} : pending);
       if (pending.empty() || !route) {
-        if (route && route->vertices.size() > 1)
-          session.Drive(splam::graph::Waypoints(g, route->vertices));
+        if (route && route->vertices.size() > 1) session.Drive(g.Waypoints(route->vertices));
         return session.Finish(splam::exploration::Termination::kExplored,
                               pending.empty() ? "no frontier left; returned to the start"
                                               : "the nodes with frontiers are unreachable");
       }
-      current = session.Drive(splam::graph::Waypoints(g, route->vertices)).reached
+      current = session.Drive(g.Waypoints(route->vertices)).reached
                     ? route->vertices.back()
                     : session.NodeAfterFailedMove(current);
     }
@@ -173,7 +172,7 @@ int main(int argc, char** argv) {
     }
     const ExplorationRun& run = outcome.run;
     std::printf("%-8s %3zu nodes, %6.1f m, %4.0f s simulated, %5.1f %% explored: %s (%s)\n",
-                explorer, boost::num_vertices(run.graph), run.distance_m, run.time_s,
+                explorer, run.graph.num_nodes(), run.distance_m, run.time_s,
                 100.0 * outcome.coverage(),
                 splam::exploration::TerminationName(run.termination).c_str(), run.message.c_str());
     if (std::string(explorer) == "longest") {

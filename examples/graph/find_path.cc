@@ -14,17 +14,17 @@ int main() {
   //    them. A wall runs along x = 2 from y = -1 to y = 3: nodes on its two sides are joined only
   //    around its top end.
   graph::ExplorationGraph g;
-  const graph::Vertex start = graph::AddNode(&g, Pose2(0, 0, 0));
-  const graph::Vertex up = graph::AddNode(&g, Pose2(0, 3.5, 0));
-  const graph::Vertex over = graph::AddNode(&g, Pose2(4, 3.5, 0));
-  const graph::Vertex behind_wall = graph::AddNode(&g, Pose2(4, 0, 0));
-  const graph::Vertex left = graph::AddNode(&g, Pose2(-3, 0, 0));
-  const graph::Vertex far_left = graph::AddNode(&g, Pose2(-5.5, 0, 0));
-  graph::AddEdge(&g, start, up);  // straight: the path's length is the distance
-  graph::AddEdge(&g, up, over, {{0, 3.5}, {2, 3.6}, {4, 3.5}});  // a path with a bend
-  graph::AddEdge(&g, over, behind_wall);
-  graph::AddEdge(&g, start, left);
-  graph::AddEdge(&g, left, far_left);
+  const graph::Vertex start = g.AddNode(Pose2(0, 0, 0));
+  const graph::Vertex up = g.AddNode(Pose2(0, 3.5, 0));
+  const graph::Vertex over = g.AddNode(Pose2(4, 3.5, 0));
+  const graph::Vertex behind_wall = g.AddNode(Pose2(4, 0, 0));
+  const graph::Vertex left = g.AddNode(Pose2(-3, 0, 0));
+  const graph::Vertex far_left = g.AddNode(Pose2(-5.5, 0, 0));
+  g.AddEdge(start, up);  // straight: the path's length is the distance
+  g.AddEdge(up, over, {{0, 3.5}, {2, 3.6}, {4, 3.5}});  // a path with a bend
+  g.AddEdge(over, behind_wall);
+  g.AddEdge(start, left);
+  g.AddEdge(left, far_left);
 
   // 2. Two nodes still have free frontiers (the frontier-control list of REG). The one behind
   //    the wall is nearer as the crow flies (4 m) but 11 m away along the graph; the one far to

@@ -177,7 +177,7 @@ Trial Explore(const std::string& explorer, const std::string& world_name, std::u
 
 // Whether a node of the run lies in the box [lo, hi].
 bool NodeIn(const ExplorationRun& run, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
-  for (graph::Vertex v = 0; v < boost::num_vertices(run.graph); ++v) {
+  for (graph::Vertex v = 0; v < run.graph.num_nodes(); ++v) {
     const Eigen::Vector2d p = run.graph[v].configuration.translation();
     if ((p.array() >= lo.array()).all() && (p.array() <= hi.array()).all()) return true;
   }
@@ -204,7 +204,7 @@ TEST(ExplorationCauses, ARoomSeenThroughItsDoorAtASlantIsEntered) {
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       const Trial t = ExploreWorld(explorer, CorridorAndRoom(), seed);
       EXPECT_TRUE(NodeIn(t.run, {4.3, -6.2}, {7.7, -0.5}))
-          << explorer << " seed " << seed << ": " << boost::num_vertices(t.run.graph) << " nodes, "
+          << explorer << " seed " << seed << ": " << t.run.graph.num_nodes() << " nodes, "
           << t.coverage << " covered, " << t.run.message;
       EXPECT_GT(t.coverage, 0.98) << explorer << " seed " << seed;
       EXPECT_EQ(t.run.termination, Termination::kExplored) << t.run.message;
@@ -381,11 +381,11 @@ TEST(Exploration, RegExploresComplexAndReturnsHome) {
   EXPECT_LT(
       (t.run.trace.back().truth.translation() - t.run.trace.front().truth.translation()).norm(),
       0.1);
-  EXPECT_GT(boost::num_edges(t.run.graph), boost::num_vertices(t.run.graph) - 1);
-  EXPECT_GT(boost::num_vertices(t.run.graph), 20u);
-  EXPECT_LT(boost::num_vertices(t.run.graph), 60u);
+  EXPECT_GT(t.run.graph.num_edges(), t.run.graph.num_nodes() - 1);
+  EXPECT_GT(t.run.graph.num_nodes(), 20u);
+  EXPECT_LT(t.run.graph.num_nodes(), 60u);
   // No open frontier is left behind.
-  for (graph::Vertex v = 0; v < boost::num_vertices(t.run.graph); ++v)
+  for (graph::Vertex v = 0; v < t.run.graph.num_nodes(); ++v)
     EXPECT_TRUE(t.run.graph[v].frontiers.empty()) << "node " << v;
 }
 
@@ -393,7 +393,7 @@ TEST(Exploration, SrtBuildsATreeAndEndsAtTheRoot) {
   const Trial t = Explore("srt", "complex", 1);
   EXPECT_EQ(t.run.termination, Termination::kExplored) << t.run.message;
   EXPECT_GT(t.coverage, 0.99);
-  EXPECT_EQ(boost::num_edges(t.run.graph), boost::num_vertices(t.run.graph) - 1);
+  EXPECT_EQ(t.run.graph.num_edges(), t.run.graph.num_nodes() - 1);
   EXPECT_LT(
       (t.run.trace.back().truth.translation() - t.run.trace.front().truth.translation()).norm(),
       0.1);
@@ -409,8 +409,8 @@ TEST(Exploration, PublishedSrtKeepsValidConfAndReportsWhatItLeftOpen) {
   const Trial t = Explore("srt", "office", 2, options, false, &published);
   // VALID_CONF: no node lies inside the LSR of another (up to the goal tolerance).
   const auto& g = t.run.graph;
-  for (graph::Vertex a = 0; a < boost::num_vertices(g); ++a) {
-    for (graph::Vertex b = 0; b < boost::num_vertices(g); ++b) {
+  for (graph::Vertex a = 0; a < g.num_nodes(); ++a) {
+    for (graph::Vertex b = 0; b < g.num_nodes(); ++b) {
       if (a == b || t.run.nodes[b].parent != static_cast<int>(a)) continue;
       for (graph::Vertex c = 0; c < b; ++c) {
         if (c != a) {
@@ -444,7 +444,7 @@ TEST(Exploration, CapsStopWithAStatedReason) {
   options.max_nodes = 5;
   const Trial nodes = Explore("reg", "complex", 2, options);
   EXPECT_EQ(nodes.run.termination, Termination::kNodeLimit);
-  EXPECT_EQ(boost::num_vertices(nodes.run.graph), 5u);
+  EXPECT_EQ(nodes.run.graph.num_nodes(), 5u);
   options = {};
   options.max_time_s = 60.0;
   const Trial time = Explore("srt", "office", 2, options);

@@ -54,7 +54,7 @@ struct Fixture {
   graph::ExplorationGraph& g = session.graph();
   // A node at `at` whose LSR comes from `scan` and whose frontiers are its free arcs.
   graph::Vertex Node(const Eigen::Vector2d& at, const kernel::Scan& scan, double heading = 0.0) {
-    const graph::Vertex v = graph::AddNode(&g, Pose2(at, heading));
+    const graph::Vertex v = g.AddNode(Pose2(at, heading));
     g[v].lsr = kernel::LocalSafeRegion::FromScan(scan, Pose2(at, heading), options.lsr_radius_m);
     g[v].frontiers = session.rules().LongEnough(g[v].lsr.frontiers());
     return v;
@@ -87,7 +87,7 @@ TEST(CurrIntersection, RemovesTheOverlapOfTwoOpenNodesAndJoinsThem) {
   EXPECT_FALSE(Covers(f.g[a].frontiers, 0.0));  // towards b
   EXPECT_TRUE(Covers(f.g[a].frontiers, kPi));   // away from b
   EXPECT_FALSE(Covers(f.g[b].frontiers, kPi));
-  EXPECT_TRUE(graph::HasEdge(f.g, a, b));
+  EXPECT_TRUE(f.g.HasEdge(a, b));
 }
 
 TEST(CurrIntersection, LeavesDistantNodesAlone) {
@@ -95,7 +95,7 @@ TEST(CurrIntersection, LeavesDistantNodesAlone) {
   const graph::Vertex a = f.Node({0, 0}, Open()), b = f.Node({6.5, 0}, Open());
   CurrIntersection(f.session, &f.g, b);
   EXPECT_NEAR(Width(f.g[a].frontiers), 2 * kPi, 0.05);
-  EXPECT_FALSE(graph::HasEdge(f.g, a, b));
+  EXPECT_FALSE(f.g.HasEdge(a, b));
 }
 
 TEST(SafePath, NeedsAClearWayThroughTheOverlap) {
@@ -461,11 +461,11 @@ TEST(Session, NodesFollowTheLocalisationsRevisedPoses) {
     return s > 1e-9 ? 1.0 / s : kernel::Scan::kNoReturn;
   });
   for (const Pose2& at : {Pose2(0, 0, 0), Pose2(2, 0, 0)}) {
-    const graph::Vertex v = graph::AddNode(&g, at);
+    const graph::Vertex v = g.AddNode(at);
     g[v].lsr = kernel::LocalSafeRegion::FromScan(wall, at, options.lsr_radius_m);
     g[v].frontiers = session.rules().LongEnough(g[v].lsr.frontiers());
   }
-  graph::AddEdge(&g, 0, 1, {{0, 0}, {1, 0.5}, {2, 0}});
+  g.AddEdge(0, 1, {{0, 0}, {1, 0.5}, {2, 0}});
   const graph::NodeData before = g[1];
 
   session.FollowRevisedNodes();  // no revision: nothing moves
@@ -487,31 +487,31 @@ TEST(Session, NodesFollowTheLocalisationsRevisedPoses) {
     EXPECT_NEAR(g[1].frontiers[i].start_angle_rad, before.frontiers[i].start_angle_rad + 0.1,
                 1e-12);
   // The path joins the moved nodes; its middle point moved by the mean of the two corrections.
-  const auto [edge, exists] = boost::edge(0, 1, g);
-  ASSERT_TRUE(exists);
-  const std::vector<Eigen::Vector2d>& path = g[edge].path;
+  const graph::EdgeData* edge = g.Edge(0, 1);
+  ASSERT_NE(edge, nullptr);
+  const std::vector<Eigen::Vector2d>& path = edge->path;
   EXPECT_NEAR((path.front() - a.translation()).norm(), 0.0, 1e-12);
   EXPECT_NEAR((path.back() - b.translation()).norm(), 0.0, 1e-12);
   const Eigen::Vector2d middle =
       0.5 * (Pose2(0.1, 0, 0) * Eigen::Vector2d(1, 0.5)) + 0.5 * (moved * Eigen::Vector2d(1, 0.5));
   EXPECT_NEAR((path[1] - middle).norm(), 0.0, 1e-12);
-  EXPECT_NEAR(g[edge].length_m, (path[1] - path[0]).norm() + (path[2] - path[1]).norm(), 1e-12);
+  EXPECT_NEAR(edge->length_m, (path[1] - path[0]).norm() + (path[2] - path[1]).norm(), 1e-12);
 }
 
 TEST(ExplorationGraph, NodesEdgesAndWaypoints) {
   graph::ExplorationGraph g;
-  const graph::Vertex a = graph::AddNode(&g, Pose2(0, 0, 0));
-  const graph::Vertex b = graph::AddNode(&g, Pose2(2, 0, 0));
-  const graph::Vertex c = graph::AddNode(&g, Pose2(2, 2, 0));
-  graph::AddEdge(&g, a, b, {{0, 0}, {1, 1}, {2, 0}});
-  graph::AddEdge(&g, c, b);
-  EXPECT_TRUE(graph::HasEdge(g, b, a));
-  EXPECT_FALSE(graph::HasEdge(g, a, c));
-  const std::vector<Eigen::Vector2d> forward = graph::Waypoints(g, {a, b, c});
+  const graph::Vertex a = g.AddNode(Pose2(0, 0, 0));
+  const graph::Vertex b = g.AddNode(Pose2(2, 0, 0));
+  const graph::Vertex c = g.AddNode(Pose2(2, 2, 0));
+  g.AddEdge(a, b, {{0, 0}, {1, 1}, {2, 0}});
+  g.AddEdge(c, b);
+  EXPECT_TRUE(g.HasEdge(b, a));
+  EXPECT_FALSE(g.HasEdge(a, c));
+  const std::vector<Eigen::Vector2d> forward = g.Waypoints({a, b, c});
   ASSERT_EQ(forward.size(), 3u);  // (1, 1), (2, 0), (2, 2)
   EXPECT_EQ(forward[0], Eigen::Vector2d(1, 1));
   EXPECT_EQ(forward[2], Eigen::Vector2d(2, 2));
-  const std::vector<Eigen::Vector2d> back = graph::Waypoints(g, {b, a});
+  const std::vector<Eigen::Vector2d> back = g.Waypoints({b, a});
   ASSERT_EQ(back.size(), 2u);  // the stored path reversed
   EXPECT_EQ(back[0], Eigen::Vector2d(1, 1));
   EXPECT_EQ(back[1], Eigen::Vector2d(0, 0));

@@ -270,14 +270,14 @@ TEST(RunExploration, RunsAnExplorerRegisteredInAnotherUnit) {
   const ExploreOutcome outcome = RunExploration(world, setup);
   ASSERT_TRUE(outcome.error.empty()) << outcome.error;
   EXPECT_EQ(outcome.run.explorer, "reg-again");
-  EXPECT_EQ(boost::num_vertices(outcome.run.graph), 4u);
+  EXPECT_EQ(outcome.run.graph.num_nodes(), 4u);
   // Its own options, set as `--set exploration.reg-again.node_cap=3` would set them.
   std::unique_ptr<kernel::AnyOptions> own =
       exploration::ExplorerRegistry::Global().Find("reg-again")->default_options();
   ASSERT_TRUE(
       io::SetConfigValue([&](kernel::FieldVisitor& v) { own->VisitFields(v); }, "node_cap=3").ok());
   setup.explorer_options = own->Clone();
-  EXPECT_EQ(boost::num_vertices(RunExploration(world, setup).run.graph), 3u);
+  EXPECT_EQ(RunExploration(world, setup).run.graph.num_nodes(), 3u);
   ASSERT_TRUE(
       io::SetConfigValue([&](kernel::FieldVisitor& v) { own->VisitFields(v); }, "node_cap=0").ok());
   setup.explorer_options = std::move(own);
@@ -311,8 +311,8 @@ TEST(RunExploration, TheLsrRadiusIsTheExplorersToo) {
   const ExploreOutcome outcome = RunExploration(world, setup);
   ASSERT_TRUE(outcome.error.empty()) << outcome.error;
   ASSERT_NE(outcome.slam_method(), nullptr);
-  ASSERT_GT(boost::num_vertices(outcome.run.graph), 1u);
-  for (graph::Vertex v = 0; v < boost::num_vertices(outcome.run.graph); ++v)
+  ASSERT_GT(outcome.run.graph.num_nodes(), 1u);
+  for (graph::Vertex v = 0; v < outcome.run.graph.num_nodes(); ++v)
     EXPECT_EQ(outcome.run.graph[v].lsr.radius(), 2.0);
 }
 
@@ -347,7 +347,7 @@ TEST(RunExploration, TheGraphSlamMovesTheExplorersNodes) {
   ASSERT_TRUE(outcome.error.empty()) << outcome.error;
   const std::vector<Pose2> nodes = outcome.slam_method()->NodePoses();
   const graph::ExplorationGraph& g = outcome.run.graph;
-  ASSERT_EQ(nodes.size(), boost::num_vertices(g));
+  ASSERT_EQ(nodes.size(), g.num_nodes());
   // How far the optimisations moved the nodes from where they were placed (the online estimate
   // when each was perceived).
   double moved = 0.0;
@@ -361,11 +361,9 @@ TEST(RunExploration, TheGraphSlamMovesTheExplorersNodes) {
     moved = std::max(moved, (placed->estimate.translation() - nodes[v].translation()).norm());
   }
   EXPECT_GT(moved, 0.02);
-  for (const auto e : boost::make_iterator_range(boost::edges(g))) {
-    const auto& path = g[e].path;
+  for (const auto& [a, b, edge] : g.Edges()) {
+    const auto& path = edge->path;
     if (path.size() < 2) continue;
-    const auto a = std::min(boost::source(e, g), boost::target(e, g));
-    const auto b = std::max(boost::source(e, g), boost::target(e, g));
     EXPECT_NEAR((path.front() - nodes[a].translation()).norm(), 0.0, 1e-9);
     EXPECT_NEAR((path.back() - nodes[b].translation()).norm(), 0.0, 1e-9);
   }
