@@ -55,12 +55,6 @@ class SlamMethod {
   // What the last Update did, as named numbers (associations, corrections, map changes): the
   // per-step trace of `splam slam --trace`. Empty for methods that keep none.
   virtual std::vector<std::pair<std::string, double>> LastUpdate() const { return {}; }
-  // A new exploration node with its local safe region (world frame, placed at the estimate).
-  // The topological SLAM associates against the curves in the newest node's LSR.
-  virtual void AtNode(const kernel::LocalSafeRegion& /*lsr*/) {}
-  // Where the method now puts the nodes of the AtNode calls so far, in order, for methods that
-  // revise the past (the graph SLAM moves its nodes with its keyframes); empty for the others.
-  virtual std::vector<kernel::Pose2> NodePoses() const { return {}; }
 };
 
 // What the sensors are believed to be, for the methods' noise models. Defaults: a Hokuyo

@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "estimation/exploration_nodes.h"
+
 namespace splam::runtime {
 
 SlamLocalization::SlamLocalization(std::string method,
@@ -27,6 +29,15 @@ kernel::Pose2 SlamLocalization::Update(const exploration::Perception& perception
   return driver_->method().pose();
 }
 
-void SlamLocalization::AtNode(const kernel::LocalSafeRegion& lsr) { driver_->method().AtNode(lsr); }
+void SlamLocalization::AtNode(const kernel::LocalSafeRegion& lsr) {
+  if (estimation::ExplorationNodes* nodes = estimation::NodesOf(driver_->method()))
+    nodes->AtNode(lsr);
+}
+
+std::vector<kernel::Pose2> SlamLocalization::NodePoses() const {
+  const estimation::ExplorationNodes* nodes =
+      driver_ ? estimation::NodesOf(driver_->method()) : nullptr;
+  return nodes != nullptr ? nodes->NodePoses() : std::vector<kernel::Pose2>{};
+}
 
 }  // namespace splam::runtime

@@ -29,9 +29,7 @@ class SlamLocalization : public exploration::Localization {
                        const exploration::Perception& first) override;
   kernel::Pose2 Update(const exploration::Perception& perception) override;
   void AtNode(const kernel::LocalSafeRegion& lsr) override;
-  std::vector<kernel::Pose2> NodePoses() const override {
-    return driver_ ? driver_->method().NodePoses() : std::vector<kernel::Pose2>{};
-  }
+  std::vector<kernel::Pose2> NodePoses() const override;
   // At the end of the run (after Start): the method's last optimisation (SlamMethod::Finish).
   void Finish() { driver_->method().Finish(); }
 

@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include "estimation/exploration_nodes.h"
 #include "estimation/pose_graph/graph_slam.h"
 
 namespace splam::estimation {
@@ -41,7 +42,7 @@ void AddGraphStatistics(const GraphSlam& graph, SlamStatistics* s) {
 namespace {
 
 // Graph SLAM on curve maps: no covariance of its own; the map is the curves of its keyframes.
-class GraphSlamMethod : public SlamMethod {
+class GraphSlamMethod : public SlamMethod, public ExplorationNodes {
  public:
   GraphSlamMethod(const GraphSlamOptions& options, const SlamContext& context)
       : slam_(context.start, options) {}

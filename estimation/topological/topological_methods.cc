@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include "estimation/exploration_nodes.h"
 #include "estimation/pose_graph/graph_method.h"
 #include "estimation/topological/topological_graph_slam.h"
 #include "estimation/topological/topological_slam.h"
@@ -80,7 +81,7 @@ class TopologicalTally {
 };
 
 // Topological B-spline SLAM: no covariance; the map is curves with their control points.
-class TopologicalSlamMethod : public SlamMethod {
+class TopologicalSlamMethod : public SlamMethod, public ExplorationNodes {
  public:
   TopologicalSlamMethod(const TopologicalSlamOptions& options, const SlamContext& context)
       : slam_(context.start, WithRegion(options, context.region)) {}
@@ -119,7 +120,7 @@ class TopologicalSlamMethod : public SlamMethod {
 
 // The topological SLAM with the graph SLAM's back end: the topological map, re-anchored to the
 // optimised keyframes; the trajectory from the graph.
-class TopologicalGraphSlamMethod : public SlamMethod {
+class TopologicalGraphSlamMethod : public SlamMethod, public ExplorationNodes {
  public:
   TopologicalGraphSlamMethod(TopologicalGraphSlamOptions options, const SlamContext& context)
       : slam_(context.start,

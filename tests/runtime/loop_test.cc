@@ -9,6 +9,7 @@
 #include <string>
 
 #include "estimation/evaluation/metrics.h"
+#include "estimation/exploration_nodes.h"
 #include "estimation/topological/topological_slam.h"
 #include "exploration/explorer.h"
 #include "exploration/reg.h"
@@ -345,7 +346,10 @@ TEST(RunExploration, TheGraphSlamMovesTheExplorersNodes) {
   setup.localization = "graph";
   const ExploreOutcome outcome = RunExploration(world, setup);
   ASSERT_TRUE(outcome.error.empty()) << outcome.error;
-  const std::vector<Pose2> nodes = outcome.slam_method()->NodePoses();
+  const estimation::ExplorationNodes* exploration_nodes =
+      estimation::NodesOf(*outcome.slam_method());
+  ASSERT_NE(exploration_nodes, nullptr);
+  const std::vector<Pose2> nodes = exploration_nodes->NodePoses();
   const graph::ExplorationGraph& g = outcome.run.graph;
   ASSERT_EQ(nodes.size(), g.num_nodes());
   // How far the optimisations moved the nodes from where they were placed (the online estimate
