@@ -169,48 +169,51 @@ std::optional<std::uint64_t> FieldInteger(const BagRecord& record, std::string_v
   return v;
 }
 
-// Reads the fields of a header ("name=value", each after its length) into *fields; the problem
+// Reads the fields of a header ("name=value", each after its length) into *fields; fails
 // when a field runs past the header or has no '='.
-std::string HeaderFieldsProblem(std::string_view header,
-                                std::map<std::string, std::string, std::less<>>* fields) {
+kernel::Status HeaderFieldsProblem(std::string_view header,
+                                   std::map<std::string, std::string, std::less<>>* fields) {
   for (std::size_t f = 0; f < header.size();) {
     if (f + 4 > header.size() || f + 4 + U32(header, f) > header.size())
-      return "a header field runs past its header";
+      return kernel::Status::Error("a header field runs past its header");
     const std::string_view field = header.substr(f + 4, U32(header, f));
     const std::size_t equals = field.find('=');
-    if (equals == std::string_view::npos) return "a header field without '='";
+    if (equals == std::string_view::npos)
+      return kernel::Status::Error("a header field without '='");
     (*fields)[std::string(field.substr(0, equals))] = field.substr(equals + 1);
     f += 4 + field.size();
   }
-  return "";
+  return {};
 }
 
 // Splits `size` bytes into records (header length, header fields "name=value" each with its
-// length, an op field, data length, data), checking that every length stays inside. Empty when
-// they hold.
-std::string SplitRecords(const ReadBytes& read, std::uint64_t size, const std::string& what,
-                         std::vector<BagRecord>* records) {
+// length, an op field, data length, data), checking that every length stays inside.
+kernel::Status SplitRecords(const ReadBytes& read, std::uint64_t size, const std::string& what,
+                            std::vector<BagRecord>* records) {
   std::uint64_t at = 0;
   for (int number = 1; at < size; ++number) {
     const std::string where = what + " " + std::to_string(number);
-    if (at + 4 > size) return where + ": its header runs past the end";
+    if (at + 4 > size) return kernel::Status::Error(where + ": its header runs past the end");
     const std::uint64_t header_len = U32(read(at, 4), 0);
-    if (at + 4 + header_len + 4 > size) return where + ": its header runs past the end";
+    if (at + 4 + header_len + 4 > size)
+      return kernel::Status::Error(where + ": its header runs past the end");
     const std::string header = read(at + 4, header_len);
     BagRecord record;
-    if (std::string problem = HeaderFieldsProblem(header, &record.fields); !problem.empty())
-      return where + ": " + problem;
+    if (kernel::Status problem = HeaderFieldsProblem(header, &record.fields); !problem.ok())
+      return problem.Prefixed(where);
     record.at = at;
     record.data_at = at + 4 + header_len + 4;
     record.data_len = U32(read(record.data_at - 4, 4), 0);
-    if (record.data_at + record.data_len > size) return where + ": its data runs past the end";
+    if (record.data_at + record.data_len > size)
+      return kernel::Status::Error(where + ": its data runs past the end");
     const auto op = record.fields.find("op");
-    if (op == record.fields.end() || op->second.size() != 1) return where + ": no op field";
+    if (op == record.fields.end() || op->second.size() != 1)
+      return kernel::Status::Error(where + ": no op field");
     record.op = op->second[0];
     at = record.data_at + record.data_len;
     records->push_back(std::move(record));
   }
-  return "";
+  return {};
 }
 
 constexpr char kMessageDataOp = 0x02;
@@ -223,13 +226,11 @@ constexpr char kConnectionOp = 0x07;
 constexpr std::uint64_t kMaxChunkBytes = 256u << 20;
 
 // The data of a connection record is the connection's own header (topic, type, md5sum,
-// definition): rosbag reads the record's data length as that header's length. Empty when its
+// definition): rosbag reads the record's data length as that header's length. Ok when its
 // fields fit.
-std::string ConnectionProblem(std::string_view data) {
+kernel::Status ConnectionProblem(std::string_view data) {
   std::map<std::string, std::string, std::less<>> fields;
-  if (std::string problem = HeaderFieldsProblem(data, &fields); !problem.empty())
-    return "its connection header: " + problem;
-  return "";
+  return HeaderFieldsProblem(data, &fields).Prefixed("its connection header");
 }
 
 // Checks the framing of a bag's records and of the records inside its uncompressed chunks, the
@@ -240,10 +241,10 @@ std::string ConnectionProblem(std::string_view data) {
 // header, and in a connection's), and an index offset past a chunk made
 // Bag::readHeaderFromBuffer read outside it (all found by fuzz_bag).
 // Reads the headers and the uncompressed chunks only, one at a time; `base` is the position of
-// the first record in the file. Compressed chunks are left to rosbag. Empty when all hold.
-std::string RecordFramingProblem(const ReadBytes& read, std::uint64_t size, std::uint64_t base) {
+// the first record in the file. Compressed chunks are left to rosbag. Ok when all hold.
+kernel::Status RecordFramingProblem(const ReadBytes& read, std::uint64_t size, std::uint64_t base) {
   std::vector<BagRecord> records;
-  if (std::string problem = SplitRecords(read, size, "record", &records); !problem.empty())
+  if (kernel::Status problem = SplitRecords(read, size, "record", &records); !problem.ok())
     return problem;
   std::set<std::uint64_t> starts, chunk_starts;
   for (const BagRecord& r : records) {
@@ -256,60 +257,63 @@ std::string RecordFramingProblem(const ReadBytes& read, std::uint64_t size, std:
     const BagRecord& r = records[i];
     const std::string where = "record " + std::to_string(i + 1);
     if (r.op == kConnectionOp) {
-      if (std::string problem = ConnectionProblem(read(r.data_at, r.data_len)); !problem.empty())
-        return where + ": " + problem;
+      if (kernel::Status problem = ConnectionProblem(read(r.data_at, r.data_len)); !problem.ok())
+        return problem.Prefixed(where);
     } else if (r.op == kBagHeaderOp) {
       const auto index_pos = FieldInteger(r, "index_pos", 8);
       if (!index_pos || (*index_pos != 0 && !starts.contains(*index_pos)))
-        return where + ": its index position is not a record";
+        return kernel::Status::Error(where + ": its index position is not a record");
     } else if (r.op == kChunkInfoOp) {
       const auto chunk_pos = FieldInteger(r, "chunk_pos", 8);
       if (!chunk_pos || !chunk_starts.contains(*chunk_pos))
-        return where + ": its chunk position is not a chunk";
+        return kernel::Status::Error(where + ": its chunk position is not a chunk");
     } else if (r.op == kChunkOp) {
       const auto compression = r.fields.find("compression");
-      if (compression == r.fields.end()) return where + ": a chunk without compression field";
+      if (compression == r.fields.end())
+        return kernel::Status::Error(where + ": a chunk without compression field");
       messages.reset();
       if (compression->second != "none") {
         // rosbag allocates what the chunk claims before it decompresses (4 GiB: an abort when
         // the allocation failed); its writer makes chunks of 768 KiB.
         const auto claimed = FieldInteger(r, "size", 4);
         if (!claimed || *claimed > kMaxChunkBytes)
-          return where + ": a compressed chunk claiming " +
-                 (claimed ? std::to_string(*claimed) : std::string("no")) +
-                 " bytes uncompressed (at most 256 MiB)";
+          return kernel::Status::Error(where + ": a compressed chunk claiming " +
+                                       (claimed ? std::to_string(*claimed) : std::string("no")) +
+                                       " bytes uncompressed (at most 256 MiB)");
         continue;
       }
       if (FieldInteger(r, "size", 4) != r.data_len)
-        return where + ": an uncompressed chunk whose size is not its length";
+        return kernel::Status::Error(where +
+                                     ": an uncompressed chunk whose size is not its length");
       const std::string chunk = read(r.data_at, r.data_len);
       const ReadBytes in_chunk = [&](std::uint64_t a, std::uint64_t n) {
         return chunk.substr(a, n);
       };
       std::vector<BagRecord> inner;
-      if (std::string problem = SplitRecords(in_chunk, chunk.size(), "chunk record", &inner);
-          !problem.empty())
-        return where + ": " + problem;
+      if (kernel::Status problem = SplitRecords(in_chunk, chunk.size(), "chunk record", &inner);
+          !problem.ok())
+        return problem.Prefixed(where);
       messages.emplace();
       for (std::size_t k = 0; k < inner.size(); ++k) {
         const BagRecord& m = inner[k];
         if (m.op == kMessageDataOp) messages->insert(m.at);
         if (m.op != kConnectionOp) continue;
-        if (std::string problem = ConnectionProblem(chunk.substr(m.data_at, m.data_len));
-            !problem.empty())
-          return where + ": chunk record " + std::to_string(k + 1) + ": " + problem;
+        if (kernel::Status problem = ConnectionProblem(chunk.substr(m.data_at, m.data_len));
+            !problem.ok())
+          return problem.Prefixed(where + ": chunk record " + std::to_string(k + 1));
       }
     } else if (r.op == kIndexDataOp && messages) {
       const auto count = FieldInteger(r, "count", 4);
       if (FieldInteger(r, "ver", 4) != 1 || !count || r.data_len != *count * 12)
-        return where + ": an index whose length is not its count";
+        return kernel::Status::Error(where + ": an index whose length is not its count");
       const std::string entries = read(r.data_at, r.data_len);
       for (std::size_t e = 0; e < *count; ++e)
         if (!messages->contains(U32(entries, e * 12 + 8)))
-          return where + ": an index entry that is not a message of its chunk";
+          return kernel::Status::Error(where +
+                                       ": an index entry that is not a message of its chunk");
     }
   }
-  return "";
+  return {};
 }
 
 }  // namespace
@@ -329,8 +333,7 @@ kernel::Status RosBagFramingProblem(const std::string& path) {
     in.read(bytes.data(), static_cast<std::streamsize>(n));
     return bytes;
   };
-  const std::string problem = RecordFramingProblem(from_file, size - kMagic.size(), kMagic.size());
-  return problem.empty() ? kernel::Status::Ok() : kernel::Status::Error(problem);
+  return RecordFramingProblem(from_file, size - kMagic.size(), kMagic.size());
 }
 
 bool IsRosBagPath(const std::string& path) { return path.ends_with(".bag"); }
