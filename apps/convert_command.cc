@@ -1,8 +1,14 @@
-// splam convert: a CARMEN log to a ROS 1 bag, or a bag to a CARMEN log.
+// splam convert: a CARMEN log to a ROS 1 bag, or a bag to a CARMEN log; a trajectory between
+// splam's, TUM's and KITTI's formats.
 #include <fmt/core.h>
+
+#include <algorithm>
+#include <array>
+#include <string_view>
 
 #include "apps/commands.h"
 #include "apps/log_input.h"
+#include "io/trajectory.h"
 
 namespace splam::apps {
 namespace {
@@ -12,7 +18,42 @@ struct ConvertArgs {
   LogInput input;
 };
 
+constexpr std::array<std::string_view, 3> kLogOutputs = {".bag", ".clf", ".log"};
+constexpr std::array<std::string_view, 2> kTrajectoryOutputs = {".tum", ".kitti"};
+
+bool EndsWithAny(const std::string& path, const auto& extensions) {
+  return std::any_of(extensions.begin(), extensions.end(),
+                     [&](std::string_view e) { return path.ends_with(e); });
+}
+
+// A trajectory in any format to the format of OUT's extension.
+int ConvertTrajectory(const ConvertArgs& args) {
+  const io::Result<io::Trajectory> trajectory = io::ReadTrajectory(args.in);
+  if (!trajectory) {
+    fmt::print(stderr, "splam convert: {}\n", trajectory.error);
+    return kExitBadInput;
+  }
+  if (kernel::Status error =
+          io::WriteTrajectory(args.out, *trajectory, "converted from " + args.in);
+      !error.ok()) {
+    fmt::print(stderr, "splam convert: {}\n", error.message());
+    return kExitWriteFailed;
+  }
+  fmt::print("wrote {}: {} poses, {}\n", args.out, trajectory->size(),
+             io::TrajectoryFormatName(io::TrajectoryFormatOf(args.out)));
+  return kExitOk;
+}
+
 int RunConvert(const ConvertArgs& args) {
+  if (EndsWithAny(args.out, kTrajectoryOutputs) || EndsWithAny(args.in, kTrajectoryOutputs))
+    return ConvertTrajectory(args);
+  if (!EndsWithAny(args.out, kLogOutputs)) {
+    fmt::print(stderr,
+               "splam convert: {}: unknown output format; known: .bag (ROS 1 bag), .clf or .log "
+               "(CARMEN log), .tum or .kitti (a trajectory, from a trajectory file)\n",
+               args.out);
+    return kExitBadInput;
+  }
   const io::CarmenReadResult read = ReadLogInput(args.in, args.input);
   if (!read.log.ok()) {
     fmt::print(stderr, "splam convert: {}\n", read.log.error);
@@ -53,11 +94,13 @@ void AddConvertCommand(CLI::App* app, int* exit_code) {
   auto args = std::make_shared<ConvertArgs>();
   CLI::App* cmd = app->add_subcommand(
       "convert",
-      "Convert a CARMEN log to a ROS 1 bag (OUT ends in .bag) or a bag to a CARMEN log: scans "
-      "(sensor_msgs/LaserScan), odometry (nav_msgs/Odometry), the laser mounting (/tf_static) "
-      "and ground truth (--truth-topic)");
-  cmd->add_option("in", args->in, "Input: a CARMEN log or a .bag")->required();
-  cmd->add_option("out", args->out, "Output: a .bag or a CARMEN log")->required();
+      "Convert a CARMEN log to a ROS 1 bag (OUT ends in .bag) or a bag to a CARMEN log (.clf, "
+      ".log): scans (sensor_msgs/LaserScan), odometry (nav_msgs/Odometry), the laser mounting "
+      "(/tf_static) and ground truth (--truth-topic); or a trajectory to TUM (.tum) or KITTI "
+      "(.kitti), as evo reads them, and back (.txt)");
+  cmd->add_option("in", args->in, "Input: a CARMEN log, a .bag, or a trajectory")->required();
+  cmd->add_option("out", args->out, "Output: .bag, .clf, .log; .tum, .kitti, .txt (trajectories)")
+      ->required();
   AddLogInputOptions(cmd, &args->input);
   cmd->callback([args, exit_code] { *exit_code = RunConvert(*args); });
 }

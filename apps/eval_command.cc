@@ -44,7 +44,38 @@ int ReportNotScored(int status, const std::string& problem) {
   return std::max(status, kExitBadInput);
 }
 
+// The absolute trajectory error after SE(2) alignment of every run that matched the truth.
+void ReportAlignedErrors(const kernel::Trajectory& truth,
+                         const std::vector<std::pair<std::string, kernel::Trajectory>>& runs,
+                         nlohmann::ordered_json* report) {
+  fmt::print(
+      "absolute trajectory error after SE(2) alignment:\n  {:<10} {:>12} {:>12} {:>12} {:>12} "
+      "{:>15} {:>18}\n",
+      "", "RMSE (m)", "mean (m)", "median (m)", "max (m)", "RMSE head (deg)", "alignment");
+  for (const auto& [label, trajectory] : runs) {
+    const evaluation::AlignedError e = evaluation::AbsoluteTrajectoryError(truth, trajectory);
+    if (e.matched == 0 || !std::isfinite(e.rmse_m)) continue;  // said by the table above
+    const kernel::Pose2& a = e.truth_T_estimate;
+    (*report)["ate"][label] = {{"matched_poses", e.matched},
+                               {"rmse_m", e.rmse_m},
+                               {"mean_m", e.mean_m},
+                               {"median_m", e.median_m},
+                               {"std_m", e.std_m},
+                               {"max_m", e.max_m},
+                               {"rmse_heading_deg", kernel::RadToDeg(e.rmse_heading_rad)},
+                               {"alignment", {a.x(), a.y(), a.theta()}}};
+    fmt::print("  {:<10} {:>12.4f} {:>12.4f} {:>12.4f} {:>12.4f} {:>15.2f} {:>18}\n", label,
+               e.rmse_m, e.mean_m, e.median_m, e.max_m, kernel::RadToDeg(e.rmse_heading_rad),
+               fmt::format("{:.2f} {:.2f} {:.1f}deg", a.x(), a.y(), kernel::RadToDeg(a.theta())));
+  }
+}
+
 int RunEval(EvalArgs args) {
+  // A trajectory file given where the run directory goes is the estimate.
+  if (!args.run.empty() && std::filesystem::is_regular_file(args.run) && args.estimate.empty()) {
+    args.estimate = args.run;
+    args.run.clear();
+  }
   if (!args.run.empty()) {
     const std::filesystem::path dir(args.run);
     if (args.estimate.empty()) args.estimate = (dir / "trajectory.txt").string();
@@ -108,6 +139,7 @@ int RunEval(EvalArgs args) {
       plotted.emplace_back(
           label, label == "odometry" ? io::palette::kOdometry : io::palette::kEstimate, trajectory);
     }
+    ReportAlignedErrors(*truth.value, runs, &report);
     if (!args.out.empty()) {
       std::filesystem::create_directories(args.out);
       if (kernel::Status e =
@@ -165,11 +197,15 @@ void AddEvalCommand(CLI::App* app, int* exit_code) {
   auto args = std::make_shared<EvalArgs>();
   CLI::App* cmd = app->add_subcommand("eval",
                                       "Score a trajectory against ground truth (RMSE, max, error "
-                                      "plots) and/or with the relations metric; raw "
+                                      "plots, and the absolute trajectory error after SE(2) "
+                                      "alignment) and/or with the relations metric; raw "
                                       "odometry is scored too as the baseline.");
   cmd->add_option("run", args->run,
-                  "A run directory of `splam slam` (trajectory.txt, odometry.txt, truth.txt)");
-  cmd->add_option("--estimate", args->estimate, "Estimated trajectory 'time x y theta'");
+                  "A run directory of `splam slam` (trajectory.txt, odometry.txt, truth.txt), or "
+                  "a trajectory file (the estimate)");
+  cmd->add_option("--estimate", args->estimate,
+                  "Estimated trajectory: splam 'time x y theta', TUM or KITTI (told by the values "
+                  "per line)");
   cmd->add_option("--truth", args->truth, "Ground-truth trajectory");
   cmd->add_option("--odometry", args->odometry, "Odometry trajectory (the baseline)");
   cmd->add_option("--relations", args->relations,

@@ -126,11 +126,13 @@ void WriteSlamFiles(const std::string& log, const std::string& out, const std::s
                     std::vector<kernel::Status>* errors) {
   const estimation::SlamMap map = slam.Map();
   errors->push_back(io::WriteMap(map, out));
-  errors->push_back(
-      io::WriteTrajectory(out + "/trajectory.txt", run.estimate, label + " estimate of " + log));
+  // trajectory.txt in splam's format, trajectory.tum (and truth.tum) for evo and the like.
+  for (const char* name : {"/trajectory.txt", "/trajectory.tum"})
+    errors->push_back(io::WriteTrajectory(out + name, run.estimate, label + " estimate of " + log));
   errors->push_back(io::WriteTrajectory(out + "/odometry.txt", run.odometry, "odometry of " + log));
-  if (!run.truth.empty())
-    errors->push_back(io::WriteTrajectory(out + "/truth.txt", run.truth, "ground truth of " + log));
+  for (const char* name : {"/truth.txt", "/truth.tum"})
+    if (!run.truth.empty())
+      errors->push_back(io::WriteTrajectory(out + name, run.truth, "ground truth of " + log));
   io::RunPicture picture;
   picture.title = fmt::format("{} on {}: {}", label, std::filesystem::path(log).filename().string(),
                               slam.MapDescription());
@@ -353,9 +355,10 @@ int RunSlam(const SlamArgs& args) {
   }
   const bool finite = PrintSlamSummary(label, slam, run, summary);
   fmt::print(
-      "wrote {}/{{config.yaml, trajectory.txt, odometry.txt, map.txt, map.dxf, map.svg, map.png, "
+      "wrote {}/{{config.yaml, trajectory.txt, trajectory.tum, odometry.txt, map.txt, map.dxf, "
+      "map.svg, map.png, "
       "summary.json, report.html{}{}}}\n",
-      out, run.truth.empty() ? "" : ", truth.txt, errors.svg, errors.png",
+      out, run.truth.empty() ? "" : ", truth.txt, truth.tum, errors.svg, errors.png",
       args.trace ? ", steps.csv" : "");
   if (!slam.healthy() || !finite || !scored || truncated || run.stopped_at) return kExitIncomplete;
   return kExitOk;

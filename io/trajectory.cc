@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "io/text.h"
 
@@ -44,20 +45,89 @@ kernel::Status WriteTextFile(const std::string& path, const std::string& text) {
   return out ? kernel::Status::Ok() : FileError(path, 0, "write failed (disk full?)");
 }
 
+namespace {
+
+// The planar pose of a line of `format`'s values (`v` holds them all, finite), or why not.
+kernel::Result<StampedPose> PoseOfValues(TrajectoryFormat format, const std::vector<double>& v,
+                                         double index) {
+  using R = kernel::Result<StampedPose>;
+  switch (format) {
+    case TrajectoryFormat::kSplam:
+      return R::Ok({v[0], kernel::Pose2(v[1], v[2], v[3])});
+    case TrajectoryFormat::kTum: {
+      const double qx = v[4], qy = v[5], qz = v[6], qw = v[7];
+      const double norm2 = qx * qx + qy * qy + qz * qz + qw * qw;
+      if (!(norm2 > 1e-12)) return R::Fail("the quaternion (qx qy qz qw) is zero");
+      // Yaw of the rotation (the z-y-x Euler angle about z); the scale of q cancels.
+      const double yaw =
+          std::atan2(2.0 * (qw * qz + qx * qy), qw * qw + qx * qx - qy * qy - qz * qz);
+      return R::Ok({v[0], kernel::Pose2(v[1], v[2], yaw)});
+    }
+    case TrajectoryFormat::kKitti:
+      return R::Ok({index, kernel::Pose2(v[3], v[7], std::atan2(v[4], v[0]))});
+  }
+  return R::Fail("unknown format");
+}
+
+std::size_t ValueCount(TrajectoryFormat format) {
+  switch (format) {
+    case TrajectoryFormat::kSplam:
+      return 4;
+    case TrajectoryFormat::kTum:
+      return 8;
+    case TrajectoryFormat::kKitti:
+      return 12;
+  }
+  return 0;
+}
+
+}  // namespace
+
+TrajectoryFormat TrajectoryFormatOf(const std::string& path) {
+  if (path.ends_with(".tum")) return TrajectoryFormat::kTum;
+  if (path.ends_with(".kitti")) return TrajectoryFormat::kKitti;
+  return TrajectoryFormat::kSplam;
+}
+
+const char* TrajectoryFormatName(TrajectoryFormat format) {
+  switch (format) {
+    case TrajectoryFormat::kSplam:
+      return "splam 'time x y theta'";
+    case TrajectoryFormat::kTum:
+      return "TUM 'time x y z qx qy qz qw'";
+    case TrajectoryFormat::kKitti:
+      return "KITTI (12 values of a 3x4 pose matrix)";
+  }
+  return "unknown";
+}
+
 Result<Trajectory> ParseTrajectory(const std::string& text, const std::string& name) {
   Trajectory trajectory;
+  std::optional<TrajectoryFormat> format;
   std::vector<double> v;
   const kernel::Status error =
       ForEachDataLine(text, [&](int line, const std::vector<std::string_view>& tokens) {
-        if (tokens.size() != 4) {
-          return FileError(
-              name, line,
-              "expected 4 values 'time x y theta', found " + std::to_string(tokens.size()));
+        if (!format) {
+          for (const TrajectoryFormat f :
+               {TrajectoryFormat::kSplam, TrajectoryFormat::kTum, TrajectoryFormat::kKitti})
+            if (tokens.size() == ValueCount(f)) format = f;
+          if (!format)
+            return FileError(name, line,
+                             "expected 4 values 'time x y theta' (or 8 of TUM, 12 of KITTI), "
+                             "found " +
+                                 std::to_string(tokens.size()));
+        } else if (tokens.size() != ValueCount(*format)) {
+          return FileError(name, line,
+                           "expected " + std::to_string(ValueCount(*format)) + " values (" +
+                               TrajectoryFormatName(*format) + ", as the first pose), found " +
+                               std::to_string(tokens.size()));
         }
-        if (kernel::Status bad = ParseFiniteNumbers(tokens, &v); !bad.ok()) {
+        if (kernel::Status bad = ParseFiniteNumbers(tokens, &v); !bad.ok())
           return FileError(name, line, bad.message());
-        }
-        trajectory.push_back({v[0], kernel::Pose2(v[1], v[2], v[3])});
+        const kernel::Result<StampedPose> pose =
+            PoseOfValues(*format, v, static_cast<double>(trajectory.size()));
+        if (!pose) return FileError(name, line, pose.error);
+        trajectory.push_back(*pose);
         return kernel::Status::Ok();
       });
   if (!error.ok()) return Result<Trajectory>::Fail(error);
@@ -73,20 +143,38 @@ Result<Trajectory> ReadTrajectory(const std::string& path) {
   return ParseTrajectory(text, path);
 }
 
-std::string FormatTrajectory(const Trajectory& trajectory, const std::string& comment) {
+std::string FormatTrajectory(const Trajectory& trajectory, const std::string& comment,
+                             TrajectoryFormat format) {
   std::string out;
-  if (!comment.empty()) out += "# " + comment + "\n";
-  out += "# time_s x_m y_m theta_rad\n";
+  if (!comment.empty() && format != TrajectoryFormat::kKitti) out += "# " + comment + "\n";
+  if (format == TrajectoryFormat::kSplam) out += "# time_s x_m y_m theta_rad\n";
+  if (format == TrajectoryFormat::kTum) out += "# timestamp x y z qx qy qz qw\n";
   for (const StampedPose& p : trajectory) {
-    out += FormatDouble(p.time_s) + " " + FormatDouble(p.pose.x()) + " " +
-           FormatDouble(p.pose.y()) + " " + FormatDouble(p.pose.theta()) + "\n";
+    const std::string x = FormatDouble(p.pose.x()), y = FormatDouble(p.pose.y());
+    const double theta = p.pose.theta();
+    switch (format) {
+      case TrajectoryFormat::kSplam:
+        out += FormatDouble(p.time_s) + " " + x + " " + y + " " + FormatDouble(theta) + "\n";
+        break;
+      case TrajectoryFormat::kTum:  // rotation by theta about z: q = (0, 0, sin, cos)(theta / 2)
+        out += FormatDouble(p.time_s) + " " + x + " " + y + " 0 0 0 " +
+               FormatDouble(std::sin(0.5 * theta)) + " " + FormatDouble(std::cos(0.5 * theta)) +
+               "\n";
+        break;
+      case TrajectoryFormat::kKitti: {
+        const std::string c = FormatDouble(std::cos(theta)), s = FormatDouble(std::sin(theta));
+        out += c + " " + FormatDouble(0.0 - std::sin(theta)) + " 0 " + x + " " + s + " " + c +
+               " 0 " + y + " 0 0 1 0\n";
+        break;
+      }
+    }
   }
   return out;
 }
 
 kernel::Status WriteTrajectory(const std::string& path, const Trajectory& trajectory,
                                const std::string& comment) {
-  return WriteTextFile(path, FormatTrajectory(trajectory, comment));
+  return WriteTextFile(path, FormatTrajectory(trajectory, comment, TrajectoryFormatOf(path)));
 }
 
 }  // namespace splam::io

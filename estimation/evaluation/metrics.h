@@ -28,6 +28,26 @@ struct TrajectoryError {
 // estimate at the true start pose).
 TrajectoryError CompareToTruth(const kernel::Trajectory& truth, const kernel::Trajectory& estimate);
 
+// The absolute trajectory error (ATE, Sturm et al. 2012, as evo's APE reports it) after the
+// rigid alignment that fits the estimate best to the truth: the rotation and translation
+// truth_T_estimate minimising sum_i |truth_i - T estimate_i|^2 over the positions matched in
+// time (Umeyama 1991 / Horn 1987 in the plane, no scale). Headings are compared after the same
+// rotation.
+struct AlignedError {
+  std::size_t matched = 0;         // estimate poses with a truth pose at the same time
+  kernel::Pose2 truth_T_estimate;  // the alignment
+  double rmse_m = 0.0, mean_m = 0.0, median_m = 0.0, std_m = 0.0, max_m = 0.0;
+  double rmse_heading_rad = 0.0;
+};
+// Matches as CompareToTruth does; with fewer than 2 matches the alignment is the identity.
+AlignedError AbsoluteTrajectoryError(const kernel::Trajectory& truth,
+                                     const kernel::Trajectory& estimate);
+// The planar rigid transform b_T_a minimising sum_i |b_i - b_T_a a_i|^2 (a.size() == b.size()):
+// with centred points a', b', the angle atan2(sum a' x b', sum a' . b') and the translation that
+// maps the centroid of a onto that of b.
+kernel::Pose2 AlignPoints(const std::vector<Eigen::Vector2d>& a,
+                          const std::vector<Eigen::Vector2d>& b);
+
 // A relation: the motion from the pose at time t1 to the pose at t2, in the frame of the first.
 struct Relation {
   double t1 = 0.0, t2 = 0.0;

@@ -656,6 +656,56 @@ TEST(SplamCli, EvalScoresNothingFromNothing) {
   EXPECT_NE(json.find("\"error\""), std::string::npos) << json;
 }
 
+// Trajectories as evo reads them: slam writes trajectory.tum and truth.tum beside its own
+// format; convert turns them into KITTI and back; eval reads any of the three, scores the
+// absolute trajectory error after SE(2) alignment, and takes a trajectory file where a run
+// directory goes (the README's `eval --relations R run/trajectory.txt`).
+TEST(SplamCli, TrajectoriesInTumAndKittiAndTheAlignedError) {
+  const fs::path dir = Temp("evo");
+  ASSERT_EQ(Splam("simulate --world corridor --out " + (dir / "sim").string()).status, 0);
+  const fs::path run = dir / "run";
+  Output r = Splam("slam " + (dir / "sim" / "log.clf").string() + " --method ekf-lines --out " +
+                   run.string());
+  ASSERT_EQ(r.status, 0) << r.text;
+  const auto own = io::ReadTrajectory((run / "trajectory.txt").string());
+  const auto tum = io::ReadTrajectory((run / "trajectory.tum").string());
+  ASSERT_TRUE(own.ok() && tum.ok());
+  ASSERT_EQ(own->size(), tum->size());
+  for (std::size_t i = 0; i < own->size(); ++i) {
+    EXPECT_EQ((*tum)[i].time_s, (*own)[i].time_s);
+    EXPECT_LT(((*tum)[i].pose.translation() - (*own)[i].pose.translation()).norm(), 1e-12);
+  }
+  for (const char* name : {"trajectory", "truth"}) {
+    r = Splam("convert " + (run / (std::string(name) + ".tum")).string() + " " +
+              (dir / (std::string(name) + ".kitti")).string());
+    ASSERT_EQ(r.status, 0) << r.text;
+  }
+  // The same ATE from splam's files, TUM's and KITTI's (KITTI pairs poses by their order).
+  std::vector<double> rmse;
+  for (const auto& [estimate, truth] : {std::pair{run / "trajectory.txt", run / "truth.txt"},
+                                        std::pair{run / "trajectory.tum", run / "truth.tum"},
+                                        std::pair{dir / "trajectory.kitti", dir / "truth.kitti"}}) {
+    const fs::path out = dir / ("eval-" + estimate.extension().string().substr(1));
+    r = Splam("eval " + estimate.string() + " --truth " + truth.string() + " --out " +
+              out.string());
+    ASSERT_EQ(r.status, 0) << r.text;
+    EXPECT_NE(r.text.find("absolute trajectory error after SE(2) alignment"), std::string::npos)
+        << r.text;
+    const nlohmann::json report = nlohmann::json::parse(Slurp(out / "eval.json"));
+    rmse.push_back(report["ate"]["estimate"]["rmse_m"].get<double>());
+    // Aligned, the error is at most the unaligned one.
+    EXPECT_LE(rmse.back(), report["truth"]["estimate"]["rmse_position_m"].get<double>() + 1e-12);
+  }
+  EXPECT_GT(rmse[0], 0.0);
+  EXPECT_NEAR(rmse[1], rmse[0], 1e-9);
+  EXPECT_NEAR(rmse[2], rmse[0], 1e-9);
+  // A log to an unknown format is refused with the known ones (it wrote CARMEN text before).
+  r = Splam("convert " + (dir / "sim" / "log.clf").string() + " " + (dir / "x.mcap").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.text.find("unknown output format; known: .bag"), std::string::npos) << r.text;
+  EXPECT_FALSE(fs::exists(dir / "x.mcap"));
+}
+
 TEST(SplamCli, SlamAndEvalRejectBadInput) {
   const fs::path dir = Temp("slam_bad");
   fs::create_directories(dir);

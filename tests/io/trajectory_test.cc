@@ -7,6 +7,7 @@
 #include <fstream>
 #include <thread>
 
+#include "kernel/angle.h"
 #include "kernel/random.h"
 
 namespace splam::io {
@@ -33,7 +34,12 @@ TEST(Trajectory, PropertyWriteThenReadIsExact) {
 
 TEST(Trajectory, BadLinesNameFileAndLine) {
   EXPECT_EQ(ParseTrajectory("# c\n0 1 2\n", "t.txt").error,
-            "t.txt:2: expected 4 values 'time x y theta', found 3");
+            "t.txt:2: expected 4 values 'time x y theta' (or 8 of TUM, 12 of KITTI), found 3");
+  // Every line has the first pose's format.
+  EXPECT_EQ(ParseTrajectory("0 1 2 3\n0 1 2 0 0 0 0 1\n", "t.txt").error,
+            "t.txt:2: expected 4 values (splam 'time x y theta', as the first pose), found 8");
+  EXPECT_EQ(ParseTrajectory("0 1 2 0 0 0 0 0\n", "t.tum").error,
+            "t.tum:1: the quaternion (qx qy qz qw) is zero");
   EXPECT_EQ(ParseTrajectory("0 1 2 x\n", "t.txt").error, "t.txt:1: 'x' is not a finite number");
   EXPECT_EQ(ParseTrajectory("0 1 2 nan\n", "t.txt").error, "t.txt:1: 'nan' is not a finite number");
   // Out-of-order times (real logs jitter) are kept as they are.
@@ -43,12 +49,61 @@ TEST(Trajectory, BadLinesNameFileAndLine) {
   EXPECT_FALSE(ReadTrajectory("/nonexistent.txt").ok());
 }
 
+// TUM and KITTI, as evo writes and reads them: the same poses back to rounding (times exact in
+// TUM; KITTI numbers its poses 0, 1, 2, ... as their times).
+TEST(Trajectory, PropertyTumAndKittiRoundTrip) {
+  kernel::Random random(43);
+  Trajectory t;
+  for (int i = 0; i < 300; ++i) {
+    const double x = random.Gaussian(50), y = random.Gaussian(50);
+    const double theta = random.Uniform(-3.14159, 3.14159);
+    t.push_back({0.1 * i + 1e4, kernel::Pose2(x, y, theta)});
+  }
+  for (const TrajectoryFormat format : {TrajectoryFormat::kTum, TrajectoryFormat::kKitti}) {
+    const Result<Trajectory> back = ParseTrajectory(FormatTrajectory(t, "c", format), "mem");
+    ASSERT_TRUE(back.ok()) << back.error;
+    ASSERT_EQ(back->size(), t.size());
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const kernel::StampedPose& b = (*back)[i];
+      EXPECT_EQ(b.time_s, format == TrajectoryFormat::kTum ? t[i].time_s : static_cast<double>(i));
+      EXPECT_NEAR(b.pose.x(), t[i].pose.x(), 1e-12);
+      EXPECT_NEAR(b.pose.y(), t[i].pose.y(), 1e-12);
+      EXPECT_NEAR(kernel::WrapAngle(b.pose.theta() - t[i].pose.theta()), 0.0, 1e-12);
+    }
+  }
+}
+
+// A TUM line of a 3-D trajectory (tilted, z and a non-unit quaternion): the heading is the yaw.
+TEST(Trajectory, TumYawOfAGeneralQuaternion) {
+  // Yaw 30 deg, then pitch 10 deg (rotation z-y-x), scaled by 2: q = 2 (qz(30) * qy(10)).
+  const double cz = std::cos(kernel::DegToRad(15)), sz = std::sin(kernel::DegToRad(15));
+  const double cy = std::cos(kernel::DegToRad(5)), sy = std::sin(kernel::DegToRad(5));
+  const double qw = 2 * cz * cy, qx = -2 * sz * sy, qy = 2 * cz * sy, qz = 2 * sz * cy;
+  const std::string line = "5 1 2 0.7 " + std::to_string(qx) + " " + std::to_string(qy) + " " +
+                           std::to_string(qz) + " " + std::to_string(qw) + "\n";
+  const Result<Trajectory> t = ParseTrajectory(line, "t.tum");
+  ASSERT_TRUE(t.ok()) << t.error;
+  EXPECT_NEAR(kernel::RadToDeg(t->at(0).pose.theta()), 30.0, 1e-4);
+  EXPECT_EQ(t->at(0).pose.x(), 1.0);
+  EXPECT_EQ(t->at(0).time_s, 5.0);
+}
+
 TEST(Trajectory, FileRoundTrip) {
   const std::string path = ::testing::TempDir() + "/trajectory_test.txt";
   ASSERT_EQ(WriteTrajectory(path, {{0.0, kernel::Pose2(1, 2, 3)}}).message(), "");
   const auto back = ReadTrajectory(path);
   ASSERT_TRUE(back.ok());
   EXPECT_EQ(back.value->at(0).pose.x(), 1.0);
+  // The extension picks the format.
+  EXPECT_EQ(TrajectoryFormatOf("a/b.tum"), TrajectoryFormat::kTum);
+  EXPECT_EQ(TrajectoryFormatOf("b.kitti"), TrajectoryFormat::kKitti);
+  const std::string tum = ::testing::TempDir() + "/trajectory_test.tum";
+  ASSERT_EQ(WriteTrajectory(tum, {{2.5, kernel::Pose2(1, 2, 0)}}).message(), "");
+  std::ifstream in(tum);
+  std::string comment, first;
+  std::getline(in, comment);
+  std::getline(in, first);
+  EXPECT_EQ(first, "2.5 1 2 0 0 0 0 1");
 }
 
 // A result file linked to /dev/full, read back for the report, grew to 24 GB

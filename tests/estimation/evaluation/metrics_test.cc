@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "kernel/angle.h"
 #include "kernel/random.h"
 
 namespace splam::evaluation {
@@ -34,6 +35,63 @@ TEST(CompareToTruth, InterpolatesTruthBetweenStamps) {
   EXPECT_NEAR(e.error_x_m[0], 0.0, 1e-12);
   // Halfway between 3.0 and -3.0 the short way round is pi.
   EXPECT_NEAR(e.error_theta_rad[0], 0.0, 1e-6);
+}
+
+// By hand: truth (0, 0), (2, 0); estimate (0, 1), (2, -1). Centred, a' = (-1, 1), (1, -1) and
+// b' = (-1, 0), (1, 0): sum a'.b' = 2, sum a' x b' = 2, so the alignment turns by 45 deg. R a' =
+// (-sqrt 2, 0), (sqrt 2, 0): each point sqrt 2 - 1 from its truth. The translation maps the
+// centroid (1, 0) of the estimate onto (1, 0): t = (1, 0) - R (1, 0) = (1 - c, -s), c = s =
+// 1/sqrt 2.
+TEST(AbsoluteTrajectoryError, HandComputedAlignment) {
+  const kernel::Trajectory truth = {{0.0, Pose2(0, 0, 0)}, {1.0, Pose2(2, 0, 0.2)}};
+  const kernel::Trajectory estimate = {{0.0, Pose2(0, 1, 0.5)}, {1.0, Pose2(2, -1, 0.3)}};
+  const AlignedError e = AbsoluteTrajectoryError(truth, estimate);
+  const double c = std::sqrt(0.5);
+  EXPECT_EQ(e.matched, 2u);
+  EXPECT_NEAR(e.truth_T_estimate.theta(), kernel::kPi / 4, 1e-12);
+  EXPECT_NEAR(e.truth_T_estimate.x(), 1 - c, 1e-12);
+  EXPECT_NEAR(e.truth_T_estimate.y(), -c, 1e-12);
+  EXPECT_NEAR(e.rmse_m, std::sqrt(2.0) - 1, 1e-12);
+  EXPECT_NEAR(e.mean_m, std::sqrt(2.0) - 1, 1e-12);
+  EXPECT_NEAR(e.median_m, std::sqrt(2.0) - 1, 1e-12);
+  EXPECT_NEAR(e.max_m, std::sqrt(2.0) - 1, 1e-12);
+  EXPECT_NEAR(e.std_m, 0.0, 1e-12);
+  // Headings after the 45 deg turn: 0.5 + pi/4 vs 0, and 0.3 + pi/4 vs 0.2.
+  const double h1 = 0.5 + kernel::kPi / 4, h2 = 0.1 + kernel::kPi / 4;
+  EXPECT_NEAR(e.rmse_heading_rad, std::sqrt((h1 * h1 + h2 * h2) / 2), 1e-12);
+}
+
+// Any rigid motion of the truth, plus small noise, is undone: the error is the noise's, and the
+// alignment is the motion's inverse (to the noise's effect).
+TEST(AbsoluteTrajectoryError, PropertyRigidMotionsAreAlignedAway) {
+  kernel::Random random(17);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Pose2 motion(random.Uniform(-50, 50), random.Uniform(-50, 50), random.Uniform(-3, 3));
+    kernel::Trajectory truth, estimate;
+    for (int i = 0; i < 50; ++i) {
+      const Pose2 p(random.Uniform(-20, 20), random.Uniform(-20, 20), random.Uniform(-3, 3));
+      truth.push_back({static_cast<double>(i), p});
+      estimate.push_back({static_cast<double>(i), motion * p});
+    }
+    const AlignedError exact = AbsoluteTrajectoryError(truth, estimate);
+    ASSERT_EQ(exact.matched, 50u);
+    EXPECT_NEAR(exact.rmse_m, 0.0, 1e-9) << trial;
+    EXPECT_NEAR(exact.rmse_heading_rad, 0.0, 1e-9) << trial;
+    const Pose2 undo = exact.truth_T_estimate * motion;
+    EXPECT_NEAR(undo.translation().norm(), 0.0, 1e-9) << trial;
+    EXPECT_NEAR(kernel::WrapAngle(undo.theta()), 0.0, 1e-9) << trial;
+    // Noise on the estimate: the ATE is at most the noise's RMS (the alignment can only lower it).
+    double noise2 = 0.0;
+    for (kernel::StampedPose& s : estimate) {
+      const double dx = random.Gaussian(0.1);
+      const double dy = random.Gaussian(0.1);
+      s.pose = Pose2(s.pose.x() + dx, s.pose.y() + dy, s.pose.theta());
+      noise2 += dx * dx + dy * dy;
+    }
+    const AlignedError noisy = AbsoluteTrajectoryError(truth, estimate);
+    EXPECT_LE(noisy.rmse_m, std::sqrt(noise2 / 50) + 1e-12) << trial;
+    EXPECT_GT(noisy.rmse_m, 0.5 * std::sqrt(noise2 / 50)) << trial;
+  }
 }
 
 TEST(EvaluateRelations, ExactEstimateScoresZeroAndKnownErrorsScoreThemselves) {
