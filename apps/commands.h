@@ -51,6 +51,10 @@ CLI::Validator PicturePath();
 // An option "X,Y,THETA" (m, m, rad) into *pose (three numbers, or empty when not given).
 CLI::Option* AddPoseOption(CLI::App* cmd, const std::string& name, std::vector<double>* pose,
                            const std::string& help);
+// --set KEY=VALUE, repeatable, one assignment per --set (so that `--set K=V LOG` leaves the log
+// to the positional argument); `example` is an assignment shown in the help.
+CLI::Option* AddSetOption(CLI::App* cmd, std::vector<std::string>* sets,
+                          const std::string& example);
 
 }  // namespace splam::apps
 

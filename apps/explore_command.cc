@@ -256,9 +256,7 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--config", args->config_file,
                   "YAML options (splam config print --explorer E); command-line flags override it");
-  cmd->add_option("--set", args->sets,
-                  "Override one option, KEY=VALUE with the keys of the configuration file, e.g. "
-                  "exploration.min_frontier_m=0.6 (repeatable)");
+  AddSetOption(cmd, &args->sets, "exploration.min_frontier_m=0.6");
   flag("odometry-noise",
        cmd->add_option("--odometry-noise", setup.odometry_noise_scale,
                        "Scale of the default odometry noise (0 = perfect odometry)"))

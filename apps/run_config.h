@@ -19,7 +19,7 @@ namespace splam::apps {
 // `splam slam`: method, local_region (the topological SLAM's region) and the method's options
 // under its name.
 struct SlamConfig {
-  std::string method = "ekf-lines";
+  std::string method = "graph";  // the method the README recommends
   kernel::LocalRegionOptions region;
   std::unique_ptr<estimation::SlamOptions> options;  // the method's
 };

@@ -230,8 +230,7 @@ void AddSimulateCommand(CLI::App* app, int* exit_code) {
   std::vector<std::pair<std::string, CLI::Option*>> flags;
   cmd->add_option("--config", args->config_file,
                   "YAML options (the config.yaml of a run: simulator, route); flags override it");
-  cmd->add_option("--set", args->sets,
-                  "Override one option, KEY=VALUE, e.g. simulator.laser.noise_fraction=0.02");
+  AddSetOption(cmd, &args->sets, "simulator.laser.noise_fraction=0.02");
   flags.emplace_back("laser", cmd->add_option("--laser", args->laser, "Laser model"));
   flags.back()
       .second->check(CLI::IsMember({"urg04lx", "lms200", "lms200-1deg"}))

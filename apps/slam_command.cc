@@ -218,6 +218,10 @@ io::Result<std::optional<sim::World>> WorldToDraw(const SlamArgs& args) {
 }
 
 int RunSlam(const SlamArgs& args) {
+  if (args.log.empty()) {
+    fmt::print(stderr, "splam slam: no log: give one, `splam slam LOG` (a CARMEN log or a .bag)\n");
+    return kExitBadInput;
+  }
   const io::CarmenReadResult read = ReadLogInput(args.log, args.input);
   if (!read.log.ok()) {
     fmt::print(stderr, "splam slam: {}\n", read.log.error);
@@ -378,14 +382,13 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
           ->capture_default_str();
   cmd->add_option("--config", args->config_file,
                   "YAML options (splam config print --method M); command-line flags override it");
-  cmd->add_option("--set", args->sets,
-                  "Override one option, KEY=VALUE with the keys of the configuration file, e.g. "
-                  "topological.correction_gain=0.5 (repeatable)");
+  AddSetOption(cmd, &args->sets, "topological.correction_gain=0.5");
   cmd->add_option("--association", args->association,
                   "ekf-bspline data association: pedraza (end points) or curvature (paper 000)")
       ->check(CLI::IsMember({"pedraza", "curvature"}));
-  cmd->add_option("log,--log", args->log, "CARMEN log or ROS 1 bag (.bag), simulated or real")
-      ->required();
+  cmd->add_option("log", args->log,
+                  "CARMEN log or ROS 1 bag (.bag), simulated or real (also as --log LOG)");
+  cmd->add_option("--log", args->log)->group("");  // the same, by name; one entry in --help
   cmd->add_option("--max-curve-range", args->max_curve_range_m,
                   "B-spline methods: beams longer than this (metres) are not used for curves; 0 = "
                   "the laser's maximum range")

@@ -2,6 +2,7 @@
 //   splam sweep GRID.yaml [--jobs N] [--out DIR] [--slurm ...]
 //   splam sweep status DIR | splam sweep merge DIR | splam sweep cell DIR INDEX
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -78,10 +79,45 @@ int RunCells(const SweepArgs& args) {
   return worst;
 }
 
-int RunGrid(const SweepArgs& args) {
+// Every option a cell would give (fixed ones and every axis value's, --set keys aside) is an
+// option of the grid's command: a misspelt axis is refused before any cell runs.
+kernel::Status CheckGridOptions(const CLI::App& root, const io::Grid& grid,
+                                const std::string& path) {
+  const CLI::App* command = &root;
+  std::string name = "splam";
+  for (const std::string& word : grid.command) {
+    const std::vector<const CLI::App*> named =
+        command->get_subcommands([&](const CLI::App* c) { return c->get_name() == word; });
+    name += " " + word;
+    if (named.empty()) return kernel::Status::Error(path + ": command: no `" + name + "`");
+    command = named.front();
+  }
+  std::vector<std::pair<std::string, const io::GridOption*>> given;  // (where, option)
+  for (const io::GridOption& o : grid.options) given.emplace_back("options", &o);
+  for (const io::GridAxis& a : grid.axes)
+    for (const io::GridValue& v : a.values)
+      for (const io::GridOption& o : v.options) given.emplace_back("axis " + a.name, &o);
+  for (const auto& [where, option] : given) {
+    if (option->set || command->get_option_no_throw("--" + option->name) != nullptr) continue;
+    std::vector<std::string> known;
+    for (const CLI::Option* o : command->get_options())
+      if (o->get_lnames().size() == 1 && o->get_group() != "" && o->get_lnames()[0] != "help")
+        known.push_back(o->get_lnames()[0]);
+    return kernel::Status::Error(
+        fmt::format("{}: {}: --{} is not an option of `{}`; its options: {}", path, where,
+                    option->name, name, fmt::join(known, ", ")));
+  }
+  return kernel::Status::Ok();
+}
+
+int RunGrid(const CLI::App& root, const SweepArgs& args) {
   io::Result<io::Grid> grid = io::ReadGrid(args.grid);
   if (!grid.ok()) {
     fmt::print(stderr, "splam sweep: {}\n", grid.error);
+    return kExitBadInput;
+  }
+  if (kernel::Status s = CheckGridOptions(root, *grid.value, args.grid); !s.ok()) {
+    fmt::print(stderr, "splam sweep: {}\n", s.message());
     return kExitBadInput;
   }
   const std::string dir = args.out.empty()
@@ -187,14 +223,14 @@ void AddSweepCommand(CLI::App* app, int* exit_code) {
   status->callback([args, exit_code] { *exit_code = Status(args->dir); });
   merge->callback([args, exit_code] { *exit_code = Merge(args->dir); });
   cell->callback([args, exit_code] { *exit_code = RunCells(*args); });
-  cmd->callback([cmd, args, exit_code] {
+  cmd->callback([app, cmd, args, exit_code] {
     if (!cmd->get_subcommands().empty()) return;
     if (args->grid.empty()) {
       fmt::print(stderr, "splam sweep: give a grid file, or status/merge DIR\n");
       *exit_code = kExitBadInput;
       return;
     }
-    *exit_code = RunGrid(*args);
+    *exit_code = RunGrid(*app, *args);
   });
 }
 

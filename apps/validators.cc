@@ -70,4 +70,13 @@ CLI::Option* AddPoseOption(CLI::App* cmd, const std::string& name, std::vector<d
       ->check(FiniteRange(-1e6, 1e6));
 }
 
+CLI::Option* AddSetOption(CLI::App* cmd, std::vector<std::string>* sets,
+                          const std::string& example) {
+  return cmd
+      ->add_option("--set", *sets,
+                   "Override one option, KEY=VALUE with the keys of the configuration file, e.g. " +
+                       example + " (repeatable: one --set per option)")
+      ->allow_extra_args(false);
+}
+
 }  // namespace splam::apps

@@ -1,6 +1,7 @@
 #include "studies/sweep_merge.h"
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <functional>
 
@@ -179,6 +180,15 @@ kernel::Result<MergedSweep> MergeSweep(const std::string& dir) {
     m.figures.assign(seen.begin(), seen.end());
   } else {
     m.figures = grid.figures;
+    // A figure no finished cell reports is a misspelling (or another command's): a "-" column
+    // and an empty panel would hide it. Unknowable before a cell has finished.
+    std::vector<std::string> unknown;
+    for (const std::string& f : grid.figures)
+      if (!seen.empty() && !seen.contains(f)) unknown.push_back(f);
+    if (!unknown.empty())
+      return kernel::Result<MergedSweep>::Fail(fmt::format(
+          "{}/grid.yaml: figures: {} {} not among the figures the cells report: {}", dir,
+          fmt::join(unknown, ", "), unknown.size() == 1 ? "is" : "are", fmt::join(seen, ", ")));
   }
   for (std::size_t k = 0; k < m.groups.size(); ++k) {
     for (const std::string& figure : m.figures) {

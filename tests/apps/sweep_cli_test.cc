@@ -70,6 +70,26 @@ TEST(SweepCli, GridRunsOnAllCoresResumesAndMerges) {
   run = Splam("sweep merge sim", dir);
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.text.find("is sim a sweep directory?"), std::string::npos) << run.text;
+  // An axis the command has no option for is refused before a cell runs, with the options it has;
+  // a figure no cell reports is refused at the merge, with the figures they do (it gave a "-"
+  // column and an empty panel).
+  WriteIn(dir, "axis.yaml",
+          "command: slam\noptions: {log: sim/log.clf}\naxes:\n  methd: [graph]\n");
+  run = Splam("sweep axis.yaml --out axis", dir);
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.text.find("axis.yaml: axis methd: --methd is not an option of `splam slam`; its "
+                          "options: method,"),
+            std::string::npos)
+      << run.text;
+  EXPECT_FALSE(fs::exists(dir / "axis"));
+  std::string grid = Slurp(dir / "out/grid.yaml");
+  grid.replace(grid.find("scans"), 5, "scanz");
+  WriteIn(dir / "out", "grid.yaml", grid);
+  run = Splam("sweep merge out", dir);
+  EXPECT_EQ(run.status, 2) << run.text;
+  EXPECT_NE(run.text.find("figures: scanz is not among the figures the cells report: "),
+            std::string::npos)
+      << run.text;
 }
 
 TEST(SweepCli, CtrlCKeepsFinishedCellsAndTheNextRunResumes) {
