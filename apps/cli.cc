@@ -4,8 +4,10 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <new>
+#include <string_view>
 #include <system_error>
 
 #include "apps/commands.h"
@@ -35,6 +37,12 @@ int Main(int argc, char** argv) {
   splam::apps::AddConfigCommand(&app, &exit_code);
   splam::apps::AddConvertCommand(&app, &exit_code);
   splam::apps::AddSweepCommand(&app, &exit_code);
+  // SPLAM_PARSE_ONLY=1: check the command line and stop before the command runs (the test of
+  // the documentation's commands, tests/apps/docs_commands_test.cc).
+  if (const char* parse_only = std::getenv("SPLAM_PARSE_ONLY");
+      parse_only != nullptr && std::string_view(parse_only) == "1")
+    app.parse_complete_callback([] { throw CLI::Success(); });  // after the checks, before any
+                                                                // command's callback
   int status = exit_code;
   try {
     app.parse(argc, argv);
