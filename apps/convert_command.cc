@@ -19,11 +19,10 @@ struct ConvertArgs {
 };
 
 constexpr std::array<std::string_view, 3> kLogOutputs = {".bag", ".clf", ".log"};
-constexpr std::array<std::string_view, 2> kTrajectoryOutputs = {".tum", ".kitti"};
 
-bool EndsWithAny(const std::string& path, const auto& extensions) {
-  return std::any_of(extensions.begin(), extensions.end(),
-                     [&](std::string_view e) { return path.ends_with(e); });
+// A path that names a TUM or KITTI trajectory by its extension.
+bool IsTrajectoryPath(const std::string& path) {
+  return io::TrajectoryFormatOf(path) != io::TrajectoryFormat::kSplam;
 }
 
 // A trajectory in any format to the format of OUT's extension.
@@ -45,9 +44,9 @@ int ConvertTrajectory(const ConvertArgs& args) {
 }
 
 int RunConvert(const ConvertArgs& args) {
-  if (EndsWithAny(args.out, kTrajectoryOutputs) || EndsWithAny(args.in, kTrajectoryOutputs))
-    return ConvertTrajectory(args);
-  if (!EndsWithAny(args.out, kLogOutputs)) {
+  if (IsTrajectoryPath(args.out) || IsTrajectoryPath(args.in)) return ConvertTrajectory(args);
+  if (std::none_of(kLogOutputs.begin(), kLogOutputs.end(),
+                   [&](std::string_view e) { return args.out.ends_with(e); })) {
     fmt::print(stderr,
                "splam convert: {}: unknown output format; known: .bag (ROS 1 bag), .clf or .log "
                "(CARMEN log), .tum or .kitti (a trajectory, from a trajectory file)\n",

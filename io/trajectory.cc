@@ -1,5 +1,6 @@
 #include "io/trajectory.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -55,15 +56,20 @@ kernel::Result<StampedPose> PoseOfValues(TrajectoryFormat format, const std::vec
     case TrajectoryFormat::kSplam:
       return R::Ok({v[0], kernel::Pose2(v[1], v[2], v[3])});
     case TrajectoryFormat::kTum: {
-      const double qx = v[4], qy = v[5], qz = v[6], qw = v[7];
-      const double norm2 = qx * qx + qy * qy + qz * qz + qw * qw;
-      if (!(norm2 > 1e-12)) return R::Fail("the quaternion (qx qy qz qw) is zero");
-      // Yaw of the rotation (the z-y-x Euler angle about z); the scale of q cancels.
+      // Yaw of the rotation (the z-y-x Euler angle about z). The scale of q cancels: divided by
+      // its largest component first, so that no square overflows (1e300 gave a NaN heading).
+      const double scale =
+          std::max({std::abs(v[4]), std::abs(v[5]), std::abs(v[6]), std::abs(v[7])});
+      if (scale == 0.0) return R::Fail("the quaternion (qx qy qz qw) is zero");
+      const double qx = v[4] / scale, qy = v[5] / scale, qz = v[6] / scale, qw = v[7] / scale;
       const double yaw =
           std::atan2(2.0 * (qw * qz + qx * qy), qw * qw + qx * qx - qy * qy - qz * qz);
       return R::Ok({v[0], kernel::Pose2(v[1], v[2], yaw)});
     }
     case TrajectoryFormat::kKitti:
+      // The heading is the direction of the rotation's first column in the plane.
+      if (v[0] == 0.0 && v[4] == 0.0)
+        return R::Fail("the rotation's first column (r00, r10) is zero: no heading in the plane");
       return R::Ok({index, kernel::Pose2(v[3], v[7], std::atan2(v[4], v[0]))});
   }
   return R::Fail("unknown format");
@@ -162,9 +168,11 @@ std::string FormatTrajectory(const Trajectory& trajectory, const std::string& co
                "\n";
         break;
       case TrajectoryFormat::kKitti: {
-        const std::string c = FormatDouble(std::cos(theta)), s = FormatDouble(std::sin(theta));
-        out += c + " " + FormatDouble(0.0 - std::sin(theta)) + " 0 " + x + " " + s + " " + c +
-               " 0 " + y + " 0 0 1 0\n";
+        const double sine = std::sin(theta);
+        const std::string c = FormatDouble(std::cos(theta)), s = FormatDouble(sine);
+        // 0.0 - sine: +0 rather than -0 for a zero heading.
+        out += c + " " + FormatDouble(0.0 - sine) + " 0 " + x + " " + s + " " + c + " 0 " + y +
+               " 0 0 1 0\n";
         break;
       }
     }

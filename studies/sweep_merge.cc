@@ -183,8 +183,8 @@ kernel::Result<MergedSweep> MergeSweep(const std::string& dir) {
     // A figure no finished cell reports is a misspelling (or another command's): a "-" column
     // and an empty panel would hide it. Unknowable before a cell has finished.
     std::vector<std::string> unknown;
-    for (const std::string& f : grid.figures)
-      if (!seen.empty() && !seen.contains(f)) unknown.push_back(f);
+    for (const std::string& f : seen.empty() ? std::vector<std::string>{} : grid.figures)
+      if (!seen.contains(f)) unknown.push_back(f);
     if (!unknown.empty())
       return kernel::Result<MergedSweep>::Fail(fmt::format(
           "{}/grid.yaml: figures: {} {} not among the figures the cells report: {}", dir,

@@ -40,6 +40,12 @@ TEST(Trajectory, BadLinesNameFileAndLine) {
             "t.txt:2: expected 4 values (splam 'time x y theta', as the first pose), found 8");
   EXPECT_EQ(ParseTrajectory("0 1 2 0 0 0 0 0\n", "t.tum").error,
             "t.tum:1: the quaternion (qx qy qz qw) is zero");
+  EXPECT_EQ(ParseTrajectory("0 0 0 0 0 0 0 0 0 0 1 0\n", "t.kitti").error,
+            "t.kitti:1: the rotation's first column (r00, r10) is zero: no heading in the plane");
+  // A quaternion whose squares overflow still has its yaw (it gave a NaN heading).
+  const auto huge = ParseTrajectory("0 1 2 0 0 0 1e300 1e300\n", "t.tum");
+  ASSERT_TRUE(huge.ok()) << huge.error;
+  EXPECT_NEAR(huge->at(0).pose.theta(), kernel::kPi / 2, 1e-12);
   EXPECT_EQ(ParseTrajectory("0 1 2 x\n", "t.txt").error, "t.txt:1: 'x' is not a finite number");
   EXPECT_EQ(ParseTrajectory("0 1 2 nan\n", "t.txt").error, "t.txt:1: 'nan' is not a finite number");
   // Out-of-order times (real logs jitter) are kept as they are.
