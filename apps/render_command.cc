@@ -8,6 +8,8 @@
 #include "io/simulation_log.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
+#include "runtime/log_replay.h"
+#include "runtime/slam_report.h"
 
 namespace splam::apps {
 namespace {
@@ -21,6 +23,8 @@ struct RenderArgs {
   int scan_every = 10;
   double resolution_m_per_px = 0.05;
   double pixels_per_meter = 40.0;
+  std::string grid;  // map.yaml of the occupancy grid of --log at the first --trajectory
+  estimation::OccupancyGridOptions grid_options;
   LogInput input;
 };
 
@@ -29,7 +33,13 @@ int RunRender(const RenderArgs& args) {
     fmt::print(stderr, "splam render: give at least one of --world, --log, --trajectory\n");
     return kExitBadInput;
   }
+  if (!args.grid.empty() && (args.log.empty() || args.trajectories.empty())) {
+    fmt::print(stderr,
+               "splam render: --grid needs --log (the scans) and --trajectory (their poses)\n");
+    return kExitBadInput;
+  }
   io::RunPicture picture;
+  io::CarmenReadResult read_log;
   picture.title = args.title;
   picture.pixels_per_meter = args.pixels_per_meter;
   std::optional<sim::World> world;
@@ -46,12 +56,12 @@ int RunRender(const RenderArgs& args) {
     if (picture.title.empty()) picture.title = world->name;
   }
   if (!args.log.empty()) {
-    const io::CarmenReadResult read = ReadLogInput(args.log, args.input);
-    if (!read.log.ok()) {
-      fmt::print(stderr, "splam render: {}\n", read.log.error);
+    read_log = ReadLogInput(args.log, args.input);
+    if (!read_log.log.ok()) {
+      fmt::print(stderr, "splam render: {}\n", read_log.log.error);
       return kExitBadInput;
     }
-    const io::CarmenLog& log = *read.log.value;
+    const io::CarmenLog& log = *read_log.log.value;
     if (log.messages.empty()) {
       fmt::print(stderr, "splam render: {}: no laser, odometry or true pose message to draw\n",
                  args.log);
@@ -73,11 +83,41 @@ int RunRender(const RenderArgs& args) {
     picture.estimates.emplace_back(std::filesystem::path(path).stem().string(),
                                    std::move(*read.value));
   }
-  if (kernel::Status error = io::SaveRunPicture(picture, args.out); !error.ok()) {
+  std::vector<kernel::Status> errors = {io::SaveRunPicture(picture, args.out)};
+  std::vector<std::string> written = args.out;
+  if (!args.grid.empty()) {
+    const kernel::Trajectory& poses = picture.estimates.front().second;
+    const std::vector<evaluation::PlacedScan> placed =
+        runtime::PlacedScansAt(*read_log.log.value, poses);
+    if (placed.empty()) {
+      fmt::print(stderr, "splam render: no scan of {} lies within the time of {}\n", args.log,
+                 args.trajectories.front());
+      return kExitBadInput;
+    }
+    const std::string picture_path =
+        std::filesystem::path(args.grid).replace_extension(".png").string();
+    const nlohmann::ordered_json grid = runtime::WriteGridFiles(
+        placed, args.grid_options, args.grid, {picture_path},
+        fmt::format("occupancy grid of {} at {}",
+                    std::filesystem::path(args.log).filename().string(),
+                    std::filesystem::path(args.trajectories.front()).filename().string()),
+        poses, &errors);
+    if (grid.contains("error")) {
+      fmt::print(stderr, "splam render: {}\n", grid["error"].get<std::string>());
+      return kExitBadInput;
+    }
+    fmt::print("occupancy grid of {} scans: {} x {} cells of {} m\n", placed.size(),
+               grid["cells"][0].get<int>(), grid["cells"][1].get<int>(),
+               grid["resolution_m"].get<double>());
+    for (const char* extension : {".yaml", ".pgm"})
+      written.push_back(std::filesystem::path(args.grid).replace_extension(extension).string());
+    written.push_back(picture_path);
+  }
+  if (const kernel::Status error = kernel::FirstError(errors); !error.ok()) {
     fmt::print(stderr, "splam render: {}\n", error.message());
     return kExitWriteFailed;
   }
-  for (const std::string& path : args.out) fmt::print("wrote {}\n", path);
+  for (const std::string& path : written) fmt::print("wrote {}\n", path);
   return kExitOk;
 }
 
@@ -97,6 +137,13 @@ void AddRenderCommand(CLI::App* app, int* exit_code) {
       ->check(PicturePath())
       ->capture_default_str();
   cmd->add_option("--title", args->title, "Title above the picture");
+  cmd->add_option("--grid", args->grid,
+                  "Write the occupancy grid of --log's scans at the first --trajectory's poses: "
+                  "FILE.yaml and FILE.pgm (ROS map_server) and FILE.png");
+  cmd->add_option("--grid-resolution", args->grid_options.resolution_m,
+                  "Cell side of the occupancy grid, m")
+      ->check(FinitePositive())
+      ->capture_default_str();
   cmd->add_option("--scan-every", args->scan_every, "Draw the points of every N-th scan")
       ->check(FinitePositive())
       ->capture_default_str();

@@ -10,6 +10,8 @@ io::ConfigRoot SlamConfigRoot(SlamConfig* config) {
             "SLAM method: " + estimation::SlamRegistry::Global().NameList());
     v.Nested("local_region", "the explorers' LSR radius and step (topological SLAM's region)",
              &config->region);
+    v.Nested("occupancy_grid", "the occupancy grid written from the final poses (map.pgm)",
+             &config->grid);
     if (config->options) {
       v.Group(name, "options of the SLAM method",
               [&](kernel::FieldVisitor& f) { config->options->VisitFields(f); });

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "estimation/occupancy_grid.h"
 #include "estimation/slam_method.h"
 #include "io/config.h"
 #include "kernel/local_safe_region.h"
@@ -16,11 +17,12 @@
 // config.yaml agree.
 namespace splam::apps {
 
-// `splam slam`: method, local_region (the topological SLAM's region) and the method's options
-// under its name.
+// `splam slam`: method, local_region (the topological SLAM's region), occupancy_grid and the
+// method's options under its name.
 struct SlamConfig {
   std::string method = "graph";  // the method the README recommends
   kernel::LocalRegionOptions region;
+  estimation::OccupancyGridOptions grid;             // map.pgm / map.yaml of the final poses
   std::unique_ptr<estimation::SlamOptions> options;  // the method's
 };
 io::ConfigRoot SlamConfigRoot(SlamConfig* config);

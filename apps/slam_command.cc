@@ -102,6 +102,12 @@ bool Configure(const SlamArgs& args, const io::LaserMessage& first, SlamConfig* 
     fmt::print(stderr, "splam slam: local_region: {}\n", problem.message());
     return false;
   }
+  kernel::Status grid = kernel::FiniteFields(config->grid);
+  if (grid.ok()) grid = config->grid.Validate();
+  if (!grid.ok()) {
+    fmt::print(stderr, "splam slam: occupancy_grid: {}\n", grid.message());
+    return false;
+  }
   return true;
 }
 
@@ -117,10 +123,46 @@ kernel::Status WriteConsistency(const std::string& path,
   return io::WriteTextFile(path, text);
 }
 
+// The run's figures in a few lines, for report.html and (the first ones) map.png's title: the
+// error against the truth or the relations metric when known, the map, the map's
+// self-consistency, the time, and why the run stopped early when it did.
+std::vector<std::string> SlamHeadline(const estimation::SlamMethod& slam,
+                                      const runtime::ReplayResult& run,
+                                      const evaluation::ConsistencyReport& consistency,
+                                      const std::optional<evaluation::RelationsError>& relations) {
+  std::vector<std::string> lines;
+  if (!run.truth.empty()) {
+    const auto e = evaluation::CompareToTruth(run.truth, run.estimate);
+    const auto o = evaluation::CompareToTruth(run.truth, run.odometry);
+    lines.push_back(fmt::format("position RMSE {:.3f} m (odometry {:.3f} m)", e.rmse_position_m,
+                                o.rmse_position_m));
+  }
+  if (relations && relations->used > 0)
+    lines.push_back(fmt::format("relations metric {:.4f} m, {:.2f} deg",
+                                relations->translation_mean,
+                                kernel::RadToDeg(relations->rotation_mean)));
+  lines.push_back(slam.MapDescription());
+  lines.push_back(fmt::format("{:.1f} % of the points in other passes' free space",
+                              100 * consistency.mean_contradicting));
+  lines.push_back(fmt::format("{} scans in {:.1f} s", run.estimate.size(), run.wall_s));
+  if (run.failed_at) lines.push_back("the method failed: " + slam.health().message());
+  if (run.stopped_at)
+    lines.push_back(fmt::format("interrupted before scan {}", *run.stopped_at + 1));
+  return lines;
+}
+
+// The headline's first two lines, for a picture's title.
+std::string HeadlineTitle(const std::vector<std::string>& headline) {
+  std::string title;
+  for (std::size_t i = 0; i < headline.size() && i < 2; ++i)
+    title += (i > 0 ? "; " : "") + headline[i];
+  return title;
+}
+
 // trajectory, odometry, truth, map files and pictures; errors appended to *errors.
 void WriteSlamFiles(const std::string& log, const std::string& out, const std::string& label,
-                    const sim::World* world, const estimation::SlamMethod& slam,
-                    const runtime::ReplayResult& run,
+                    const std::string& headline, const sim::World* world,
+                    const estimation::SlamMethod& slam, const runtime::ReplayResult& run,
                     const evaluation::ConsistencyReport& consistency,
                     const evaluation::ConsistencyOptions& consistency_options,
                     std::vector<kernel::Status>* errors) {
@@ -134,8 +176,8 @@ void WriteSlamFiles(const std::string& log, const std::string& out, const std::s
     if (!run.truth.empty())
       errors->push_back(io::WriteTrajectory(out + name, run.truth, "ground truth of " + log));
   io::RunPicture picture;
-  picture.title = fmt::format("{} on {}: {}", label, std::filesystem::path(log).filename().string(),
-                              slam.MapDescription());
+  picture.title =
+      fmt::format("{} on {}: {}", label, std::filesystem::path(log).filename().string(), headline);
   picture.world = world;
   picture.world_color = io::Rgb{0.75, 0.75, 0.75};
   picture.truth = run.truth;
@@ -308,8 +350,21 @@ int RunSlam(const SlamArgs& args) {
   const std::string label = statistics.association.empty()
                                 ? config.method
                                 : config.method + " (" + statistics.association + ")";
-  WriteSlamFiles(args.log, out, label, *world.value ? &**world.value : nullptr, slam, run,
-                 consistency, consistency_options, &errors);
+  std::optional<evaluation::RelationsError> relations_error;
+  if (!args.relations.empty())
+    relations_error = evaluation::EvaluateRelations(relations, run.estimate);
+  std::vector<std::string> headline = SlamHeadline(slam, run, consistency, relations_error);
+  if (truncated) headline.push_back("the log stopped early: " + read.log.error);
+  WriteSlamFiles(args.log, out, label, HeadlineTitle(headline),
+                 *world.value ? &**world.value : nullptr, slam, run, consistency,
+                 consistency_options, &errors);
+  const nlohmann::ordered_json grid = runtime::WriteGridFiles(
+      runtime::PlacedScans(log, run.estimate), config.grid, out + "/map.yaml", {out + "/grid.png"},
+      fmt::format("{} on {}: occupancy grid", label,
+                  std::filesystem::path(args.log).filename().string()),
+      run.estimate, &errors);
+  if (grid.contains("error"))
+    fmt::print(stderr, "splam slam: no map.pgm: {}\n", grid["error"].get<std::string>());
   if (args.trace) {
     std::vector<double> times;
     for (const kernel::StampedPose& p : run.online.empty() ? run.estimate : run.online)
@@ -334,9 +389,10 @@ int RunSlam(const SlamArgs& args) {
     summary["stopped_early"] = "interrupted before scan " + std::to_string(*run.stopped_at + 1);
   summary.update(runtime::ReplaySummaryJson(slam, statistics, run, driver));
   summary["consistency"] = runtime::ConsistencyJson(consistency, consistency_options);
+  summary["occupancy_grid"] = grid;
   bool scored = true;
   if (!args.relations.empty()) {
-    const evaluation::RelationsError r = evaluation::EvaluateRelations(relations, run.estimate);
+    const evaluation::RelationsError& r = *relations_error;
     scored = r.used > 0 && std::isfinite(r.translation_mean) && std::isfinite(r.rotation_mean);
     summary["relations"] = runtime::RelationsJson(r);
     summary["relations"]["file"] = args.relations;
@@ -352,7 +408,8 @@ int RunSlam(const SlamArgs& args) {
     }
   }
   errors.push_back(io::WriteTextFile(out + "/summary.json", runtime::JsonText(summary, 2) + "\n"));
-  errors.push_back(runtime::WriteRunHtml(out, "splam slam: " + label + " on " + args.log));
+  errors.push_back(
+      runtime::WriteRunHtml(out, "splam slam: " + label + " on " + args.log, headline));
   if (const kernel::Status e = kernel::FirstError(errors); !e.ok()) {
     fmt::print(stderr, "splam slam: {}\n", e.message());
     return kExitWriteFailed;
@@ -360,7 +417,7 @@ int RunSlam(const SlamArgs& args) {
   const bool finite = PrintSlamSummary(label, slam, run, summary);
   fmt::print(
       "wrote {}/{{config.yaml, trajectory.txt, trajectory.tum, odometry.txt, map.txt, map.dxf, "
-      "map.svg, map.png, "
+      "map.svg, map.png, map.yaml, map.pgm, grid.png, "
       "summary.json, report.html{}{}}}\n",
       out, run.truth.empty() ? "" : ", truth.txt, truth.tum, errors.svg, errors.png",
       args.trace ? ", steps.csv" : "");

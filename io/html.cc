@@ -91,6 +91,12 @@ void HtmlPage::Table(const std::vector<std::string>& header,
   body_ += "</table>\n";
 }
 
+void HtmlPage::List(const std::vector<std::string>& items) {
+  body_ += "<ul>\n";
+  for (const std::string& item : items) body_ += "<li>" + HtmlEscape(item) + "</li>\n";
+  body_ += "</ul>\n";
+}
+
 void HtmlPage::Image(const std::string& src, const std::string& caption) {
   body_ += "<figure><a href=\"" + HtmlEscape(src) + "\"><img src=\"" + HtmlEscape(src) +
            "\" alt=\"" + HtmlEscape(caption) + "\"></a><figcaption>" + HtmlEscape(caption) +

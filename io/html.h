@@ -30,6 +30,8 @@ class HtmlPage {
   void Heading(const std::string& text, int level = 2);
   void Paragraph(const std::string& text);
   void Preformatted(const std::string& text);
+  // A bulleted list, one item per string.
+  void List(const std::vector<std::string>& items);
   void Table(const std::vector<std::string>& header,
              const std::vector<std::vector<HtmlCell>>& rows);
   // A picture linked by its path relative to the page, as wide as the page at most.

@@ -57,6 +57,9 @@ struct Figure::Impl {
   cairo_surface_t* recording = nullptr;
   cairo_t* cr = nullptr;
   std::vector<LegendEntry> legend;
+  // Text, legend and scale bar grow with the picture (a 4000 px map shown 800 px wide in a page
+  // shrinks them five times): sizes below are for a picture up to 1000 px wide.
+  double text_scale = 1.0;
 
   Eigen::Vector2d ToPixel(const Eigen::Vector2d& p) const {
     return {(p.x() - area.min.x() + options.margin_m) * ppm,
@@ -96,15 +99,15 @@ std::vector<Figure::Impl::Slot> Figure::Impl::LayoutLegend(double* scale_length_
   cairo_surface_t* scratch = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
   cairo_t* measure = cairo_create(scratch);
   cairo_select_font_face(measure, kFont, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(measure, 11.0);
-  const double start = 24.0 + *scale_length_m * ppm;
+  cairo_set_font_size(measure, 11.0 * text_scale);
+  const double start = 24.0 * text_scale + *scale_length_m * ppm;
   std::vector<Slot> slots;
   double x = start;
   int row = 0;
   for (const LegendEntry& e : legend) {
     cairo_text_extents_t extents;
     cairo_text_extents(measure, e.label.c_str(), &extents);
-    const double w = 34.0 + extents.x_advance;
+    const double w = 34.0 * text_scale + extents.x_advance;
     if (x > start && x + w > width) {
       x = start;
       ++row;
@@ -121,8 +124,8 @@ double Figure::Impl::Height() const {
   double scale_length_m = 0.0;
   const std::vector<Slot> slots = LayoutLegend(&scale_length_m);
   const int rows = slots.empty() ? 1 : slots.back().row + 1;
-  return (options.title.empty() ? 0.0 : kTitleBand) + map_height + kFooterBand +
-         kLegendRow * (rows - 1);
+  return (options.title.empty() ? 0.0 : kTitleBand * text_scale) + map_height +
+         (kFooterBand + kLegendRow * (rows - 1)) * text_scale;
 }
 
 Figure::Figure(const kernel::Box2& area, const FigureOptions& options)
@@ -135,6 +138,7 @@ Figure::Figure(const kernel::Box2& area, const FigureOptions& options)
       std::min(options.pixels_per_meter, options.max_pixels / std::max(size.maxCoeff(), 1e-9));
   impl_->width = std::ceil(size.x() * impl_->ppm);
   impl_->map_height = std::ceil(size.y() * impl_->ppm);
+  impl_->text_scale = std::max(1.0, impl_->width / 1000.0);
   const cairo_rectangle_t extents{0.0, 0.0, impl_->width, impl_->map_height};
   impl_->recording = cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, &extents);
   impl_->cr = cairo_create(impl_->recording);
@@ -148,6 +152,7 @@ Figure::~Figure() {
 }
 
 void Figure::DrawWorld(const sim::World& world, Rgb color, const std::string& legend) {
+  if (world.obstacles.empty()) return;
   cairo_t* cr = impl_->cr;
   for (std::size_t i = 0; i < world.obstacles.size(); ++i) {
     const bool glass = world.IsGlass(i);
@@ -222,6 +227,7 @@ void Figure::DrawPath(const std::vector<kernel::Pose2>& poses, Rgb color, double
 
 void Figure::DrawPoints(const std::vector<Eigen::Vector2d>& points, Rgb color, double radius_px,
                         const std::string& legend) {
+  if (points.empty()) return;
   cairo_t* cr = impl_->cr;
   for (const Eigen::Vector2d& p : points) {
     const Eigen::Vector2d q = impl_->ToPixel(p);
@@ -266,6 +272,7 @@ void Figure::DrawPolygon(const std::vector<Eigen::Vector2d>& points, Rgb color, 
 
 void Figure::DrawMarkers(const std::vector<Eigen::Vector2d>& points, Marker marker, Rgb color,
                          double size_px, const std::string& legend) {
+  if (points.empty()) return;
   cairo_t* cr = impl_->cr;
   for (const Eigen::Vector2d& p : points) {
     const Eigen::Vector2d q = impl_->ToPixel(p);
@@ -287,6 +294,41 @@ void Figure::DrawMarkers(const std::vector<Eigen::Vector2d>& points, Marker mark
                    marker == Marker::kCircle ? LegendKind::kCircle : LegendKind::kDiamond);
 }
 
+void Figure::DrawRaster(const std::vector<Rgb8>& pixels, int columns, int rows,
+                        const kernel::Box2& area) {
+  assert(pixels.size() == static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows));
+  if (columns <= 0 || rows <= 0) return;
+  cairo_surface_t* image = cairo_image_surface_create(CAIRO_FORMAT_RGB24, columns, rows);
+  cairo_surface_flush(image);
+  unsigned char* data = cairo_image_surface_get_data(image);
+  const int stride = cairo_image_surface_get_stride(image);
+  for (int r = 0; r < rows; ++r) {
+    auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(r) * stride);
+    for (int c = 0; c < columns; ++c) {
+      const Rgb8& p = pixels[static_cast<std::size_t>(r) * static_cast<std::size_t>(columns) +
+                             static_cast<std::size_t>(c)];
+      row[c] = (std::uint32_t{p.r} << 16) | (std::uint32_t{p.g} << 8) | std::uint32_t{p.b};
+    }
+  }
+  cairo_surface_mark_dirty(image);
+  cairo_t* cr = impl_->cr;
+  const Eigen::Vector2d top_left = impl_->ToPixel({area.min.x(), area.max.y()});
+  cairo_save(cr);
+  cairo_translate(cr, top_left.x(), top_left.y());
+  cairo_scale(cr, area.Size().x() * impl_->ppm / columns, area.Size().y() * impl_->ppm / rows);
+  cairo_set_source_surface(cr, image, 0.0, 0.0);
+  // Every cell a sharp square, however much the picture enlarges it.
+  cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
+  cairo_rectangle(cr, 0.0, 0.0, columns, rows);
+  cairo_fill(cr);
+  cairo_restore(cr);
+  cairo_surface_destroy(image);
+}
+
+void Figure::AddLegend(const std::string& label, Rgb color) {
+  impl_->AddLegend(label, color, LegendKind::kPoints);
+}
+
 void Figure::DrawRobot(const kernel::Pose2& pose, double radius_m, Rgb color) {
   cairo_t* cr = impl_->cr;
   const Eigen::Vector2d c = impl_->ToPixel(pose.translation());
@@ -301,7 +343,8 @@ void Figure::DrawRobot(const kernel::Pose2& pose, double radius_m, Rgb color) {
 }
 
 void Figure::Impl::Paint(cairo_t* target) const {
-  const double top = options.title.empty() ? 0.0 : kTitleBand;
+  const double k = text_scale;
+  const double top = options.title.empty() ? 0.0 : kTitleBand * k;
   cairo_set_source_rgb(target, 1, 1, 1);
   cairo_paint(target);
   // The recording holds only what lies in the area (plus margin), so no clip is needed; a clip
@@ -311,62 +354,71 @@ void Figure::Impl::Paint(cairo_t* target) const {
 
   cairo_select_font_face(target, kFont, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   if (!options.title.empty()) {
-    cairo_set_font_size(target, 15.0);
+    // 15 px (scaled), smaller when a long title would run past the right edge.
+    cairo_set_font_size(target, 15.0 * k);
+    cairo_text_extents_t extents;
+    cairo_text_extents(target, options.title.c_str(), &extents);
+    const double room = width - 16.0 * k;
+    if (extents.x_advance > room)
+      cairo_set_font_size(target, std::max(15.0 * k * room / extents.x_advance, 8.0));
     cairo_set_source_rgb(target, 0, 0, 0);
-    cairo_move_to(target, 8.0, 19.0);
+    cairo_move_to(target, 8.0 * k, 19.0 * k);
     cairo_show_text(target, options.title.c_str());
   }
   // Scale bar, bottom left.
-  const double y = top + map_height + 12.0;
+  const double y = top + map_height + 12.0 * k;
   double length_m = 0.0;
   const std::vector<Slot> slots = LayoutLegend(&length_m);
   cairo_set_source_rgb(target, 0, 0, 0);
-  cairo_set_line_width(target, 2.0);
-  cairo_move_to(target, 8.0, y - 4.0);
-  cairo_line_to(target, 8.0, y);
-  cairo_line_to(target, 8.0 + length_m * ppm, y);
-  cairo_line_to(target, 8.0 + length_m * ppm, y - 4.0);
+  cairo_set_line_width(target, 2.0 * k);
+  cairo_move_to(target, 8.0 * k, y - 4.0 * k);
+  cairo_line_to(target, 8.0 * k, y);
+  cairo_line_to(target, 8.0 * k + length_m * ppm, y);
+  cairo_line_to(target, 8.0 * k + length_m * ppm, y - 4.0 * k);
   cairo_stroke(target);
-  cairo_set_font_size(target, 11.0);
+  cairo_set_font_size(target, 11.0 * k);
   char label[32];
   std::snprintf(label, sizeof(label), "%g m", length_m);
-  cairo_move_to(target, 8.0, y + 13.0);
+  cairo_move_to(target, 8.0 * k, y + 13.0 * k);
   cairo_show_text(target, label);
   // Legend, to the right of the scale bar.
   for (std::size_t i = 0; i < legend.size(); ++i) {
     const LegendEntry& e = legend[i];
     const double x = slots[i].x;
-    const double y_row = y + kLegendRow * slots[i].row;
+    const double y_row = y + kLegendRow * k * slots[i].row;
     SetColor(target, e.color);
     switch (e.kind) {
       case LegendKind::kPoints:
-        cairo_rectangle(target, x + 6.0, y_row - 3.0, 5.0, 5.0);
-        cairo_fill(target);
+        cairo_rectangle(target, x + 4.0 * k, y_row - 4.0 * k, 8.0 * k, 8.0 * k);
+        cairo_fill_preserve(target);
+        cairo_set_source_rgb(target, 0.3, 0.3, 0.3);  // a white swatch stays visible
+        cairo_set_line_width(target, 0.5 * k);
+        cairo_stroke(target);
         break;
       case LegendKind::kLine:
-        cairo_set_line_width(target, 2.5);
+        cairo_set_line_width(target, 2.5 * k);
         cairo_move_to(target, x, y_row);
-        cairo_line_to(target, x + 16.0, y_row);
+        cairo_line_to(target, x + 16.0 * k, y_row);
         cairo_stroke(target);
         break;
       case LegendKind::kCircle:
-        cairo_set_line_width(target, 2.0);
+        cairo_set_line_width(target, 2.0 * k);
         cairo_new_sub_path(target);
-        cairo_arc(target, x + 8.0, y_row, 4.0, 0.0, 2.0 * M_PI);
+        cairo_arc(target, x + 8.0 * k, y_row, 4.0 * k, 0.0, 2.0 * M_PI);
         cairo_stroke(target);
         break;
       case LegendKind::kDiamond:
-        cairo_set_line_width(target, 2.0);
-        cairo_move_to(target, x + 8.0, y_row - 5.0);
-        cairo_line_to(target, x + 13.0, y_row);
-        cairo_line_to(target, x + 8.0, y_row + 5.0);
-        cairo_line_to(target, x + 3.0, y_row);
+        cairo_set_line_width(target, 2.0 * k);
+        cairo_move_to(target, x + 8.0 * k, y_row - 5.0 * k);
+        cairo_line_to(target, x + 13.0 * k, y_row);
+        cairo_line_to(target, x + 8.0 * k, y_row + 5.0 * k);
+        cairo_line_to(target, x + 3.0 * k, y_row);
         cairo_close_path(target);
         cairo_stroke(target);
         break;
     }
     cairo_set_source_rgb(target, 0, 0, 0);
-    cairo_move_to(target, x + 20.0, y_row + 4.0);
+    cairo_move_to(target, x + 20.0 * k, y_row + 4.0 * k);
     cairo_show_text(target, e.label.c_str());
   }
 }

@@ -2,6 +2,7 @@
 #define SPLAM_IO_RENDER_H_
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,6 +32,11 @@ inline constexpr Rgb kDropped{0.95, 0.55, 0.0};    // loop closures found, then 
 inline constexpr Rgb kPeople{0.45, 0.70, 0.90};    // where people walk: light blue
 inline constexpr Rgb kGlass{0.20, 0.75, 0.75};     // glass the laser reads no return from: teal
 }  // namespace palette
+
+// A pixel of 8-bit channels.
+struct Rgb8 {
+  std::uint8_t r = 0, g = 0, b = 0;
+};
 
 struct FigureOptions {
   double pixels_per_meter = 40.0;  // PNG resolution; SVG user units are the same pixels
@@ -71,6 +77,11 @@ class Figure {
   // diamonds corners in every splam picture.
   void DrawMarkers(const std::vector<Eigen::Vector2d>& points, Marker marker, Rgb color,
                    double size_px, const std::string& legend);
+  // An image over `area` (world frame): pixels row by row from the top (largest y), each row
+  // left to right, drawn as sharp squares (an occupancy grid's cells).
+  void DrawRaster(const std::vector<Rgb8>& pixels, int columns, int rows, const kernel::Box2& area);
+  // A legend entry (a square swatch) for something drawn without one (a raster's colours).
+  void AddLegend(const std::string& label, Rgb color);
   // The robot's disc and a heading tick.
   void DrawRobot(const kernel::Pose2& pose, double radius_m, Rgb color);
 

@@ -76,9 +76,10 @@ kernel::Status SaveRunPicture(const RunPicture& picture, const std::vector<std::
   figure.DrawPath(io::Poses(picture.odometry), io::palette::kOdometry, 1.5, "odometry");
   figure.DrawPath(io::Poses(picture.before_optimization), io::palette::kOnline, 1.5,
                   "before optimisation");
+  // The estimates on top: where they leave the truth is what a reader looks for.
+  figure.DrawPath(io::Poses(picture.truth), io::palette::kTrue, 1.5, "ground truth");
   for (const auto& [label, t] : picture.estimates)
     figure.DrawPath(io::Poses(t), io::palette::kEstimate, 1.5, label);
-  figure.DrawPath(io::Poses(picture.truth), io::palette::kTrue, 1.5, "ground truth");
   if (picture.robot_radius_m > 0.0) {
     const io::Trajectory& last = !picture.truth.empty() ? picture.truth : picture.odometry;
     if (!last.empty())

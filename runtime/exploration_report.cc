@@ -160,10 +160,11 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
 
 std::string RunTitle(const sim::World& world, const ExploreSetup& setup,
                      const ExploreOutcome& outcome) {
-  return fmt::format("{} | {} | {} | seed {} | {} nodes, {:.0f} m, {:.0f} s, {:.1f} % explored",
-                     world.name, setup.explorer, setup.localization, setup.seed,
-                     outcome.run.graph.num_nodes(), outcome.run.distance_m, outcome.run.time_s,
-                     100.0 * outcome.coverage());
+  return fmt::format(
+      "{} | {} | {} | seed {} | {} nodes, {:.0f} m, {:.0f} s, {:.1f} % explored, ended: {}",
+      world.name, setup.explorer, setup.localization, setup.seed, outcome.run.graph.num_nodes(),
+      outcome.run.distance_m, outcome.run.time_s, 100.0 * outcome.coverage(),
+      exploration::TerminationName(outcome.run.termination));
 }
 
 kernel::Status WriteExplorationRun(const sim::World& world, const ExploreSetup& setup,
@@ -199,7 +200,19 @@ kernel::Status WriteExplorationRun(const sim::World& world, const ExploreSetup& 
           save("steps.csv", WriteStepTrace(dir + "/steps.csv", outcome.slam->driver()->steps(),
                                            outcome.slam->step_times(), t.truth)));
   }
-  errors.push_back(save("report.html", WriteRunHtml(dir, "splam explore: " + title)));
+  // How the run ended first: a reader must not take an incomplete exploration for a finished one.
+  std::vector<std::string> headline = {
+      fmt::format("ended: {}{}", exploration::TerminationName(outcome.run.termination),
+                  outcome.run.message.empty() ? "" : " (" + outcome.run.message + ")"),
+      fmt::format("{:.1f} % of the reachable free space explored, {:.0f} m driven in {:.0f} s",
+                  100.0 * outcome.coverage(), outcome.run.distance_m, outcome.run.time_s)};
+  if (!t.truth.empty() && !t.estimate.empty()) {
+    const evaluation::TrajectoryError e = evaluation::CompareToTruth(t.truth, t.estimate);
+    const evaluation::TrajectoryError o = evaluation::CompareToTruth(t.truth, t.odometry);
+    headline.push_back(fmt::format("{} position RMSE {:.3f} m (odometry {:.3f} m)",
+                                   setup.localization, e.rmse_position_m, o.rmse_position_m));
+  }
+  errors.push_back(save("report.html", WriteRunHtml(dir, "splam explore: " + title, headline)));
   return kernel::FirstError(errors);
 }
 

@@ -99,6 +99,17 @@ std::vector<evaluation::PlacedScan> PlacedScans(const io::CarmenLog& log,
   return placed;
 }
 
+std::vector<evaluation::PlacedScan> PlacedScansAt(const io::CarmenLog& log,
+                                                  const kernel::Trajectory& trajectory) {
+  const kernel::Trajectory sorted = kernel::SortedByTime(trajectory);
+  std::vector<evaluation::PlacedScan> placed;
+  for (const io::LaserMessage* m : log.Lasers()) {
+    if (const std::optional<kernel::Pose2> pose = kernel::PoseAt(sorted, m->scan.timestamp_s))
+      placed.push_back({*pose, m->robot_pose.Between(m->laser_pose), &m->scan});
+  }
+  return placed;
+}
+
 ReplayResult ReplayFrames(const std::vector<sim::SensorFrame>& frames,
                           const kernel::Pose2& robot_T_laser, SlamDriver* driver,
                           const ReplayOptions& options) {

@@ -87,6 +87,11 @@ ReplayResult ReplayLog(const io::CarmenLog& log, SlamDriver* driver,
 // in order), for CheckMapConsistency; the log must outlive the result.
 std::vector<evaluation::PlacedScan> PlacedScans(const io::CarmenLog& log,
                                                 const kernel::Trajectory& estimate);
+// The log's scans placed by any trajectory of the log's time (a file from another tool): each
+// scan at the trajectory's pose at its time stamp (kernel::PoseAt: interpolated across gaps up to
+// 1 s); scans outside the trajectory are left out.
+std::vector<evaluation::PlacedScan> PlacedScansAt(const io::CarmenLog& log,
+                                                  const kernel::Trajectory& trajectory);
 // The same for simulated frames (a route the simulator drove) seen by a laser at robot_T_laser;
 // the truth is the frames' true poses.
 ReplayResult ReplayFrames(const std::vector<sim::SensorFrame>& frames,

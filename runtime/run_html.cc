@@ -44,8 +44,10 @@ std::map<std::string, double> RunFigures(const std::string& run_dir) {
   return figures;
 }
 
-kernel::Status WriteRunHtml(const std::string& dir, const std::string& title) {
+kernel::Status WriteRunHtml(const std::string& dir, const std::string& title,
+                            const std::vector<std::string>& headline) {
   io::HtmlPage page(title);
+  if (!headline.empty()) page.List(headline);
   page.Paragraph(fmt::format(
       "Written by splam at git commit {}. The numbers come from {}.", kernel::GitCommit(),
       std::filesystem::exists(dir + "/report.json") ? "report.json" : "summary.json"));

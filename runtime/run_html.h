@@ -3,6 +3,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "kernel/status.h"
 
@@ -15,10 +16,12 @@ namespace splam::runtime {
 // options and the seed left out. Empty when the run wrote neither file.
 std::map<std::string, double> RunFigures(const std::string& run_dir);
 
-// Writes <dir>/report.html: `title`, the run's numbers (RunFigures), its pictures (every PNG in
-// the directory, linked by name), its config.yaml and the git commit of this splam. Opens in a
-// browser without a network.
-kernel::Status WriteRunHtml(const std::string& dir, const std::string& title);
+// Writes <dir>/report.html: `title`, the run's headline figures (one line each, at the top: its
+// error, how it ended), its numbers (RunFigures), its pictures (every PNG in the directory,
+// linked by name), its config.yaml and the git commit of this splam. Opens in a browser without
+// a network.
+kernel::Status WriteRunHtml(const std::string& dir, const std::string& title,
+                            const std::vector<std::string>& headline = {});
 
 }  // namespace splam::runtime
 

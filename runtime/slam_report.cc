@@ -4,9 +4,11 @@
 
 #include <sys/resource.h>
 
+#include <chrono>
 #include <cmath>
 
 #include "estimation/chi_square.h"
+#include "io/occupancy_grid_file.h"
 
 namespace splam::runtime {
 
@@ -140,6 +142,37 @@ nlohmann::ordered_json ReplaySummaryJson(const estimation::SlamMethod& slam,
     }
   }
   return summary;
+}
+
+nlohmann::ordered_json WriteGridFiles(const std::vector<evaluation::PlacedScan>& scans,
+                                      const estimation::OccupancyGridOptions& options,
+                                      const std::string& yaml_path,
+                                      const std::vector<std::string>& pictures,
+                                      const std::string& title, const kernel::Trajectory& path,
+                                      std::vector<kernel::Status>* errors) {
+  const auto start = std::chrono::steady_clock::now();
+  const kernel::Result<estimation::OccupancyGrid> grid =
+      estimation::BuildOccupancyGrid(scans, options);
+  if (!grid.ok()) return {{"error", grid.error}};
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  errors->push_back(io::WriteOccupancyGrid(*grid, yaml_path, options));
+  errors->push_back(io::SaveOccupancyGridPicture(*grid, options, title, path, pictures));
+  int occupied = 0, free = 0;
+  for (int y = 0; y < grid->height(); ++y) {
+    for (int x = 0; x < grid->width(); ++x) {
+      const estimation::CellState c =
+          grid->State(x, y, options.occupied_threshold, options.free_threshold);
+      occupied += c == estimation::CellState::kOccupied;
+      free += c == estimation::CellState::kFree;
+    }
+  }
+  return {{"resolution_m", grid->resolution_m()},
+          {"cells", {grid->width(), grid->height()}},
+          {"origin_m", {grid->origin().x(), grid->origin().y()}},
+          {"occupied_cells", occupied},
+          {"free_cells", free},
+          {"build_s", seconds}};
 }
 
 }  // namespace splam::runtime

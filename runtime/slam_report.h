@@ -7,6 +7,7 @@
 
 #include "estimation/evaluation/map_consistency.h"
 #include "estimation/evaluation/metrics.h"
+#include "estimation/occupancy_grid.h"
 #include "estimation/slam_method.h"
 #include "io/map_export.h"
 #include "io/run_picture.h"
@@ -35,6 +36,17 @@ nlohmann::ordered_json TimeBinsJson(const std::vector<TimeBin>& bins);
 nlohmann::ordered_json ReplaySummaryJson(const estimation::SlamMethod& slam,
                                          const estimation::SlamStatistics& statistics,
                                          const ReplayResult& run, const SlamDriver& driver);
+
+// The occupancy grid of `scans`: `yaml_path` with its .pgm (map_server's format) and the
+// pictures; returns what was built for summary.json (resolution, cells, origin, occupied and free
+// cells, build time), or {"error": why} when the grid cannot be built (a diverged estimate
+// spanning kilometres): not a failure of the run. Write errors go to *errors.
+nlohmann::ordered_json WriteGridFiles(const std::vector<evaluation::PlacedScan>& scans,
+                                      const estimation::OccupancyGridOptions& options,
+                                      const std::string& yaml_path,
+                                      const std::vector<std::string>& pictures,
+                                      const std::string& title, const kernel::Trajectory& path,
+                                      std::vector<kernel::Status>* errors);
 
 }  // namespace splam::runtime
 
