@@ -15,12 +15,14 @@
 #include "apps/run_config.h"
 #include "estimation/chi_square.h"
 #include "estimation/evaluation/metrics.h"
+#include "estimation/slam_state.h"
 #include "io/carmen.h"
 #include "io/config.h"
 #include "io/plot.h"
 #include "io/relations.h"
 #include "io/run_picture.h"
 #include "io/simulation_log.h"
+#include "io/slam_state_file.h"
 #include "io/text.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
@@ -49,7 +51,39 @@ struct SlamArgs {
   // The sensors' noise; negative: chosen from the log's laser type (runtime::SensorNoiseOf).
   runtime::SensorNoiseOverrides noise;
   bool method_given = false;
+  std::string save_state;  // write the method's state here after the run
+  std::string load_state;  // start from this saved state
+  bool localize_only = false;
+  std::vector<double> initial_pose;  // x y theta in the map's frame; empty: the log's first pose
 };
+
+// --save-state, --load-state and --localize-only on the method just made: the state read and
+// loaded, the method told to keep what saving needs. Writes the problem to stderr and returns
+// false on failure.
+bool PrepareState(const SlamArgs& args, const std::string& method_name,
+                  estimation::SlamMethod* method) {
+  if (args.save_state.empty() && args.load_state.empty()) return true;
+  estimation::PersistentSlam* persistent = estimation::PersistenceOf(method);
+  if (persistent == nullptr) {
+    fmt::print(stderr,
+               "splam slam: method '{}' cannot save or load its state (the graph method can)\n",
+               method_name);
+    return false;
+  }
+  if (!args.save_state.empty()) persistent->KeepStateForSaving();
+  if (args.load_state.empty()) return true;
+  const io::Result<estimation::SlamState> state = io::ReadSlamState(args.load_state);
+  if (!state.ok()) {
+    fmt::print(stderr, "splam slam: {}\n", state.error);
+    return false;
+  }
+  if (const kernel::Status loaded = persistent->LoadState(*state, args.localize_only);
+      !loaded.ok()) {
+    fmt::print(stderr, "splam slam: {}: {}\n", args.load_state, loaded.message());
+    return false;
+  }
+  return true;
+}
 
 // The method and its options: the defaults for the log's sensors, then the configuration file,
 // then the command line. Writes the problem to stderr and returns false on failure.
@@ -300,12 +334,21 @@ int RunSlam(const SlamArgs& args) {
   }
   // The estimate starts at the first odometric pose: the map frame is the odometry frame (for
   // simulated runs, the true frame).
+  if (args.localize_only && args.load_state.empty()) {
+    fmt::print(stderr, "splam slam: --localize-only needs --load-state (the map to localise in)\n");
+    return kExitBadInput;
+  }
+  const kernel::Pose2 start =
+      args.initial_pose.size() == 3
+          ? kernel::Pose2(args.initial_pose[0], args.initial_pose[1], args.initial_pose[2])
+          : lasers[0]->robot_pose;
   auto made = estimation::SlamRegistry::Global().Make(config.method, config.options.get(),
-                                                      {lasers[0]->robot_pose, config.region});
+                                                      {start, config.region});
   if (!made.ok()) {
     fmt::print(stderr, "splam slam: {}\n", made.error);
     return kExitBadInput;
   }
+  if (!PrepareState(args, config.method, made.value->get())) return kExitBadInput;
   const std::string out =
       args.out.empty() ? "runs/slam-" + std::filesystem::path(args.log).stem().string() : args.out;
   std::error_code ec;
@@ -353,6 +396,12 @@ int RunSlam(const SlamArgs& args) {
   std::optional<evaluation::RelationsError> relations_error;
   if (!args.relations.empty())
     relations_error = evaluation::EvaluateRelations(relations, run.estimate);
+  if (!args.save_state.empty()) {
+    const kernel::Result<estimation::SlamState> state =
+        estimation::PersistenceOf(&driver.method())->SaveState();
+    errors.push_back(state ? io::WriteSlamState(args.save_state, *state)
+                           : kernel::Status::Error(state.error));
+  }
   std::vector<std::string> headline = SlamHeadline(slam, run, consistency, relations_error);
   if (truncated) headline.push_back("the log stopped early: " + read.log.error);
   WriteSlamFiles(args.log, out, label, HeadlineTitle(headline),
@@ -474,6 +523,19 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
                   "Scale of the default odometry noise model (3 % of distance and rotation); "
                   "default 1 for simulated logs and 3 for real FLASER logs")
       ->check(OdometryNoiseScale());
+  cmd->add_option("--save-state", args->save_state,
+                  "After the run, write the method's map and its keyframes' scans to FILE (graph "
+                  "method), for --load-state");
+  cmd->add_option("--load-state", args->load_state,
+                  "Start from a state saved by --save-state: go on mapping from its map, or, "
+                  "with --localize-only, localise the log in it without changing it");
+  cmd->add_flag("--localize-only", args->localize_only,
+                "With --load-state: localise in the saved map, which stays as it is");
+  cmd->add_option("--initial-pose", args->initial_pose,
+                  "Where the log starts in the map's frame, x y theta (m, m, rad); default: the "
+                  "log's first odometric pose (right when both logs share their odometry frame)")
+      ->expected(3)
+      ->check(CLI::Number);
   cmd->callback([args, exit_code, method] {
     args->method_given = method->count() > 0;
     *exit_code = RunSlam(*args);

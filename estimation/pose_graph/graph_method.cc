@@ -4,6 +4,8 @@
 
 #include "estimation/exploration_nodes.h"
 #include "estimation/pose_graph/graph_slam.h"
+#include "estimation/pose_graph/map_localizer.h"
+#include "estimation/slam_state.h"
 
 namespace splam::estimation {
 
@@ -42,28 +44,65 @@ void AddGraphStatistics(const GraphSlam& graph, SlamStatistics* s) {
 namespace {
 
 // Graph SLAM on curve maps: no covariance of its own; the map is the curves of its keyframes.
-class GraphSlamMethod : public SlamMethod, public ExplorationNodes {
+// Saved, its state is the map and every kept keyframe's reading at its final pose; loaded, it
+// localises new scans in that map (MapLocalizer) or goes on mapping from it.
+class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public PersistentSlam {
  public:
   GraphSlamMethod(const GraphSlamOptions& options, const SlamContext& context)
-      : slam_(context.start, options) {}
-  void Predict(const kernel::Pose2& u) override { slam_.Predict(u); }
-  void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) override {
-    slam_.Update(scan, robot_T_laser);
+      : slam_(context.start, options), start_(context.start) {}
+  void Predict(const kernel::Pose2& u) override {
+    if (localizer_) return localizer_->Predict(u);
+    slam_.Predict(u);
   }
-  kernel::Pose2 pose() const override { return slam_.pose(); }
-  void Finish() override { slam_.Finish(); }
-  std::vector<kernel::Pose2> Trajectory() const override { return slam_.Trajectory(); }
+  void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) override {
+    if (localizer_) return localizer_->Update(scan, robot_T_laser);
+    const std::size_t before = slam_.keyframes().size();
+    if (continuing_) {
+      // The first scan after a loaded map: localised in it, then joined to the map's last
+      // keyframe by the jump there, so that registration and loop closure go on from it.
+      continuing_ = false;
+      slam_.Predict(slam_.pose().Between(StartInMap(scan, robot_T_laser)));
+      slam_.UpdateAt(scan, robot_T_laser, slam_.pose());
+    } else {
+      slam_.Update(scan, robot_T_laser);
+    }
+    if (keep_readings_ && slam_.keyframes().size() > before)
+      readings_.push_back({slam_.keyframes().size() - 1, robot_T_laser, scan});
+  }
+  kernel::Pose2 pose() const override { return localizer_ ? localizer_->pose() : slam_.pose(); }
+  void Finish() override {
+    if (!localizer_) slam_.Finish();
+  }
+  std::vector<kernel::Pose2> Trajectory() const override {
+    if (localizer_) return {};  // a filter: the pose after each update
+    std::vector<kernel::Pose2> all = slam_.Trajectory();
+    return {all.begin() + static_cast<std::ptrdiff_t>(std::min(loaded_scans_, all.size())),
+            all.end()};
+  }
   kernel::Status health() const override { return slam_.health(); }
-  std::size_t MapSize() const override { return slam_.num_map_control_points(); }
-  std::size_t MapCurves() const override { return slam_.num_map_curves(); }
+  std::size_t MapSize() const override {
+    std::size_t n = 0;
+    if (localizer_) {
+      for (const MapSpline& s : loaded_.map.splines) n += s.spline.control_points().size();
+      return n;
+    }
+    return slam_.num_map_control_points();
+  }
+  std::size_t MapCurves() const override {
+    return localizer_ ? loaded_.map.splines.size() : slam_.num_map_curves();
+  }
   // An exploration node becomes a keyframe and moves with it.
   void AtNode(const kernel::LocalSafeRegion& /*lsr*/) override { slam_.MarkNode(); }
   std::vector<kernel::Pose2> NodePoses() const override { return slam_.NodePoses(); }
   std::string MapDescription() const override {
+    if (localizer_)
+      return fmt::format("localising in a saved map of {} keyframes, {} curves",
+                         loaded_.map.keyframes.size(), loaded_.map.splines.size());
     return fmt::format("{} keyframes, {} loop closures, {} curves", slam_.keyframes().size(),
                        slam_.loops().accepted, slam_.num_map_curves());
   }
   SlamMap Map() const override {
+    if (localizer_) return loaded_.map;
     SlamMap map;
     map.splines = slam_.MapSplines();
     map.spline_features = slam_.options().extraction;
@@ -72,6 +111,18 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes {
   }
   SlamStatistics Statistics() const override {
     SlamStatistics s;
+    if (localizer_) {
+      s.association = "scan-to-map registration in a saved map";
+      s.map = {{"keyframes", static_cast<long>(loaded_.map.keyframes.size())},
+               {"map_scans", static_cast<long>(loaded_.scans.size())},
+               {"curves", static_cast<long>(loaded_.map.splines.size())},
+               {"local_fields_built", localizer_->grid_builds()}};
+      s.associations = {{"registrations", localizer_->registrations()},
+                        {"registration_recovered", localizer_->recovered()},
+                        {"registration_fallbacks", localizer_->fallbacks()},
+                        {"start_found", localizer_->found_start() ? 1 : 0}};
+      return s;
+    }
     s.association = "scan-to-submap registration, correlative loop closure";
     s.map = {{"keyframes", static_cast<long>(slam_.keyframes().size())},
              {"keyframes_trimmed", slam_.trimmed_keyframes()},
@@ -90,8 +141,68 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes {
     return s;
   }
 
+  void KeepStateForSaving() override { keep_readings_ = true; }
+  kernel::Result<SlamState> SaveState() const override {
+    using R = kernel::Result<SlamState>;
+    if (localizer_) return R::Ok(loaded_);  // localisation leaves the map as it was
+    if (!keep_readings_) return R::Fail("graph: the readings were not kept (KeepStateForSaving)");
+    SlamState state;
+    state.method = "graph";
+    state.map = Map();
+    state.map.loop_searches.clear();  // a record of the run, not part of the map
+    for (const Reading& r : readings_) {
+      const GraphSlam::Keyframe& kf = slam_.keyframes()[r.keyframe];
+      // Trimmed keyframes were redundant with their neighbours for registration; so they are here.
+      if (!kf.trimmed) state.scans.push_back({kf.pose, r.robot_T_laser, r.scan});
+    }
+    return R::Ok(std::move(state));
+  }
+  kernel::Status LoadState(const SlamState& state, bool localize_only) override {
+    if (state.method != "graph")
+      return kernel::Status::Error("the state is of method '" + state.method +
+                                   "', this run's is 'graph'");
+    if (state.scans.empty()) return kernel::Status::Error("the state holds no map scans");
+    loaded_ = state;
+    loaded_.map.spline_features = slam_.options().extraction;
+    if (localize_only) {
+      localizer_ = std::make_unique<MapLocalizer>(state.scans, start_, slam_.options());
+      return kernel::Status::Ok();
+    }
+    // The map's scans again, at their poses: the same keyframes, curves and closures.
+    for (std::size_t i = 0; i < state.scans.size(); ++i) {
+      const MapScan& m = state.scans[i];
+      if (i > 0) slam_.Predict(state.scans[i - 1].pose.Between(m.pose));
+      const std::size_t before = slam_.keyframes().size();
+      slam_.UpdateAt(m.scan, m.robot_T_laser, m.pose);
+      if (keep_readings_ && slam_.keyframes().size() > before)
+        readings_.push_back({slam_.keyframes().size() - 1, m.robot_T_laser, m.scan});
+    }
+    loaded_scans_ = state.scans.size();
+    continuing_ = true;
+    return slam_.health();
+  }
+
  private:
+  // The first new scan's pose in the loaded map: found by the localiser from the start pose.
+  kernel::Pose2 StartInMap(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) const {
+    MapLocalizer localizer(loaded_.scans, start_, slam_.options());
+    localizer.Update(scan, robot_T_laser);
+    return localizer.pose();
+  }
+
+  struct Reading {
+    std::size_t keyframe;
+    kernel::Pose2 robot_T_laser;
+    kernel::Scan scan;
+  };
   GraphSlam slam_;
+  kernel::Pose2 start_;
+  bool keep_readings_ = false;
+  std::vector<Reading> readings_;  // of the keyframes, when kept
+  SlamState loaded_;
+  std::unique_ptr<MapLocalizer> localizer_;  // localising only
+  std::size_t loaded_scans_ = 0;             // trajectory entries of the loaded map's scans
+  bool continuing_ = false;                  // the next Update is the first after a loaded map
 };
 
 }  // namespace

@@ -1160,6 +1160,25 @@ kernel::Status LoopClosureOptions::Validate() const {
   return kernel::Status::Ok();
 }
 
+void MapLocalizationOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("map_radius_m", &map_radius_m,
+          "the field registered against holds the map scans within this distance, m");
+  v.Field("rebuild_distance_m", &rebuild_distance_m,
+          "built anew once the robot is this far from where it was built, m");
+  v.Field("initial_window_m", &initial_window_m,
+          "the first scan is searched for within this distance of the start pose, m");
+  v.Field("initial_window_rad", &initial_window_rad, "and this angle of its heading, rad");
+}
+
+kernel::Status MapLocalizationOptions::Validate() const {
+  if (!(map_radius_m > 0) || !(rebuild_distance_m > 0) || !(initial_window_m >= 0) ||
+      !(initial_window_rad >= 0))
+    return kernel::Status::Error(
+        "localization: map_radius_m and rebuild_distance_m must be positive, the initial "
+        "windows >= 0");
+  return kernel::Status::Ok();
+}
+
 void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Nested("extraction", "curves of every keyframe", &extraction);
   v.Field("max_range_m", &max_range_m, "beams longer are not used (0: the laser's maximum), m");
@@ -1212,6 +1231,8 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
           "search loop closures on a second thread beside the front end (same result either "
           "way)");
   v.Nested("pose_graph", "pose-graph optimisation", &pose_graph);
+  v.Nested("localization", "localisation in a saved map (--load-state --localize-only)",
+           &localization);
   v.Field("map_spacing_m", &map_spacing_m, "map curves from keyframes this far apart, m");
   v.Field("map_spacing_rad", &map_spacing_rad, "or turned this much from each other, rad");
   v.Field("trim_spacing_m", &trim_spacing_m,
@@ -1223,9 +1244,9 @@ void GraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
 }
 
 kernel::Status GraphSlamOptions::Validate() const {
-  if (kernel::Status e =
-          kernel::FirstError(extraction.Validate(), registration.Validate(), odometry.Validate(),
-                             loop.Validate(), pose_graph.Validate(), moving.Validate());
+  if (kernel::Status e = kernel::FirstError(
+          extraction.Validate(), registration.Validate(), odometry.Validate(), loop.Validate(),
+          pose_graph.Validate(), moving.Validate(), localization.Validate());
       !e.ok())
     return e;
   if (!(max_range_m >= 0) || !(keyframe_distance_m > 0) || !(keyframe_angle_rad > 0))

@@ -147,6 +147,21 @@ struct LoopClosureOptions {
 // every scan is registered against a submap rasterised from the curves of recent keyframes;
 // each new keyframe searches earlier ones for a loop closure; a Ceres pose graph over the
 // keyframes is optimised when closures are accepted and re-anchors the map.
+// Localisation in a saved map (MapLocalizer, `slam --load-state --localize-only`).
+struct MapLocalizationOptions {
+  // The field registered against holds the map scans taken within this distance of the robot, m.
+  double map_radius_m = 10.0;
+  // It is built anew once the robot is this far from where it was last built, m.
+  double rebuild_distance_m = 2.0;
+  // The first scan is searched for within this distance of the start pose, m, and this angle of
+  // its heading, rad (a correlative search: the start need only be roughly known).
+  double initial_window_m = 1.0;
+  double initial_window_rad = 0.5;
+
+  void VisitFields(kernel::FieldVisitor& v);
+  kernel::Status Validate() const;
+};
+
 struct GraphSlamOptions {
   // How keyframe curves are extracted (segmentation, fit, curvature, features).
   kernel::SplineExtractionOptions extraction;
@@ -277,6 +292,7 @@ struct GraphSlamOptions {
   // trajectory: the search sees the same data and its closures enter the graph at the same point.
   bool background_loop_search = true;
   PoseGraphOptions pose_graph;
+  MapLocalizationOptions localization;
 
   // The map: curves of keyframes at least map_spacing_m or map_spacing_rad from every earlier
   // map keyframe.

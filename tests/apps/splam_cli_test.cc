@@ -745,6 +745,78 @@ TEST(SplamCli, SlamAndRenderWriteOccupancyGrids) {
   EXPECT_NE(r.text.find("occupancy_grid: need 0 < min_probability"), std::string::npos) << r.text;
 }
 
+// Map once, localise many times: `complex` mapped along its route, a second log along another
+// route (the reverse, other noise) localised in the saved map, which stays as it was; and the
+// same log mapped on from it.
+TEST(SplamCli, ASavedMapLocalisesASecondRunAndStaysUnchanged) {
+  const fs::path dir = Temp("state");
+  fs::create_directories(dir);
+  ASSERT_EQ(io::WriteTextFile((dir / "reverse.txt").string(),
+                              "1.5 2.0 1.57\n2.5 6.2\n1.2 8.0\n1.5 13.2\n6.0 13.0\n7.5 10.6\n"
+                              "12.2 10.2\n13.0 12.8\n18.3 12.6\n18.3 7.5\n16.0 6.6\n13.0 6.3\n"
+                              "9.0 5.2\n7.5 2.0\n")
+                .message(),
+            "");
+  ASSERT_EQ(Splam("simulate --world complex --out " + (dir / "a").string()).status, 0);
+  ASSERT_EQ(Splam("simulate --world complex --seed 7 --route " + (dir / "reverse.txt").string() +
+                  " --out " + (dir / "b").string())
+                .status,
+            0);
+  const std::string state = (dir / "complex.state").string();
+  Output r = Splam("slam " + (dir / "a" / "log.clf").string() + " --save-state " + state +
+                   " --out " + (dir / "map").string());
+  ASSERT_EQ(r.status, 0) << r.text;
+  const std::string saved = Slurp(state);
+  ASSERT_NE(saved.find("\nscan "), std::string::npos);
+  const auto rmse = [](const fs::path& run) {
+    const nlohmann::json j = nlohmann::json::parse(Slurp(run / "summary.json"));
+    return std::pair(j["error"]["estimate"]["rmse_position_m"].get<double>(),
+                     j["error"]["odometry"]["rmse_position_m"].get<double>());
+  };
+  r = Splam("slam " + (dir / "b" / "log.clf").string() + " --load-state " + state +
+            " --localize-only --out " + (dir / "localised").string());
+  ASSERT_EQ(r.status, 0) << r.text;
+  const auto [localised, odometry] = rmse(dir / "localised");
+  EXPECT_LT(localised, 0.05);  // measured 0.021 m; SLAM on the log alone 0.040 m
+  EXPECT_LT(localised, odometry / 5);
+  // The map unchanged byte for byte: the state file, and the map the run reports.
+  EXPECT_EQ(Slurp(state), saved);
+  EXPECT_EQ(Slurp(dir / "localised" / "map.txt"), Slurp(dir / "map" / "map.txt"));
+  // A start half a metre and 0.2 rad off is found by the first scan's search.
+  r = Splam("slam " + (dir / "b" / "log.clf").string() + " --load-state " + state +
+            " --localize-only --initial-pose 1.2 1.8 1.4 --out " + (dir / "off").string());
+  ASSERT_EQ(r.status, 0) << r.text;
+  EXPECT_LT(rmse(dir / "off").first, 0.05);
+  // Mapping on from the saved map: the second log joins it by loop closures.
+  r = Splam("slam " + (dir / "b" / "log.clf").string() + " --load-state " + state +
+            " --save-state " + (dir / "both.state").string() + " --out " +
+            (dir / "continued").string());
+  ASSERT_EQ(r.status, 0) << r.text;
+  EXPECT_LT(rmse(dir / "continued").first, 0.1);
+  const nlohmann::json continued = nlohmann::json::parse(Slurp(dir / "continued" / "summary.json"));
+  const nlohmann::json first = nlohmann::json::parse(Slurp(dir / "map" / "summary.json"));
+  EXPECT_GT(continued["map"]["keyframes"].get<int>(), first["map"]["keyframes"].get<int>());
+  EXPECT_EQ(continued["scans"].get<int>(), 1329);  // one pose per scan of the second log
+  // Refused clearly.
+  r = Splam("slam " + (dir / "b" / "log.clf").string() + " --localize-only");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.text.find("--localize-only needs --load-state"), std::string::npos) << r.text;
+  r = Splam("slam " + (dir / "b" / "log.clf").string() + " --method ekf-lines --save-state " +
+            (dir / "x.state").string() + " --out " + (dir / "x").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.text.find("method 'ekf-lines' cannot save or load its state"), std::string::npos)
+      << r.text;
+  ASSERT_EQ(
+      io::WriteTextFile((dir / "bad.state").string(), "splam_state 1\nmethod graph\nscan 1 2\n")
+          .message(),
+      "");
+  r = Splam("slam " + (dir / "b" / "log.clf").string() + " --load-state " +
+            (dir / "bad.state").string() + " --localize-only --out " + (dir / "y").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.text.find("bad.state:3: scan: expected 12 values, found 2"), std::string::npos)
+      << r.text;
+}
+
 TEST(SplamCli, SlamAndEvalRejectBadInput) {
   const fs::path dir = Temp("slam_bad");
   fs::create_directories(dir);

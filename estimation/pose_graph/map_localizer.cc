@@ -1,0 +1,128 @@
+#include "estimation/pose_graph/map_localizer.h"
+
+#include <cassert>
+#include <cmath>
+#include <utility>
+
+#include "estimation/pose_graph/correlative_matcher.h"
+#include "estimation/pose_graph/scan_registration.h"
+
+namespace splam::estimation {
+namespace {
+
+// The scan's hits (robot frame) with the normals of their outlines, as the graph SLAM takes them:
+// beams beyond max_range_m (0: the laser's maximum) left out.
+std::vector<OrientedPoint> RobotPoints(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+                                       const GraphSlamOptions& options) {
+  const double range = options.max_range_m > 0 ? options.max_range_m : scan.max_range_m;
+  return OrientTowards(robot_T_laser * scan.Clipped(range).HitPoints(), robot_T_laser.translation(),
+                       options.normal_max_gap_m, options.line_tolerance_m);
+}
+
+std::vector<Eigen::Vector2d> Positions(const std::vector<OrientedPoint>& points) {
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(points.size());
+  for (const OrientedPoint& p : points) out.push_back(p.point);
+  return out;
+}
+
+}  // namespace
+
+MapLocalizer::MapLocalizer(std::vector<MapScan> map, const kernel::Pose2& start,
+                           const GraphSlamOptions& options)
+    : map_(std::move(map)), options_(options), pose_(start) {
+  assert(!map_.empty());
+  for (const MapScan& s : map_)
+    world_points_.push_back(Placed(s.pose, RobotPoints(s.scan, s.robot_T_laser, options_)));
+}
+
+MapLocalizer::~MapLocalizer() = default;
+
+void MapLocalizer::Predict(const kernel::Pose2& odometry_increment) {
+  pose_ = pose_ * odometry_increment;
+  since_update_ = since_update_ * odometry_increment;
+}
+
+// The field of the map scans within map_radius_m of the robot, built again once the robot is
+// rebuild_distance_m from where it was built (or none was near then).
+void MapLocalizer::UpdateGrid() {
+  const MapLocalizationOptions& o = options_.localization;
+  if (grid_built_ && (pose_.translation() - grid_center_).norm() < o.rebuild_distance_m) return;
+  std::vector<OrientedPoint> points;
+  for (std::size_t i = 0; i < map_.size(); ++i) {
+    if ((map_[i].pose.translation() - pose_.translation()).norm() > o.map_radius_m) continue;
+    points.insert(points.end(), world_points_[i].begin(), world_points_[i].end());
+  }
+  grid_center_ = pose_.translation();
+  grid_built_ = !points.empty();
+  if (!grid_built_) return;
+  grid_ = DistanceGrid::Build(points, options_.grid_resolution_m, options_.truncation_m,
+                              options_.truncation_m + options_.localization.rebuild_distance_m);
+  scores_ = std::make_unique<LikelihoodPyramid>(grid_, options_.loop.sigma_m, options_.loop.levels);
+  ++grid_builds_;
+}
+
+// The graph SLAM front end's registration (GraphSlam::RegisterScan) against the map's field: the
+// scan with the odometry increment as its prior unless the odometry is an outlier, and a
+// correlative search around the prediction when that fails.
+RegistrationResult MapLocalizer::Register(const std::vector<OrientedPoint>& points) {
+  const RegistrationOptions& reg = options_.registration;
+  RegistrationResult r = RegisterPoints(points, grid_, pose_, reg);
+  if (options_.odometry_prior) {
+    const Eigen::Matrix3d odometry = options_.odometry.Covariance(since_update_);
+    RegistrationResult fused = RegisterPoints(points, grid_, pose_, reg, &odometry);
+    if (r.accepted ? OdometryIsInlier(fused, r, options_.odometry_outlier_probability)
+                   : fused.accepted)
+      r = std::move(fused);
+  }
+  if (r.accepted || options_.recovery_window_m <= 0) return r;
+  const CorrelativeMatch match = SearchCorrelative(
+      Positions(points), *scores_, pose_, options_.recovery_window_m, options_.recovery_window_rad,
+      reg.min_inlier_fraction, 1.0, {.angular_step_rad = options_.recovery_step_rad});
+  if (!match.found) return r;
+  RegistrationOptions wide = reg;
+  wide.max_correction_m += options_.recovery_window_m;
+  wide.max_correction_rad += options_.recovery_window_rad;
+  RegistrationResult recovered = RegisterPoints(points, grid_, match.pose, wide);
+  if (recovered.accepted) ++recovered_;
+  return recovered.accepted ? recovered : r;
+}
+
+void MapLocalizer::Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) {
+  const std::vector<OrientedPoint> points = RobotPoints(scan, robot_T_laser, options_);
+  UpdateGrid();
+  if (!grid_built_) {  // no map near: dead reckoning until the robot comes back into it
+    ++fallbacks_;
+    since_update_ = kernel::Pose2();
+    return;
+  }
+  ++registrations_;
+  RegistrationResult r = Register(points);
+  if (first_) {
+    // A start pose off by more than the registration's basin: where in the initial window the
+    // first scan fits the map best. Only then: along a corridor the best score can lie a metre
+    // from a start that was right.
+    first_ = false;
+    found_start_ = r.accepted;
+    const MapLocalizationOptions& o = options_.localization;
+    if (!r.accepted) {
+      const CorrelativeMatch match =
+          SearchCorrelative(Positions(points), *scores_, pose_, o.initial_window_m,
+                            o.initial_window_rad, options_.registration.min_inlier_fraction, 1.0);
+      if (match.found) {
+        RegistrationOptions wide = options_.registration;
+        wide.max_correction_m += o.initial_window_m;
+        wide.max_correction_rad += o.initial_window_rad;
+        r = RegisterPoints(points, grid_, match.pose, wide);
+        found_start_ = r.accepted;
+      }
+    }
+  }
+  if (r.accepted)
+    pose_ = r.pose;
+  else
+    ++fallbacks_;
+  since_update_ = kernel::Pose2();
+}
+
+}  // namespace splam::estimation
