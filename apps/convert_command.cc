@@ -18,7 +18,7 @@ struct ConvertArgs {
   LogInput input;
 };
 
-constexpr std::array<std::string_view, 3> kLogOutputs = {".bag", ".clf", ".log"};
+constexpr std::array<std::string_view, 5> kLogOutputs = {".bag", ".mcap", ".db3", ".clf", ".log"};
 
 // A path that names a TUM or KITTI trajectory by its extension.
 bool IsTrajectoryPath(const std::string& path) {
@@ -48,8 +48,9 @@ int RunConvert(const ConvertArgs& args) {
   if (std::none_of(kLogOutputs.begin(), kLogOutputs.end(),
                    [&](std::string_view e) { return args.out.ends_with(e); })) {
     fmt::print(stderr,
-               "splam convert: {}: unknown output format; known: .bag (ROS 1 bag), .clf or .log "
-               "(CARMEN log), .tum or .kitti (a trajectory, from a trajectory file)\n",
+               "splam convert: {}: unknown output format; known: .bag (ROS 1 bag), .mcap or .db3 "
+               "(ROS 2 bag: MCAP or SQLite3), .clf or .log (CARMEN log), .tum or .kitti (a "
+               "trajectory, from a trajectory file)\n",
                args.out);
     return kExitBadInput;
   }
@@ -93,12 +94,15 @@ void AddConvertCommand(CLI::App* app, int* exit_code) {
   auto args = std::make_shared<ConvertArgs>();
   CLI::App* cmd = app->add_subcommand(
       "convert",
-      "Convert a CARMEN log to a ROS 1 bag (OUT ends in .bag) or a bag to a CARMEN log (.clf, "
-      ".log): scans (sensor_msgs/LaserScan), odometry (nav_msgs/Odometry), the laser mounting "
+      "Convert a CARMEN log to a ROS 1 bag (OUT ends in .bag) or a ROS 2 bag (.mcap, .db3), or a "
+      "bag to a CARMEN log (.clf, .log): scans (LaserScan), odometry (Odometry), the laser "
+      "mounting "
       "(/tf_static) and ground truth (--truth-topic); or a trajectory to TUM (.tum) or KITTI "
       "(.kitti), as evo reads them, and back (.txt)");
-  cmd->add_option("in", args->in, "Input: a CARMEN log, a .bag, or a trajectory")->required();
-  cmd->add_option("out", args->out, "Output: .bag, .clf, .log; .tum, .kitti, .txt (trajectories)")
+  cmd->add_option("in", args->in, "Input: a CARMEN log, a ROS 1 or ROS 2 bag, or a trajectory")
+      ->required();
+  cmd->add_option("out", args->out,
+                  "Output: .bag, .mcap, .db3, .clf, .log; .tum, .kitti, .txt (trajectories)")
       ->required();
   AddLogInputOptions(cmd, &args->input);
   cmd->callback([args, exit_code] { *exit_code = RunConvert(*args); });

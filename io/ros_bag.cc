@@ -8,12 +8,14 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string_view>
 #include <utility>
 
 #include "io/internal/plausible.h"
+#include "io/internal/ros2_bag_file.h"
 #include "io/internal/rosbag_file.h"
 #include "io/text.h"
 #include "kernel/angle.h"
@@ -336,7 +338,9 @@ kernel::Status RosBagFramingProblem(const std::string& path) {
   return RecordFramingProblem(from_file, size - kMagic.size(), kMagic.size());
 }
 
-bool IsRosBagPath(const std::string& path) { return path.ends_with(".bag"); }
+bool IsRosBagPath(const std::string& path) {
+  return path.ends_with(".bag") || internal::IsRos2BagPath(path);
+}
 
 RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& options) {
   RosBagReadResult result;
@@ -345,16 +349,23 @@ RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& option
     result.log = Result<CarmenLog>::Fail(FileError(path, 0, message));
     return result;
   };
-  if (std::filesystem::is_directory(path)) return fail("is a directory, not a bag");
+  const bool ros2 = internal::IsRos2BagPath(path);
+  if (std::filesystem::is_directory(path) && !ros2)
+    return fail("is a directory, not a bag (a ROS 2 bag directory holds a metadata.yaml)");
   internal::RosBagTopics topics;
   internal::RosBagMessages bag;
   std::string scan_topic;
   std::optional<std::string> odom_topic;
   bool has_truth = false;
-  if (kernel::Status problem = RosBagFramingProblem(path); !problem.ok())
-    return fail("not a readable ROS bag: " + problem.message());
+  if (!ros2) {
+    if (kernel::Status problem = RosBagFramingProblem(path); !problem.ok())
+      return fail("not a readable ROS bag: " + problem.message());
+  }
   try {
-    const internal::RosBagFile file(path);
+    const std::unique_ptr<internal::BagReader> reader =
+        ros2 ? std::unique_ptr<internal::BagReader>(std::make_unique<internal::Ros2BagFile>(path))
+             : std::make_unique<internal::RosBagFile>(path);
+    const internal::BagReader& file = *reader;
     topics = file.Topics();
     stats.topics = topics.counts;
     const Result<std::string> chosen_scan = ChooseTopic(topics.types, topics.counts, kLaserScanType,
@@ -377,7 +388,8 @@ RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& option
     bag = file.Messages(scan_topic, odom_topic.value_or(""), has_truth ? options.truth_topic : "",
                         !odom_topic);
   } catch (const std::exception& e) {
-    return fail(std::string("not a readable ROS bag: ") + e.what());
+    return fail(std::string(ros2 ? "not a readable ROS 2 bag: " : "not a readable ROS bag: ") +
+                e.what());
   }
 
   // Odometry, in time order.
@@ -520,9 +532,16 @@ kernel::Status WriteRosBag(const CarmenLog& log, const std::string& path,
                      bag.odometry.end());
   counts.odometry = static_cast<int>(bag.odometry.size());
   try {
-    internal::WriteMessages(path, options.scan_topic.empty() ? "/scan" : options.scan_topic,
-                            options.odom_topic.empty() ? "/odom" : options.odom_topic,
-                            options.truth_topic, bag);
+    const std::string scan_topic = options.scan_topic.empty() ? "/scan" : options.scan_topic;
+    const std::string odom_topic = options.odom_topic.empty() ? "/odom" : options.odom_topic;
+    if (path.ends_with(".mcap") || path.ends_with(".db3")) {
+      internal::WriteRos2Bag(
+          path,
+          path.ends_with(".mcap") ? internal::Ros2Storage::kMcap : internal::Ros2Storage::kSqlite3,
+          scan_topic, odom_topic, options.truth_topic, bag);
+    } else {
+      internal::WriteMessages(path, scan_topic, odom_topic, options.truth_topic, bag);
+    }
   } catch (const std::exception& e) {
     if (stats) stats->write_failed = true;
     return FileError(path, 0, std::string("cannot write the bag: ") + e.what());

@@ -12,7 +12,10 @@
 
 namespace splam::io {
 
-// ROS 1 bags (rosbag format 2.0, read and written with Debian's rosbag_storage). A bag is read
+// ROS 1 bags (rosbag format 2.0, read and written with Debian's rosbag_storage) and ROS 2 bags
+// (rosbag2: SQLite3 .db3 and MCAP .mcap files or bag directories, messages in CDR; read and
+// written by io/internal/ros2_bag_file.cc; message types sensor_msgs/msg/LaserScan,
+// nav_msgs/msg/Odometry, tf2_msgs/msg/TFMessage). A bag is read
 // into the same in-memory log as a CARMEN file, so that every command taking a log takes a bag:
 //   - scans: sensor_msgs/LaserScan; beam geometry, range limits and timestamps (header.stamp)
 //     from each message. REP 117: +inf (or a range at or above range_max) is no return, NaN or
@@ -57,12 +60,14 @@ struct RosBagWriteStats {
   int sonar_skipped = 0;
   bool write_failed = false;  // the error is the file's (a full disk), not the log's
 };
+// A ROS 1 bag for ".bag", ROS 2 for ".mcap" (chunks compressed with zstd) and ".db3" (SQLite3).
 // Ok, else why the bag could not be written (*stats then says whether the log or
 // the file was at fault).
 kernel::Status WriteRosBag(const CarmenLog& log, const std::string& path,
                            const RosBagOptions& options = {}, RosBagWriteStats* stats = nullptr);
 
-// True when `path` names a bag (it ends in ".bag").
+// True when `path` names a bag: ROS 1 (".bag") or ROS 2 (".db3", ".mcap", or a directory with a
+// metadata.yaml).
 bool IsRosBagPath(const std::string& path);
 // Ok when the file's records are framed as rosbag 2.0 says (every length within its record and
 // the file, also inside uncompressed chunks), else what is wrong. ReadRosBag checks this before

@@ -136,7 +136,8 @@ Result<estimation::SlamState> ParseSlamState(const std::string& text, const std:
         } else if (t[0] == "scan") {
           if (kernel::Status e = LineNumbers(t, 12, 12, &v); !e.ok()) return fail(e.message());
           const double n = v[11];
-          if (!(n >= 0 && n == std::floor(n) && v.size() == 12 + static_cast<std::size_t>(n)))
+          // The count compared as a double first: a huge one does not fit a size_t.
+          if (!(n >= 0 && n == std::floor(n) && n == static_cast<double>(v.size() - 12)))
             return fail(fmt::format("scan: {} ranges announced, {} given", n, v.size() - 12));
           estimation::MapScan m;
           m.pose = PoseAt(v, 0);

@@ -17,7 +17,8 @@ bash scripts/configure_sanitized.sh
 cmake --build build-san --target fuzzers --parallel "$(nproc 2>/dev/null || echo 2)"
 names=("$@")
 if ((${#names[@]} == 0)); then
-  names=(carmen text_files world options floor_plan bag scan_features slam_step option_values sweep_state)
+  names=(carmen text_files world options floor_plan bag ros2_bag scan_features slam_step option_values
+    sweep_state)
 fi
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp
 seed=${FUZZ_SEED:-1}

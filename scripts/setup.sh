@@ -10,6 +10,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev libdxflib-dev
   libgtest-dev libgmock-dev libbenchmark-dev valgrind
   librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev python3
+  libsqlite3-dev libzstd-dev liblz4-dev
   python3-ament-package
   clang libclang-rt-14-dev
   slurm-wlm munge chromium

@@ -41,20 +41,31 @@ struct RosBagMessages {
   std::vector<RosPose> tf, tf_static;  // every transform of /tf and /tf_static
 };
 
-// A bag open for reading. One object serves both questions: rosbag::Bag's constructor crawls
+// A recording open for reading: the topics, then the messages of those chosen (ROS 1 bags here,
+// ROS 2 bags in ros2_bag_file.h). Message types are named as ROS 1 names them
+// ("sensor_msgs/LaserScan").
+class BagReader {
+ public:
+  virtual ~BagReader() = default;
+  virtual RosBagTopics Topics() const = 0;
+  // The messages of the named topics, in time order (an empty topic name: none); /tf only with
+  // read_tf. Throws std::exception on a message that does not decode.
+  virtual RosBagMessages Messages(const std::string& scan_topic, const std::string& odom_topic,
+                                  const std::string& truth_topic, bool read_tf) const = 0;
+};
+
+// A ROS 1 bag open for reading. One object serves both questions: rosbag::Bag's constructor crawls
 // every ROS package on the machine for encryptor plugins (about 300 directories of /usr/share on
 // Debian), the larger part of reading a small bag.
-class RosBagFile {
+class RosBagFile : public BagReader {
  public:
   // Throws std::exception (rosbag's) when the file is not a readable bag.
   explicit RosBagFile(const std::string& path);
   ~RosBagFile();
 
-  RosBagTopics Topics() const;
-  // The messages of the named topics, in the bag's time order (an empty topic name: none);
-  // /tf only with read_tf. Throws std::exception on a message that does not decode.
+  RosBagTopics Topics() const override;
   RosBagMessages Messages(const std::string& scan_topic, const std::string& odom_topic,
-                          const std::string& truth_topic, bool read_tf) const;
+                          const std::string& truth_topic, bool read_tf) const override;
 
  private:
   std::unique_ptr<rosbag::Bag> bag_;

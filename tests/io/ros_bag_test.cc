@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 
+#include "io/internal/ros2_bag_file.h"
 #include "io/internal/rosbag_file.h"
 #include "io/text.h"
 #include "io/trajectory.h"
@@ -16,7 +17,22 @@
 namespace splam::io {
 namespace {
 
-std::string TempBag(const std::string& name) { return ::testing::TempDir() + "/" + name + ".bag"; }
+std::string TempBag(const std::string& name, const std::string& extension = ".bag") {
+  return ::testing::TempDir() + "/" + name + extension;
+}
+
+// Writes messages as a ROS 1 bag (.bag) or a ROS 2 bag (.mcap, .db3): the checks after reading
+// are the same for all three.
+void WriteBag(const std::string& path, const internal::RosBagMessages& bag) {
+  if (path.ends_with(".bag"))
+    internal::WriteMessages(path, "/scan", "/odom", "/ground_truth", bag);
+  else
+    internal::WriteRos2Bag(
+        path,
+        path.ends_with(".mcap") ? internal::Ros2Storage::kMcap : internal::Ros2Storage::kSqlite3,
+        "/scan", "/odom", "/ground_truth", bag);
+}
+constexpr const char* kBagExtensions[] = {".bag", ".mcap", ".db3"};
 
 // A short log as the simulator writes one: at every step ODOM, TRUEPOS and a scan taken by a
 // laser 0.1 m ahead of the robot, with a no-return and an invalid beam.
@@ -119,30 +135,34 @@ TEST(RosBag, OdometryFromTfAndTheMountingThroughAChainOfStaticTransforms) {
 // A LaserScan whose range_min lies above its range_max, or without ranges:
 // refused, naming the scan and the topic, instead of running as if valid.
 TEST(RosBag, ScansWithoutBeamsOrWithRangesUpsideDownAreRefused) {
-  for (const bool empty : {false, true}) {
-    internal::RosBagMessages bag;
-    for (int i = 0; i < 3; ++i) {
-      bag.odometry.push_back({1.0 + i, "odom", "base_link", 0.1 * i, 0.0, 0.0, 0.0, 0.0});
-      bag.scans.push_back({1.5 + i, "base_link", -1.0, 0.01, i == 1 && !empty ? 40.0 : 0.05, 30.0,
-                           std::vector<float>(i == 1 && empty ? 0 : 201, 2.0f)});
+  for (const char* extension : kBagExtensions)
+    for (const bool empty : {false, true}) {
+      internal::RosBagMessages bag;
+      for (int i = 0; i < 3; ++i) {
+        bag.odometry.push_back({1.0 + i, "odom", "base_link", 0.1 * i, 0.0, 0.0, 0.0, 0.0});
+        bag.scans.push_back({1.5 + i, "base_link", -1.0, 0.01, i == 1 && !empty ? 40.0 : 0.05, 30.0,
+                             std::vector<float>(i == 1 && empty ? 0 : 201, 2.0f)});
+      }
+      const std::string path = TempBag(empty ? "no_beams" : "range_min", extension);
+      WriteBag(path, bag);
+      const RosBagReadResult read = ReadRosBag(path);
+      ASSERT_FALSE(read.log.ok());
+      EXPECT_NE(
+          read.log.error.find(empty ? "scan 2 on /scan: a scan without beams"
+                                    : "scan 2 on /scan: minimum range 40 m is not in [0, 30)"),
+          std::string::npos)
+          << read.log.error;
     }
-    const std::string path = TempBag(empty ? "no_beams" : "range_min");
-    internal::WriteMessages(path, "/scan", "/odom", "/ground_truth", bag);
-    const RosBagReadResult read = ReadRosBag(path);
-    ASSERT_FALSE(read.log.ok());
-    EXPECT_NE(read.log.error.find(empty ? "scan 2 on /scan: a scan without beams"
-                                        : "scan 2 on /scan: minimum range 40 m is not in [0, 30)"),
-              std::string::npos)
-        << read.log.error;
-  }
 }
 
-TEST(RosBag, TopicsAndMountingThatCannotBeChosenAreNamed) {
+class RosBagTopics : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(RosBagTopics, TopicsAndMountingThatCannotBeChosenAreNamed) {
   internal::RosBagMessages bag;
   bag.scans.push_back({1.0, "laser", -1.0, 0.01, 0.05, 30.0, std::vector<float>(201, 2.0f)});
   bag.odometry.push_back({1.0, "odom", "base_link", 0.0, 0.0, 0.0, 0.0, 0.0});
-  const std::string path = TempBag("no_mounting");
-  internal::WriteMessages(path, "/scan", "/odom", "/ground_truth", bag);
+  const std::string path = TempBag("no_mounting", GetParam());
+  WriteBag(path, bag);
   // The scans' frame "laser" is not the base frame, and nothing says where it is mounted.
   RosBagReadResult read = ReadRosBag(path);
   ASSERT_FALSE(read.log.ok());
@@ -165,8 +185,8 @@ TEST(RosBag, TopicsAndMountingThatCannotBeChosenAreNamed) {
   // No odometry and no /tf.
   internal::RosBagMessages scans_only;
   scans_only.scans = bag.scans;
-  const std::string lonely = TempBag("scans_only");
-  internal::WriteMessages(lonely, "/scan", "/odom", "/ground_truth", scans_only);
+  const std::string lonely = TempBag("scans_only", GetParam());
+  WriteBag(lonely, scans_only);
   read = ReadRosBag(lonely);
   ASSERT_FALSE(read.log.ok());
   EXPECT_NE(read.log.error.find("no nav_msgs/Odometry topic (choose one with --odom-topic)"),
@@ -174,6 +194,9 @@ TEST(RosBag, TopicsAndMountingThatCannotBeChosenAreNamed) {
       << read.log.error;
   EXPECT_NE(read.log.error.find("and no /tf to read it from"), std::string::npos);
 }
+
+INSTANTIATE_TEST_SUITE_P(RosBag, RosBagTopics, ::testing::ValuesIn(kBagExtensions),
+                         [](const auto& format) { return std::string(format.param + 1); });
 
 // Whether a shared object whose file name contains `name` is loaded in this process.
 bool SharedObjectLoaded(const char* name) {
