@@ -38,6 +38,14 @@ int RunRender(const RenderArgs& args) {
                "splam render: --grid needs --log (the scans) and --trajectory (their poses)\n");
     return kExitBadInput;
   }
+  // Output directories that do not exist yet are made, as slam's --out is.
+  std::vector<std::string> outputs = args.out;
+  if (!args.grid.empty()) outputs.push_back(args.grid);
+  for (const std::string& o : outputs) {
+    const std::filesystem::path parent = std::filesystem::path(o).parent_path();
+    std::error_code ec;
+    if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  }
   io::RunPicture picture;
   io::CarmenReadResult read_log;
   picture.title = args.title;
