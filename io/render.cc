@@ -57,8 +57,9 @@ struct Figure::Impl {
   cairo_surface_t* recording = nullptr;
   cairo_t* cr = nullptr;
   std::vector<LegendEntry> legend;
-  // Text, legend and scale bar grow with the picture (a 4000 px map shown 800 px wide in a page
-  // shrinks them five times): sizes below are for a picture up to 1000 px wide.
+  // Text, legend, scale bar and line widths grow with the picture (a 4000 px map shown 800 px
+  // wide in a page shrinks them five times): sizes in pixels are for a picture up to 1000 px
+  // wide. Markers and points do not: grown, a long log's thousands of them bury the map.
   double text_scale = 1.0;
 
   Eigen::Vector2d ToPixel(const Eigen::Vector2d& p) const {
@@ -200,7 +201,7 @@ void Figure::DrawWorld(const sim::World& world, Rgb color, const std::string& le
       cairo_fill_preserve(cr);
     }
     SetColor(cr, drawn);
-    cairo_set_line_width(cr, glass ? 3.0 : 2.0);
+    cairo_set_line_width(cr, (glass ? 3.0 : 2.0) * impl_->text_scale);
     cairo_stroke(cr);
   }
   impl_->AddLegend(legend, color, LegendKind::kLine);
@@ -220,7 +221,7 @@ void Figure::DrawPath(const std::vector<kernel::Pose2>& poses, Rgb color, double
       cairo_line_to(cr, q.x(), q.y());
   }
   SetColor(cr, color);
-  cairo_set_line_width(cr, width_px);
+  cairo_set_line_width(cr, width_px * impl_->text_scale);
   cairo_stroke(cr);
   impl_->AddLegend(legend, color, LegendKind::kLine);
 }
@@ -244,7 +245,7 @@ void Figure::DrawPolyline(const std::vector<Eigen::Vector2d>& points, Rgb color,
   cairo_t* cr = impl_->cr;
   impl_->Trace(points);
   SetColor(cr, color);
-  cairo_set_line_width(cr, width_px);
+  cairo_set_line_width(cr, width_px * impl_->text_scale);
   const double dash[] = {4.0, 3.0};
   cairo_set_dash(cr, dash, dashed ? 2 : 0, 0.0);
   cairo_stroke(cr);
@@ -261,7 +262,7 @@ void Figure::DrawPolygon(const std::vector<Eigen::Vector2d>& points, Rgb color, 
   SetColor(cr, color, fill_alpha);
   cairo_fill_preserve(cr);
   SetColor(cr, color);
-  cairo_set_line_width(cr, width_px);
+  cairo_set_line_width(cr, width_px * impl_->text_scale);
   if (width_px > 0.0) {
     cairo_stroke(cr);
   } else {
@@ -338,7 +339,7 @@ void Figure::DrawRobot(const kernel::Pose2& pose, double radius_m, Rgb color) {
   cairo_move_to(cr, c.x(), c.y());
   cairo_line_to(cr, tip.x(), tip.y());
   SetColor(cr, color);
-  cairo_set_line_width(cr, 1.5);
+  cairo_set_line_width(cr, 1.5 * impl_->text_scale);
   cairo_stroke(cr);
 }
 

@@ -48,7 +48,8 @@ struct FigureOptions {
 };
 
 // A map-like picture in world coordinates (metres, y up) with a title, a legend and a scale
-// bar, saved as SVG or PNG. Drawing is recorded once and replayed into either format.
+// bar, saved as SVG or PNG. Line widths and text in pixels are those of a picture up to 1000 px
+// wide and grow with a wider one, so that it reads the same shown at page width. Drawing is recorded once and replayed into either format.
 class Figure {
  public:
   // `area` is the part of the world to show; it must not be empty.
