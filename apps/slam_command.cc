@@ -332,12 +332,12 @@ int RunSlam(const SlamArgs& args) {
     }
     relations = std::move(*read_relations.value);
   }
-  // The estimate starts at the first odometric pose: the map frame is the odometry frame (for
-  // simulated runs, the true frame).
   if (args.localize_only && args.load_state.empty()) {
     fmt::print(stderr, "splam slam: --localize-only needs --load-state (the map to localise in)\n");
     return kExitBadInput;
   }
+  // The estimate starts at the first odometric pose: the map frame is the odometry frame (for
+  // simulated runs, the true frame); --initial-pose places the log in a loaded map's frame.
   const kernel::Pose2 start =
       args.initial_pose.size() == 3
           ? kernel::Pose2(args.initial_pose[0], args.initial_pose[1], args.initial_pose[2])
