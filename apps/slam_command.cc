@@ -136,9 +136,7 @@ bool Configure(const SlamArgs& args, const io::LaserMessage& first, SlamConfig* 
     fmt::print(stderr, "splam slam: local_region: {}\n", problem.message());
     return false;
   }
-  kernel::Status grid = kernel::FiniteFields(config->grid);
-  if (grid.ok()) grid = config->grid.Validate();
-  if (!grid.ok()) {
+  if (const kernel::Status grid = kernel::OptionsOf(config->grid).Validate(); !grid.ok()) {
     fmt::print(stderr, "splam slam: occupancy_grid: {}\n", grid.message());
     return false;
   }
@@ -466,9 +464,9 @@ int RunSlam(const SlamArgs& args) {
   const bool finite = PrintSlamSummary(label, slam, run, summary);
   fmt::print(
       "wrote {}/{{config.yaml, trajectory.txt, trajectory.tum, odometry.txt, map.txt, map.dxf, "
-      "map.svg, map.png, map.yaml, map.pgm, grid.png, "
-      "summary.json, report.html{}{}}}\n",
-      out, run.truth.empty() ? "" : ", truth.txt, truth.tum, errors.svg, errors.png",
+      "map.svg, map.png, {}summary.json, report.html{}{}}}\n",
+      out, grid.contains("error") ? "" : "map.yaml, map.pgm, grid.png, ",
+      run.truth.empty() ? "" : ", truth.txt, truth.tum, errors.svg, errors.png",
       args.trace ? ", steps.csv" : "");
   if (!slam.healthy() || !finite || !scored || truncated || run.stopped_at) return kExitIncomplete;
   return kExitOk;
@@ -535,7 +533,7 @@ void AddSlamCommand(CLI::App* app, int* exit_code) {
                   "Where the log starts in the map's frame, x y theta (m, m, rad); default: the "
                   "log's first odometric pose (right when both logs share their odometry frame)")
       ->expected(3)
-      ->check(CLI::Number);
+      ->check(FiniteRange(-kernel::kMaxCoordinateM, kernel::kMaxCoordinateM));
   cmd->callback([args, exit_code, method] {
     args->method_given = method->count() > 0;
     *exit_code = RunSlam(*args);

@@ -180,6 +180,12 @@ kernel::Result<OccupancyGrid> BuildOccupancyGrid(const std::vector<evaluation::P
     }
   }
   if (!(lo.x() <= hi.x())) return R::Fail("occupancy grid: no scan with a finite pose");
+  // Beyond this, doubles no longer tell cells apart (at 1e300 m the whole map is one cell).
+  if (!(lo.cwiseAbs().maxCoeff() <= kernel::kMaxCoordinateM &&
+        hi.cwiseAbs().maxCoeff() <= kernel::kMaxCoordinateM))
+    return R::Fail(
+        fmt::format("occupancy grid: scans placed beyond +-{:g} m (a diverged estimate?)",
+                    kernel::kMaxCoordinateM));
   const double res = options.resolution_m;
   const Eigen::Vector2d origin = lo - Eigen::Vector2d::Constant(2 * res);
   const double w = std::floor((hi.x() - lo.x()) / res) + 5,

@@ -2,8 +2,11 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 
+#include "io/internal/plausible.h"
 #include "io/map_export.h"
 #include "io/text.h"
 #include "io/trajectory.h"
@@ -99,10 +102,17 @@ Result<estimation::SlamState> ParseSlamState(const std::string& text, const std:
           return kernel::Status::Ok();
         }
         if (t[0] == "method") {
-          if (t.size() != 2) return fail("method: expected one name");
+          const auto is_name_byte = [](char c) {
+            return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_';
+          };
+          if (t.size() != 2 || !std::all_of(t[1].begin(), t[1].end(), is_name_byte))
+            return fail("method: expected one name of letters, digits, '-' and '_'" +
+                        (t.size() == 2 ? ", not " + Quoted(t[1]) : std::string()));
           state.method = std::string(t[1]);
         } else if (t[0] == "keyframe") {
           if (kernel::Status e = LineNumbers(t, 3, 3, &v); !e.ok()) return fail(e.message());
+          if (kernel::Status e = internal::PoseProblem(PoseAt(v, 0), "keyframe"); !e.ok())
+            return fail(e.message());
           state.map.keyframes.push_back(PoseAt(v, 0));
         } else if (t[0] == "loop_edge") {
           const long n = static_cast<long>(state.map.keyframes.size());
@@ -148,8 +158,12 @@ Result<estimation::SlamState> ParseSlamState(const std::string& text, const std:
           m.scan.min_range_m = v[9];
           m.scan.max_range_m = v[10];
           m.scan.ranges_m.assign(v.begin() + 12, v.end());
-          if (!(m.scan.min_range_m >= 0 && m.scan.min_range_m <= m.scan.max_range_m))
-            return fail("scan: need 0 <= min_range <= max_range");
+          for (const auto& [pose, what] : {std::pair{m.pose, "scan: pose"},
+                                           std::pair{m.robot_T_laser, "scan: laser mounting"}})
+            if (kernel::Status e = internal::PoseProblem(pose, what); !e.ok())
+              return fail(e.message());
+          if (kernel::Status e = internal::ScanGeometryProblem(m.scan); !e.ok())
+            return fail("scan: " + e.message());
           state.scans.push_back(std::move(m));
         } else {
           return fail("unknown line " + Quoted(t[0]) +

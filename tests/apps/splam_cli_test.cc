@@ -751,6 +751,13 @@ TEST(SplamCli, SlamAndRenderWriteOccupancyGrids) {
             " --set occupancy_grid.hit_probability=0.2 --out " + (dir / "bad").string());
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.text.find("occupancy_grid: need 0 < min_probability"), std::string::npos) << r.text;
+  // A grid too large to build is said, and not listed as written.
+  r = Splam("slam " + (dir / "sim" / "log.clf").string() +
+            " --set occupancy_grid.resolution_m=1e-6 --out " + (dir / "tiny").string());
+  EXPECT_EQ(r.status, 0) << r.text;
+  EXPECT_NE(r.text.find("no map.pgm: occupancy grid:"), std::string::npos) << r.text;
+  EXPECT_EQ(r.text.find("map.pgm, grid.png"), std::string::npos) << r.text;
+  EXPECT_FALSE(fs::exists(dir / "tiny" / "map.pgm"));
 }
 
 // Map once, localise many times: `complex` mapped along its route, a second log along another
@@ -809,6 +816,10 @@ TEST(SplamCli, ASavedMapLocalisesASecondRunAndStaysUnchanged) {
   r = Splam("slam " + (dir / "b" / "log.clf").string() + " --localize-only");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.text.find("--localize-only needs --load-state"), std::string::npos) << r.text;
+  r = Splam("slam " + (dir / "b" / "log.clf").string() + " --load-state " + state +
+            " --localize-only --initial-pose nan 0 0 --out " + (dir / "nan").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.text.find("--initial-pose"), std::string::npos) << r.text;
   r = Splam("slam " + (dir / "b" / "log.clf").string() + " --method ekf-lines --save-state " +
             (dir / "x.state").string() + " --out " + (dir / "x").string());
   EXPECT_EQ(r.status, 2);

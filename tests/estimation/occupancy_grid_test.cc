@@ -171,6 +171,10 @@ TEST(OccupancyGrid, RefusesBadOptionsAndGridsTooLarge) {
   bad.resolution_m = 0;
   EXPECT_FALSE(BuildOccupancyGrid(far, bad).ok());
   EXPECT_FALSE(BuildOccupancyGrid({}).ok());  // nothing to map
+  const kernel::Result<OccupancyGrid> diverged =
+      BuildOccupancyGrid({{Pose2(1e300, 0, 0), Pose2(), &scan}});
+  ASSERT_FALSE(diverged.ok());
+  EXPECT_NE(diverged.error.find("beyond +-1e+06 m"), std::string::npos) << diverged.error;
 }
 
 }  // namespace

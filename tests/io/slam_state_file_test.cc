@@ -101,7 +101,15 @@ TEST(SlamStateFile, BadFilesNameFileAndLine) {
   EXPECT_EQ(error("splam_state 1\nmethod graph\nscan 0 0 0 0 0 0 0 0 0.1 0 4 3 1 2\n"),
             ":3: scan: 3 ranges announced, 2 given");
   EXPECT_EQ(error("splam_state 1\nmethod graph\nscan 0 0 0 0 0 0 0 0 0.1 5 4 1 1\n"),
-            ":3: scan: need 0 <= min_range <= max_range");
+            ":3: scan: minimum range 5 m is not in [0, 4) (the maximum range)");
+  EXPECT_EQ(error("splam_state 1\nmethod graph\nscan 2e6 0 0 0 0 0 0 0 0.1 0 4 1 1\n"),
+            ":3: scan: pose 2e+06 is not finite or beyond +-1e+06 m");
+  EXPECT_EQ(error("splam_state 1\nmethod graph\nkeyframe 0 1e300 0\n"),
+            ":3: keyframe 1e+300 is not finite or beyond +-1e+06 m");
+  EXPECT_EQ(error("splam_state 1\nmethod gr\xff"
+                  "aph\n"),
+            ":2: method: expected one name of letters, digits, '-' and '_', not 'gr\xff"
+            "aph'");
   EXPECT_EQ(error("splam_state 1\nmethod graph\nscan 0 0 inf 0 0 0 0 0 0.1 0 4 1 1\n"),
             ":3: 'inf' is not a finite number");
   EXPECT_EQ(error("splam_state 1\nmethod graph\ncurve 1 2\n"),
