@@ -58,13 +58,14 @@ kernel::Status WriteOccupancyGrid(const OccupancyGrid& grid, const std::string& 
         return kUnknownPixel;
     }
   });
-  bool written = false;
-  try {
-    written = cv::imwrite(pgm.string(), image, {cv::IMWRITE_PXM_BINARY, 1});
-  } catch (const cv::Exception& e) {
-    return FileError(pgm.string(), 0, std::string("cannot write: ") + e.what());
-  }
-  if (!written) return FileError(pgm.string(), 0, "cannot write");
+  // Encoded in memory, written by WriteTextFile: cv::imwrite reports success for a file a full
+  // disk cut short.
+  std::vector<unsigned char> encoded;
+  if (!cv::imencode(".pgm", image, encoded, {cv::IMWRITE_PXM_BINARY, 1}))
+    return FileError(pgm.string(), 0, "cannot encode the grid as PGM");
+  if (kernel::Status e = WriteTextFile(pgm.string(), std::string(encoded.begin(), encoded.end()));
+      !e.ok())
+    return e;
   return WriteTextFile(
       yaml_path,
       fmt::format("image: {}\nmode: trinary\nresolution: {}\norigin: [{}, {}, 0.0]\nnegate: 0\n"

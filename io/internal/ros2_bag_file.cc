@@ -411,7 +411,7 @@ class SqliteWriter : public Ros2Writer {
     sqlite3_stmt* get() const { return statement_; }
     void Run() {
       if (sqlite3_step(statement_) != SQLITE_DONE)
-        Fail(std::string("cannot write the bag: ") + sqlite3_errmsg(db_));
+        Fail(std::string("sqlite: ") + sqlite3_errmsg(db_));
     }
 
    private:
@@ -423,7 +423,7 @@ class SqliteWriter : public Ros2Writer {
     if (sqlite3_exec(db_.get(), sql, nullptr, nullptr, &error) != SQLITE_OK) {
       const std::string message = error != nullptr ? error : "unknown error";
       sqlite3_free(error);
-      Fail("cannot write the bag: " + message);
+      Fail("sqlite: " + message);
     }
   }
   std::unique_ptr<sqlite3, decltype(&sqlite3_close)> db_;
