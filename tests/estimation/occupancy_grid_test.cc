@@ -157,7 +157,7 @@ TEST(OccupancyGrid, RefusesBadOptionsAndGridsTooLarge) {
   scan.max_range_m = 5.0;
   scan.ranges_m = {2.0};
   const std::vector<evaluation::PlacedScan> far = {{Pose2(), Pose2(), &scan},
-                                                   {Pose2(1e6, 1e6, 0), Pose2(), &scan}};
+                                                   {Pose2(9e5, 9e5, 0), Pose2(), &scan}};
   const kernel::Result<OccupancyGrid> huge = BuildOccupancyGrid(far);
   ASSERT_FALSE(huge.ok());
   EXPECT_NE(huge.error.find("max_cells"), std::string::npos) << huge.error;
