@@ -264,10 +264,16 @@ std::vector<std::size_t> GraphSlam::MovingBeams(const kernel::Scan& scan,
   return moving;
 }
 
-RegistrationResult GraphSlam::RegisterScan(const std::vector<OrientedPoint>& points) {
-  const ScopedTimer timer(&times_.registration_ms);
-  RegistrationResult r = RegisterPoints(points, submap_, pose_, options_.registration);
-  if (options_.odometry_prior) {
+FrontEndRegistration RegisterFrontEnd(const std::vector<OrientedPoint>& points,
+                                      const DistanceGrid& field,
+                                      const std::function<const LikelihoodPyramid&()>& scores,
+                                      const kernel::Pose2& predicted,
+                                      const kernel::Pose2& odometry_since,
+                                      const GraphSlamOptions& options) {
+  FrontEndRegistration out;
+  RegistrationResult& r = out.result;
+  r = RegisterPoints(points, field, predicted, options.registration);
+  if (options.odometry_prior) {
     // The odometry increment (its covariance from the noise model) is either right, the prior of
     // the fused registration, or an outlier (a slip, a glitch) and the scan alone stands
     // (OdometryIsInlier). Where the scan leaves a direction loose (a corridor's axis, a smooth
@@ -275,40 +281,54 @@ RegistrationResult GraphSlam::RegisterScan(const std::vector<OrientedPoint>& poi
     // fused pose's, and the odometry holds it. When the scan alone fails its test, the fused
     // pose still stands if it passes: a scan of one smooth wall slid 0.43 m along it, beyond
     // max_correction_m, and the recovery search below then took the slid pose (it fits as well).
-    const Eigen::Matrix3d odometry = options_.odometry.Covariance(since_update_);
+    const Eigen::Matrix3d odometry = options.odometry.Covariance(odometry_since);
     RegistrationResult fused =
-        RegisterPoints(points, submap_, pose_, options_.registration, &odometry);
-    if (r.accepted ? OdometryIsInlier(fused, r, options_.odometry_outlier_probability)
+        RegisterPoints(points, field, predicted, options.registration, &odometry);
+    if (r.accepted ? OdometryIsInlier(fused, r, options.odometry_outlier_probability)
                    : fused.accepted)
       r = std::move(fused);
   }
-  const bool suspect = r.accepted && r.misfit_fraction > options_.verify_misfit_fraction;
-  if ((r.accepted && !suspect) || options_.recovery_window_m <= 0) return r;
+  const bool suspect = r.accepted && r.misfit_fraction > options.verify_misfit_fraction;
+  if ((r.accepted && !suspect) || options.recovery_window_m <= 0) return out;
   // The odometry can be off by more than the registration's basin (wheel slip, a bump, a fast
   // turn): a correlative search around the prediction finds the basin, the registration refines
   // it. It replaces a failed registration when at least as many points lie near the map, a
   // suspect one only when more do and fewer contradict it.
-  ++recoveries_;
-  if (!submap_scores_)
-    submap_scores_ = std::make_unique<LikelihoodPyramid>(submap_, options_.loop.sigma_m, 3);
+  out.searched = true;
   const CorrelativeMatch match =
-      SearchCorrelative(Positions(Thinned(points, options_.grid_resolution_m)), *submap_scores_,
-                        pose_, options_.recovery_window_m, options_.recovery_window_rad,
-                        options_.registration.min_inlier_fraction, 1.0,
-                        {.angular_step_rad = options_.recovery_step_rad});
-  if (!match.found) return r;
-  RegistrationOptions wide = options_.registration;
-  wide.max_correction_m = options_.recovery_window_m + wide.max_correction_m;
-  wide.max_correction_rad = options_.recovery_window_rad + wide.max_correction_rad;
-  RegistrationResult recovered = RegisterPoints(points, submap_, match.pose, wide);
-  if (!recovered.accepted || recovered.inlier_fraction < r.inlier_fraction) return r;
+      SearchCorrelative(Positions(Thinned(points, options.grid_resolution_m)), scores(), predicted,
+                        options.recovery_window_m, options.recovery_window_rad,
+                        options.registration.min_inlier_fraction, 1.0,
+                        {.angular_step_rad = options.recovery_step_rad});
+  if (!match.found) return out;
+  RegistrationOptions wide = options.registration;
+  wide.max_correction_m = options.recovery_window_m + wide.max_correction_m;
+  wide.max_correction_rad = options.recovery_window_rad + wide.max_correction_rad;
+  RegistrationResult recovered = RegisterPoints(points, field, match.pose, wide);
+  if (!recovered.accepted || recovered.inlier_fraction < r.inlier_fraction) return out;
   if (suspect && !(recovered.inlier_fraction > r.inlier_fraction &&
                    recovered.misfit_fraction < r.misfit_fraction))
-    return r;
+    return out;
   recovered.covariance +=
-      Diagonal(options_.registration.prior_sigma_m, options_.registration.prior_sigma_rad);
-  ++recovered_;
-  return recovered;
+      Diagonal(options.registration.prior_sigma_m, options.registration.prior_sigma_rad);
+  r = std::move(recovered);
+  out.recovered = true;
+  return out;
+}
+
+RegistrationResult GraphSlam::RegisterScan(const std::vector<OrientedPoint>& points) {
+  const ScopedTimer timer(&times_.registration_ms);
+  const FrontEndRegistration r = RegisterFrontEnd(
+      points, submap_,
+      [this]() -> const LikelihoodPyramid& {
+        if (!submap_scores_)
+          submap_scores_ = std::make_unique<LikelihoodPyramid>(submap_, options_.loop.sigma_m, 3);
+        return *submap_scores_;
+      },
+      pose_, since_update_, options_);
+  recoveries_ += r.searched;
+  recovered_ += r.recovered;
+  return r.result;
 }
 
 void GraphSlam::AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,

@@ -360,6 +360,25 @@ struct LoopClosureCounts {
        rejected_disagreement = 0, rejected_unconfirmed = 0;
 };
 
+// The graph SLAM front end's registration of a scan's points (robot frame) against a field
+// (world frame) from the predicted pose: the scan alone and with the odometry increment since
+// the last scan as its prior (the fused pose unless the odometry is an outlier); when that fails
+// its test or looks suspect (misfit above verify_misfit_fraction), a correlative search over the
+// recovery window on `scores` (made on first need) and a wide registration from its best pose,
+// taken when it fits at least as well. GraphSlam registers against its submap, MapLocalizer
+// against a saved map.
+struct FrontEndRegistration {
+  RegistrationResult result;
+  bool searched = false;   // the recovery search ran
+  bool recovered = false;  // and its pose was taken
+};
+FrontEndRegistration RegisterFrontEnd(const std::vector<OrientedPoint>& points,
+                                      const DistanceGrid& field,
+                                      const std::function<const LikelihoodPyramid&()>& scores,
+                                      const kernel::Pose2& predicted,
+                                      const kernel::Pose2& odometry_since,
+                                      const GraphSlamOptions& options);
+
 class GraphSlam {
  public:
   struct Keyframe {

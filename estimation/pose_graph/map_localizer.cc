@@ -62,30 +62,12 @@ void MapLocalizer::UpdateGrid() {
   ++grid_builds_;
 }
 
-// The graph SLAM front end's registration (GraphSlam::RegisterScan) against the map's field: the
-// scan with the odometry increment as its prior unless the odometry is an outlier, and a
-// correlative search around the prediction when that fails.
 RegistrationResult MapLocalizer::Register(const std::vector<OrientedPoint>& points) {
-  const RegistrationOptions& reg = options_.registration;
-  RegistrationResult r = RegisterPoints(points, grid_, pose_, reg);
-  if (options_.odometry_prior) {
-    const Eigen::Matrix3d odometry = options_.odometry.Covariance(since_update_);
-    RegistrationResult fused = RegisterPoints(points, grid_, pose_, reg, &odometry);
-    if (r.accepted ? OdometryIsInlier(fused, r, options_.odometry_outlier_probability)
-                   : fused.accepted)
-      r = std::move(fused);
-  }
-  if (r.accepted || options_.recovery_window_m <= 0) return r;
-  const CorrelativeMatch match = SearchCorrelative(
-      Positions(points), *scores_, pose_, options_.recovery_window_m, options_.recovery_window_rad,
-      reg.min_inlier_fraction, 1.0, {.angular_step_rad = options_.recovery_step_rad});
-  if (!match.found) return r;
-  RegistrationOptions wide = reg;
-  wide.max_correction_m += options_.recovery_window_m;
-  wide.max_correction_rad += options_.recovery_window_rad;
-  RegistrationResult recovered = RegisterPoints(points, grid_, match.pose, wide);
-  if (recovered.accepted) ++recovered_;
-  return recovered.accepted ? recovered : r;
+  const FrontEndRegistration r = RegisterFrontEnd(
+      points, grid_, [this]() -> const LikelihoodPyramid& { return *scores_; }, pose_,
+      since_update_, options_);
+  recovered_ += r.recovered;
+  return r.result;
 }
 
 void MapLocalizer::Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) {
