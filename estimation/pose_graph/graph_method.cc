@@ -81,12 +81,7 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
   }
   kernel::Status health() const override { return slam_.health(); }
   std::size_t MapSize() const override {
-    std::size_t n = 0;
-    if (localizer_) {
-      for (const MapSpline& s : loaded_.map.splines) n += s.spline.control_points().size();
-      return n;
-    }
-    return slam_.num_map_control_points();
+    return localizer_ ? loaded_control_points_ : slam_.num_map_control_points();
   }
   std::size_t MapCurves() const override {
     return localizer_ ? loaded_.map.splines.size() : slam_.num_map_curves();
@@ -165,6 +160,9 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
     loaded_ = state;
     loaded_.map.spline_features = slam_.options().extraction;
     if (localize_only) {
+      // Asked after every scan (the time per scan by map size): counted once.
+      for (const MapSpline& s : loaded_.map.splines)
+        loaded_control_points_ += s.spline.control_points().size();
       localizer_ = std::make_unique<MapLocalizer>(state.scans, start_, slam_.options());
       return kernel::Status::Ok();
     }
@@ -202,6 +200,7 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
   SlamState loaded_;
   std::unique_ptr<MapLocalizer> localizer_;  // localising only
   std::size_t loaded_scans_ = 0;             // trajectory entries of the loaded map's scans
+  std::size_t loaded_control_points_ = 0;    // of the loaded map, when localising
   bool continuing_ = false;                  // the next Update is the first after a loaded map
 };
 
