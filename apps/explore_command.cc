@@ -76,6 +76,7 @@ kernel::Status Configure(const ExploreArgs& args, ExploreConfig* config) {
   if (given("max-time"))
     sets.push_back("exploration.max_time_s=" + io::FormatDouble(flags.options.max_time_s));
   if (given("no-sonar")) sets.push_back("simulator.enable_sonar=false");
+  if (given("active-loop-closing")) sets.push_back("exploration.active_loop_closing.enabled=true");
   sets.insert(sets.end(), args.sets.begin(), args.sets.end());
   // The whole file, then the top-level values as decided above (the flags win), then --set.
   const runtime::ExploreSetup before = setup;
@@ -238,7 +239,7 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
       ->check(CLI::IsMember(exploration::ExplorerRegistry::Global().Names()))
       ->capture_default_str();
   cmd->add_option("--world", args->world,
-                  "Built-in world (corridor, office, office-long, office-doors, complex), a YAML "
+                  "Built-in world (corridor, office, office-long, office-doors, complex, loop), a YAML "
                   "world file or a floor-plan image")
       ->capture_default_str();
   flag("seed", cmd->add_option("--seed", setup.seed,
@@ -281,6 +282,11 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
       "no-sonar",
       cmd->add_flag("!--no-sonar", setup.sonar,
                     "LSRs from the laser only (240 deg), without the sonar ring behind the robot"));
+  flag("active-loop-closing",
+       cmd->add_flag("--active-loop-closing", o.active_loop_closing.enabled,
+                     "Revisit known places to close loops when the pose grows uncertain (needs "
+                     "a localisation that says how uncertain it is: graph); the same as --set "
+                     "exploration.active_loop_closing.enabled=true"));
   cmd->add_option("--resolution", args->resolution_m_per_px,
                   "Metres per pixel of a floor-plan image world")
       ->check(FloorPlanResolution())

@@ -34,6 +34,8 @@ kernel::Status ExplorerOptions::Validate() const {
     return kernel::Status::Error("max_failed_moves must be in [1, 1000000]");
   if (const kernel::Status problem = motion.Validate(); !problem.ok())
     return problem.Prefixed("motion");
+  if (const kernel::Status problem = active_loop_closing.Validate(); !problem.ok())
+    return problem.Prefixed("active_loop_closing");
   return kernel::Status::Ok();
 }
 
@@ -147,6 +149,8 @@ void ExplorerOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("max_failed_moves", &max_failed_moves, "cap on failed moves in a row");
   v.Field("seed", &seed, "RANDOM_DIR / FRONT_RAND draws");
   v.Nested("motion", "MOVE_TO with BEST_U", &motion);
+  v.Nested("active_loop_closing", "revisits that close loops when the pose grows uncertain",
+           &active_loop_closing);
 }
 
 }  // namespace splam::exploration

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "exploration/active_loop_closing.h"
 #include "exploration/localization.h"
 #include "exploration/motion.h"
 #include "exploration/robot_interface.h"
@@ -118,6 +119,9 @@ struct ExplorerOptions {
   int max_failed_moves = 10;
   std::uint64_t seed = 1;  // RANDOM_DIR / FRONT_RAND draws
   MotionOptions motion;
+  // Revisits that close loops when the localisation grows uncertain (SRT and REG; off by default:
+  // the papers' explorers look for coverage only).
+  ActiveLoopClosingOptions active_loop_closing;
   // Called after every new node with the number of nodes and the simulated time (progress
   // reports); may be empty.
   std::function<void(int nodes, double time_s)> on_node;
@@ -184,6 +188,10 @@ struct ExplorationRun {
   // its draws), checked against the union of the final LSRs.
   std::vector<GivenUpFrontier> given_up;
   double planning_wall_s = 0.0;  // wall time spent deciding (not driving or sensing), s
+  std::vector<RevisitRecord> revisits;  // active loop closing's, in order
+  // With active loop closing: the pose's position sigma (PositionSigma) at every decision, with
+  // the simulated time, s and m.
+  std::vector<std::pair<double, double>> position_sigma;
 };
 
 // An exploration strategy. Run() drives the robot until the strategy terminates or a cap stops

@@ -1,7 +1,10 @@
 #ifndef SPLAM_EXPLORATION_LOCALIZATION_H_
 #define SPLAM_EXPLORATION_LOCALIZATION_H_
 
+#include <Eigen/Core>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "exploration/robot_interface.h"
 #include "kernel/local_safe_region.h"
@@ -33,6 +36,17 @@ class Localization {
   // revises the past (a pose graph moves them when a loop closes): the explorer then moves its
   // nodes, their LSRs and frontiers and the paths between them. Empty: the nodes stay.
   virtual std::vector<kernel::Pose2> NodePoses() const { return {}; }
+  // Active loop closing (ActiveLoopClosingOptions). The covariance of the current pose (x, y,
+  // theta; world frame), nullopt when the localisation keeps none (ground truth, odometry). It may
+  // cost a factorisation of a pose graph: asked at the explorer's decisions.
+  virtual std::optional<Eigen::Matrix3d> PoseUncertainty() const { return std::nullopt; }
+  // The information (nats: the reduction of the pose's entropy, against now) expected from
+  // driving path_m[i] to node nodes[i] (AtNode order) and closing a loop there; nullopt where
+  // the localisation cannot say (the default: every node).
+  virtual std::vector<std::optional<double>> RevisitInformation(
+      const std::vector<int>& nodes, const std::vector<double>& /*path_m*/) const {
+    return std::vector<std::optional<double>>(nodes.size());
+  }
 };
 
 // The simulator's ground truth; Perception::true_pose must be present.

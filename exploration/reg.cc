@@ -6,6 +6,7 @@
 #include <optional>
 #include <set>
 
+#include "exploration/active_loop_closing.h"
 #include "exploration/retries.h"
 #include "exploration/session.h"
 #include "exploration/steps.h"
@@ -24,7 +25,8 @@ class Reg {
       : session_("reg", options, robot, localization),
         options_(session_.options()),
         reg_(reg),
-        g_(session_.graph()) {}
+        g_(session_.graph()),
+        active_(options_.active_loop_closing) {}
 
   ExplorationRun Run();
 
@@ -37,6 +39,7 @@ class Reg {
   const ExplorerOptions& options_;  // the session's
   const RegOptions& reg_;
   graph::ExplorationGraph& g_;
+  ActiveLoopClosing active_;     // revisits when the pose grows uncertain
   Retries retries_;              // given-up frontiers retried once nothing else is left
   std::vector<Vertex> list_;     // the frontier-control list
   std::set<Vertex> approached_;  // nodes that retried a piece from another node (Approach)
@@ -66,6 +69,13 @@ ExplorationRun Reg::Run() {
   Vertex current = start;
   const double max_piece = reg_.piece_factor * 2.0 * std::acos(options_.alpha / 2.0);
   while (!session_.CapReached()) {
+    // Active loop closing: the robot leaves the node (listed when it has frontiers left) for a
+    // place that closes a loop, and REG goes on from there.
+    if (options_.active_loop_closing.enabled && Pending(current)) List(current);
+    if (const auto revisited = active_.Step(&session_, current, /*come_back=*/false)) {
+      current = *revisited;
+      continue;
+    }
     std::optional<kernel::FrontierArc> piece;
     std::optional<std::size_t> shadow;  // the occlusion edge approached instead of a piece
     std::optional<std::vector<Eigen::Vector2d>> destination;  // path to q_dest

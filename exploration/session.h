@@ -88,6 +88,7 @@ class Session {
   const FrontierRules& rules() const { return rules_; }
   const SafePaths& paths() const { return paths_; }
   const ExplorerOptions& options() const { return options_; }
+  const Localization& localization() const { return *localization_; }
   const kernel::Pose2& estimate() const { return estimate_; }
   graph::ExplorationGraph& graph() { return run_.graph; }
   const graph::ExplorationGraph& graph() const { return run_.graph; }

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "exploration/active_loop_closing.h"
 #include "exploration/retries.h"
 #include "exploration/session.h"
 #include "exploration/steps.h"
@@ -94,7 +95,13 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
   std::map<graph::Vertex, int> failed_returns;  // failed backtracks from each node
   std::map<graph::Vertex, double> last_open;    // RelaxedMove's open width at each node, rad
   Retries retries;                              // given-up frontiers, once back at the root
+  ActiveLoopClosing active(options_.active_loop_closing);
   while (!session.CapReached()) {
+    // Active loop closing: a round trip to a place that closes a loop, back to the tree's node.
+    if (const auto back = active.Step(&session, current, /*come_back=*/true)) {
+      current = *back;
+      continue;
+    }
     std::optional<std::vector<Eigen::Vector2d>> path;  // to the new node's configuration
     std::optional<Eigen::Vector2d> face;               // what to face there (RelaxedMove)
     {

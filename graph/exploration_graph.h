@@ -84,6 +84,10 @@ class ExplorationGraph {
   // joined): every edge's path oriented in the direction of travel, without the starting
   // configuration; straight lines for edges without a path.
   std::vector<Eigen::Vector2d> Waypoints(const std::vector<Vertex>& vertices) const;
+  // Dijkstra from `source` by edge length (Boost.Graph): the graph distance of every vertex
+  // (infinity when unreachable), and in *previous each vertex's predecessor on its shortest
+  // path (itself for the source and the unreachable).
+  std::vector<double> DistancesFrom(Vertex source, std::vector<Vertex>* previous) const;
 
  private:
   using Graph =

@@ -97,6 +97,28 @@ nlohmann::json ExplorationReport(const sim::World& world, const ExploreSetup& se
                         {"reason", f.reason},
                         {"open", f.open}});
   report["given_up_frontiers"] = given_up;
+  // Active loop closing's revisits (ExplorerOptions::active_loop_closing).
+  report["revisits"] = run.revisits.size();
+  nlohmann::json revisits = nlohmann::json::array();
+  double revisit_m = 0.0;
+  for (const exploration::RevisitRecord& r : run.revisits) {
+    revisits.push_back({{"from", r.from},
+                        {"to", r.to},
+                        {"time_s", r.time_s},
+                        {"path_m", r.path_m},
+                        {"information_nats", r.information_nats},
+                        {"position_sigma_m", r.position_sigma_m},
+                        {"position_sigma_after_m", std::isnan(r.position_sigma_after_m)
+                                                       ? nlohmann::json(nullptr)
+                                                       : nlohmann::json(r.position_sigma_after_m)},
+                        {"reached", r.reached}});
+    revisit_m += r.path_m;
+  }
+  report["revisit_records"] = revisits;
+  nlohmann::json sigma = nlohmann::json::array();
+  for (const auto& [time_s, sigma_m] : run.position_sigma) sigma.push_back({time_s, sigma_m});
+  report["position_sigma"] = sigma;  // [simulated s, m] at each decision
+  report["revisit_distance_m"] = revisit_m;
   report["planning_wall_s"] = run.planning_wall_s;
   report["planning_ms_per_node"] = nodes > 0 ? 1e3 * run.planning_wall_s / nodes : 0.0;
   report["wall_s"] = outcome.wall_s;
@@ -277,6 +299,17 @@ kernel::Status SaveExplorationPicture(const sim::World& world, const ExploreOutc
     for (int k = 0; f.shadow_edge < 0 && f.unseen.empty() && k <= n; ++k)
       points.push_back(lsr.ArcPoint(f.arc.start_angle_rad + f.arc.AngularWidth() * k / n));
     figure.DrawPolyline(points, kGivenUp, 4.0, "given-up frontiers, open");
+  }
+  // Where the robot chose to close a loop (active loop closing): each revisit's drive, and the
+  // node it revisited.
+  constexpr io::Rgb kRevisit{1.0, 0.5, 0.0};
+  for (const exploration::RevisitRecord& r : run.revisits) {
+    std::vector<kernel::Pose2> drive;
+    for (std::size_t k = r.trace_begin; k < r.trace_end && k < run.trace.size(); ++k)
+      drive.push_back(run.trace[k].truth);
+    figure.DrawPath(drive, kRevisit, 3.0, "revisits (active loop closing)");
+    figure.DrawMarkers({g[static_cast<graph::Vertex>(r.to)].configuration.translation()},
+                       io::Figure::Marker::kDiamond, kRevisit, 8.0, "revisited nodes");
   }
   if (!run.trace.empty())
     figure.DrawRobot(run.trace.back().truth, outcome.robot_radius_m, io::palette::kTrue);

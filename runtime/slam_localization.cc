@@ -40,4 +40,19 @@ std::vector<kernel::Pose2> SlamLocalization::NodePoses() const {
   return nodes != nullptr ? nodes->NodePoses() : std::vector<kernel::Pose2>{};
 }
 
+std::optional<Eigen::Matrix3d> SlamLocalization::PoseUncertainty() const {
+  if (!driver_) return std::nullopt;
+  if (const estimation::ExplorationNodes* nodes = estimation::NodesOf(driver_->method()))
+    if (auto covariance = nodes->PoseUncertainty()) return covariance;
+  return driver_->method().pose_covariance();
+}
+
+std::vector<std::optional<double>> SlamLocalization::RevisitInformation(
+    const std::vector<int>& nodes, const std::vector<double>& path_m) const {
+  const estimation::ExplorationNodes* method =
+      driver_ ? estimation::NodesOf(driver_->method()) : nullptr;
+  return method != nullptr ? method->RevisitInformation(nodes, path_m)
+                           : Localization::RevisitInformation(nodes, path_m);
+}
+
 }  // namespace splam::runtime

@@ -202,10 +202,53 @@ World Complex() {
   return w;
 }
 
+// The side of a block from a to b (counter-clockwise around it) with a recess into the block,
+// `width` wide and `depth` deep, every `spacing` metres: the points after a.
+void AppendRecessedSide(const V& a, const V& b, double spacing, double width, double depth,
+                        std::vector<V>* polygon) {
+  const V u = (b - a).normalized();
+  const V inward(-u.y(), u.x());  // the block lies left of a counter-clockwise side
+  const double length = (b - a).norm();
+  for (double t = spacing; t + width < length - 1.0; t += spacing) {
+    polygon->push_back(a + t * u);
+    polygon->push_back(a + t * u + depth * inward);
+    polygon->push_back(a + (t + width) * u + depth * inward);
+    polygon->push_back(a + (t + width) * u);
+  }
+  polygon->push_back(b);
+}
+
+World Loop() {
+  World w;
+  w.name = "loop";
+  // A ring corridor 3 m wide around a 34 m x 20 m block (about 100 m round): the inner wall
+  // recessed every 6 m, pillars along the outer wall every 7 m, the north-east corner rounded.
+  w.obstacles.push_back(Wall({{34, 26}, {0, 26}, {0, 0}, {40, 0}, {40, 20}}));
+  w.obstacles.push_back(Spline{{{40, 20}, {40, 24}, {38, 26}, {34, 26}}, false});
+  std::vector<V> block{{3, 3}};
+  AppendRecessedSide(V(3, 3), V(37, 3), 6.0, 1.0, 0.6, &block);
+  AppendRecessedSide(V(37, 3), V(37, 23), 6.0, 1.0, 0.6, &block);
+  AppendRecessedSide(V(37, 23), V(3, 23), 6.0, 1.0, 0.6, &block);
+  AppendRecessedSide(V(3, 23), V(3, 3), 6.0, 1.0, 0.6, &block);
+  block.pop_back();  // back at the first point
+  w.obstacles.push_back(Polygon(block));
+  for (double x = 5.0; x < 36.0; x += 7.0) {
+    w.obstacles.push_back(kernel::Circle2{{x, 0.45}, 0.2});
+    w.obstacles.push_back(kernel::Circle2{{x + 2.0, 25.55}, 0.2});
+  }
+  for (double y = 5.0; y < 22.0; y += 7.0) {
+    w.obstacles.push_back(kernel::Circle2{{0.45, y}, 0.2});
+    w.obstacles.push_back(kernel::Circle2{{39.55, y + 2.0}, 0.2});
+  }
+  w.start = kernel::Pose2(1.5, 13.0, M_PI / 2);
+  w.route = {V(1.5, 24.5), V(37.5, 24.5), V(38.5, 22.0), V(38.5, 1.5), V(1.5, 1.5), V(1.5, 13.0)};
+  return w;
+}
+
 }  // namespace
 
 std::vector<std::string> BuiltinWorldNames() {
-  return {"corridor", "office", "office-long", "office-doors", "complex"};
+  return {"corridor", "office", "office-long", "office-doors", "complex", "loop"};
 }
 
 std::optional<World> BuiltinWorld(const std::string& name) {
@@ -214,6 +257,7 @@ std::optional<World> BuiltinWorld(const std::string& name) {
   if (name == "office-long") return OfficeLong();
   if (name == "office-doors") return OfficeDoors();
   if (name == "complex") return Complex();
+  if (name == "loop") return Loop();
   return std::nullopt;
 }
 

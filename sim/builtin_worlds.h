@@ -18,6 +18,8 @@ std::vector<std::string> BuiltinWorldNames();
 //  - office: 16 m x 12 m, six rooms off a central corridor through 0.9 m doors, tables.
 //  - complex: about 20 m x 15 m with curved walls, round pillars, an ellipse, irregular smooth
 //    obstacles and a free-standing curved wall (the environments of papers 000 and 003).
+//  - loop: a ring corridor 3 m wide, about 100 m round, around a 34 m x 20 m block with recesses,
+//    pillars along the outer wall and one rounded corner: a long loop (active loop closing).
 std::optional<World> BuiltinWorld(const std::string& name);
 
 }  // namespace splam::sim

@@ -89,6 +89,15 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
   // An exploration node becomes a keyframe and moves with it.
   void AtNode(const kernel::LocalSafeRegion& /*lsr*/) override { slam_.MarkNode(); }
   std::vector<kernel::Pose2> NodePoses() const override { return slam_.NodePoses(); }
+  std::vector<std::optional<double>> RevisitInformation(
+      const std::vector<int>& nodes, const std::vector<double>& path_m) const override {
+    if (localizer_) return ExplorationNodes::RevisitInformation(nodes, path_m);
+    return slam_.RevisitInformation(nodes, path_m);
+  }
+  std::optional<Eigen::Matrix3d> PoseUncertainty() const override {
+    if (localizer_) return std::nullopt;
+    return slam_.PoseCovariance();
+  }
   std::string MapDescription() const override {
     if (localizer_)
       return fmt::format("localising in a saved map of {} keyframes, {} curves",

@@ -1072,6 +1072,80 @@ std::vector<kernel::Pose2> GraphSlam::NodePoses() const {
   return poses;
 }
 
+std::optional<Eigen::Matrix3d> GraphSlam::KeyframeCovariance(int k) const {
+  if (k < 0 || k >= graph_.num_nodes()) return std::nullopt;
+  const auto joint = graph_.JointCovariance({k}, options_.pose_graph);
+  if (!joint) return std::nullopt;
+  return Eigen::Matrix3d(*joint);
+}
+
+Eigen::Matrix3d GraphSlam::TravelCovariance(double path_m) const {
+  const double edges = std::max(path_m, 0.0) / options_.keyframe_distance_m;
+  const double sigma_m =
+      options_.edge_sigma_m + options_.edge_sigma_per_m * options_.keyframe_distance_m;
+  return edges * Diagonal(sigma_m, options_.edge_sigma_rad);
+}
+
+namespace {
+
+// d(c (+) u)/dc for a pose c moved by `displacement` (world frame) to c (+) u.
+Eigen::Matrix3d CompositionJacobian(const Eigen::Vector2d& displacement) {
+  Eigen::Matrix3d j = Eigen::Matrix3d::Identity();
+  j(0, 2) = -displacement.y();
+  j(1, 2) = displacement.x();
+  return j;
+}
+
+}  // namespace
+
+std::optional<Eigen::Matrix3d> GraphSlam::PoseCovariance() const {
+  if (keyframes_.empty()) return std::nullopt;
+  const int last = static_cast<int>(keyframes_.size()) - 1;
+  const auto at_keyframe = KeyframeCovariance(last);
+  if (!at_keyframe) return std::nullopt;
+  const Keyframe& kf = keyframes_.back();
+  const Eigen::Matrix3d j = CompositionJacobian(pose_.translation() - kf.pose.translation());
+  return Eigen::Matrix3d(j * *at_keyframe * j.transpose() +
+                         TravelCovariance(travelled_m_ - kf.travelled_m));
+}
+
+std::vector<std::optional<double>> GraphSlam::RevisitInformation(
+    const std::vector<int>& nodes, const std::vector<double>& path_m) const {
+  std::vector<std::optional<double>> information(nodes.size());
+  if (keyframes_.empty() || nodes.size() != path_m.size()) return information;
+  const int last = static_cast<int>(keyframes_.size()) - 1;
+  std::vector<int> keyframes;  // of the anchored nodes
+  std::vector<std::size_t> which;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const int node = nodes[i];
+    if (node < 0 || node >= static_cast<int>(nodes_.size())) continue;
+    const int k = nodes_[static_cast<std::size_t>(node)].keyframe;
+    if (k < 0) continue;
+    keyframes.push_back(k);
+    which.push_back(i);
+  }
+  const auto joints = graph_.JointCovariancesWith(last, keyframes, options_.pose_graph);
+  if (!joints) return information;
+  // The current pose c from the newest keyframe: rows of c are J times the keyframe's.
+  const Keyframe& newest = keyframes_.back();
+  const Eigen::Matrix3d j = CompositionJacobian(pose_.translation() - newest.pose.translation());
+  const Eigen::Matrix3d since = TravelCovariance(travelled_m_ - newest.travelled_m);
+  const Eigen::Matrix3d closure =
+      Diagonal(options_.loop.sigma_floor_m, options_.loop.sigma_floor_rad);
+  for (std::size_t n = 0; n < keyframes.size(); ++n) {
+    Eigen::Matrix<double, 6, 6> joint = (*joints)[n];
+    joint.topLeftCorner<3, 3>() = j * joint.topLeftCorner<3, 3>() * j.transpose() + since;
+    joint.topRightCorner<3, 3>() = j * joint.topRightCorner<3, 3>();
+    joint.bottomLeftCorner<3, 3>() = joint.topRightCorner<3, 3>().transpose();
+    const Eigen::Vector2d displacement =
+        keyframes_[static_cast<std::size_t>(keyframes[n])].pose.translation() - pose_.translation();
+    const Eigen::Matrix3d after = CovarianceAfterRevisit(
+        joint, displacement, TravelCovariance(path_m[which[n]]), closure);
+    information[which[n]] = InformationGain(joint.topLeftCorner<3, 3>(), after);
+  }
+  return information;
+}
+
 std::vector<MapSpline> GraphSlam::MapSplines() const {
   std::vector<MapSpline> splines;
   for (const Keyframe& kf : keyframes_) {

@@ -436,6 +436,25 @@ class GraphSlam {
   // The data has ended: optimises the pending closures and the whole graph once more.
   void Finish();
 
+  // Uncertainty (PoseGraph::JointCovariance: poses (x, y, theta) in the world frame, the first
+  // keyframe held, closures still waiting for confirmation not counted). Keyframe k's marginal
+  // covariance; nullopt when k is not a keyframe.
+  std::optional<Eigen::Matrix3d> KeyframeCovariance(int k) const;
+  // The current pose's: the newest keyframe's moved to the pose, plus TravelCovariance for the
+  // path since. nullopt before the first keyframe.
+  std::optional<Eigen::Matrix3d> PoseCovariance() const;
+  // The front-end edges' model (edge_sigma_m, ...) over path_m of straight travel: one edge per
+  // keyframe_distance_m, independent.
+  Eigen::Matrix3d TravelCovariance(double path_m) const;
+  // Expected information of a revisit (active loop closing) to each marked node: the robot drives
+  // path_m[i] to nodes[i] (TravelCovariance) and a loop closure registers it against the node's
+  // keyframe (covariance: the loop edges' floor, loop.sigma_floor_m and _rad) there;
+  // InformationGain(PoseCovariance(), CovarianceAfterRevisit(...)), nats, negative when the
+  // drive costs more than the closure gives. nullopt for a node not yet anchored to a keyframe,
+  // or all of them when the graph has no covariance (nothing marked, a single keyframe).
+  std::vector<std::optional<double>> RevisitInformation(const std::vector<int>& nodes,
+                                                        const std::vector<double>& path_m) const;
+
   const kernel::Pose2& pose() const { return pose_; }
   const GraphSlamOptions& options() const { return options_; }
   const std::vector<Keyframe>& keyframes() const { return keyframes_; }

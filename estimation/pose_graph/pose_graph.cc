@@ -242,6 +242,96 @@ PoseGraphSummary PoseGraph::Optimize(const PoseGraphOptions& options, int first_
   return s;
 }
 
+std::optional<std::vector<Eigen::Matrix3d>> PoseGraph::CovarianceBlocks(
+    const std::vector<int>& nodes, const std::vector<std::pair<int, int>>& pairs,
+    const PoseGraphOptions& options) const {
+  // Each node's live root and the Jacobian of its pose by the root's.
+  std::vector<int> root(nodes.size());
+  std::vector<Eigen::Matrix3d> by_root(nodes.size(), Eigen::Matrix3d::Identity());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const int n = nodes[i];
+    if (n < 0 || n >= num_nodes()) return std::nullopt;
+    int r = n;
+    while (parent_[static_cast<std::size_t>(r)] >= 0) r = parent_[static_cast<std::size_t>(r)];
+    root[i] = r;
+    const Eigen::Vector2d lever = node(n).translation() - node(r).translation();
+    by_root[i](0, 2) = -lever.y();
+    by_root[i](1, 2) = lever.x();
+  }
+  std::vector<Eigen::Vector3d> poses = poses_;
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  ceres::CauchyLoss loop_loss(options.loop_loss_scale);
+  AddPoseGraph(edges_, &poses, 0, &loop_loss, &problem);
+  const auto block = [&](int r) { return poses[static_cast<std::size_t>(r)].data(); };
+  for (const int r : root)
+    if (r != 0 && !problem.HasParameterBlock(block(r))) return std::nullopt;
+  // The gauge (node 0) is held: its rows are zero.
+  const auto free = [&](int r) { return r != 0; };
+  std::vector<std::pair<const double*, const double*>> requested;
+  for (const auto& [i, j] : pairs) {
+    const int a = root[static_cast<std::size_t>(i)], b = root[static_cast<std::size_t>(j)];
+    if (!free(a) || !free(b)) continue;
+    const std::pair<const double*, const double*> pair(block(std::min(a, b)),
+                                                       block(std::max(a, b)));
+    if (std::find(requested.begin(), requested.end(), pair) == requested.end())
+      requested.push_back(pair);
+  }
+  ceres::Covariance::Options covariance_options;
+  covariance_options.num_threads = 1;
+  ceres::Covariance covariance(covariance_options);
+  if (!requested.empty() && !covariance.Compute(requested, &problem)) return std::nullopt;
+  std::vector<Eigen::Matrix3d> blocks;
+  blocks.reserve(pairs.size());
+  for (const auto& [i, j] : pairs) {
+    const int a = root[static_cast<std::size_t>(i)], b = root[static_cast<std::size_t>(j)];
+    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> c = Eigen::Matrix3d::Zero();
+    if (free(a) && free(b)) covariance.GetCovarianceBlock(block(a), block(b), c.data());
+    blocks.push_back(by_root[static_cast<std::size_t>(i)] * c *
+                     by_root[static_cast<std::size_t>(j)].transpose());
+  }
+  return blocks;
+}
+
+std::optional<Eigen::MatrixXd> PoseGraph::JointCovariance(const std::vector<int>& nodes,
+                                                          const PoseGraphOptions& options) const {
+  const int k = static_cast<int>(nodes.size());
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = 0; i < k; ++i)
+    for (int j = i; j < k; ++j) pairs.emplace_back(i, j);
+  const auto blocks = CovarianceBlocks(nodes, pairs, options);
+  if (!blocks) return std::nullopt;
+  Eigen::MatrixXd joint(3 * k, 3 * k);
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const auto [i, j] = pairs[p];
+    joint.block<3, 3>(3 * i, 3 * j) = (*blocks)[p];
+    joint.block<3, 3>(3 * j, 3 * i) = (*blocks)[p].transpose();
+  }
+  return joint;
+}
+
+std::optional<std::vector<Eigen::Matrix<double, 6, 6>>> PoseGraph::JointCovariancesWith(
+    int anchor, const std::vector<int>& others, const PoseGraphOptions& options) const {
+  std::vector<int> nodes{anchor};
+  nodes.insert(nodes.end(), others.begin(), others.end());
+  std::vector<std::pair<int, int>> pairs{{0, 0}};
+  for (int i = 1; i < static_cast<int>(nodes.size()); ++i) {
+    pairs.emplace_back(0, i);
+    pairs.emplace_back(i, i);
+  }
+  const auto blocks = CovarianceBlocks(nodes, pairs, options);
+  if (!blocks) return std::nullopt;
+  std::vector<Eigen::Matrix<double, 6, 6>> joints(others.size());
+  for (std::size_t o = 0; o < others.size(); ++o) {
+    joints[o].topLeftCorner<3, 3>() = (*blocks)[0];
+    joints[o].topRightCorner<3, 3>() = (*blocks)[1 + 2 * o];
+    joints[o].bottomLeftCorner<3, 3>() = (*blocks)[1 + 2 * o].transpose();
+    joints[o].bottomRightCorner<3, 3>() = (*blocks)[2 + 2 * o];
+  }
+  return joints;
+}
+
 void PoseGraphOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("loop_loss_scale", &loop_loss_scale,
           "Cauchy loss on loop-closure edges, whitened residual units");

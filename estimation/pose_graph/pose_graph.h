@@ -2,7 +2,9 @@
 #define SPLAM_ESTIMATION_POSE_GRAPH_POSE_GRAPH_H_
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "estimation/slam_map.h"
@@ -97,8 +99,28 @@ class PoseGraph {
   // Optimises the nodes from first_free on, holding the earlier ones (0: every node but the
   // first, which anchors the gauge); edges between held nodes are left out.
   PoseGraphSummary Optimize(const PoseGraphOptions& options, int first_free = 0);
+  // The joint marginal covariance of the poses (x, y, theta; world frame) of `nodes`, 3x3 block
+  // (i, j) for nodes[i] and nodes[j], at the current estimate with the first node held (the
+  // gauge: its rows are zero): the inverse of the Gauss-Newton Hessian J^T J of the whitened
+  // residuals (ceres::Covariance, sparse QR), loop and robust edges weighed by their Cauchy loss
+  // at their present residual, as the optimisation weighs them. A merged node's rows are its
+  // parent's moved through the held offset (x_j = x_p (+) offset: d x_j / d x_p =
+  // [I, (-(y_j - y_p), x_j - x_p)^T; 0, 1]). Exact for a linear-Gaussian graph, the usual
+  // Laplace approximation otherwise. nullopt when a node is out of range or the Hessian is
+  // rank-deficient (a node no edge reaches). Costs a sparse factorisation of the graph.
+  std::optional<Eigen::MatrixXd> JointCovariance(const std::vector<int>& nodes,
+                                                 const PoseGraphOptions& options) const;
+  // The same for the pairs (anchor, others[i]) alone, each a 6x6 joint covariance (anchor
+  // first): one factorisation for many candidates, without the blocks between them.
+  std::optional<std::vector<Eigen::Matrix<double, 6, 6>>> JointCovariancesWith(
+      int anchor, const std::vector<int>& others, const PoseGraphOptions& options) const;
 
  private:
+  // The covariance blocks (nodes[i], nodes[j]) of JointCovariance for these index pairs.
+  std::optional<std::vector<Eigen::Matrix3d>> CovarianceBlocks(
+      const std::vector<int>& nodes, const std::vector<std::pair<int, int>>& pairs,
+      const PoseGraphOptions& options) const;
+
   // (x, y, theta): in the world, or for a merged node relative to its parent.
   std::vector<Eigen::Vector3d> poses_;
   std::vector<int> parent_;  // the node it was merged into, -1 while live

@@ -1,6 +1,8 @@
 #include "estimation/pose_graph/pose_graph_uncertainty.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -85,6 +87,26 @@ std::optional<Eigen::Matrix3d> RelativeCovarianceWithin(const PoseGraph& graph,
       Project(graph, adjacent, source, target, max_trace_m2)[static_cast<std::size_t>(target)];
   if (!(c(0, 0) + c(1, 1) <= max_trace_m2)) return std::nullopt;
   return c;
+}
+
+Eigen::Matrix3d CovarianceAfterRevisit(const Eigen::Matrix<double, 6, 6>& joint,
+                                       const Eigen::Vector2d& displacement,
+                                       const Eigen::Matrix3d& travel,
+                                       const Eigen::Matrix3d& closure) {
+  Eigen::Matrix3d j = Eigen::Matrix3d::Identity();
+  j(0, 2) = -displacement.y();
+  j(1, 2) = displacement.x();
+  const Eigen::Matrix3d gg = j * joint.topLeftCorner<3, 3>() * j.transpose() + travel;
+  const Eigen::Matrix3d gk = j * joint.topRightCorner<3, 3>();
+  const Eigen::Matrix3d kk = joint.bottomRightCorner<3, 3>();
+  const Eigen::Matrix3d gd = gg - gk;  // cov(x_g, d)
+  const Eigen::Matrix3d dd = gg + kk - gk - gk.transpose() + closure;
+  const Eigen::Matrix3d after = gg - gd * dd.ldlt().solve(gd.transpose());
+  return 0.5 * (after + after.transpose());
+}
+
+double InformationGain(const Eigen::Matrix3d& before, const Eigen::Matrix3d& after) {
+  return 0.5 * (std::log(before.determinant()) - std::log(after.determinant()));
 }
 
 }  // namespace splam::estimation

@@ -41,6 +41,23 @@ std::optional<Eigen::Matrix3d> RelativeCovarianceWithin(const PoseGraph& graph,
                                                         int source, int target,
                                                         double max_trace_m2);
 
+// Expected effect of a revisit (active loop closing; linear-Gaussian, poses (x, y, theta) in the
+// world frame). The robot, now at c, drives to keyframe k (`displacement` = t_k - t_c), its pose
+// gaining `travel` on the way, and registers against k there with covariance `closure`. `joint`
+// is the 6x6 covariance of (x_c, x_k). At the goal g = c (+) u:
+//   S_gg = J S_cc J^T + travel, S_gk = J S_ck, J = d(c (+) u)/dc = [I, (-dy, dx)^T; 0, 1];
+// the closure measures d = x_g - x_k (at the goal the rotation into k's frame is a constant),
+// and the update of a Gaussian conditioned on it leaves
+//   S_gg' = S_gg - (S_gg - S_gk) (S_gg + S_kk - S_gk - S_kg + closure)^-1 (S_gg - S_gk)^T.
+Eigen::Matrix3d CovarianceAfterRevisit(const Eigen::Matrix<double, 6, 6>& joint,
+                                       const Eigen::Vector2d& displacement,
+                                       const Eigen::Matrix3d& travel,
+                                       const Eigen::Matrix3d& closure);
+
+// The information a Gaussian's change from `before` to `after` gains, 0.5 ln(det before /
+// det after), nats (the entropy reduction; independent of the units of x, y and theta).
+double InformationGain(const Eigen::Matrix3d& before, const Eigen::Matrix3d& after);
+
 }  // namespace splam::estimation
 
 #endif  // SPLAM_ESTIMATION_POSE_GRAPH_POSE_GRAPH_UNCERTAINTY_H_

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "exploration/active_loop_closing.h"
 #include "exploration/localization.h"
 #include "graph/frontiers.h"
 #include "kernel/angle.h"
@@ -515,6 +516,82 @@ TEST(ExplorationGraph, NodesEdgesAndWaypoints) {
   ASSERT_EQ(back.size(), 2u);  // the stored path reversed
   EXPECT_EQ(back[0], Eigen::Vector2d(1, 1));
   EXPECT_EQ(back[1], Eigen::Vector2d(0, 0));
+}
+
+}  // namespace
+}  // namespace splam::exploration
+
+namespace splam::exploration {
+namespace {
+
+// A localisation that says what a revisit gives: `information[v]` for node v, less `per_m`
+// for every metre of the drive.
+class KnownInformation : public GroundTruthLocalization {
+ public:
+  std::vector<double> information;
+  double per_m = 0.0;
+  std::vector<std::optional<double>> RevisitInformation(
+      const std::vector<int>& nodes, const std::vector<double>& path_m) const override {
+    std::vector<std::optional<double>> out;
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      out.push_back(information[static_cast<std::size_t>(nodes[i])] - per_m * path_m[i]);
+    return out;
+  }
+};
+
+// A chain 0 - 1 - 2 - 3 - 4, 5 m a link, and a node 5 no edge reaches.
+graph::ExplorationGraph Chain() {
+  graph::ExplorationGraph g;
+  for (int i = 0; i < 5; ++i) g.AddNode(kernel::Pose2(5.0 * i, 0.0, 0.0));
+  for (graph::Vertex v = 1; v < 5; ++v) g.AddEdge(v - 1, v);
+  g.AddNode(kernel::Pose2(0.0, 9.0, 0.0));
+  return g;
+}
+
+// The revisit of highest information less cost_nats_per_m times the detour (twice the path),
+// over the graph's shortest path; none where nothing gains enough, none through no edge.
+TEST(ChooseRevisit, WeighsInformationAgainstTheDetour) {
+  const graph::ExplorationGraph g = Chain();
+  KnownInformation localization;
+  localization.information = {6.0, 5.0, 1.0, 0.5, 0.0, 50.0};
+  ActiveLoopClosingOptions options;
+  options.cost_nats_per_m = 0.25;
+  options.min_information_nats = 0.69;
+  // From node 4: node 0 gives 6 - 0.25 * 40 < 0, node 1 5 - 0.25 * 30 < 0, node 2 1 - 5 < 0.
+  EXPECT_FALSE(ChooseRevisit(g, 4, localization, options).has_value());
+  // Cheaper metres: node 0 (6 - 0.05 * 40 = 4) beats node 1 (5 - 0.05 * 30 = 3.5) and node 5,
+  // which no edge reaches; the path is the chain.
+  options.cost_nats_per_m = 0.05;
+  auto choice = ChooseRevisit(g, 4, localization, options);
+  ASSERT_TRUE(choice.has_value());
+  EXPECT_EQ(choice->to, 0u);
+  EXPECT_NEAR(choice->path_m, 20.0, 1e-9);
+  EXPECT_NEAR(choice->utility, 4.0, 1e-9);
+  EXPECT_EQ(choice->path, (std::vector<graph::Vertex>{4, 3, 2, 1, 0}));
+  // Excluded (revisited already): the next best; a minimum gain it does not reach: none.
+  choice = ChooseRevisit(g, 4, localization, options, {0});
+  ASSERT_TRUE(choice.has_value());
+  EXPECT_EQ(choice->to, 1u);
+  options.min_information_nats = 5.5;
+  EXPECT_FALSE(ChooseRevisit(g, 4, localization, options, {0}).has_value());
+  // A localisation that cannot say (ground truth) never revisits.
+  options.min_information_nats = 0.0;
+  EXPECT_FALSE(ChooseRevisit(g, 4, GroundTruthLocalization(), options).has_value());
+  // The information the localisation gives depends on the path it is told.
+  localization.per_m = 0.2;
+  choice = ChooseRevisit(g, 4, localization, options);
+  ASSERT_TRUE(choice.has_value());
+  EXPECT_EQ(choice->to, 1u);  // 5 - 3 - 1.5 = 0.5 beats 6 - 4 - 2 = 0
+}
+
+TEST(PositionSigma, IsTheLargestPositionAxis) {
+  Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+  c(0, 0) = 0.25;
+  c(1, 1) = 1.0;
+  c(2, 2) = 100.0;  // the heading does not count
+  EXPECT_NEAR(PositionSigma(c), 1.0, 1e-12);
+  c(0, 1) = c(1, 0) = 0.5;  // eigenvalues (1.25 +- sqrt(0.5625 + 1)) / 2
+  EXPECT_NEAR(PositionSigma(c), std::sqrt((1.25 + std::sqrt(0.5625 + 1.0)) / 2.0), 1e-12);
 }
 
 }  // namespace

@@ -191,7 +191,7 @@ TEST(LoadWorld, BuiltinNamesFilesAndErrors) {
   const Result<sim::World> missing = LoadWorld("atlantis");
   ASSERT_FALSE(missing.ok());
   EXPECT_EQ(missing.error,
-            "atlantis: not a built-in world (corridor, office, office-long, office-doors, complex) "
+            "atlantis: not a built-in world (corridor, office, office-long, office-doors, complex, loop) "
             "and no such file");
   const std::string path = ::testing::TempDir() + "/load_world_test.yaml";
   ASSERT_EQ(WriteWorldFile(path, *sim::BuiltinWorld("office")).message(), "");

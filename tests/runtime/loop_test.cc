@@ -517,3 +517,59 @@ TEST(GraphSlam, ClosesTheComplexLoopSeenFromTheOtherSide) {
 
 }  // namespace
 }  // namespace splam::runtime
+
+namespace splam::runtime {
+namespace {
+
+// Active loop closing with the graph SLAM in `complex`: REG (default options) and SRT (metres
+// cheaper, 0.1 nats/m: its tree's revisits are longer) revisit a node once the pose's position
+// sigma reaches 1 m, the graph closes loops there (the sigma is then a fraction of what it was),
+// and the exploration still covers the world. SRT's revisit is a round trip: the robot is back at
+// the node it left.
+TEST(ActiveLoopClosing, RevisitsCloseLoopsAndExplorationGoesOn) {
+  for (const std::string explorer : {"reg", "srt"}) {
+    SCOPED_TRACE(explorer);
+    const sim::World world = *sim::BuiltinWorld("complex");
+    ExploreSetup setup;
+    setup.explorer = explorer;
+    setup.localization = "graph";
+    setup.options.active_loop_closing.enabled = true;
+    if (explorer == "srt") setup.options.active_loop_closing.cost_nats_per_m = 0.1;
+    const ExploreOutcome outcome = RunExploration(world, setup);
+    ASSERT_TRUE(outcome.error.empty()) << outcome.error;
+    const exploration::ExplorationRun& run = outcome.run;
+    ASSERT_GE(run.revisits.size(), 1u);
+    for (const exploration::RevisitRecord& r : run.revisits) {
+      EXPECT_TRUE(r.reached);
+      EXPECT_GE(r.position_sigma_m, setup.options.active_loop_closing.min_position_sigma_m);
+      EXPECT_GT(r.information_nats, setup.options.active_loop_closing.min_information_nats);
+      EXPECT_LT(r.trace_begin, r.trace_end);
+      if (explorer == "srt") {
+        const Eigen::Vector2d left = run.graph[static_cast<graph::Vertex>(r.from)]
+                                         .configuration.translation();
+        EXPECT_LT((run.trace[r.trace_end - 1].estimate.translation() - left).norm(), 0.3);
+      }
+    }
+    EXPECT_LT(run.revisits.front().position_sigma_after_m,
+              0.5 * run.revisits.front().position_sigma_m);
+    EXPECT_GT(outcome.coverage(), 0.97);
+    const Trajectories t = TrajectoriesOf(run);
+    EXPECT_LT(evaluation::CompareToTruth(t.truth, t.estimate).rmse_position_m, 0.08);
+  }
+}
+
+// Without a localisation that says how uncertain it is, the option changes nothing.
+TEST(ActiveLoopClosing, GroundTruthNeverRevisits) {
+  const sim::World world = *sim::BuiltinWorld("office");
+  ExploreSetup setup;
+  setup.options.max_nodes = 12;
+  setup.options.active_loop_closing.enabled = true;
+  const ExploreOutcome with = RunExploration(world, setup);
+  setup.options.active_loop_closing.enabled = false;
+  const ExploreOutcome without = RunExploration(world, setup);
+  EXPECT_TRUE(with.run.revisits.empty());
+  EXPECT_NEAR(with.run.distance_m, without.run.distance_m, 1e-9);
+}
+
+}  // namespace
+}  // namespace splam::runtime
