@@ -35,6 +35,8 @@ struct ExperimentArgs {
   double corner_floor_m = 0.01;
   double odometry_floor = 1e-4;
   double line_floor_scale = 1.0;  // scales the line floors of 1 mm and 0.5 mrad
+  std::string association = "nearest";      // corridor-lines: nearest or jcbb
+  std::string match_selection = "longest";  // complex-bspline: longest or jcbb
   int jobs = 0;                   // splam: trials at once (0: one per core)
 };
 
@@ -48,6 +50,9 @@ int RunCorridorLines(const ExperimentArgs& args) {
   options.corner_floor_m = args.corner_floor_m;
   options.odometry_floor = args.odometry_floor;
   options.line_floor_scale = args.line_floor_scale;
+  options.association = args.association == "jcbb"
+                            ? estimation::EkfAssociation::kJointCompatibility
+                            : estimation::EkfAssociation::kNearestNeighbour;
   options.splam_binary = SplamBinary();
   options.jobs = args.jobs;
   CatchInterrupts();
@@ -120,6 +125,16 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--corner-floor", args->corner_floor_m, "Corner measurement noise floor, m")
       ->capture_default_str();
+  cmd->add_option("--association", args->association,
+                  "corridor-lines: the EKF's association, nearest neighbour (paper 001) or joint "
+                  "compatibility branch and bound")
+      ->check(CLI::IsMember({"nearest", "jcbb"}))
+      ->capture_default_str();
+  cmd->add_option("--match-selection", args->match_selection,
+                  "complex-bspline: which matches correct the B-spline EKF, the longest first or "
+                  "the largest jointly compatible set (jcbb)")
+      ->check(CLI::IsMember({"longest", "jcbb"}))
+      ->capture_default_str();
   cmd->add_option("--odometry-floor", args->odometry_floor,
                   "Odometry noise floors per step (m and rad)")
       ->check(FinitePositive())
@@ -160,6 +175,7 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       b.max_scans = args->max_scans;
       b.odometry_noise_scale = args->odometry_noise_scale;
       b.max_correspondence_distance_m = args->max_correspondence_distance_m;
+      b.match_selection = args->match_selection;
       b.splam_binary = SplamBinary();
       b.jobs = args->jobs;
       CatchInterrupts();

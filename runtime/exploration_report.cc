@@ -302,7 +302,7 @@ kernel::Status SaveExplorationPicture(const sim::World& world, const ExploreOutc
   }
   // Where the robot chose to close a loop (active loop closing): each revisit's drive, and the
   // node it revisited.
-  constexpr io::Rgb kRevisit{1.0, 0.5, 0.0};
+  constexpr io::Rgb kRevisit{0.95, 0.0, 0.75};
   for (const exploration::RevisitRecord& r : run.revisits) {
     std::vector<kernel::Pose2> drive;
     for (std::size_t k = r.trace_begin; k < r.trace_end && k < run.trace.size(); ++k)

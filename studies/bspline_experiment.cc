@@ -89,6 +89,7 @@ int WriteBSplineReport(const BSplineExperimentArgs& args, const std::vector<std:
   report["runs"] = args.runs;
   report["odometry_noise_scale"] = scale;
   report["max_correspondence_distance_m"] = args.max_correspondence_distance_m;
+  report["match_selection"] = args.match_selection;
   std::string table = fmt::format(
       "| method ({} seeds, odometry noise x{}) | position RMSE (m) | max position error (m) | "
       "heading RMSE (deg) | map "
@@ -186,6 +187,7 @@ int RunSeedsHere(const BSplineExperimentArgs& args) {
       estimation::EkfBSplineSlamOptions options;
       options.association = method;
       options.max_correspondence_distance_m = args.max_correspondence_distance_m;
+      options.match_selection = args.match_selection;
       options.odometry = options.odometry.Scaled(scale);
       const AssociationRun r = RunBSplineFilter(route.frames, caster, options);
       if (!r.healthy) {
@@ -250,6 +252,8 @@ io::Grid ComplexBSplineGrid(const BSplineExperimentArgs& args) {
       {"max-correspondence", fmt::format("{}", args.max_correspondence_distance_m), false}};
   if (args.max_scans > 0)
     grid.options.push_back({"max-scans", std::to_string(args.max_scans), false});
+  if (args.match_selection != "longest")
+    grid.options.push_back({"match-selection", args.match_selection, false});
   grid.axes = {io::SeedAxis(args.seed, args.runs)};
   grid.figures = {"pedraza.rmse_position_m", "curvature.rmse_position_m", "pedraza.map_error_m",
                   "curvature.map_error_m",   "pedraza.ms_per_scan",       "curvature.ms_per_scan",

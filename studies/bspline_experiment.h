@@ -27,6 +27,8 @@ struct BSplineExperimentArgs {
   // The correspondence test of every beam (EkfBSplineSlamOptions::max_correspondence_distance_m);
   // a large value switches it off, leaving the association's stretches unchecked.
   double max_correspondence_distance_m = 0.15;
+  // Which matches correct the state (EkfBSplineSlamOptions::match_selection): longest or jcbb.
+  std::string match_selection = "longest";
   std::string out = "runs/experiment-complex-bspline";
   std::string splam_binary = "splam";  // what runs the cells
   int jobs = 0;                        // cells at once; 0: one per core

@@ -122,6 +122,7 @@ CorridorResult RunCorridorExperiment(const CorridorOptions& args) {
   options.line_theta_floor_rad = 0.0005 * args.line_floor_scale;
   options.corner_sigma_m = args.corner_floor_m;
   options.use_corners = args.corners;
+  options.association = args.association;
   options.odometry.translation_floor_m = args.odometry_floor;
   options.odometry.rotation_floor_rad = args.odometry_floor;
 
@@ -366,6 +367,8 @@ io::Grid CorridorGrid(const CorridorOptions& options) {
                   {"odometry-floor", fmt::format("{}", options.odometry_floor), false},
                   {"line-floor-scale", fmt::format("{}", options.line_floor_scale), false}};
   if (!options.corners) grid.options.push_back({"no-corners", "true", false});
+  if (options.association == estimation::EkfAssociation::kJointCompatibility)
+    grid.options.push_back({"association", "jcbb", false});
   grid.axes = {io::SeedAxis(options.seed, options.runs)};
   grid.figures = {"nees.fraction_of_steps_inside", "final_position_error_m.ekf_lines_mean",
                   "final_position_error_m.odometry_mean"};

@@ -55,6 +55,7 @@ struct CorridorOptions {
   double corner_floor_m = 0.01;
   double odometry_floor = 1e-4;   // per step, m and rad
   double line_floor_scale = 1.0;  // scales the line floors of 1 mm and 0.5 mrad
+  estimation::EkfAssociation association = estimation::EkfAssociation::kNearestNeighbour;
   // RunCorridorLinesExperiment with several runs: cells on the sweep engine.
   std::string splam_binary = "splam";  // what runs the cells
   int jobs = 0;                        // cells at once; 0: one per core

@@ -6,6 +6,7 @@
 
 #include "estimation/chi_square.h"
 #include "estimation/ekf/bspline_models.h"
+#include "estimation/ekf/joint_compatibility.h"
 #include "kernel/bspline_fit.h"
 #include "kernel/shapes.h"
 
@@ -66,6 +67,9 @@ kernel::Status EkfBSplineSlamOptions::Validate() const {
   if (association != "pedraza" && association != "curvature")
     return kernel::Status::Error("association must be \"pedraza\" or \"curvature\", not \"" +
                                  association + "\"");
+  if (match_selection != "longest" && match_selection != "jcbb")
+    return kernel::Status::Error("match_selection must be \"longest\" or \"jcbb\", not \"" +
+                                 match_selection + "\"");
   // Sigmas and distances bounded above as well: a variance of 1e12 m^2 beside one of 1e-4 leaves
   // the filter's covariance ill-conditioned, its corrections throw control points kilometres, and
   // the curves' resampling then takes minutes (a control point floor of 1e6 m with 52 beams per
@@ -151,7 +155,10 @@ BSplineUpdateReport EkfBSplineSlam::Update(const kernel::Scan& scan,
       options_.extraction);
   report.observed_curves = static_cast<int>(ctx.curves.size());
   Associate(&ctx);
-  AcceptLongestMatches(&ctx);
+  if (options_.match_selection == "jcbb")
+    AcceptJointlyCompatibleMatches(&ctx);
+  else
+    AcceptLongestMatches(&ctx);
   CorrectWithBeams(&ctx, &report);
   if (!healthy()) return report;
   ExtendMatchedSplines(ctx, &report);
@@ -211,6 +218,44 @@ void EkfBSplineSlam::AcceptLongestMatches(ScanContext* context) const {
       continue;
     ctx.accepted.push_back(&m);
   }
+}
+
+void EkfBSplineSlam::AcceptJointlyCompatibleMatches(ScanContext* context) const {
+  ScanContext& ctx = *context;
+  std::sort(ctx.matches.begin(), ctx.matches.end(),
+            [](const Match& a, const Match& b) { return a.Length() > b.Length(); });
+  // Each match with the beams it would correct with, as SelectBeams picks them now.
+  std::vector<CompatibilityItem> items;
+  std::vector<const Match*> of_item;
+  for (const Match& m : ctx.matches) {
+    BeamBatch batch;
+    SplineAssociationRecord record;
+    SelectBeams(ctx.scan, ctx.robot_T_laser, ctx.observed[m.curve], ctx.curves[m.curve].beams, m,
+                ctx.map_curves[m.landmark]->spline, &record, &batch);
+    const auto rows = static_cast<Eigen::Index>(batch.nu.size());
+    if (rows == 0) continue;
+    CompatibilityItem item;
+    item.group = static_cast<int>(items.size());
+    item.innovation = Eigen::Map<const Eigen::VectorXd>(batch.nu.data(), rows);
+    item.h_robot = batch.h_robot.topRows(rows);
+    item.blocks = std::move(batch.blocks);
+    item.noise = Eigen::Map<const Eigen::VectorXd>(batch.variance.data(), rows).asDiagonal();
+    items.push_back(std::move(item));
+    of_item.push_back(&m);
+  }
+  // Two stretches of one observed curve that overlap by half the shorter: one obstacle twice.
+  const auto overlapping = [&](int a, int b) {
+    const Match& x = *of_item[static_cast<std::size_t>(a)];
+    const Match& y = *of_item[static_cast<std::size_t>(b)];
+    if (x.curve != y.curve) return false;
+    const double overlap =
+        std::min(x.match.observed.end_m, y.match.observed.end_m) -
+        std::max(x.match.observed.start_m, y.match.observed.start_m);
+    return overlap > 0.5 * std::min(x.Length(), y.Length());
+  };
+  const JointCompatibilityResult joint =
+      JointCompatibility(items, overlapping, ekf_.covariance(), options_.beam_gate_probability);
+  for (const int i : joint.chosen) ctx.accepted.push_back(of_item[static_cast<std::size_t>(i)]);
 }
 
 void EkfBSplineSlam::CorrectWithBeams(ScanContext* context, BSplineUpdateReport* out) {
@@ -513,6 +558,8 @@ void EkfBSplineSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("max_correspondence_distance_m", &max_correspondence_distance_m,
           "predicted and paired map points of a beam at most this apart, m");
   v.Field("beam_gate_probability", &beam_gate_probability, "beam innovation gate (1 dof)");
+  v.Field("match_selection", &match_selection,
+          "longest (the longest stretches first) or jcbb (the largest jointly compatible set)");
   v.Field("min_incidence_sine", &min_incidence_sine, "grazing beams below this sine are unused");
   v.Field("min_new_curve_length_m", &min_new_curve_length_m, "new curves at least, m");
   v.Field("min_new_curve_points", &min_new_curve_points, "new curves at least, points");

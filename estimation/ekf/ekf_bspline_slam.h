@@ -51,6 +51,12 @@ struct EkfBSplineSlamOptions {
   double max_correspondence_distance_m = 0.15;
   // ... and when its innovation passes a chi-square gate (1 dof) at this probability.
   double beam_gate_probability = 0.99;
+  // Which matches correct the state: "longest" (the longest stretches first, one mostly covered
+  // by an accepted stretch of the same observed curve dropped: a duplicate map spline of the
+  // obstacle), or "jcbb": the largest set of those matches whose selected beams are jointly
+  // compatible (joint_compatibility.h; its gate chi^2(beams) at beam_gate_probability), no two of
+  // one curve overlapping by half, the longest first in the search.
+  std::string match_selection = "longest";
   // Beams meeting the map curve at a grazing angle (sine below this) are not used.
   double min_incidence_sine = 0.2;
 
@@ -155,6 +161,8 @@ class EkfBSplineSlam {
   // Longest stretches first; one mostly covered by an accepted stretch of the same observed
   // curve (a duplicate map spline of the same obstacle) is dropped.
   void AcceptLongestMatches(ScanContext* c) const;
+  // match_selection "jcbb": of those, the largest jointly compatible set.
+  void AcceptJointlyCompatibleMatches(ScanContext* c) const;
   // One EKF correction with the selected beams of every accepted match.
   void CorrectWithBeams(ScanContext* c, BSplineUpdateReport* report);
   // Map splines whose matched stretch reaches their end grow by the observed continuation.

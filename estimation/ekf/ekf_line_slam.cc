@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "estimation/chi_square.h"
+#include "estimation/ekf/joint_compatibility.h"
 #include "kernel/angle.h"
 
 namespace splam::estimation {
@@ -131,6 +132,7 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
   struct Pairing {
     double d2;
     std::size_t observation, landmark;
+    CompatibilityItem item;  // for joint compatibility (association: jcbb)
   };
   std::vector<Pairing> pairings;
   std::vector<double> nearest(observations.size(), std::numeric_limits<double>::infinity());
@@ -166,11 +168,36 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
       const Eigen::Matrix2d s = h * p_local * h.transpose() + obs.r;
       const double d2 = nu.dot(s.ldlt().solve(nu));
       nearest[o] = std::min(nearest[o], d2);
-      if (d2 < gate_) pairings.push_back({d2, o, l});
+      if (d2 < gate_) {
+        CompatibilityItem item{static_cast<int>(o), nu, h_r, {JacobianBlock{i, h_l, 0}}, obs.r};
+        pairings.push_back({d2, o, l, std::move(item)});
+      }
     }
   }
 
-  // Greedy one-to-one assignment by increasing distance, then sequential corrections.
+  if (options_.association == EkfAssociation::kJointCompatibility) {
+    // JCBB: each observation's pairings, nearest first; the largest jointly compatible set, no
+    // landmark paired twice.
+    std::sort(pairings.begin(), pairings.end(), [](const Pairing& a, const Pairing& b) {
+      return a.observation != b.observation ? a.observation < b.observation : a.d2 < b.d2;
+    });
+    std::vector<CompatibilityItem> items;
+    for (const Pairing& c : pairings) items.push_back(c.item);
+    const auto same_landmark = [&](int a, int b) {
+      const Pairing& pa = pairings[static_cast<std::size_t>(a)];
+      const Pairing& pb = pairings[static_cast<std::size_t>(b)];
+      return pa.landmark == pb.landmark &&
+             observations[pa.observation].is_line == observations[pb.observation].is_line;
+    };
+    const JointCompatibilityResult joint = JointCompatibility(
+        items, same_landmark, ekf_.covariance(), options_.gate_probability);
+    std::vector<Pairing> kept;
+    for (const int c : joint.chosen) kept.push_back(pairings[static_cast<std::size_t>(c)]);
+    report.jcbb_nodes = joint.nodes;
+    pairings = std::move(kept);
+  }
+  // Greedy one-to-one assignment by increasing distance (with jcbb: the jointly compatible set,
+  // one to one already), then sequential corrections.
   std::sort(pairings.begin(), pairings.end(),
             [](const Pairing& a, const Pairing& b) { return a.d2 < b.d2; });
   std::vector<bool> obs_used(observations.size(), false);
@@ -282,6 +309,11 @@ void EkfLineSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("line_theta_floor_rad", &line_theta_floor_rad,
           "line measurement noise floor (theta), rad");
   v.Field("corner_sigma_m", &corner_sigma_m, "corner measurement noise floor, m");
+  int rule = static_cast<int>(association);
+  v.Choice("association", &rule, {"nearest", "jcbb"},
+           "nearest neighbour (paper 001) or joint compatibility branch and bound (Neira and "
+           "Tardos 2001) over the pairings inside the gate");
+  association = static_cast<EkfAssociation>(rule);
   v.Field("gate_probability", &gate_probability, "association gate, chi-square probability");
   v.Field("new_landmark_probability", &new_landmark_probability,
           "new landmarks only outside this larger gate");

@@ -17,6 +17,12 @@
 
 namespace splam::estimation {
 
+// How an EKF pairs observations with landmarks inside the gate.
+enum class EkfAssociation {
+  kNearestNeighbour,    // one pairing at a time, nearest first (paper 001)
+  kJointCompatibility,  // JCBB: the largest jointly compatible set (joint_compatibility.h)
+};
+
 struct EkfLineSlamOptions {
   OdometryNoiseModel odometry;
   // How lines and corners are extracted from every scan (kernel::ExtractLines).
@@ -30,8 +36,10 @@ struct EkfLineSlamOptions {
   double line_theta_floor_rad = 0.005;
   double corner_sigma_m = 0.02;
 
-  // Nearest-neighbour association with the Mahalanobis distance, gated at this chi-square
-  // probability (2 dof; 0.95 -> 5.99 as in paper 001).
+  // Association with the Mahalanobis distance, gated at this chi-square probability (2 dof;
+  // 0.95 -> 5.99 as in paper 001): nearest neighbour, or JCBB over the pairings inside the gate
+  // with its joint gate at the same probability (2k dof for k pairings).
+  EkfAssociation association = EkfAssociation::kNearestNeighbour;
   double gate_probability = 0.95;
   // An unassociated observation becomes a new landmark only when it is outside this larger gate
   // of every landmark (0.999 -> 13.8); in between it is ambiguous and ignored.
@@ -71,6 +79,7 @@ struct UpdateReport {
   int ambiguous = 0;   // neither inside the gate nor clearly new
   int too_small = 0;   // unassociated lines too short to start a landmark
   int candidates = 0;  // clearly new observations kept as (or matched to) candidates
+  long jcbb_nodes = 0;  // hypotheses JCBB tested (association: jcbb)
 };
 
 // EKF-SLAM with line (rho, theta) and corner (x, y) landmarks (SPEC §2-4, paper 001 and the

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include <Eigen/Eigenvalues>
 #include <memory>
 
@@ -59,7 +61,12 @@ class BothAssociations : public testing::TestWithParam<const char*> {};
 TEST_P(BothAssociations, MapsTheComplexWorldAndCorrectsOdometry) {
   const sim::World world = *sim::BuiltinWorld("complex");
   EkfBSplineSlamOptions options;
-  options.association = GetParam();
+  std::string association = GetParam();
+  if (association.ends_with("+jcbb")) {  // the matches chosen by joint compatibility
+    options.match_selection = "jcbb";
+    association.resize(association.size() - 5);
+  }
+  options.association = association;
   const DriveResult run = Drive(world, options, 2000, 3);  // the whole route
   const TrajectoryError e = CompareToTruth(run.truth, run.estimate);
   const TrajectoryError o = CompareToTruth(run.truth, run.odometry);
@@ -75,7 +82,8 @@ TEST_P(BothAssociations, MapsTheComplexWorldAndCorrectsOdometry) {
   EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(p).eigenvalues().minCoeff(), 0.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(EkfBSplineSlam, BothAssociations, testing::Values("pedraza", "curvature"));
+INSTANTIATE_TEST_SUITE_P(EkfBSplineSlam, BothAssociations,
+                         testing::Values("pedraza", "curvature", "curvature+jcbb"));
 
 TEST(EkfBSplineSlam, OneWallSeenBitByBitIsOneExtendedSpline) {
   // A straight wall along y = 1 from x = -1 to 14; the robot drives along y = 0 from x = 0 to 10

@@ -177,6 +177,45 @@ TEST(EkfLineSlam, CornersAreLandmarksToo) {
   EXPECT_LT((slam.MapCorners()[0].position - Eigen::Vector2d(8, 5)).norm(), 1e-9);
 }
 
+// Two corners 1 m apart across the robot's way, and a slip of 0.7 m sideways the odometry did
+// not see (its lateral sigma 1 m per metre): corner B lies nearest landmark 1, so the nearest
+// neighbour pairs B with 1 and then A with 2, both inside the gate, and the second correction
+// drags landmark 2 half a metre onto landmark 1. JCBB pairs A with 1 and B with 2, the pairing
+// one robot offset explains: the robot lands where it is and the map stays.
+TEST(EkfLineSlam, JointCompatibilityUndoesTheNearestNeighboursCrossedPairing) {
+  const Pose2 truth(1.0, 0.7, 0.0);
+  const std::vector<Eigen::Vector2d> corners{{2.0, 0.0}, {2.0, 1.0}};
+  const auto seen = [&](const Pose2& from) {
+    LineExtraction features;
+    for (const Eigen::Vector2d& c : corners)
+      features.corners.push_back({from.Inverse() * c, 0, 1, kernel::kPi / 2});
+    return features;
+  };
+  for (const EkfAssociation association :
+       {EkfAssociation::kNearestNeighbour, EkfAssociation::kJointCompatibility}) {
+    EkfLineSlamOptions options = Immediate();
+    options.association = association;
+    options.corner_max_distance_m = 2.0;
+    options.odometry.lateral_per_m = 1.0;
+    EkfLineSlam slam(Pose2(), Eigen::Matrix3d::Identity() * 1e-8, options);
+    ASSERT_EQ(slam.Update(seen(Pose2()), Pose2()).new_landmarks, 2);
+    slam.Predict(Pose2(1.0, 0.0, 0.0));
+    const UpdateReport report = slam.Update(seen(truth), Pose2());
+    EXPECT_EQ(report.associated, 2);
+    const std::vector<MapCorner> map = slam.MapCorners();
+    ASSERT_EQ(map.size(), 2u);
+    const double moved = std::max((map[0].position - corners[0]).norm(),
+                                  (map[1].position - corners[1]).norm());
+    if (association == EkfAssociation::kJointCompatibility) {
+      EXPECT_GT(report.jcbb_nodes, 0);
+      EXPECT_LT((slam.pose().translation() - truth.translation()).norm(), 0.05);
+      EXPECT_LT(moved, 0.05);
+    } else {
+      EXPECT_GT(moved, 0.3);
+    }
+  }
+}
+
 TEST(EkfLineSlam, LaserMountingIsTakenIntoAccount) {
   // The same room seen by a laser mounted 0.2 m ahead and turned 0.1 rad.
   const Pose2 robot(3, 2, 0.3), robot_T_laser(0.2, 0.0, 0.1);
