@@ -98,8 +98,8 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--out", args->out, "Output directory (default runs/experiment-<name>)");
   cmd->add_option("--world", args->world,
                   "splam: the world, a built-in name (corridor, office, office-long, office-doors, "
-                  "complex), a YAML world "
-                  "file or a floor-plan image")
+                  "complex, loop, curves), a YAML world file or a floor-plan image; "
+                  "complex-bspline: a built-in world with a route (complex, curves, ...)")
       ->capture_default_str();
   cmd->add_option("--resolution", args->resolution_m_per_px,
                   "splam: metres per pixel of a floor-plan image")
@@ -115,8 +115,9 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--max-correspondence", args->max_correspondence_distance_m,
                   "complex-bspline: largest distance (m) between a beam's predicted hit and the "
-                  "map point its association paired it with; large values switch the test off")
-      ->check(FinitePositive())
+                  "map point its association paired it with; 10 (the largest) switches the test "
+                  "off")
+      ->check(CLI::Range(1e-9, 10.0))
       ->capture_default_str();
   cmd->add_flag("!--no-corners", args->corners, "Use lines only, no corner landmarks");
   cmd->add_option("--line-floor-scale", args->line_floor_scale,
@@ -176,6 +177,7 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
       b.odometry_noise_scale = args->odometry_noise_scale;
       b.max_correspondence_distance_m = args->max_correspondence_distance_m;
       b.match_selection = args->match_selection;
+      b.world = args->world;
       b.splam_binary = SplamBinary();
       b.jobs = args->jobs;
       CatchInterrupts();

@@ -1,5 +1,6 @@
 #include "sim/builtin_worlds.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "kernel/angle.h"
@@ -245,10 +246,118 @@ World Loop() {
   return w;
 }
 
+// A closed spline around `center` whose control points alternate between radii `outer` and
+// `inner`, `lobes` of each: a lobed outline with an inflection point between every lobe and dent.
+Spline Lobed(const V& center, double outer, double inner, int lobes, double phase = 0.0) {
+  std::vector<V> control;
+  for (int k = 0; k < 2 * lobes; ++k) {
+    const double angle = phase + M_PI * k / lobes;
+    const double radius = k % 2 == 0 ? outer : inner;
+    control.push_back(center + radius * V(std::cos(angle), std::sin(angle)));
+  }
+  return Spline{control, true};
+}
+
+// A star polygon: `points` corners at radius `outer` and as many at `inner` between them.
+Polyline Star(const V& center, double outer, double inner, int points, double phase = 0.0) {
+  std::vector<V> vertices;
+  for (int k = 0; k < 2 * points; ++k) {
+    const double angle = phase + M_PI * k / points;
+    vertices.push_back(center + (k % 2 == 0 ? outer : inner) * V(std::cos(angle), std::sin(angle)));
+  }
+  return Polygon(vertices);
+}
+
+World Curves() {
+  World w;
+  w.name = "curves";
+  // Two halls 12 m x 14 m joined by a corridor 8 m long and about 3 m wide, their obstacles rich
+  // in the curvature features paper 000 pairs: lobed outlines (an inflection point between every
+  // lobe and dent), free-standing S-shaped walls, star polygons (corners), wavy walls (the
+  // corridor's, two halls' outer walls); a pillar and an ellipse (smooth, featureless) beside
+  // them.
+  w.obstacles.push_back(Wall({{12, 14}, {12, 8.5}}));
+  w.obstacles.push_back(Spline{{{12, 8.5}, {14, 8.9}, {16, 8.1}, {18, 8.9}, {20, 8.5}}, false});
+  w.obstacles.push_back(Wall({{20, 8.5}, {20, 14}, {32, 14}, {32, 0}}));
+  w.obstacles.push_back(Spline{{{32, 0}, {29, -0.5}, {26, 0.7}, {22, -0.6}, {20, 0}}, false});
+  w.obstacles.push_back(Wall({{20, 0}, {20, 5.5}}));
+  w.obstacles.push_back(Spline{{{20, 5.5}, {18, 5.1}, {16, 5.9}, {14, 5.1}, {12, 5.5}}, false});
+  w.obstacles.push_back(Wall({{12, 5.5}, {12, 0}, {0, 0}, {0, 14}}));
+  w.obstacles.push_back(Spline{{{0, 14}, {3, 14.6}, {6, 13.4}, {9, 14.8}, {12, 14}}, false});
+  // West hall.
+  w.obstacles.push_back(Lobed(V(4.0, 4.0), 1.0, 0.35, 4));
+  w.obstacles.push_back(Spline{{{5.5, 9.0}, {7.0, 10.5}, {8.5, 8.5}, {10.0, 10.0}}, false});
+  w.obstacles.push_back(Star(V(9.0, 3.5), 0.8, 0.4, 5, 0.3));
+  w.obstacles.push_back(kernel::Circle2{{6.5, 5.2}, 0.3});
+  // East hall.
+  w.obstacles.push_back(Lobed(V(25.0, 10.0), 1.1, 0.4, 5, 0.2));
+  w.obstacles.push_back(kernel::Ellipse2{{29.0, 4.5}, 1.0, 0.5, kernel::DegToRad(20)});
+  w.obstacles.push_back(Spline{{{22.0, 3.0}, {23.5, 4.5}, {25.0, 2.5}, {26.5, 4.0}}, false});
+  w.obstacles.push_back(Star(V(29.5, 10.3), 0.8, 0.45, 4));
+  w.obstacles.push_back(kernel::Circle2{{23.0, 7.0}, 0.35});
+  // Round the west hall, the long excursion through the corridor and round the east hall, then
+  // the west hall again: its obstacles re-observed after some 70 m.
+  w.start = kernel::Pose2(1.5, 7.0, 0.0);
+  w.route = {V(5.0, 7.0),   V(8.0, 6.6),   V(11.0, 7.0),  V(16.0, 7.0),  V(21.5, 7.0),
+             V(21.5, 12.5), V(27.5, 12.8), V(31.0, 12.5), V(31.0, 7.0),  V(31.0, 1.8),
+             V(27.5, 1.5),  V(21.5, 1.5),  V(21.5, 7.0),  V(11.3, 7.0),  V(11.3, 12.5),
+             V(1.5, 12.5),  V(1.5, 2.0),   V(7.5, 1.5),   V(11.0, 1.5),  V(11.0, 5.0),
+             V(7.0, 7.0),   V(1.5, 7.0)};
+  return w;
+}
+
+// An arc of control points of radius `radius` around `center` from angle `from` to `to` (rad,
+// counter-clockwise), about every `step` rad: an open spline close to a circular wall.
+Spline CurvedWall(const V& center, double radius, double from, double to, double step) {
+  const int n = std::max(3, static_cast<int>(std::ceil((to - from) / step)));
+  std::vector<V> control;
+  for (int k = 0; k <= n; ++k) {
+    const double angle = from + (to - from) * k / n;
+    control.push_back(center + radius * V(std::cos(angle), std::sin(angle)));
+  }
+  return Spline{control, false};
+}
+
+World Halls() {
+  World w;
+  w.name = "halls";
+  // Two round halls (radius 7 m and 6.5 m, wider than the URG-04LX's 4 m) joined by a corridor
+  // 2.4 m wide, with rings of round pillars: from the middle of a hall the laser sees pillars
+  // only, and the curved walls from afar.
+  const V a(8.0, 8.0), b(26.0, 8.0);
+  const double gap_a = std::asin(1.2 / 7.0), gap_b = std::asin(1.2 / 6.5);
+  w.obstacles.push_back(CurvedWall(a, 7.0, gap_a, 2.0 * M_PI - gap_a, 0.4));
+  w.obstacles.push_back(CurvedWall(b, 6.5, -M_PI + gap_b, M_PI - gap_b, 0.4));
+  const double a_end = a.x() + 7.0 * std::cos(gap_a), b_end = b.x() - 6.5 * std::cos(gap_b);
+  w.obstacles.push_back(Wall({{a_end, 6.8}, {b_end, 6.8}}));
+  w.obstacles.push_back(Wall({{a_end, 9.2}, {b_end, 9.2}}));
+  for (int k = 0; k < 6; ++k) {
+    const double angle = M_PI / 3.0 * k + M_PI / 6.0;
+    w.obstacles.push_back(kernel::Circle2{a + 3.5 * V(std::cos(angle), std::sin(angle)), 0.3});
+  }
+  w.obstacles.push_back(kernel::Circle2{a, 0.4});
+  for (int k = 0; k < 5; ++k) {
+    const double angle = 2.0 * M_PI / 5.0 * k + 0.3;
+    w.obstacles.push_back(kernel::Circle2{b + 3.0 * V(std::cos(angle), std::sin(angle)), 0.25});
+  }
+  w.obstacles.push_back(kernel::Ellipse2{b, 0.7, 0.35, kernel::DegToRad(30)});
+  // Round hall a between its pillars and its wall, through the corridor, round hall b, back.
+  const auto on = [](const V& c, double r, double deg) {
+    return V(c + r * V(std::cos(kernel::DegToRad(deg)), std::sin(kernel::DegToRad(deg))));
+  };
+  w.start = kernel::Pose2(8.0, 2.75, 0.0);
+  w.route = {on(a, 5.25, -45), on(a, 5.25, 0), V(17.0, 8.0),   on(b, 4.7, 180), on(b, 4.7, 135),
+             on(b, 4.7, 90),   on(b, 4.7, 45), on(b, 4.7, 0),  on(b, 4.7, -45), on(b, 4.7, -90),
+             on(b, 4.7, -135), on(b, 4.7, 180), V(17.0, 8.0),  on(a, 5.25, 0),  on(a, 5.25, 45),
+             on(a, 5.25, 90),  on(a, 5.25, 135), on(a, 5.25, 180), on(a, 5.25, 225),
+             on(a, 5.25, 270)};
+  return w;
+}
+
 }  // namespace
 
 std::vector<std::string> BuiltinWorldNames() {
-  return {"corridor", "office", "office-long", "office-doors", "complex", "loop"};
+  return {"corridor", "office", "office-long", "office-doors", "complex", "loop", "curves", "halls"};
 }
 
 std::optional<World> BuiltinWorld(const std::string& name) {
@@ -258,6 +367,8 @@ std::optional<World> BuiltinWorld(const std::string& name) {
   if (name == "office-doors") return OfficeDoors();
   if (name == "complex") return Complex();
   if (name == "loop") return Loop();
+  if (name == "curves") return Curves();
+  if (name == "halls") return Halls();
   return std::nullopt;
 }
 

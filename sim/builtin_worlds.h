@@ -20,6 +20,11 @@ std::vector<std::string> BuiltinWorldNames();
 //    obstacles and a free-standing curved wall (the environments of papers 000 and 003).
 //  - loop: a ring corridor 3 m wide, about 100 m round, around a 34 m x 20 m block with recesses,
 //    pillars along the outer wall and one rounded corner: a long loop (active loop closing).
+//  - curves: two 12 m x 14 m halls joined by a corridor, with obstacles rich in curvature
+//    features (lobed outlines, S-shaped walls, star polygons, wavy walls); route: round the west
+//    hall, out round the east one and back (paper 000's association compared).
+//  - halls: two round halls 14 m and 13 m across, wider than the URG-04LX's range, joined by a
+//    corridor, with rings of round pillars (the topological SLAM's hard case).
 std::optional<World> BuiltinWorld(const std::string& name);
 
 }  // namespace splam::sim

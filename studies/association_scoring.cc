@@ -45,6 +45,7 @@ AssociationRun RunBSplineFilter(const std::vector<sim::SensorFrame>& frames,
     const estimation::BSplineUpdateReport r = slam.Update(f.scan);
     if (!slam.healthy()) {
       result.healthy = false;
+      result.failure = slam.health().message();
       break;
     }
     // Associations are judged against what the spline was made of before this scan.

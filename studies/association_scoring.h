@@ -2,6 +2,7 @@
 #define SPLAM_STUDIES_ASSOCIATION_SCORING_H_
 
 #include <map>
+#include <string>
 #include <vector>
 
 #include "estimation/ekf/ekf_bspline_slam.h"
@@ -31,6 +32,7 @@ struct AssociationRun {
   double map_error_m = 0.0;  // mean distance of map curve points to the nearest obstacle
   double ms_per_scan = 0.0;
   bool healthy = true;
+  std::string failure;  // why the filter stopped (its health message) when not healthy
 };
 
 // The filter over the frames of a simulated route (whose beam_obstacles are filled), scored.

@@ -1,11 +1,13 @@
 #include "studies/bspline_experiment.h"
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -65,8 +67,8 @@ kernel::Status SaveMethodMap(const sim::World& world, const std::string& method,
                              const kernel::SplineExtractionOptions& extraction,
                              const std::string& base) {
   io::RunPicture picture;
-  picture.title = fmt::format("complex, URG-04LX, {} association (seed {}): {} splines", method,
-                              seed, r.map.size());
+  picture.title = fmt::format("{}, URG-04LX, {} association (seed {}): {} splines", world.name,
+                              method, seed, r.map.size());
   picture.world = &world;
   picture.world_color = io::Rgb{0.75, 0.75, 0.75};
   picture.truth = truth;
@@ -90,6 +92,7 @@ int WriteBSplineReport(const BSplineExperimentArgs& args, const std::vector<std:
   report["odometry_noise_scale"] = scale;
   report["max_correspondence_distance_m"] = args.max_correspondence_distance_m;
   report["match_selection"] = args.match_selection;
+  report["world"] = args.world;
   std::string table = fmt::format(
       "| method ({} seeds, odometry noise x{}) | position RMSE (m) | max position error (m) | "
       "heading RMSE (deg) | map "
@@ -153,7 +156,13 @@ int WriteBSplineReport(const BSplineExperimentArgs& args, const std::vector<std:
 
 // Runs the seeds in this process, one after the other, and writes the report.
 int RunSeedsHere(const BSplineExperimentArgs& args) {
-  const sim::World world = *sim::BuiltinWorld("complex");
+  const std::optional<sim::World> built_in = sim::BuiltinWorld(args.world);
+  if (!built_in || built_in->route.empty() || !built_in->start) {
+    fmt::print(stderr, "splam experiment: complex-bspline needs a built-in world with a route ({}), not '{}'\n",
+               fmt::join(sim::BuiltinWorldNames(), ", "), args.world);
+    return kExitBadInput;
+  }
+  const sim::World& world = *built_in;
   const sim::RayCaster caster(world);
   sim::SimulatorOptions sim_options;
   sim_options.laser = sim::LaserOptions::Urg04lx();
@@ -191,7 +200,8 @@ int RunSeedsHere(const BSplineExperimentArgs& args) {
       options.odometry = options.odometry.Scaled(scale);
       const AssociationRun r = RunBSplineFilter(route.frames, caster, options);
       if (!r.healthy) {
-        fmt::print(stderr, "splam experiment: seed {}, {}: the filter failed\n", seed, method);
+        fmt::print(stderr, "splam experiment: seed {}, {}: the filter failed: {}\n", seed, method,
+                   r.failure);
         return kExitIncomplete;
       }
       const evaluation::TrajectoryError e = evaluation::CompareToTruth(truth, r.estimate);
@@ -215,7 +225,8 @@ int RunSeedsHere(const BSplineExperimentArgs& args) {
     }
     if (run == 0) {
       if (kernel::Status err = io::SaveErrorPlot(
-              fmt::format("complex, URG-04LX: errors against ground truth (seed {})", seed), truth,
+              fmt::format("{}, URG-04LX: errors against ground truth (seed {})", world.name, seed),
+              truth,
               plotted, {args.out + "/errors.svg", args.out + "/errors.png"});
           !err.ok()) {
         fmt::print(stderr, "splam experiment: {}\n", err.message());
@@ -249,7 +260,8 @@ io::Grid ComplexBSplineGrid(const BSplineExperimentArgs& args) {
   grid.options = {
       {"runs", "1", false},
       {"odometry-noise", fmt::format("{}", args.odometry_noise_scale), false},
-      {"max-correspondence", fmt::format("{}", args.max_correspondence_distance_m), false}};
+      {"max-correspondence", fmt::format("{}", args.max_correspondence_distance_m), false},
+      {"world", args.world, false}};
   if (args.max_scans > 0)
     grid.options.push_back({"max-scans", std::to_string(args.max_scans), false});
   if (args.match_selection != "longest")

@@ -29,6 +29,8 @@ struct BSplineExperimentArgs {
   double max_correspondence_distance_m = 0.15;
   // Which matches correct the state (EkfBSplineSlamOptions::match_selection): longest or jcbb.
   std::string match_selection = "longest";
+  // A built-in world with a route (`curves`: obstacles rich in curvature features).
+  std::string world = "complex";
   std::string out = "runs/experiment-complex-bspline";
   std::string splam_binary = "splam";  // what runs the cells
   int jobs = 0;                        // cells at once; 0: one per core
