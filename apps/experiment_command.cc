@@ -34,10 +34,10 @@ struct ExperimentArgs {
   bool corners = true;
   double corner_floor_m = 0.01;
   double odometry_floor = 1e-4;
-  double line_floor_scale = 1.0;  // scales the line floors of 1 mm and 0.5 mrad
+  double line_floor_scale = 1.0;            // scales the line floors of 1 mm and 0.5 mrad
   std::string association = "nearest";      // corridor-lines: nearest or jcbb
   std::string match_selection = "longest";  // complex-bspline: longest or jcbb
-  int jobs = 0;                   // splam: trials at once (0: one per core)
+  int jobs = 0;                             // splam: trials at once (0: one per core)
 };
 
 int RunCorridorLines(const ExperimentArgs& args) {
@@ -50,9 +50,8 @@ int RunCorridorLines(const ExperimentArgs& args) {
   options.corner_floor_m = args.corner_floor_m;
   options.odometry_floor = args.odometry_floor;
   options.line_floor_scale = args.line_floor_scale;
-  options.association = args.association == "jcbb"
-                            ? estimation::EkfAssociation::kJointCompatibility
-                            : estimation::EkfAssociation::kNearestNeighbour;
+  options.association = args.association == "jcbb" ? estimation::EkfAssociation::kJointCompatibility
+                                                   : estimation::EkfAssociation::kNearestNeighbour;
   options.splam_binary = SplamBinary();
   options.jobs = args.jobs;
   CatchInterrupts();
@@ -98,7 +97,7 @@ void AddExperimentCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--out", args->out, "Output directory (default runs/experiment-<name>)");
   cmd->add_option("--world", args->world,
                   "splam: the world, a built-in name (corridor, office, office-long, office-doors, "
-                  "complex, loop, curves), a YAML world file or a floor-plan image; "
+                  "complex, loop, curves, halls), a YAML world file or a floor-plan image; "
                   "complex-bspline: a built-in world with a route (complex, curves, ...)")
       ->capture_default_str();
   cmd->add_option("--resolution", args->resolution_m_per_px,

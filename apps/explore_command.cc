@@ -239,7 +239,8 @@ void AddExploreCommand(CLI::App* app, int* exit_code) {
       ->check(CLI::IsMember(exploration::ExplorerRegistry::Global().Names()))
       ->capture_default_str();
   cmd->add_option("--world", args->world,
-                  "Built-in world (corridor, office, office-long, office-doors, complex, loop), a YAML "
+                  "Built-in world (corridor, office, office-long, office-doors, complex, loop, "
+                  "curves, halls), a YAML "
                   "world file or a floor-plan image")
       ->capture_default_str();
   flag("seed", cmd->add_option("--seed", setup.seed,

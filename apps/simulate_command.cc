@@ -216,7 +216,8 @@ void AddSimulateCommand(CLI::App* app, int* exit_code) {
                                       "with ground truth, trajectories and "
                                       "pictures into --out.");
   cmd->add_option("--world", args->world,
-                  "Built-in world (corridor, office, office-long, office-doors, complex, loop), a YAML "
+                  "Built-in world (corridor, office, office-long, office-doors, complex, loop, "
+                  "curves, halls), a YAML "
                   "world file or a floor-plan image")
       ->capture_default_str();
   cmd->add_option("--route", args->route,

@@ -12,13 +12,12 @@ namespace splam::exploration {
 
 double PositionSigma(const Eigen::Matrix3d& covariance) {
   const Eigen::Matrix2d position = covariance.topLeftCorner<2, 2>();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(position,
-                                                              Eigen::EigenvaluesOnly);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(position, Eigen::EigenvaluesOnly);
   return std::sqrt(std::max(solver.eigenvalues().maxCoeff(), 0.0));
 }
 
-std::optional<RevisitChoice> ChooseRevisit(const graph::ExplorationGraph& graph,
-                                           graph::Vertex from, const Localization& localization,
+std::optional<RevisitChoice> ChooseRevisit(const graph::ExplorationGraph& graph, graph::Vertex from,
+                                           const Localization& localization,
                                            const ActiveLoopClosingOptions& options,
                                            const std::set<graph::Vertex>& excluded) {
   std::vector<graph::Vertex> previous;
@@ -37,8 +36,8 @@ std::optional<RevisitChoice> ChooseRevisit(const graph::ExplorationGraph& graph,
     if (!information[i] || *information[i] < options.min_information_nats) continue;
     const double utility = *information[i] - options.cost_nats_per_m * 2.0 * path_m[i];
     if (utility <= 0.0 || (best && utility <= best->utility)) continue;
-    best = RevisitChoice{static_cast<graph::Vertex>(nodes[i]), {}, path_m[i], *information[i],
-                         utility};
+    best = RevisitChoice{
+        static_cast<graph::Vertex>(nodes[i]), {}, path_m[i], *information[i], utility};
   }
   if (!best) return std::nullopt;
   for (graph::Vertex v = best->to; v != from; v = previous[v]) best->path.push_back(v);
@@ -52,9 +51,9 @@ std::optional<graph::Vertex> ActiveLoopClosing::Step(Session* session, graph::Ve
   if (!options_.enabled) return std::nullopt;
   ExplorationRun& run = session->run();
   for (; traced_ + 1 < run.trace.size(); ++traced_)
-    travelled_m_ += (run.trace[traced_ + 1].estimate.translation() -
-                     run.trace[traced_].estimate.translation())
-                        .norm();
+    travelled_m_ +=
+        (run.trace[traced_ + 1].estimate.translation() - run.trace[traced_].estimate.translation())
+            .norm();
   std::optional<double> sigma;
   {
     Session::PlanningTimer timer(session);
@@ -69,8 +68,8 @@ std::optional<graph::Vertex> ActiveLoopClosing::Step(Session* session, graph::Ve
   std::optional<RevisitChoice> choice;
   {
     Session::PlanningTimer timer(session);
-    choice = ChooseRevisit(session->graph(), current, session->localization(), options_,
-                           revisited_);
+    choice =
+        ChooseRevisit(session->graph(), current, session->localization(), options_, revisited_);
   }
   if (!choice) return std::nullopt;
   revisited_.insert(choice->to);

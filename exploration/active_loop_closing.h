@@ -61,8 +61,8 @@ struct RevisitChoice {
 // The revisit with the highest utility from `from` among the nodes it reaches over `graph` (the
 // nodes in `excluded` and `from` itself left out), or nullopt when none gains
 // min_information_nats with a positive utility, or the localisation cannot say.
-std::optional<RevisitChoice> ChooseRevisit(const graph::ExplorationGraph& graph,
-                                           graph::Vertex from, const Localization& localization,
+std::optional<RevisitChoice> ChooseRevisit(const graph::ExplorationGraph& graph, graph::Vertex from,
+                                           const Localization& localization,
                                            const ActiveLoopClosingOptions& options,
                                            const std::set<graph::Vertex>& excluded = {});
 
@@ -97,8 +97,8 @@ class ActiveLoopClosing {
  private:
   ActiveLoopClosingOptions options_;
   std::set<graph::Vertex> revisited_;
-  std::size_t traced_ = 0;     // trace samples counted into travelled_m_
-  double travelled_m_ = 0.0;   // the estimate's path so far
+  std::size_t traced_ = 0;       // trace samples counted into travelled_m_
+  double travelled_m_ = 0.0;     // the estimate's path so far
   double last_revisit_m_ = 0.0;  // travelled_m_ at the last revisit
   bool any_ = false;             // a revisit was made
 };

@@ -187,7 +187,7 @@ struct ExplorationRun {
   // unreachable, a shadow no approach saw behind; SRT: the arcs and shadows of a node left after
   // its draws), checked against the union of the final LSRs.
   std::vector<GivenUpFrontier> given_up;
-  double planning_wall_s = 0.0;  // wall time spent deciding (not driving or sensing), s
+  double planning_wall_s = 0.0;         // wall time spent deciding (not driving or sensing), s
   std::vector<RevisitRecord> revisits;  // active loop closing's, in order
   // With active loop closing: the pose's position sigma (PositionSigma) at every decision, with
   // the simulated time, s and m.

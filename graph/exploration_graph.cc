@@ -97,14 +97,13 @@ std::vector<Eigen::Vector2d> ExplorationGraph::Waypoints(
 }
 
 std::vector<double> ExplorationGraph::DistancesFrom(Vertex source,
-                                                     std::vector<Vertex>* previous) const {
+                                                    std::vector<Vertex>* previous) const {
   std::vector<double> distance(num_nodes());
   previous->assign(num_nodes(), 0);
-  boost::dijkstra_shortest_paths(
-      graph_, source,
-      boost::predecessor_map(previous->data())
-          .distance_map(distance.data())
-          .weight_map(boost::get(&EdgeData::length_m, graph_)));
+  boost::dijkstra_shortest_paths(graph_, source,
+                                 boost::predecessor_map(previous->data())
+                                     .distance_map(distance.data())
+                                     .weight_map(boost::get(&EdgeData::length_m, graph_)));
   for (Vertex v = 0; v < num_nodes(); ++v)
     if (v != source && (*previous)[v] == v) distance[v] = std::numeric_limits<double>::infinity();
   return distance;

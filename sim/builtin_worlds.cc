@@ -298,11 +298,10 @@ World Curves() {
   // Round the west hall, the long excursion through the corridor and round the east hall, then
   // the west hall again: its obstacles re-observed after some 70 m.
   w.start = kernel::Pose2(1.5, 7.0, 0.0);
-  w.route = {V(5.0, 7.0),   V(8.0, 6.6),   V(11.0, 7.0),  V(16.0, 7.0),  V(21.5, 7.0),
-             V(21.5, 12.5), V(27.5, 12.8), V(31.0, 12.5), V(31.0, 7.0),  V(31.0, 1.8),
-             V(27.5, 1.5),  V(21.5, 1.5),  V(21.5, 7.0),  V(11.3, 7.0),  V(11.3, 12.5),
-             V(1.5, 12.5),  V(1.5, 2.0),   V(7.5, 1.5),   V(11.0, 1.5),  V(11.0, 5.0),
-             V(7.0, 7.0),   V(1.5, 7.0)};
+  w.route = {V(5.0, 7.0),   V(8.0, 6.6),   V(11.0, 7.0),  V(16.0, 7.0), V(21.5, 7.0), V(21.5, 12.5),
+             V(27.5, 12.8), V(31.0, 12.5), V(31.0, 7.0),  V(31.0, 1.8), V(27.5, 1.5), V(21.5, 1.5),
+             V(21.5, 7.0),  V(11.3, 7.0),  V(11.3, 12.5), V(1.5, 12.5), V(1.5, 2.0),  V(7.5, 1.5),
+             V(11.0, 1.5),  V(11.0, 5.0),  V(7.0, 7.0),   V(1.5, 7.0)};
   return w;
 }
 
@@ -346,18 +345,19 @@ World Halls() {
     return V(c + r * V(std::cos(kernel::DegToRad(deg)), std::sin(kernel::DegToRad(deg))));
   };
   w.start = kernel::Pose2(8.0, 2.75, 0.0);
-  w.route = {on(a, 5.25, -45), on(a, 5.25, 0), V(17.0, 8.0),   on(b, 4.7, 180), on(b, 4.7, 135),
-             on(b, 4.7, 90),   on(b, 4.7, 45), on(b, 4.7, 0),  on(b, 4.7, -45), on(b, 4.7, -90),
-             on(b, 4.7, -135), on(b, 4.7, 180), V(17.0, 8.0),  on(a, 5.25, 0),  on(a, 5.25, 45),
-             on(a, 5.25, 90),  on(a, 5.25, 135), on(a, 5.25, 180), on(a, 5.25, 225),
-             on(a, 5.25, 270)};
+  w.route = {on(a, 5.25, -45), on(a, 5.25, 0),   V(17.0, 8.0),     on(b, 4.7, 180),
+             on(b, 4.7, 135),  on(b, 4.7, 90),   on(b, 4.7, 45),   on(b, 4.7, 0),
+             on(b, 4.7, -45),  on(b, 4.7, -90),  on(b, 4.7, -135), on(b, 4.7, 180),
+             V(17.0, 8.0),     on(a, 5.25, 0),   on(a, 5.25, 45),  on(a, 5.25, 90),
+             on(a, 5.25, 135), on(a, 5.25, 180), on(a, 5.25, 225), on(a, 5.25, 270)};
   return w;
 }
 
 }  // namespace
 
 std::vector<std::string> BuiltinWorldNames() {
-  return {"corridor", "office", "office-long", "office-doors", "complex", "loop", "curves", "halls"};
+  return {"corridor", "office", "office-long", "office-doors",
+          "complex",  "loop",   "curves",      "halls"};
 }
 
 std::optional<World> BuiltinWorld(const std::string& name) {

@@ -7,8 +7,8 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 
 #include "estimation/ekf/ekf_bspline_slam.h"
@@ -158,8 +158,10 @@ int WriteBSplineReport(const BSplineExperimentArgs& args, const std::vector<std:
 int RunSeedsHere(const BSplineExperimentArgs& args) {
   const std::optional<sim::World> built_in = sim::BuiltinWorld(args.world);
   if (!built_in || built_in->route.empty() || !built_in->start) {
-    fmt::print(stderr, "splam experiment: complex-bspline needs a built-in world with a route ({}), not '{}'\n",
-               fmt::join(sim::BuiltinWorldNames(), ", "), args.world);
+    fmt::print(
+        stderr,
+        "splam experiment: complex-bspline needs a built-in world with a route ({}), not '{}'\n",
+        fmt::join(sim::BuiltinWorldNames(), ", "), args.world);
     return kExitBadInput;
   }
   const sim::World& world = *built_in;
@@ -226,8 +228,7 @@ int RunSeedsHere(const BSplineExperimentArgs& args) {
     if (run == 0) {
       if (kernel::Status err = io::SaveErrorPlot(
               fmt::format("{}, URG-04LX: errors against ground truth (seed {})", world.name, seed),
-              truth,
-              plotted, {args.out + "/errors.svg", args.out + "/errors.png"});
+              truth, plotted, {args.out + "/errors.svg", args.out + "/errors.png"});
           !err.ok()) {
         fmt::print(stderr, "splam experiment: {}\n", err.message());
         return kExitBadInput;

@@ -248,9 +248,8 @@ void EkfBSplineSlam::AcceptJointlyCompatibleMatches(ScanContext* context) const 
     const Match& x = *of_item[static_cast<std::size_t>(a)];
     const Match& y = *of_item[static_cast<std::size_t>(b)];
     if (x.curve != y.curve) return false;
-    const double overlap =
-        std::min(x.match.observed.end_m, y.match.observed.end_m) -
-        std::max(x.match.observed.start_m, y.match.observed.start_m);
+    const double overlap = std::min(x.match.observed.end_m, y.match.observed.end_m) -
+                           std::max(x.match.observed.start_m, y.match.observed.start_m);
     return overlap > 0.5 * std::min(x.Length(), y.Length());
   };
   const JointCompatibilityResult joint =

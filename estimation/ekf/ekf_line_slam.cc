@@ -189,8 +189,8 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
       return pa.landmark == pb.landmark &&
              observations[pa.observation].is_line == observations[pb.observation].is_line;
     };
-    const JointCompatibilityResult joint = JointCompatibility(
-        items, same_landmark, ekf_.covariance(), options_.gate_probability);
+    const JointCompatibilityResult joint =
+        JointCompatibility(items, same_landmark, ekf_.covariance(), options_.gate_probability);
     std::vector<Pairing> kept;
     for (const int c : joint.chosen) kept.push_back(pairings[static_cast<std::size_t>(c)]);
     report.jcbb_nodes = joint.nodes;

@@ -76,9 +76,9 @@ struct UpdateReport {
   int corner_observations = 0;
   int associated = 0;  // observations used to correct the state
   int new_landmarks = 0;
-  int ambiguous = 0;   // neither inside the gate nor clearly new
-  int too_small = 0;   // unassociated lines too short to start a landmark
-  int candidates = 0;  // clearly new observations kept as (or matched to) candidates
+  int ambiguous = 0;    // neither inside the gate nor clearly new
+  int too_small = 0;    // unassociated lines too short to start a landmark
+  int candidates = 0;   // clearly new observations kept as (or matched to) candidates
   long jcbb_nodes = 0;  // hypotheses JCBB tested (association: jcbb)
 };
 

@@ -12,9 +12,8 @@ namespace {
 
 class Search {
  public:
-  Search(const std::vector<CompatibilityItem>& items,
-         const std::function<bool(int, int)>& conflict, const Eigen::MatrixXd& p,
-         double probability, long max_nodes)
+  Search(const std::vector<CompatibilityItem>& items, const std::function<bool(int, int)>& conflict,
+         const Eigen::MatrixXd& p, double probability, long max_nodes)
       : items_(items),
         conflict_(conflict),
         p_(p),
@@ -48,8 +47,8 @@ class Search {
     columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
     const auto d = static_cast<Eigen::Index>(columns.size());
     const auto compact = [&](Eigen::Index column) {
-      return static_cast<Eigen::Index>(
-          std::lower_bound(columns.begin(), columns.end(), column) - columns.begin());
+      return static_cast<Eigen::Index>(std::lower_bound(columns.begin(), columns.end(), column) -
+                                       columns.begin());
     };
     Eigen::MatrixXd h = Eigen::MatrixXd::Zero(rows, d);
     Eigen::MatrixXd r = Eigen::MatrixXd::Zero(rows, rows);
@@ -93,7 +92,8 @@ class Search {
   bool Compatible(const std::vector<int>& chosen, int item) const {
     const CompatibilityItem& it = items_[static_cast<std::size_t>(item)];
     return std::none_of(chosen.begin(), chosen.end(), [&](int c) {
-      return items_[static_cast<std::size_t>(c)].group == it.group || (conflict_ && conflict_(c, item));
+      return items_[static_cast<std::size_t>(c)].group == it.group ||
+             (conflict_ && conflict_(c, item));
     });
   }
 

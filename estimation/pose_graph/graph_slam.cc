@@ -1086,18 +1086,6 @@ Eigen::Matrix3d GraphSlam::TravelCovariance(double path_m) const {
   return edges * Diagonal(sigma_m, options_.edge_sigma_rad);
 }
 
-namespace {
-
-// d(c (+) u)/dc for a pose c moved by `displacement` (world frame) to c (+) u.
-Eigen::Matrix3d CompositionJacobian(const Eigen::Vector2d& displacement) {
-  Eigen::Matrix3d j = Eigen::Matrix3d::Identity();
-  j(0, 2) = -displacement.y();
-  j(1, 2) = displacement.x();
-  return j;
-}
-
-}  // namespace
-
 std::optional<Eigen::Matrix3d> GraphSlam::PoseCovariance() const {
   if (keyframes_.empty()) return std::nullopt;
   const int last = static_cast<int>(keyframes_.size()) - 1;
@@ -1139,8 +1127,8 @@ std::vector<std::optional<double>> GraphSlam::RevisitInformation(
     joint.bottomLeftCorner<3, 3>() = joint.topRightCorner<3, 3>().transpose();
     const Eigen::Vector2d displacement =
         keyframes_[static_cast<std::size_t>(keyframes[n])].pose.translation() - pose_.translation();
-    const Eigen::Matrix3d after = CovarianceAfterRevisit(
-        joint, displacement, TravelCovariance(path_m[which[n]]), closure);
+    const Eigen::Matrix3d after =
+        CovarianceAfterRevisit(joint, displacement, TravelCovariance(path_m[which[n]]), closure);
     information[which[n]] = InformationGain(joint.topLeftCorner<3, 3>(), after);
   }
   return information;

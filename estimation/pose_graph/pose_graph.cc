@@ -254,9 +254,7 @@ std::optional<std::vector<Eigen::Matrix3d>> PoseGraph::CovarianceBlocks(
     int r = n;
     while (parent_[static_cast<std::size_t>(r)] >= 0) r = parent_[static_cast<std::size_t>(r)];
     root[i] = r;
-    const Eigen::Vector2d lever = node(n).translation() - node(r).translation();
-    by_root[i](0, 2) = -lever.y();
-    by_root[i](1, 2) = lever.x();
+    by_root[i] = CompositionJacobian(node(n).translation() - node(r).translation());
   }
   std::vector<Eigen::Vector3d> poses = poses_;
   ceres::Problem::Options problem_options;

@@ -89,13 +89,18 @@ std::optional<Eigen::Matrix3d> RelativeCovarianceWithin(const PoseGraph& graph,
   return c;
 }
 
+Eigen::Matrix3d CompositionJacobian(const Eigen::Vector2d& displacement) {
+  Eigen::Matrix3d j = Eigen::Matrix3d::Identity();
+  j(0, 2) = -displacement.y();
+  j(1, 2) = displacement.x();
+  return j;
+}
+
 Eigen::Matrix3d CovarianceAfterRevisit(const Eigen::Matrix<double, 6, 6>& joint,
                                        const Eigen::Vector2d& displacement,
                                        const Eigen::Matrix3d& travel,
                                        const Eigen::Matrix3d& closure) {
-  Eigen::Matrix3d j = Eigen::Matrix3d::Identity();
-  j(0, 2) = -displacement.y();
-  j(1, 2) = displacement.x();
+  const Eigen::Matrix3d j = CompositionJacobian(displacement);
   const Eigen::Matrix3d gg = j * joint.topLeftCorner<3, 3>() * j.transpose() + travel;
   const Eigen::Matrix3d gk = j * joint.topRightCorner<3, 3>();
   const Eigen::Matrix3d kk = joint.bottomRightCorner<3, 3>();

@@ -41,6 +41,10 @@ std::optional<Eigen::Matrix3d> RelativeCovarianceWithin(const PoseGraph& graph,
                                                         int source, int target,
                                                         double max_trace_m2);
 
+// d(c (+) u)/dc for poses (x, y, theta) in the world frame, the composition moving c by
+// `displacement` (world frame): [I, (-dy, dx)^T; 0, 1].
+Eigen::Matrix3d CompositionJacobian(const Eigen::Vector2d& displacement);
+
 // Expected effect of a revisit (active loop closing; linear-Gaussian, poses (x, y, theta) in the
 // world frame). The robot, now at c, drives to keyframe k (`displacement` = t_k - t_c), its pose
 // gaining `travel` on the way, and registers against k there with covariance `closure`. `joint`

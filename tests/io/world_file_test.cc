@@ -191,7 +191,8 @@ TEST(LoadWorld, BuiltinNamesFilesAndErrors) {
   const Result<sim::World> missing = LoadWorld("atlantis");
   ASSERT_FALSE(missing.ok());
   EXPECT_EQ(missing.error,
-            "atlantis: not a built-in world (corridor, office, office-long, office-doors, complex, loop) "
+            "atlantis: not a built-in world (corridor, office, office-long, office-doors, complex, "
+            "loop, curves, halls) "
             "and no such file");
   const std::string path = ::testing::TempDir() + "/load_world_test.yaml";
   ASSERT_EQ(WriteWorldFile(path, *sim::BuiltinWorld("office")).message(), "");

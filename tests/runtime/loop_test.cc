@@ -545,8 +545,8 @@ TEST(ActiveLoopClosing, RevisitsCloseLoopsAndExplorationGoesOn) {
       EXPECT_GT(r.information_nats, setup.options.active_loop_closing.min_information_nats);
       EXPECT_LT(r.trace_begin, r.trace_end);
       if (explorer == "srt") {
-        const Eigen::Vector2d left = run.graph[static_cast<graph::Vertex>(r.from)]
-                                         .configuration.translation();
+        const Eigen::Vector2d left =
+            run.graph[static_cast<graph::Vertex>(r.from)].configuration.translation();
         EXPECT_LT((run.trace[r.trace_end - 1].estimate.translation() - left).norm(), 0.3);
       }
     }

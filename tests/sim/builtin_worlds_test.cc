@@ -29,9 +29,7 @@ TEST_P(BuiltinWorldTest, IsValidAndItsRouteIsDrivable) {
   EXPECT_EQ(blind, 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(All, BuiltinWorldTest,
-                         ::testing::Values("corridor", "office", "office-long", "office-doors",
-                                           "complex"));
+INSTANTIATE_TEST_SUITE_P(All, BuiltinWorldTest, ::testing::ValuesIn(BuiltinWorldNames()));
 
 TEST(BuiltinWorlds, ComplexIsAboutTwentyByFifteenMetresWithCurves) {
   const World w = *BuiltinWorld("complex");

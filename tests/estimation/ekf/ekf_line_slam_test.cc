@@ -204,8 +204,8 @@ TEST(EkfLineSlam, JointCompatibilityUndoesTheNearestNeighboursCrossedPairing) {
     EXPECT_EQ(report.associated, 2);
     const std::vector<MapCorner> map = slam.MapCorners();
     ASSERT_EQ(map.size(), 2u);
-    const double moved = std::max((map[0].position - corners[0]).norm(),
-                                  (map[1].position - corners[1]).norm());
+    const double moved =
+        std::max((map[0].position - corners[0]).norm(), (map[1].position - corners[1]).norm());
     if (association == EkfAssociation::kJointCompatibility) {
       EXPECT_GT(report.jcbb_nodes, 0);
       EXPECT_LT((slam.pose().translation() - truth.translation()).norm(), 0.05);

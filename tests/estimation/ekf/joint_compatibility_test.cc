@@ -36,10 +36,9 @@ TEST(JointCompatibility, PairsWhatOneRobotOffsetExplains) {
   p(0, 0) = p(1, 1) = 1.0;
   const Eigen::Vector2d robot(0.7, 0.0);
   const Eigen::Vector2d za = state.segment<2>(3) - robot, zb = state.segment<2>(5) - robot;
-  std::vector<CompatibilityItem> items{PointPairing(0, 0, za, state, 0.01),
-                                       PointPairing(0, 1, za, state, 0.01),
-                                       PointPairing(1, 0, zb, state, 0.01),
-                                       PointPairing(1, 1, zb, state, 0.01)};
+  std::vector<CompatibilityItem> items{
+      PointPairing(0, 0, za, state, 0.01), PointPairing(0, 1, za, state, 0.01),
+      PointPairing(1, 0, zb, state, 0.01), PointPairing(1, 1, zb, state, 0.01)};
   const int landmark[] = {0, 1, 0, 1};
   const auto same = [&](int a, int b) { return landmark[a] == landmark[b]; };
   const JointCompatibilityResult r = JointCompatibility(items, same, p, 0.95);
@@ -56,7 +55,8 @@ TEST(JointCompatibility, ManyRowsOnFewColumnsGiveTheDirectDistance) {
   std::normal_distribution<double> n(0.0, 1.0);
   const Eigen::Index state = 9, rows = 40;
   Eigen::MatrixXd l = Eigen::MatrixXd::Random(state, state);
-  const Eigen::MatrixXd p = 0.01 * l * l.transpose() + 1e-3 * Eigen::MatrixXd::Identity(state, state);
+  const Eigen::MatrixXd p =
+      0.01 * l * l.transpose() + 1e-3 * Eigen::MatrixXd::Identity(state, state);
   CompatibilityItem item;
   item.h_robot = Eigen::MatrixXd::Random(rows, 3);
   item.blocks = {JacobianBlock{5, Eigen::MatrixXd::Random(rows, 4), 0}};

@@ -33,8 +33,9 @@ PoseGraphEdge DrawnEdge(int from, int to, const std::vector<Pose2>& truth,
   PoseGraphEdge e;
   e.from = from;
   e.to = to;
-  e.measurement = truth[static_cast<std::size_t>(from)].Between(truth[static_cast<std::size_t>(to)]) *
-                  Pose2(xi.x(), xi.y(), xi.z());
+  e.measurement =
+      truth[static_cast<std::size_t>(from)].Between(truth[static_cast<std::size_t>(to)]) *
+      Pose2(xi.x(), xi.y(), xi.z());
   e.information = covariance.inverse();
   return e;
 }
@@ -87,9 +88,8 @@ void ExpectCovarianceNear(const Eigen::MatrixXd& predicted, const Eigen::MatrixX
                           int samples) {
   for (Eigen::Index i = 0; i < predicted.rows(); ++i)
     for (Eigen::Index j = 0; j < predicted.cols(); ++j) {
-      const double se = std::sqrt((predicted(i, j) * predicted(i, j) +
-                                   predicted(i, i) * predicted(j, j)) /
-                                  samples);
+      const double se = std::sqrt(
+          (predicted(i, j) * predicted(i, j) + predicted(i, i) * predicted(j, j)) / samples);
       EXPECT_NEAR(sampled(i, j), predicted(i, j), 4.0 * se) << "entry " << i << ", " << j;
     }
 }
