@@ -61,8 +61,8 @@ std::optional<graph::Vertex> ActiveLoopClosing::Step(Session* session, graph::Ve
       sigma = PositionSigma(*covariance);
   }
   if (sigma && !run.trace.empty()) run.position_sigma.emplace_back(run.trace.back().time_s, *sigma);
-  if (!run.revisits.empty() && std::isnan(run.revisits.back().position_sigma_after_m))
-    run.revisits.back().position_sigma_after_m = sigma.value_or(0.0);
+  if (sigma && !run.revisits.empty() && std::isnan(run.revisits.back().position_sigma_after_m))
+    run.revisits.back().position_sigma_after_m = *sigma;
   if (!sigma || *sigma < options_.min_position_sigma_m) return std::nullopt;
   if (any_ && travelled_m_ - last_revisit_m_ < options_.min_travel_between_m) return std::nullopt;
   std::optional<RevisitChoice> choice;
@@ -101,7 +101,8 @@ void ActiveLoopClosingOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("min_position_sigma_m", &min_position_sigma_m,
           "revisits are weighed from this position standard deviation on, m");
   v.Field("cost_nats_per_m", &cost_nats_per_m,
-          "a revisit's path costs this much expected information per metre, nats/m");
+          "each metre of a revisit's detour (twice its path) costs this much expected "
+          "information, nats/m");
   v.Field("min_information_nats", &min_information_nats,
           "a revisit must be expected to gain at least this, nats");
   v.Field("min_travel_between_m", &min_travel_between_m,
