@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "estimation/chi_square.h"
 #include "estimation/ekf/joint_compatibility.h"
@@ -132,9 +133,11 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
   struct Pairing {
     double d2;
     std::size_t observation, landmark;
-    CompatibilityItem item;  // for joint compatibility (association: jcbb)
   };
   std::vector<Pairing> pairings;
+  // With association: jcbb, each pairing as joint compatibility takes it (pairings' order).
+  const bool jcbb = options_.association == EkfAssociation::kJointCompatibility;
+  std::vector<CompatibilityItem> items;
   std::vector<double> nearest(observations.size(), std::numeric_limits<double>::infinity());
   for (std::size_t o = 0; o < observations.size(); ++o) {
     const Observation& obs = observations[o];
@@ -169,30 +172,35 @@ UpdateReport EkfLineSlam::Update(const kernel::LineExtraction& features,
       const double d2 = nu.dot(s.ldlt().solve(nu));
       nearest[o] = std::min(nearest[o], d2);
       if (d2 < gate_) {
-        CompatibilityItem item{static_cast<int>(o), nu, h_r, {JacobianBlock{i, h_l, 0}}, obs.r};
-        pairings.push_back({d2, o, l, std::move(item)});
+        pairings.push_back({d2, o, l});
+        if (jcbb)
+          items.push_back({static_cast<int>(o), nu, h_r, {JacobianBlock{i, h_l, 0}}, obs.r});
       }
     }
   }
 
-  if (options_.association == EkfAssociation::kJointCompatibility) {
+  if (jcbb) {
     // JCBB: each observation's pairings, nearest first; the largest jointly compatible set, no
     // landmark paired twice.
-    std::sort(pairings.begin(), pairings.end(), [](const Pairing& a, const Pairing& b) {
-      return a.observation != b.observation ? a.observation < b.observation : a.d2 < b.d2;
+    std::vector<std::size_t> order(pairings.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      const Pairing& pa = pairings[a];
+      const Pairing& pb = pairings[b];
+      return pa.observation != pb.observation ? pa.observation < pb.observation : pa.d2 < pb.d2;
     });
-    std::vector<CompatibilityItem> items;
-    for (const Pairing& c : pairings) items.push_back(c.item);
+    std::vector<CompatibilityItem> ordered;
+    for (const std::size_t k : order) ordered.push_back(std::move(items[k]));
     const auto same_landmark = [&](int a, int b) {
-      const Pairing& pa = pairings[static_cast<std::size_t>(a)];
-      const Pairing& pb = pairings[static_cast<std::size_t>(b)];
+      const Pairing& pa = pairings[order[static_cast<std::size_t>(a)]];
+      const Pairing& pb = pairings[order[static_cast<std::size_t>(b)]];
       return pa.landmark == pb.landmark &&
              observations[pa.observation].is_line == observations[pb.observation].is_line;
     };
     const JointCompatibilityResult joint =
-        JointCompatibility(items, same_landmark, ekf_.covariance(), options_.gate_probability);
+        JointCompatibility(ordered, same_landmark, ekf_.covariance(), options_.gate_probability);
     std::vector<Pairing> kept;
-    for (const int c : joint.chosen) kept.push_back(pairings[static_cast<std::size_t>(c)]);
+    for (const int c : joint.chosen) kept.push_back(pairings[order[static_cast<std::size_t>(c)]]);
     report.jcbb_nodes = joint.nodes;
     pairings = std::move(kept);
   }

@@ -33,10 +33,11 @@ struct JointCompatibilityResult {
 // The largest set of items, no two of one group and none that `conflict` (a landmark paired
 // twice), whose stacked innovation passes the joint gate
 //   D^2 = nu_H^T (H_H P H_H^T + R_H)^-1 nu_H <= chi^2(rows of H, probability),
-// the first such set found. Depth-first over the items in the order given (put each group's most
-// likely first): an item is taken before it is left out, and a branch is cut when even every
-// remaining group could not make a larger set (as Neira and Tardós: of equally large sets, the
-// one of the nearest pairings, not necessarily of the smallest D^2). `covariance` is the filter's
+// found depth-first over the items in the order given (put each group's most likely first): an
+// item is taken before it is left out, and a branch is cut when even every remaining group could
+// not make a larger set (Neira and Tardós). Of equally large sets the one of smaller D^2 replaces
+// the one found first only where the search reaches it before that cut: the answer is the
+// largest set, not necessarily of the smallest D^2 among those as large. `covariance` is the filter's
 // P (the items' columns index it). At most max_nodes hypotheses are tested.
 JointCompatibilityResult JointCompatibility(const std::vector<CompatibilityItem>& items,
                                             const std::function<bool(int, int)>& conflict,

@@ -434,13 +434,15 @@ void GraphSlam::ForgetReading(Keyframe* kf) {
   BeamRanges().swap(kf->data->candidates);
 }
 
+Eigen::Matrix3d GraphSlam::EdgeCovariance(double distance_m, double turn_rad) const {
+  return Diagonal(options_.edge_sigma_m + options_.edge_sigma_per_m * distance_m,
+                  options_.edge_sigma_rad + options_.edge_sigma_per_rad * std::abs(turn_rad));
+}
+
 Eigen::Matrix3d GraphSlam::FrontEndCovariance(int to) const {
   const Keyframe& prev = keyframes_[static_cast<std::size_t>(to - 1)];
   const Keyframe& kf = keyframes_[static_cast<std::size_t>(to)];
-  const double d = kf.travelled_m - prev.travelled_m;
-  return Diagonal(options_.edge_sigma_m + options_.edge_sigma_per_m * d,
-                  options_.edge_sigma_rad +
-                      options_.edge_sigma_per_rad * std::abs(prev.pose.Between(kf.pose).theta()));
+  return EdgeCovariance(kf.travelled_m - prev.travelled_m, prev.pose.Between(kf.pose).theta());
 }
 
 double GraphSlam::UsableRange(const kernel::Scan& scan) const {
@@ -1092,9 +1094,7 @@ std::optional<Eigen::Matrix3d> GraphSlam::KeyframeCovariance(int k) const {
 
 Eigen::Matrix3d GraphSlam::TravelCovariance(double path_m) const {
   const double edges = std::max(path_m, 0.0) / options_.keyframe_distance_m;
-  const double sigma_m =
-      options_.edge_sigma_m + options_.edge_sigma_per_m * options_.keyframe_distance_m;
-  return edges * Diagonal(sigma_m, options_.edge_sigma_rad);
+  return edges * EdgeCovariance(options_.keyframe_distance_m, 0.0);
 }
 
 std::optional<Eigen::Matrix3d> GraphSlam::PoseCovariance() const {

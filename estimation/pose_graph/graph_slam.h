@@ -572,7 +572,9 @@ class GraphSlam {
   void FlushClosures(bool final, double travelled_m);
   // Whether closures a and b put the newer of their keyframes at the same pose.
   bool Agree(const PoseGraphEdge& a, const PoseGraphEdge& b) const;
-  // Covariance of the front-end edge from keyframe `to` - 1 to `to` (edge_sigma_m, ...).
+  // The front-end edge model (edge_sigma_m, ...) for this travel and turn.
+  Eigen::Matrix3d EdgeCovariance(double distance_m, double turn_rad) const;
+  // Covariance of the front-end edge from keyframe `to` - 1 to `to`.
   Eigen::Matrix3d FrontEndCovariance(int to) const;
   // Searches keyframe k's query against the candidate's target within the windows; the closure
   // when the match passes the tests. Records the search in *record.
