@@ -173,8 +173,14 @@ void GraphSlam::UpdateAt(const kernel::Scan& scan, const kernel::Pose2& robot_T_
   Step(scan, robot_T_laser, &pose);
 }
 
+void GraphSlam::UpdateCorrected(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+                                const std::function<kernel::Pose2(const kernel::Pose2&)>& correct) {
+  Step(scan, robot_T_laser, nullptr, &correct);
+}
+
 void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_laser,
-                     const kernel::Pose2* localised) {
+                     const kernel::Pose2* localised,
+                     const std::function<kernel::Pose2(const kernel::Pose2&)>* correct) {
   if (!health_.ok()) return;
   if (localised != nullptr) pose_ = *localised;
   const kernel::Scan clipped = raw_scan.Clipped(UsableRange(raw_scan));
@@ -211,6 +217,7 @@ void GraphSlam::Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_
     }
   }
   since_update_ = kernel::Pose2();
+  if (correct != nullptr) pose_ = (*correct)(pose_);
   if (!std::isfinite(pose_.x() + pose_.y() + pose_.theta())) {
     health_ = kernel::Status::Error("the pose estimate is not finite");
     return;

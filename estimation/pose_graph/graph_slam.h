@@ -428,6 +428,12 @@ class GraphSlam {
   // work as in Update.
   void UpdateAt(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                 const kernel::Pose2& pose);
+  // As Update, but `correct` turns the registered pose (or the odometry's, when registered() is
+  // false) into the pose the scan's keyframe and the next prediction start from: another method
+  // corrects the front end (the topological SLAM against its curve map), and the submap is then
+  // built at the corrected poses.
+  void UpdateCorrected(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+                       const std::function<kernel::Pose2(const kernel::Pose2&)>& correct);
   // An exploration node at the current estimate: the next scan makes a keyframe, to which the
   // node is anchored, so that the node moves with the keyframe when the graph is optimised.
   void MarkNode();
@@ -501,7 +507,8 @@ class GraphSlam {
   bool BackgroundLoopSearch() const;
   // Update, registering the scan when `localised` is null, else taking that pose.
   void Step(const kernel::Scan& raw_scan, const kernel::Pose2& robot_T_laser,
-            const kernel::Pose2* localised);
+            const kernel::Pose2* localised,
+            const std::function<kernel::Pose2(const kernel::Pose2&)>* correct = nullptr);
   // `scan` is clipped to the usable range.
   void AddKeyframe(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
                    std::vector<OrientedPoint> points);

@@ -4,6 +4,12 @@ namespace splam::estimation {
 
 using kernel::Pose2;
 
+TopologicalSlamOptions TopologicalGraphSlamOptions::TopologicalDefaults() {
+  TopologicalSlamOptions o;
+  o.scan_matching_feedback = true;
+  return o;
+}
+
 void TopologicalGraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Nested("topological", "front end: the topological SLAM", &topological);
   v.Nested("graph", "back end: keyframes, loop closure, pose graph (its registration unused)",

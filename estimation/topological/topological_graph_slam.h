@@ -14,12 +14,19 @@
 namespace splam::estimation {
 
 struct TopologicalGraphSlamOptions {
-  // The front end: every scan is localised and mapped by the topological SLAM.
-  TopologicalSlamOptions topological;
+  // The front end: every scan is localised and mapped by the topological SLAM, here with its
+  // corrected poses fed back to its scan matcher (scan_matching_feedback; see TopologicalDefaults).
+  TopologicalSlamOptions topological = TopologicalDefaults();
   // The back end: keyframes, loop closure and the pose graph of the graph SLAM. Its
   // scan-to-submap registration (registration, odometry_prior, recovery_*) is not used.
   GraphSlamOptions graph;
 
+  // The topological SLAM's defaults with scan_matching_feedback: behind a back end whose closures
+  // move the curve map, the scan matcher may follow the map. REG explorations, seeds 1-10 in
+  // `complex`: 0.057 m mean position RMSE against 0.074 m without; `halls` seeds 1-3: 0.023,
+  // 0.110, 0.031 m against 0.062, 0.079, 0.159 m; intel 0.0185 m against 0.0207 m, mit-csail
+  // 0.0300 m against 0.0307 m (relations metric).
+  static TopologicalSlamOptions TopologicalDefaults();
   void VisitFields(kernel::FieldVisitor& v);
   kernel::Status Validate() const;
 };

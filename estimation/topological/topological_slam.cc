@@ -347,6 +347,7 @@ void TopologicalSlam::Reanchor(const std::function<Pose2(int)>& correction, cons
   }
   if (last_map_update_) last_map_update_ = moved * *last_map_update_;
   pose_ = pose;
+  if (scan_matcher_) front_frame_ = pose_ * scan_matcher_->pose().Inverse();
 }
 
 std::vector<int> TopologicalSlam::LocalCurves() const {
@@ -801,7 +802,31 @@ TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
     observed.push_back(kernel::Transformed(c, robot_T_laser));
   report.observed_curves = static_cast<int>(observed.size());
 
-  if (scan_matcher_) PredictByScanMatching(scan, robot_T_laser, &report);
+  if (scan_matcher_ && options_.scan_matching_feedback) {
+    // The front end's registered pose is the prediction, and the corrected pose goes back to it
+    // before it makes the scan a keyframe.
+    scan_matcher_->UpdateCorrected(scan, robot_T_laser, [&](const Pose2& front) {
+      report.scan_matched = scan_matcher_->registered();
+      if (report.scan_matched) {
+        pose_ = front_frame_ * front;
+        covariance_ = scan_matched_covariance_;
+      }
+      CorrectAndMap(scan, robot_T_laser, observed, &report);
+      return front_frame_.Inverse() * pose_;
+    });
+    since_update_ = Pose2();
+  } else {
+    if (scan_matcher_) PredictByScanMatching(scan, robot_T_laser, &report);
+    CorrectAndMap(scan, robot_T_laser, observed, &report);
+  }
+  scan_matched_covariance_ = covariance_;
+  return report;
+}
+
+void TopologicalSlam::CorrectAndMap(const kernel::Scan& scan, const Pose2& robot_T_laser,
+                                    const std::vector<SplineCurve>& observed,
+                                    TopologicalUpdateReport* out) {
+  TopologicalUpdateReport& report = *out;
   const Pose2 predicted = pose_;
   if (!region_ || (predicted.translation() - region_->center).norm() >
                       options_.region.alpha * options_.region.radius_m)
@@ -918,8 +943,6 @@ TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
     last_map_update_ = pose_;
     node_pending_ = false;
   }
-  scan_matched_covariance_ = covariance_;
-  return report;
 }
 
 void TopologicalSlamOptions::VisitFields(kernel::FieldVisitor& v) {
@@ -938,6 +961,8 @@ void TopologicalSlamOptions::VisitFields(kernel::FieldVisitor& v) {
            &scan_matching);
   v.Field("scan_matching_noise_scale", &scan_matching_noise_scale,
           "scan_matching: the prediction's sigmas, as a fraction of the odometry model's");
+  v.Field("scan_matching_feedback", &scan_matching_feedback,
+          "scan_matching: the front end's keyframes at the corrected poses");
   int method = static_cast<int>(correction);
   v.Choice("correction", &method, {"point_to_curve", "paper"},
            "heading and position from point-to-curve distances, or paper 003's chords then "
