@@ -11,8 +11,8 @@ TopologicalSlamOptions TopologicalGraphSlamOptions::TopologicalDefaults() {
 }
 
 void TopologicalGraphSlamOptions::VisitFields(kernel::FieldVisitor& v) {
-  v.Nested("topological", "front end: the topological SLAM", &topological);
-  v.Nested("graph", "back end: keyframes, loop closure, pose graph (its registration unused)",
+  v.Nested("topological", "the topological SLAM (its scan_matching section unused)", &topological);
+  v.Nested("graph", "scan matcher and back end: registration, keyframes, loop closure, pose graph",
            &graph);
 }
 
@@ -21,48 +21,66 @@ kernel::Status TopologicalGraphSlamOptions::Validate() const {
   return graph.Validate();
 }
 
+namespace {
+
+// The topological SLAM's options with the back end's graph as its scan matcher.
+TopologicalSlamOptions WithGraphAsScanMatcher(TopologicalSlamOptions topological,
+                                              const GraphSlamOptions& graph) {
+  topological.scan_matching = graph;
+  return topological;
+}
+
+}  // namespace
+
 TopologicalGraphSlam::TopologicalGraphSlam(const Pose2& start,
                                            const TopologicalGraphSlamOptions& options)
-    : topological_(start, options.topological), graph_(start, options.graph) {}
+    : topological_(start, WithGraphAsScanMatcher(options.topological, options.graph)) {
+  if (topological_.healthy() && !topological_.scan_matcher())
+    own_graph_ = std::make_unique<GraphSlam>(start, options.graph);
+}
 
 kernel::Status TopologicalGraphSlam::health() const {
+  // A healthy topological SLAM has a scan matcher or an own graph.
   if (!topological_.healthy()) return topological_.health();
-  return graph_.health();
+  return graph().health();
 }
 
 void TopologicalGraphSlam::Predict(const Pose2& odometry_increment) {
   topological_.Predict(odometry_increment);
-  graph_.Predict(odometry_increment);
+  if (own_graph_) own_graph_->Predict(odometry_increment);
 }
 
 TopologicalUpdateReport TopologicalGraphSlam::Update(const kernel::Scan& scan,
                                                      const Pose2& robot_T_laser) {
+  if (!healthy()) return {};
+  const std::size_t optimizations = graph().optimizations().size();
   const TopologicalUpdateReport report = topological_.Update(scan, robot_T_laser);
   const Pose2 localised = topological_.pose();
-  const std::size_t optimizations = graph_.optimizations().size();
-  graph_.UpdateAt(scan, robot_T_laser, localised);
+  if (own_graph_) own_graph_->UpdateAt(scan, robot_T_laser, localised);
   // New keyframes were made at the localised pose (an optimisation in this update may have
   // moved them since: FollowGraph applies that too).
-  keyframe_poses_.resize(graph_.keyframes().size(), localised);
-  const int newest = static_cast<int>(graph_.keyframes().size()) - 1;
+  keyframe_poses_.resize(graph().keyframes().size(), localised);
+  const int newest = static_cast<int>(graph().keyframes().size()) - 1;
   curve_keyframe_.resize(topological_.num_curves(), newest);
-  if (graph_.optimizations().size() != optimizations) FollowGraph();
+  if (graph().optimizations().size() != optimizations) FollowGraph();
   return report;
 }
 
 void TopologicalGraphSlam::SetLocalRegion(const kernel::LocalSafeRegion& region) {
+  if (!healthy()) return;
   topological_.SetLocalRegion(region);
-  graph_.MarkNode();
+  graph().MarkNode();
 }
 
 void TopologicalGraphSlam::Finish() {
-  const std::size_t optimizations = graph_.optimizations().size();
-  graph_.Finish();
-  if (graph_.optimizations().size() != optimizations) FollowGraph();
+  if (!healthy()) return;
+  const std::size_t optimizations = graph().optimizations().size();
+  graph().Finish();
+  if (graph().optimizations().size() != optimizations) FollowGraph();
 }
 
 void TopologicalGraphSlam::FollowGraph() {
-  const std::vector<GraphSlam::Keyframe>& keyframes = graph_.keyframes();
+  const std::vector<GraphSlam::Keyframe>& keyframes = graph().keyframes();
   std::vector<Pose2> correction(keyframes.size());
   for (std::size_t k = 0; k < keyframes.size(); ++k) {
     correction[k] = keyframes[k].pose * keyframe_poses_[k].Inverse();
@@ -70,7 +88,7 @@ void TopologicalGraphSlam::FollowGraph() {
   }
   topological_.Reanchor(
       [&](int curve) { return correction[static_cast<std::size_t>(curve_keyframe_[curve])]; },
-      graph_.pose());
+      graph().pose());
 }
 
 }  // namespace splam::estimation

@@ -1,6 +1,7 @@
 #ifndef SPLAM_ESTIMATION_TOPOLOGICAL_TOPOLOGICAL_GRAPH_SLAM_H_
 #define SPLAM_ESTIMATION_TOPOLOGICAL_TOPOLOGICAL_GRAPH_SLAM_H_
 
+#include <memory>
 #include <vector>
 
 #include "estimation/pose_graph/graph_slam.h"
@@ -51,15 +52,24 @@ class TopologicalGraphSlam {
 
   kernel::Pose2 pose() const { return topological_.pose(); }
   const TopologicalSlam& topological() const { return topological_; }
-  const GraphSlam& graph() const { return graph_; }
+  const GraphSlam& graph() const {
+    return topological_.scan_matcher() ? *topological_.scan_matcher() : *own_graph_;
+  }
   kernel::Status health() const;
+  bool healthy() const { return health().ok(); }
 
  private:
   // Moves the topological map and pose to the graph's optimised keyframes.
   void FollowGraph();
 
+  GraphSlam& graph() {
+    return topological_.scan_matcher() ? *topological_.scan_matcher() : *own_graph_;
+  }
+
   TopologicalSlam topological_;
-  GraphSlam graph_;
+  // With the odometry's prediction the topological SLAM has no scan matcher: the back end is
+  // a graph of its own, fed the localised poses (GraphSlam::UpdateAt).
+  std::unique_ptr<GraphSlam> own_graph_;
   std::vector<int> curve_keyframe_;            // the keyframe each map curve was created at
   std::vector<kernel::Pose2> keyframe_poses_;  // each keyframe's pose when the map last followed
 };

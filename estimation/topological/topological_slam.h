@@ -232,6 +232,9 @@ class TopologicalSlam {
                                  const kernel::Pose2& robot_T_laser = kernel::Pose2());
 
   kernel::Pose2 pose() const { return pose_; }
+  // scan_matching: the scan matcher (nullptr with the odometry's prediction).
+  const GraphSlam* scan_matcher() const { return scan_matcher_.get(); }
+  GraphSlam* scan_matcher() { return scan_matcher_.get(); }
   std::size_t num_curves() const { return curves_.size(); }
   std::size_t num_control_points() const;
   // The map curves with their samples, curvature and features (world frame).
