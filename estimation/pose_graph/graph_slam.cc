@@ -305,9 +305,22 @@ FrontEndRegistration RegisterFrontEnd(const std::vector<OrientedPoint>& points,
   const CorrelativeMatch match =
       SearchCorrelative(Positions(Thinned(points, options.grid_resolution_m)), scores(), predicted,
                         options.recovery_window_m, options.recovery_window_rad,
-                        options.registration.min_inlier_fraction, 1.0,
+                        options.registration.min_inlier_fraction, options.loop.ambiguity_ratio,
                         {.angular_step_rad = options.recovery_step_rad});
   if (!match.found) return out;
+  // Nor when another heading fits about as well (a distinct peak within the loop closure's
+  // ambiguity_ratio of the best) and the points do not tell the two apart (TellsApart): a scan
+  // of a few points fits some wall at many headings. Exploring `complex` with SRT, a scan of 24
+  // points, turning on the spot into unmapped space, failed its registration, and the search
+  // took a pose 84 deg off the odometry's (score 0.63, a rival 131 deg from it 0.62); the run
+  // ended 3.0 m off. Peaks at one heading (a corridor's axis: 133 such recoveries on MIT Killian
+  // Court) are left to the registration and its odometry prior.
+  if (match.second_score > 0 &&
+      std::abs(kernel::WrapAngle(match.second_pose.theta() - match.pose.theta())) >
+          CorrelativeOptions{}.distinct_rad &&
+      !TellsApart(field, points, match.pose, match.second_pose, options.registration,
+                  options.normal_max_gap_m, options.loop.tell_apart_alpha))
+    return out;
   RegistrationOptions wide = options.registration;
   wide.max_correction_m = options.recovery_window_m + wide.max_correction_m;
   wide.max_correction_rad = options.recovery_window_rad + wide.max_correction_rad;
@@ -703,6 +716,14 @@ void GraphSlam::SearchWide(int k, const std::vector<OrientedPoint>& query, doubl
     if (mahalanobis2 <= o.candidate_sigmas * o.candidate_sigmas)
       plausible.emplace_back(mahalanobis2, i);
   }
+  // The wide search's target is every keyframe around the query (MatchLoop), whichever candidate
+  // it is made for: the candidates' searches would be one match counted once per candidate, and
+  // their closures would confirm each other (in `loop` at twice the odometry noise, two such
+  // closures took the start's keyframes one period of the corridor's recesses, 5.9 m, off and
+  // the exploration ended 5.5 m off). One search covers every candidate's window; its closure is
+  // anchored at the most likely candidate.
+  std::optional<int> anchor;
+  double window_m = 0.0, window_rad = 0.0;
   for (int c : Spread(plausible, o.candidates, o.min_gap_keyframes)) {
     const Eigen::Matrix3d& covariance = relative[static_cast<std::size_t>(c)];
     const Eigen::Matrix2d position = covariance.topLeftCorner<2, 2>();
@@ -710,20 +731,23 @@ void GraphSlam::SearchWide(int k, const std::vector<OrientedPoint>& query, doubl
     const double largest =
         0.5 * (position.trace() + std::sqrt(std::pow(position(0, 0) - position(1, 1), 2) +
                                             4 * position(0, 1) * position(0, 1)));
-    const double window_m =
-        std::min(o.radius_m + o.candidate_sigmas * std::sqrt(largest), o.max_window_m);
-    const double window_rad =
-        std::min(o.window_rad + o.candidate_sigmas * std::sqrt(covariance(2, 2)), o.max_window_rad);
-    // A window barely wider than the first finds little more. A wide one is searched at every
-    // stride-th keyframe only: consecutive queries share all but one keyframe, and a search's
-    // cost grows with the window's area, so the cost per keyframe grows with its width instead.
-    // In doubles: a tiny stride_window_m makes a stride beyond any int.
-    if (window_m < o.wide_window_ratio * near_m ||
-        std::fmod(static_cast<double>(k), std::ceil(window_m / o.stride_window_m)) != 0.0)
-      continue;
-    LoopFinding& finding = findings->emplace_back();
-    finding.edge = MatchLoop(k, query, c, window_m, window_rad, &finding.record);
+    const double m = std::min(o.radius_m + o.candidate_sigmas * std::sqrt(largest), o.max_window_m);
+    // A window barely wider than the first finds little more.
+    if (m < o.wide_window_ratio * near_m) continue;
+    if (!anchor) anchor = c;
+    window_m = std::max(window_m, m);
+    window_rad = std::max(window_rad,
+                          std::min(o.window_rad + o.candidate_sigmas * std::sqrt(covariance(2, 2)),
+                                   o.max_window_rad));
   }
+  // A wide window is searched at every stride-th keyframe only: consecutive queries share all
+  // but one keyframe, and a search's cost grows with the window's area, so the cost per keyframe
+  // grows with its width instead. In doubles: a tiny stride_window_m makes a stride beyond any
+  // int.
+  if (!anchor || std::fmod(static_cast<double>(k), std::ceil(window_m / o.stride_window_m)) != 0.0)
+    return;
+  LoopFinding& finding = findings->emplace_back();
+  finding.edge = MatchLoop(k, query, *anchor, window_m, window_rad, &finding.record);
 }
 
 void GraphSlam::AddFinding(int k, LoopFinding finding, double travelled_m) {
