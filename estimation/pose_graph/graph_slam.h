@@ -48,13 +48,15 @@ struct LoopClosureOptions {
   // wide search by the pose graph's own uncertainty (RelativeCovariances, the covariance of the
   // new keyframe relative to every earlier one): candidates are keyframes whose distance,
   // whitened by that covariance plus reach_m^2 (how far from its keyframe a target still sees
-  // what the query sees), is at most candidate_sigmas, the most likely first; the window covers
-  // candidate_sigmas standard deviations (radius_m + along the largest axis, window_rad + the
-  // heading's), at most max_window_m and max_window_rad. It runs only when that window is at
-  // least wide_window_ratio times the first, and at every ceil(window / stride_window_m)-th
-  // keyframe. A robot back at its start after a long loop can be metres off, beyond the first
-  // search's reach; searching by the uncertainty alone (every keyframe) instead lets look-alike
-  // places near the estimate in through the wider windows (measured in docs/graph_slam.md).
+  // what the query sees), is at most candidate_sigmas, the most likely first; each candidate's
+  // window covers candidate_sigmas standard deviations (radius_m + along the largest axis,
+  // window_rad + the heading's), at most max_window_m and max_window_rad. The candidates whose
+  // window is at least wide_window_ratio times the first are searched in one search (its target
+  // is every keyframe around the query, whichever the candidate) over the widest of their
+  // windows, anchored at the most likely, at every ceil(window / stride_window_m)-th keyframe. A
+  // robot back at its start after a long loop can be metres off, beyond the first search's reach;
+  // searching by the uncertainty alone (every keyframe) instead lets look-alike places near the
+  // estimate in through the wider windows (measured in docs/graph_slam.md).
   double reach_m = 3.0;
   double candidate_sigmas = 3.0;
   double max_window_m = 12.0;
@@ -237,7 +239,9 @@ struct GraphSlamOptions {
   double odometry_outlier_probability = 0.01;
   // A registration that fails its quality test is searched again (correlative search on the
   // submap) within these windows around the odometry prediction, heading in steps of
-  // recovery_step_rad, and refined; it is kept when it passes the test.
+  // recovery_step_rad, and refined; it is kept when it passes the test, unless a peak at another
+  // heading scores within loop.ambiguity_ratio of the best and the points do not tell the two
+  // apart (a scan of a few points fits some wall at many headings).
   double recovery_window_m = 0.5;
   double recovery_window_rad = 1.2;
   double recovery_step_rad = 0.01;
