@@ -15,30 +15,37 @@
 namespace splam::estimation {
 
 struct TopologicalGraphSlamOptions {
-  // The front end: every scan is localised and mapped by the topological SLAM, here with its
-  // corrected poses fed back to its scan matcher (scan_matching_feedback; see TopologicalDefaults).
+  // The topological SLAM: every scan is localised and mapped against its curve map, with its
+  // corrected poses fed back to its scan matcher (scan_matching_feedback; see
+  // TopologicalDefaults). Its scan_matching section is not used: the graph below is its scan
+  // matcher.
   TopologicalSlamOptions topological = TopologicalDefaults();
-  // The back end: keyframes, loop closure and the pose graph of the graph SLAM. Its
-  // scan-to-submap registration (registration, odometry_prior, recovery_*) is not used.
+  // The graph SLAM behind it: the scan matcher that predicts every scan (registration, submap,
+  // odometry test, recovery search), and the keyframes, loop closure and pose graph.
   GraphSlamOptions graph;
 
   // The topological SLAM's defaults with scan_matching_feedback: behind a back end whose closures
-  // move the curve map, the scan matcher may follow the map. REG explorations, seeds 1-10 in
-  // `complex`: 0.057 m mean position RMSE against 0.074 m without; `halls` seeds 1-3: 0.023,
-  // 0.110, 0.031 m against 0.062, 0.079, 0.159 m; intel 0.0185 m against 0.0207 m, mit-csail
-  // 0.0300 m against 0.0307 m (relations metric).
+  // move the curve map, the scan matcher may follow the map (see TopologicalSlamOptions).
   static TopologicalSlamOptions TopologicalDefaults();
   void VisitFields(kernel::FieldVisitor& v);
   kernel::Status Validate() const;
 };
 
-// The topological B-spline SLAM with the graph SLAM's back end behind it:
-// the topological SLAM localises every scan against its curve map; the poses it finds become the
-// graph's keyframes (every keyframe_distance_m or keyframe_angle_rad, and at every exploration
-// node), with edges between consecutive keyframes; the graph searches every new keyframe for loop
-// closures and optimises. After each optimisation the topological map follows the graph: every
-// map curve moves rigidly with the keyframe it was created at (new = K_new K_old^-1 old), and the
-// pose with its keyframe. A curve extended by splices from later keyframes moves with the first.
+// The topological B-spline SLAM with the graph SLAM behind it. One graph SLAM is both the
+// topological SLAM's scan matcher and its back end: it registers every scan against its submap
+// (the prediction), the topological SLAM corrects the pose against its curve map, and the scan
+// becomes a keyframe at the corrected pose (GraphSlam::UpdateCorrected; every
+// keyframe_distance_m or keyframe_angle_rad, and at every exploration node). The graph searches
+// every new keyframe for loop closures and optimises; its submap then follows the optimised
+// keyframes, and so does the topological map: every map curve moves rigidly with the keyframe it
+// was created at (new = K_new K_old^-1 old), and the pose with its keyframe. A curve extended by
+// splices from later keyframes moves with the first. With the odometry's prediction (no scan
+// matcher) a graph of its own takes the localised poses as keyframes (GraphSlam::UpdateAt).
+// Until session 41 the scan matcher was a second graph SLAM without loop closure, whose submap
+// the optimisations did not move; one graph measured the same (REG explorations, seeds 1-10:
+// `complex` 0.058 against 0.057 m mean position RMSE, `halls` 0.091 against 0.090 m; intel
+// 0.0197 against 0.0185 m, mit-csail 0.0292 against 0.0300 m) in one registration per scan
+// instead of two (intel 15.0 s against 17.1 s, 249 against 298 MB).
 class TopologicalGraphSlam {
  public:
   TopologicalGraphSlam(const kernel::Pose2& start, const TopologicalGraphSlamOptions& options);
