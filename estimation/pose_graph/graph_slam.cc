@@ -302,11 +302,11 @@ FrontEndRegistration RegisterFrontEnd(const std::vector<OrientedPoint>& points,
   // it. It replaces a failed registration when at least as many points lie near the map, a
   // suspect one only when more do and fewer contradict it.
   out.searched = true;
-  const CorrelativeMatch match =
-      SearchCorrelative(Positions(Thinned(points, options.grid_resolution_m)), scores(), predicted,
-                        options.recovery_window_m, options.recovery_window_rad,
-                        options.registration.min_inlier_fraction, options.loop.ambiguity_ratio,
-                        {.angular_step_rad = options.recovery_step_rad});
+  const CorrelativeOptions search{.angular_step_rad = options.recovery_step_rad};
+  const CorrelativeMatch match = SearchCorrelative(
+      Positions(Thinned(points, options.grid_resolution_m)), scores(), predicted,
+      options.recovery_window_m, options.recovery_window_rad,
+      options.registration.min_inlier_fraction, options.loop.ambiguity_ratio, search);
   if (!match.found) return out;
   // Nor when another heading fits about as well (a distinct peak within the loop closure's
   // ambiguity_ratio of the best) and the points do not tell the two apart (TellsApart): a scan
@@ -317,7 +317,7 @@ FrontEndRegistration RegisterFrontEnd(const std::vector<OrientedPoint>& points,
   // Court) are left to the registration and its odometry prior.
   if (match.second_score > 0 &&
       std::abs(kernel::WrapAngle(match.second_pose.theta() - match.pose.theta())) >
-          CorrelativeOptions{}.distinct_rad &&
+          search.distinct_rad &&
       !TellsApart(field, points, match.pose, match.second_pose, options.registration,
                   options.normal_max_gap_m, options.loop.tell_apart_alpha))
     return out;
