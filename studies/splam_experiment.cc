@@ -45,6 +45,13 @@ const std::vector<Strategy>& Strategies() {
        {0.35, 0.65, 0.95},
        {"topological.prediction=odometry", "topological.correction=paper"}},
       {"graph", "reg", "graph", "REG + graph", {0.55, 0.15, 0.60}, {}},
+      // The topological SLAM with the graph SLAM as its scan matcher and back end.
+      {"topological-graph",
+       "reg",
+       "topological-graph",
+       "REG + topological-graph",
+       {0.85, 0.20, 0.20},
+       {}},
   };
   return strategies;
 }
@@ -292,7 +299,7 @@ int RunSplamExperiment(const SplamExperimentArgs& args) {
       "{}wrote {}/{{table.md, summary.json, report.html, fig22.png, <figure>-map.png and "
       "<figure>-errors.png "
       "(first seed) and <figure>-worst-map.png and -errors.png (largest position RMSE) for "
-      "fig19, fig20, fig21, fig21-paper and graph, one directory per trial}}\n",
+      "fig19, fig20, fig21, fig21-paper, graph and topological-graph, one directory per trial}}\n",
       table, args.out);
   return all_good ? kExitOk : kExitIncomplete;
 }

@@ -254,7 +254,7 @@ TEST(SweepExperiments, TheShippedGridIsTheExperimentsGrid) {
   const io::Result<io::Grid> shipped = io::ReadGrid(SPLAM_SOURCE_DIR "/experiments/splam.yaml");
   ASSERT_TRUE(shipped.ok()) << shipped.error;
   EXPECT_EQ(*shipped.value, SplamExperimentGrid(SplamExperimentArgs()));
-  EXPECT_EQ(GridCells(*shipped.value).size(), 50u);
+  EXPECT_EQ(GridCells(*shipped.value).size(), 60u);
   const io::Result<io::Grid> fig18 = io::ReadGrid(SPLAM_SOURCE_DIR "/experiments/exploration.yaml");
   ASSERT_TRUE(fig18.ok()) << fig18.error;
   EXPECT_EQ(*fig18.value, ExplorationExperimentGrid(ExplorationExperimentArgs()));
