@@ -1042,13 +1042,26 @@ TEST(SplamCli, SplamExperimentComparesTheStrategies) {
   const fs::path out = Temp("experiment_splam");
   const Output run = Splam("experiment splam --world complex --runs 1 --out " + out.string());
   ASSERT_EQ(run.status, 0) << run.text;
-  for (const char* f :
-       {"table.md", "summary.json", "fig19-map.png", "fig19-errors.png", "fig20-map.png",
-        "fig21-map.png", "fig21-errors.svg", "fig21-paper-map.png", "fig21-worst-map.png",
-        "fig22.png", "graph-map.png", "topological-graph-map.png", "report.html", "grid.yaml",
-        "cells.tsv", "cells/strategy-topological-graph_seed-1/report.json",
-        "cells/strategy-graph_seed-1/report.json", "cells/strategy-fig21_seed-1/report.html",
-        "cells/strategy-fig21-paper_seed-1/config.yaml", "cells/strategy-fig19_seed-1/map.dxf"})
+  for (const char* f : {"table.md",
+                        "summary.json",
+                        "fig19-map.png",
+                        "fig19-errors.png",
+                        "fig20-map.png",
+                        "fig21-map.png",
+                        "fig21-errors.svg",
+                        "fig21-paper-map.png",
+                        "fig21-worst-map.png",
+                        "fig22.png",
+                        "graph-map.png",
+                        "topological-graph-map.png",
+                        "report.html",
+                        "grid.yaml",
+                        "cells.tsv",
+                        "cells/strategy-topological-graph_seed-1/report.json",
+                        "cells/strategy-graph_seed-1/report.json",
+                        "cells/strategy-fig21_seed-1/report.html",
+                        "cells/strategy-fig21-paper_seed-1/config.yaml",
+                        "cells/strategy-fig19_seed-1/map.dxf"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   // The paper's formulation is what its run says it used.
   const std::string paper = Slurp(out / "cells/strategy-fig21-paper_seed-1/config.yaml");
