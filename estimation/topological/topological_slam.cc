@@ -219,7 +219,8 @@ void TopologicalSlam::Predict(const Pose2& odometry_increment) {
   const double s2 = options_.scan_matching_noise_scale * options_.scan_matching_noise_scale;
   scan_matched_covariance_ = j.f_x * scan_matched_covariance_ * j.f_x.transpose() + s2 * q;
   scan_matcher_->Predict(odometry_increment);
-  since_update_ = since_update_ * odometry_increment;
+  // PredictByScanMatching's increment; with the feedback the front end's pose is this SLAM's.
+  if (!options_.scan_matching_feedback) since_update_ = since_update_ * odometry_increment;
 }
 
 void TopologicalSlam::PredictByScanMatching(const kernel::Scan& scan, const Pose2& robot_T_laser,
@@ -814,7 +815,6 @@ TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
       CorrectAndMap(scan, robot_T_laser, observed, &report);
       return front_frame_.Inverse() * pose_;
     });
-    since_update_ = Pose2();
   } else {
     if (scan_matcher_) PredictByScanMatching(scan, robot_T_laser, &report);
     CorrectAndMap(scan, robot_T_laser, observed, &report);

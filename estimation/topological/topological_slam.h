@@ -347,7 +347,7 @@ class TopologicalSlam {
   // scan_matching: the front end, the odometry since the last update, and pose_'s covariance
   // grown with the scaled noise model instead (see scan_matching_noise_scale).
   std::unique_ptr<GraphSlam> scan_matcher_;
-  kernel::Pose2 since_update_;
+  kernel::Pose2 since_update_;  // odometry since the last update, without the feedback
   // scan_matching_feedback: this SLAM's frame seen from the front end's (pose_ = front_frame_ *
   // the front end's pose); it changes only when Reanchor moves the map.
   kernel::Pose2 front_frame_;
