@@ -5,10 +5,13 @@
 namespace splam::apps {
 namespace {
 
+constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
+
 volatile std::sig_atomic_t interrupted = 0;
+volatile std::sig_atomic_t writing = 0;
 
 extern "C" void OnInterrupt(int signal) {
-  if (interrupted) {  // the second one: stop now
+  if (interrupted && !writing) {  // the second one, while nothing is being written: stop now
     std::signal(signal, SIG_DFL);
     std::raise(signal);
     return;
@@ -19,10 +22,15 @@ extern "C" void OnInterrupt(int signal) {
 }  // namespace
 
 void CatchInterrupts() {
-  std::signal(SIGINT, OnInterrupt);
-  std::signal(SIGTERM, OnInterrupt);
+  for (const int signal : kSignals) {
+    // A signal ignored by whoever started splam (nohup ignores SIGHUP) stays ignored.
+    if (std::signal(signal, OnInterrupt) == SIG_IGN) std::signal(signal, SIG_IGN);
+  }
 }
 
 bool Interrupted() { return interrupted != 0; }
+
+WritingResults::WritingResults() { writing = 1; }
+WritingResults::~WritingResults() { writing = 0; }
 
 }  // namespace splam::apps

@@ -69,6 +69,7 @@ Eigen::Vector2d BeamsOf(const evaluation::PlacedScan& placed, const OccupancyGri
       continue;
     }
     const double angle = scan.BeamAngle(i);
+    if (!std::isfinite(angle)) continue;  // the readers refuse such scans; a caller may not
     beams->push_back(
         {laser * Eigen::Vector2d(range * std::cos(angle), range * std::sin(angle)), hit});
   }
@@ -170,7 +171,7 @@ kernel::Result<OccupancyGrid> BuildOccupancyGrid(const std::vector<evaluation::P
   Eigen::Vector2d hi = -lo;
   std::vector<Beam> beams;
   for (const evaluation::PlacedScan& s : scans) {
-    if (!Finite(s.pose)) continue;
+    if (!Finite(s.pose) || !Finite(s.pose * s.robot_T_laser)) continue;
     const Eigen::Vector2d laser = BeamsOf(s, options, &beams);
     lo = lo.cwiseMin(laser);
     hi = hi.cwiseMax(laser);
@@ -212,7 +213,7 @@ kernel::Result<OccupancyGrid> BuildOccupancyGrid(const std::vector<evaluation::P
   };
   std::uint32_t stamp = 0;
   for (const evaluation::PlacedScan& s : scans) {
-    if (!Finite(s.pose)) continue;
+    if (!Finite(s.pose) || !Finite(s.pose * s.robot_T_laser)) continue;
     ++stamp;
     const Eigen::Vector2d laser = BeamsOf(s, options, &beams);
     for (const Beam& b : beams) {

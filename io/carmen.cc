@@ -325,7 +325,7 @@ CarmenReadResult ReadCarmenLog(const std::string& path, const CarmenReadOptions&
 
 std::string FormatCarmenLog(const CarmenLog& log) {
   std::string out;
-  for (const std::string& c : log.comments) out += "#" + c + "\n";
+  for (const std::string& c : log.comments) out += "#" + OneLine(c) + "\n";
   for (const LogMessage& message : log.messages) {
     if (const auto* m = std::get_if<OdometryMessage>(&message)) {
       out += "ODOM";

@@ -269,7 +269,7 @@ kernel::Status ReadInto(const YAML::Node& map, const std::string& path, const Co
 std::string ConfigToYaml(const ConfigRoot& root, const std::string& header) {
   std::string out;
   std::istringstream lines(header);
-  for (std::string line; std::getline(lines, line);) out += "# " + line + "\n";
+  for (std::string line; std::getline(lines, line);) out += "# " + OneLine(line) + "\n";
   YamlWriter writer(&out);
   root(writer);
   return out;

@@ -133,7 +133,7 @@ kernel::Scan ScanOf(const internal::RosScan& m) {
       scan.ranges_m.push_back(range);
     }
   }
-  if (scan.angular_step_rad < 0.0 && scan.size() > 1) {  // a laser mounted upside down
+  if (scan.angular_step_rad < 0.0) {  // a laser mounted upside down
     scan.start_angle_rad += scan.angular_step_rad * static_cast<double>(scan.size() - 1);
     scan.angular_step_rad = -scan.angular_step_rad;
     std::reverse(scan.ranges_m.begin(), scan.ranges_m.end());
@@ -352,6 +352,11 @@ RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& option
   const bool ros2 = internal::IsRos2BagPath(path);
   if (std::filesystem::is_directory(path) && !ros2)
     return fail("is a directory, not a bag (a ROS 2 bag directory holds a metadata.yaml)");
+  // A FIFO would block for ever, a device (a link to /dev/zero) never end.
+  if (!std::filesystem::is_directory(path) && !std::filesystem::is_regular_file(path))
+    return fail(std::filesystem::exists(path)
+                    ? "is not a regular file (a FIFO or a device), not a bag"
+                    : "no such file");
   internal::RosBagTopics topics;
   internal::RosBagMessages bag;
   std::string scan_topic;
@@ -413,8 +418,16 @@ RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& option
       return fail(problem.message());
   }
   std::map<std::string, std::pair<std::string, kernel::Pose2>> static_transforms;
-  for (const internal::RosPose& p : bag.tf_static)
-    static_transforms[Frame(p.child)] = {Frame(p.parent), kernel::Pose2(p.x, p.y, p.yaw)};
+  for (const internal::RosPose& p : bag.tf_static) {
+    const kernel::Pose2 parent_T_child(p.x, p.y, p.yaw);
+    // A mounting of NaN or 1e300 m placed every scan there; the run ended far from the input.
+    if (kernel::Status problem = internal::PoseProblem(
+            parent_T_child, "/tf_static: the transform " + OneLine(Frame(p.parent)) + " -> " +
+                                OneLine(Frame(p.child)));
+        !problem.ok())
+      return fail(problem.message());
+    static_transforms[Frame(p.child)] = {Frame(p.parent), parent_T_child};
+  }
 
   // The scans, at the odometry interpolated to their time.
   std::vector<std::pair<double, LogMessage>> messages;
@@ -432,6 +445,11 @@ RosBagReadResult ReadRosBag(const std::string& path, const RosBagOptions& option
               ? Result<kernel::Pose2>::Ok(kernel::Pose2())
               : Mounting(static_transforms, options.base_frame, frame);
       if (!mounting.ok()) return fail(mounting.error);
+      if (kernel::Status problem = internal::PoseProblem(
+              *mounting.value, "the laser mounting " + OneLine(options.base_frame) + " -> " +
+                                   OneLine(frame) + " (a chain of /tf_static)");
+          !problem.ok())
+        return fail(problem.message());
       base_T_laser = *mounting.value;
     }
     const std::optional<OdometrySample> at = Interpolate(odometry, s.time_s);

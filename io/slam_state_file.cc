@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 
 #include "io/internal/plausible.h"
 #include "io/map_export.h"
@@ -125,24 +126,31 @@ Result<estimation::SlamState> ParseSlamState(const std::string& text, const std:
             return fail("loop_edge: expected two indices of keyframes above it");
           state.map.loop_edges.emplace_back(a, b);
         } else if (t[0] == "spline") {
-          const auto id = t.size() > 2 ? ParseInteger(t[1]) : std::nullopt;
-          const auto n = t.size() > 2 ? ParseInteger(t[2]) : std::nullopt;
-          if (!id || !n || *n < 4 || *n > 1000000 ||
-              t.size() != 3 + 2 * static_cast<std::size_t>(*n) + static_cast<std::size_t>(*n) + 4)
+          // -1: not an integer.
+          const long id = t.size() > 2 ? ParseInteger(t[1]).value_or(-1) : -1;
+          const long n = t.size() > 2 ? ParseInteger(t[2]).value_or(-1) : -1;
+          if (id < 0 || id > std::numeric_limits<int>::max() || n < 4 || n > 1000000 ||
+              t.size() != 3 + 3 * static_cast<std::size_t>(n) + 4)
             return fail("spline: expected id, n >= 4, n control points and n + 4 knots");
           std::vector<std::string_view> numbers(t.begin() + 2, t.end());
           if (kernel::Status e = LineNumbers(numbers, numbers.size() - 1, numbers.size(), &v);
               !e.ok())
             return fail(e.message());
           std::vector<Eigen::Vector2d> control;
-          for (long i = 0; i < *n; ++i)
+          for (long i = 0; i < n; ++i) {
             control.emplace_back(v[static_cast<std::size_t>(2 * i)],
                                  v[static_cast<std::size_t>(2 * i + 1)]);
-          std::vector<double> knots(v.begin() + 2 * *n, v.end());
+            // As every pose of the file: a curve at 1e300 m loaded, ran, and failed the export.
+            if (!(control.back().cwiseAbs().maxCoeff() <= internal::kMaxCoordinateM))
+              return fail(fmt::format(
+                  "spline {}: control point {} ({}, {}) is not finite or beyond +-1e+06 m", id, i,
+                  FormatDouble(control.back().x()), FormatDouble(control.back().y())));
+          }
+          std::vector<double> knots(v.begin() + 2 * n, v.end());
           kernel::Result<kernel::CubicBSpline> spline =
               kernel::CubicBSpline::Create(std::move(control), std::move(knots));
           if (!spline) return fail("spline: " + spline.error);
-          state.map.splines.push_back({static_cast<int>(*id), std::move(*spline), 0});
+          state.map.splines.push_back({static_cast<int>(id), std::move(*spline), 0});
         } else if (t[0] == "scan") {
           if (kernel::Status e = LineNumbers(t, 12, 12, &v); !e.ok()) return fail(e.message());
           const double n = v[11];

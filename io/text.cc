@@ -75,20 +75,24 @@ kernel::Status ParseFiniteNumbers(const std::vector<std::string_view>& tokens,
   return {};
 }
 
-std::string Quoted(std::string_view token) {
-  constexpr std::size_t kMaxShown = 40;
-  std::string quoted = "'";
-  for (const char c : token.substr(0, kMaxShown)) {
+std::string OneLine(std::string_view text) {
+  std::string line;
+  line.reserve(text.size());
+  for (const char c : text) {
     const auto byte = static_cast<unsigned char>(c);
     if (byte < 0x20 || byte == 0x7f) {
       constexpr char kHex[] = "0123456789abcdef";
-      quoted += {'\\', 'x', kHex[byte >> 4], kHex[byte & 0xf]};
+      line += {'\\', 'x', kHex[byte >> 4], kHex[byte & 0xf]};
     } else {
-      quoted += c;
+      line += c;
     }
   }
-  if (token.size() > kMaxShown) quoted += "...";
-  return quoted + "'";
+  return line;
+}
+
+std::string Quoted(std::string_view token) {
+  constexpr std::size_t kMaxShown = 40;
+  return "'" + OneLine(token.substr(0, kMaxShown)) + (token.size() > kMaxShown ? "..." : "") + "'";
 }
 
 std::string FormatDouble(double value) {

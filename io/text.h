@@ -31,6 +31,10 @@ kernel::Status ParseFiniteNumbers(const std::vector<std::string_view>& tokens,
 // `token` in single quotes for an error message: control bytes (a NUL, an escape) written as
 // \xNN, and cut to its first 40 bytes with "..." (binary junk must not reach the terminal).
 std::string Quoted(std::string_view token);
+// `text` as one line of a comment: control bytes (a line break, a carriage return, a NUL) written
+// as \xNN, so that no text a user or a file chose (a topic name, a path) ends the comment and
+// starts a line that a reader would take as data.
+std::string OneLine(std::string_view text);
 // Shortest text that reads back as exactly the same double ("inf", "-inf", "nan" for the rest).
 std::string FormatDouble(double value);
 

@@ -152,7 +152,7 @@ Result<Trajectory> ReadTrajectory(const std::string& path) {
 std::string FormatTrajectory(const Trajectory& trajectory, const std::string& comment,
                              TrajectoryFormat format) {
   std::string out;
-  if (!comment.empty() && format != TrajectoryFormat::kKitti) out += "# " + comment + "\n";
+  if (!comment.empty() && format != TrajectoryFormat::kKitti) out += "# " + OneLine(comment) + "\n";
   if (format == TrajectoryFormat::kSplam) out += "# time_s x_m y_m theta_rad\n";
   if (format == TrajectoryFormat::kTum) out += "# timestamp x y z qx qy qz qw\n";
   for (const StampedPose& p : trajectory) {

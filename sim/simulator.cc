@@ -76,7 +76,7 @@ kernel::Status RouteOptions::Validate() const {
 }
 
 RouteRun FollowRoute(Simulator* simulator, const std::vector<Eigen::Vector2d>& waypoints,
-                     const RouteOptions& options) {
+                     const RouteOptions& options, const std::function<bool()>& stop) {
   assert(options.Validate().ok());
   RouteRun run;
   run.frames.push_back(simulator->Sense());
@@ -89,6 +89,12 @@ RouteRun FollowRoute(Simulator* simulator, const std::vector<Eigen::Vector2d>& w
       ++next;
       ++run.waypoints_reached;
       continue;
+    }
+    if (stop && stop()) {
+      std::ostringstream msg;
+      msg << "interrupted at t = " << simulator->time_s() << " s before waypoint " << next;
+      run.message = msg.str();
+      return run;
     }
     if (step >= options.max_steps) {
       std::ostringstream msg;

@@ -2,6 +2,7 @@
 #define SPLAM_SIM_SIMULATOR_H_
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -102,9 +103,10 @@ struct RouteRun {
 };
 
 // Senses at the start, then steps towards each waypoint in turn, sensing after every step.
-// Stops early, with a message, on a collision or when max_steps is reached.
+// Stops early, with a message, on a collision, when max_steps is reached or when `stop` (polled
+// before every step) says so.
 RouteRun FollowRoute(Simulator* simulator, const std::vector<Eigen::Vector2d>& waypoints,
-                     const RouteOptions& options);
+                     const RouteOptions& options, const std::function<bool()>& stop = {});
 
 }  // namespace splam::sim
 

@@ -23,9 +23,13 @@ kernel::Status ScanGeometryProblem(const kernel::Scan& s) {
   if (!(std::abs(s.start_angle_rad) <= 2.0 * kernel::kPi))
     return kernel::Status::Error("start angle " + FormatDouble(s.start_angle_rad) +
                                  " rad is not in [-2 pi, 2 pi]");
-  if (s.size() > 1 && !(s.angular_step_rad > 0.0))
+  // The step is checked whatever the number of beams: one beam with a NaN step made every later
+  // stage place it at NaN (the occupancy grid indexed the cell of a NaN point).
+  if (!std::isfinite(s.angular_step_rad) || s.angular_step_rad < 0.0 ||
+      (s.size() > 1 && s.angular_step_rad == 0.0))
     return kernel::Status::Error("angular resolution " + FormatDouble(s.angular_step_rad) +
-                                 " rad is not positive");
+                                 " rad is not " +
+                                 (s.size() > 1 ? "positive" : "finite and at least 0"));
   if (s.size() > 1 && s.angular_step_rad < kMinAngularStepRad)
     return kernel::Status::Error("angular resolution " + FormatDouble(s.angular_step_rad) +
                                  " rad is below 1e-4 rad (0.006 deg): no laser resolves that");

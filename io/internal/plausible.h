@@ -24,7 +24,8 @@ inline constexpr double kMinAngularStepRad = 1e-4;
 inline constexpr std::size_t kMaxBeams = 20000;
 
 // Ok when the beams' geometry is plausible: at least one beam, a maximum range in (0, 10 km]
-// above a minimum range of 0 or more, a start angle in [-2 pi, 2 pi], a positive step and beams
+// above a minimum range of 0 or more, a start angle in [-2 pi, 2 pi], a finite step (positive
+// with two beams or more, at least 0 with one) and beams
 // within one turn (an angular resolution written in
 // degrees, 0.36 for 0.36 deg, wrapped the scan 360 times and made the curve fits run out of
 // memory); else what is wrong.

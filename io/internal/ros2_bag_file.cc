@@ -11,8 +11,11 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <map>
 #include <memory>
+#include <set>
 #include <stdexcept>
 
 #include "io/internal/cdr.h"
@@ -24,9 +27,11 @@ constexpr std::string_view kMcapMagic("\x89MCAP0\r\n", 8);
 constexpr char kLaserScan2[] = "sensor_msgs/msg/LaserScan";
 constexpr char kOdometry2[] = "nav_msgs/msg/Odometry";
 constexpr char kTfMessage2[] = "tf2_msgs/msg/TFMessage";
-// No chunk may claim more than this when decompressed, nor much more than 1000 times its
-// compressed size (a few bytes claiming gigabytes would take the memory).
-constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{1} << 30;
+constexpr std::uint64_t kHeldBytesPerMessage = 256;
+constexpr std::int64_t kMaxCount = std::numeric_limits<int>::max();
+constexpr std::uint64_t kMaxMetadataBytes = std::uint64_t{16} << 20;
+// The progress handler counts SQLite's virtual-machine steps this many at a time.
+constexpr int kSqliteStepsPerCall = 10000;
 
 [[noreturn]] void Fail(const std::string& message) { throw std::runtime_error(message); }
 
@@ -71,8 +76,6 @@ std::string Decompress(std::string_view compression, std::string_view data, std:
     if (data.size() != size) Fail("an uncompressed chunk's size differs from its records'");
     return std::string(data);
   }
-  if (size > kMaxChunkBytes || size > 1000 * static_cast<std::uint64_t>(data.size()) + (1 << 20))
-    Fail("a chunk claims " + std::to_string(size) + " bytes from " + std::to_string(data.size()));
   std::string out(size, '\0');
   if (compression == "zstd") {
     const std::size_t n = ZSTD_decompress(out.data(), out.size(), data.data(), data.size());
@@ -107,95 +110,199 @@ std::string Decompress(std::string_view compression, std::string_view data, std:
        "lz4)");
 }
 
-// MCAP records (opcode, uint64 length, content) of `bytes`, those that matter into *content.
-struct McapState {
-  std::map<std::uint16_t, std::string> schemas;  // id -> name
-  std::map<std::uint16_t, int> channels;         // id -> index into content->topics
-  Ros2Content* content;
+// One pass over a bag's storage files: the topics as found (a topic's index is its place in that
+// order), how many messages each holds, and the messages of the topics `wanted` chooses, handed
+// to `take` (a view valid during the call). Only those are held; the others are counted.
+struct Ros2Pass {
+  explicit Ros2Pass(const Ros2ReadLimits& l) : limits(l) {}
+  const Ros2ReadLimits& limits;
+  std::function<bool(const Ros2Topic&)> wanted;  // empty: none (a pass that only counts)
+  std::function<void(int topic, std::int64_t time_ns, std::string_view data)> take;
+  std::vector<Ros2Topic> topics;
+  std::vector<std::int64_t> counts;
+  std::vector<char> taken;          // per topic: whether its messages go to `take`
+  std::uint64_t decompressed = 0;   // bytes of every chunk decompressed so far
+  std::uint64_t storage_bytes = 0;  // bytes of the storage files read so far
+
+  int AddTopic(Ros2Topic topic) {
+    if (topics.size() >= limits.max_topics)
+      Fail("more than " + std::to_string(limits.max_topics) + " topics, the most a bag may have");
+    taken.push_back(wanted && wanted(topic) ? 1 : 0);
+    counts.push_back(0);
+    topics.push_back(std::move(topic));
+    return static_cast<int>(topics.size()) - 1;
+  }
+  void Message(int topic, std::int64_t time_ns, std::string_view data) {
+    ++counts[static_cast<std::size_t>(topic)];
+    if (taken[static_cast<std::size_t>(topic)]) take(topic, time_ns, data);
+  }
 };
 
-void ParseRecords(std::string_view bytes, McapState* state, bool in_chunk) {
-  Cursor c(bytes);
-  while (c.remaining() > 0) {
-    const auto opcode = c.Read<std::uint8_t>("a record's opcode");
-    Cursor r(c.Take(c.Read<std::uint64_t>("a record's length"), "a record"));
-    switch (opcode) {
-      case 0x02:  // Footer: the end of the data
-        if (!in_chunk) return;
-        break;
-      case 0x03: {  // Schema
-        const auto id = r.Read<std::uint16_t>("a schema's id");
-        state->schemas[id] = r.String("a schema's name");
-        break;
-      }
-      case 0x04: {  // Channel
-        const auto id = r.Read<std::uint16_t>("a channel's id");
-        const auto schema = r.Read<std::uint16_t>("a channel's schema");
-        Ros2Topic topic;
-        topic.name = r.String("a channel's topic");
-        topic.encoding = r.String("a channel's message encoding");
-        const auto found = state->schemas.find(schema);
-        topic.type = found != state->schemas.end() ? found->second : "";
-        if (state->channels.contains(id)) break;  // repeated
-        state->channels[id] = static_cast<int>(state->content->topics.size());
-        state->content->topics.push_back(std::move(topic));
-        break;
-      }
-      case 0x05: {  // Message
-        const auto channel = r.Read<std::uint16_t>("a message's channel");
-        r.Read<std::uint32_t>("a message's sequence");
-        const auto log_time = r.Read<std::uint64_t>("a message's log time");
-        r.Read<std::uint64_t>("a message's publish time");
-        const auto found = state->channels.find(channel);
-        if (found == state->channels.end())
-          Fail("a message on channel " + std::to_string(channel) + ", which no record defines");
-        state->content->messages.push_back(
-            {found->second, static_cast<std::int64_t>(log_time & 0x7fffffffffffffff),
-             std::string(r.Take(r.remaining(), "a message"))});
-        break;
-      }
-      case 0x06: {  // Chunk
-        if (in_chunk) Fail("a chunk inside a chunk");
-        r.Read<std::uint64_t>("a chunk's start time");
-        r.Read<std::uint64_t>("a chunk's end time");
-        const auto size = r.Read<std::uint64_t>("a chunk's size");
-        const auto crc = r.Read<std::uint32_t>("a chunk's CRC");
-        const std::string compression = r.String("a chunk's compression");
-        const std::string_view records =
-            r.Take(r.Read<std::uint64_t>("a chunk's records"), "a chunk's records");
-        const std::string plain = Decompress(compression, records, size);
-        if (crc != 0 && Crc32(plain) != crc) Fail("a chunk's CRC does not match its records");
-        ParseRecords(plain, state, true);
-        break;
-      }
-      default:  // indexes, statistics, attachments, metadata: not needed
-        break;
+// MCAP records (opcode, uint64 length, content) of a file or a chunk; those that matter go to
+// the pass.
+struct McapState {
+  std::map<std::uint16_t, std::string> schemas;  // id -> name
+  std::map<std::uint16_t, int> channels;         // id -> topic index of the pass
+  Ros2Pass* pass;
+};
+
+void ParseRecords(std::string_view bytes, McapState* state);
+
+void ParseRecord(std::uint8_t opcode, Cursor r, McapState* state, bool in_chunk) {
+  switch (opcode) {
+    case 0x03: {  // Schema
+      const auto id = r.Read<std::uint16_t>("a schema's id");
+      state->schemas[id] = r.String("a schema's name");
+      break;
     }
+    case 0x04: {  // Channel
+      const auto id = r.Read<std::uint16_t>("a channel's id");
+      const auto schema = r.Read<std::uint16_t>("a channel's schema");
+      Ros2Topic topic;
+      topic.name = r.String("a channel's topic");
+      topic.encoding = r.String("a channel's message encoding");
+      const auto found = state->schemas.find(schema);
+      topic.type = found != state->schemas.end() ? found->second : "";
+      if (state->channels.contains(id)) break;  // repeated (the summary section repeats them)
+      state->channels[id] = state->pass->AddTopic(std::move(topic));
+      break;
+    }
+    case 0x05: {  // Message
+      const auto channel = r.Read<std::uint16_t>("a message's channel");
+      r.Read<std::uint32_t>("a message's sequence");
+      const auto log_time = r.Read<std::uint64_t>("a message's log time");
+      r.Read<std::uint64_t>("a message's publish time");
+      const auto found = state->channels.find(channel);
+      if (found == state->channels.end())
+        Fail("a message on channel " + std::to_string(channel) + ", which no record defines");
+      if (r.remaining() > state->pass->limits.max_message_bytes)
+        Fail("a message of " + std::to_string(r.remaining()) + " bytes (at most " +
+             std::to_string(state->pass->limits.max_message_bytes) + ")");
+      state->pass->Message(found->second, static_cast<std::int64_t>(log_time & 0x7fffffffffffffff),
+                           r.Take(r.remaining(), "a message"));
+      break;
+    }
+    case 0x06: {  // Chunk
+      if (in_chunk) Fail("a chunk inside a chunk");
+      r.Read<std::uint64_t>("a chunk's start time");
+      r.Read<std::uint64_t>("a chunk's end time");
+      const auto size = r.Read<std::uint64_t>("a chunk's size");
+      const auto crc = r.Read<std::uint32_t>("a chunk's CRC");
+      const std::string compression = r.String("a chunk's compression");
+      const std::string_view records =
+          r.Take(r.Read<std::uint64_t>("a chunk's records"), "a chunk's records");
+      Ros2Pass& pass = *state->pass;
+      if (size > pass.limits.max_chunk_bytes ||
+          (!compression.empty() &&
+           size > 1000 * static_cast<std::uint64_t>(records.size()) + (std::uint64_t{1} << 20)))
+        Fail("a chunk claims " + std::to_string(size) + " bytes from " +
+             std::to_string(records.size()) + " (at most " +
+             std::to_string(pass.limits.max_chunk_bytes) + ", and 1000 times its compressed size)");
+      pass.decompressed += size;
+      if (pass.decompressed > pass.limits.max_decompressed_bytes)
+        Fail("its chunks decompress to more than " +
+             std::to_string(pass.limits.max_decompressed_bytes) +
+             " bytes, the most a bag may hold");
+      const std::string plain = Decompress(compression, records, size);
+      if (crc != 0 && Crc32(plain) != crc) Fail("a chunk's CRC does not match its records");
+      ParseRecords(plain, state);
+      break;
+    }
+    default:  // indexes, statistics, attachments, metadata: not needed
+      break;
   }
 }
 
-std::string ReadFile(const std::string& path) {
+// The records inside a chunk.
+void ParseRecords(std::string_view bytes, McapState* state) {
+  Cursor c(bytes);
+  while (c.remaining() > 0) {
+    const auto opcode = c.Read<std::uint8_t>("a record's opcode");
+    ParseRecord(opcode, Cursor(c.Take(c.Read<std::uint64_t>("a record's length"), "a record")),
+                state, true);
+  }
+}
+
+// The size of `path` when it is a regular file (after links); else why it cannot be storage:
+// a FIFO blocks for ever, a device (a link to /dev/zero) never ends.
+std::uint64_t RegularFileSize(const std::string& path) {
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (error) Fail(path + ": " + error.message());
+  if (status.type() != std::filesystem::file_type::regular)
+    Fail(path + " is not a regular file (a directory, a FIFO or a device)");
+  const std::uint64_t size = std::filesystem::file_size(path, error);
+  if (error) Fail(path + ": " + error.message());
+  return size;
+}
+
+// An MCAP file, record by record: only a chunk (at most max_chunk_bytes) or a small record is in
+// memory at a time; the records splam does not read are skipped.
+void ReadMcap(const std::string& path, std::uint64_t size, Ros2Pass* pass) {
   std::ifstream in(path, std::ios::binary);
   if (!in) Fail("cannot open " + path);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return bytes;
+  const auto read = [&](std::uint64_t n, const char* what) {
+    std::string bytes(n, '\0');
+    if (!in.read(bytes.data(), static_cast<std::streamsize>(n)))
+      Fail(std::string(what) + " runs past the end of the file");
+    return bytes;
+  };
+  if (size < 2 * kMcapMagic.size() || read(kMcapMagic.size(), "the magic") != kMcapMagic)
+    Fail("not an MCAP file (no MCAP magic at its start)");
+  McapState state{{}, {}, pass};
+  for (std::uint64_t at = kMcapMagic.size(); at < size;) {
+    const std::string head = read(9, "a record's length");
+    const auto opcode = static_cast<std::uint8_t>(head[0]);
+    const auto length = Cursor(std::string_view(head).substr(1)).Read<std::uint64_t>("a length");
+    at += 9;
+    if (length > size - at) Fail("a record runs past the end of the file");
+    if (opcode == 0x02) return;  // Footer: the end of the data
+    const bool needed = opcode >= 0x03 && opcode <= 0x06;
+    const std::uint64_t most =
+        (opcode == 0x06 ? pass->limits.max_chunk_bytes : pass->limits.max_message_bytes) + 1024;
+    if (needed && length > most)
+      Fail("a record of " + std::to_string(length) + " bytes (at most " + std::to_string(most) +
+           ")");
+    if (needed) {
+      const std::string record = read(length, "a record");
+      ParseRecord(opcode, Cursor(record), &state, false);
+    } else {
+      in.seekg(static_cast<std::streamoff>(length), std::ios::cur);
+    }
+    at += length;
+  }
 }
 
 // SQLite3 storage: the tables `topics` (id, name, type, serialization_format) and `messages`
-// (topic_id, timestamp, data), appended to *content.
-void ReadSqlite(const std::string& path, Ros2Content* content) {
+// (topic_id, timestamp, data), read in the order of their ids. Tables only: a view (or a virtual
+// table) over a recursive query never ends. Work and sizes are bounded: no value above
+// max_message_bytes (SQLite's length limit), and at most sqlite_steps_per_byte virtual-machine
+// steps per byte of the file (a table scan needs a few per row).
+void ReadSqlite(const std::string& path, std::uint64_t size, Ros2Pass* pass) {
   sqlite3* raw = nullptr;
   const int opened = sqlite3_open_v2(path.c_str(), &raw, SQLITE_OPEN_READONLY, nullptr);
   const std::unique_ptr<sqlite3, decltype(&sqlite3_close)> db(raw, &sqlite3_close);
   if (opened != SQLITE_OK) Fail(std::string("not an SQLite3 database: ") + sqlite3_errstr(opened));
-  const auto query = [&](const char* sql, const auto& row) {
+  const Ros2ReadLimits& limits = pass->limits;
+  sqlite3_limit(db.get(), SQLITE_LIMIT_LENGTH,
+                static_cast<int>(std::min<std::uint64_t>(limits.max_message_bytes, 1u << 30)));
+  struct Budget {
+    std::uint64_t left;
+  } budget{(size + (std::uint64_t{1} << 20)) * limits.sqlite_steps_per_byte / kSqliteStepsPerCall};
+  sqlite3_progress_handler(
+      db.get(), kSqliteStepsPerCall,
+      [](void* b) { return static_cast<Budget*>(b)->left-- == 0 ? 1 : 0; }, &budget);
+  const auto query = [&](const std::string& sql, const auto& row) {
     sqlite3_stmt* statement = nullptr;
-    if (sqlite3_prepare_v2(db.get(), sql, -1, &statement, nullptr) != SQLITE_OK)
+    if (sqlite3_prepare_v2(db.get(), sql.c_str(), -1, &statement, nullptr) != SQLITE_OK)
       Fail(std::string("not a rosbag2 database: ") + sqlite3_errmsg(db.get()));
     const std::unique_ptr<sqlite3_stmt, decltype(&sqlite3_finalize)> owned(statement,
                                                                            &sqlite3_finalize);
     int step;
     while ((step = sqlite3_step(statement)) == SQLITE_ROW) row(statement);
+    if (step == SQLITE_INTERRUPT)
+      Fail("reading the database takes more than " + std::to_string(limits.sqlite_steps_per_byte) +
+           " steps per byte of the file (a damaged or hostile database)");
     if (step != SQLITE_DONE)
       Fail(std::string("cannot read the database: ") + sqlite3_errmsg(db.get()));
   };
@@ -203,40 +310,64 @@ void ReadSqlite(const std::string& path, Ros2Content* content) {
     const unsigned char* t = sqlite3_column_text(s, column);
     return t != nullptr ? std::string(reinterpret_cast<const char*>(t)) : std::string();
   };
-  std::map<sqlite3_int64, int> topic_of;
-  query("SELECT id, name, type, serialization_format FROM topics", [&](sqlite3_stmt* s) {
-    topic_of[sqlite3_column_int64(s, 0)] = static_cast<int>(content->topics.size());
-    content->topics.push_back({text(s, 1), text(s, 2), text(s, 3)});
-  });
-  query("SELECT topic_id, timestamp, data FROM messages ORDER BY timestamp, id",
+  std::map<std::string, std::string> kinds;  // table name -> how it is defined
+  query("SELECT name, type, sql FROM sqlite_master WHERE name IN ('topics', 'messages')",
         [&](sqlite3_stmt* s) {
-          const auto found = topic_of.find(sqlite3_column_int64(s, 0));
-          if (found == topic_of.end()) Fail("a message of a topic the topics table does not hold");
+          const std::string type = text(s, 1);
+          kinds[text(s, 0)] =
+              type == "table" && text(s, 2).starts_with("CREATE VIRTUAL") ? "virtual table" : type;
+        });
+  for (const char* table : {"topics", "messages"}) {
+    const auto kind = kinds.find(table);
+    if (kind == kinds.end()) Fail(std::string("not a rosbag2 database: no such table: ") + table);
+    if (kind->second != "table")
+      Fail(std::string("not a rosbag2 database: `") + table + "` is a " + kind->second +
+           ", not a table (rosbag2 writes tables)");
+  }
+  std::map<sqlite3_int64, int> topic_of;
+  std::string taken;  // ids of the topics whose messages are read, "1, 3"
+  query("SELECT id, name, type, serialization_format FROM topics", [&](sqlite3_stmt* s) {
+    const sqlite3_int64 id = sqlite3_column_int64(s, 0);
+    if (topic_of.contains(id)) return;
+    const int index = pass->AddTopic({text(s, 1), text(s, 2), text(s, 3)});
+    topic_of[id] = index;
+    if (pass->taken[static_cast<std::size_t>(index)])
+      taken += (taken.empty() ? "" : ", ") + std::to_string(id);
+  });
+  const auto topic = [&](sqlite3_stmt* s) {
+    const auto found = topic_of.find(sqlite3_column_int64(s, 0));
+    if (found == topic_of.end()) Fail("a message of a topic the topics table does not hold");
+    return found->second;
+  };
+  // Counted without reading the data (SQLite stops decoding a row at the last column asked for).
+  query("SELECT topic_id FROM messages", [&](sqlite3_stmt* s) { ++pass->counts[topic(s)]; });
+  if (taken.empty()) return;
+  query("SELECT topic_id, timestamp, data FROM messages WHERE topic_id IN (" + taken + ")",
+        [&](sqlite3_stmt* s) {
+          const int index = topic(s);
           const auto* data = static_cast<const char*>(sqlite3_column_blob(s, 2));
-          const int size = sqlite3_column_bytes(s, 2);
-          content->messages.push_back({found->second, sqlite3_column_int64(s, 1),
-                                       data != nullptr ? std::string(data, size) : std::string()});
+          const auto bytes = static_cast<std::size_t>(sqlite3_column_bytes(s, 2));
+          pass->take(index, sqlite3_column_int64(s, 1),
+                     data != nullptr ? std::string_view(data, bytes) : std::string_view());
         });
 }
 
-void ReadStorage(const std::string& path, Ros2Content* content) {
-  if (path.ends_with(".db3")) return ReadSqlite(path, content);
-  if (path.ends_with(".mcap")) {
-    Ros2Content part = ParseMcap(ReadFile(path));
-    const int offset = static_cast<int>(content->topics.size());
-    for (Ros2Message& m : part.messages) m.topic += offset;
-    content->topics.insert(content->topics.end(), part.topics.begin(), part.topics.end());
-    content->messages.insert(content->messages.end(),
-                             std::make_move_iterator(part.messages.begin()),
-                             std::make_move_iterator(part.messages.end()));
-    return;
-  }
-  Fail("storage file " + path + " is neither .db3 nor .mcap");
+void ReadStorage(const std::string& path, Ros2Pass* pass) {
+  if (!path.ends_with(".db3") && !path.ends_with(".mcap"))
+    Fail("storage file " + path + " is neither .db3 nor .mcap");
+  const std::uint64_t size = RegularFileSize(path);
+  pass->storage_bytes += size;
+  if (path.ends_with(".db3")) return ReadSqlite(path, size, pass);
+  ReadMcap(path, size, pass);
 }
 
-// The storage files a bag directory's metadata.yaml lists.
-std::vector<std::string> DirectoryFiles(const std::string& dir) {
+// The storage files a bag directory's metadata.yaml lists: each a regular file inside the
+// directory (no absolute path, no "..", no link leading out), listed once, at most
+// max_storage_files.
+std::vector<std::string> DirectoryFiles(const std::string& dir, const Ros2ReadLimits& limits) {
   const std::string metadata = (std::filesystem::path(dir) / "metadata.yaml").string();
+  if (RegularFileSize(metadata) > kMaxMetadataBytes)
+    Fail(metadata + ": more than " + std::to_string(kMaxMetadataBytes) + " bytes");
   YAML::Node info;
   try {
     info = YAML::LoadFile(metadata)["rosbag2_bagfile_information"];
@@ -252,10 +383,28 @@ std::vector<std::string> DirectoryFiles(const std::string& dir) {
   const YAML::Node files = info["relative_file_paths"];
   if (!files || !files.IsSequence() || files.size() == 0)
     Fail(metadata + ": no relative_file_paths");
+  if (files.size() > limits.max_storage_files)
+    Fail(metadata + ": " + std::to_string(files.size()) + " relative_file_paths, more than " +
+         std::to_string(limits.max_storage_files));
+  std::error_code error;
+  const std::filesystem::path inside = std::filesystem::canonical(dir, error);
+  if (error) Fail(dir + ": " + error.message());
   std::vector<std::string> out;
+  std::set<std::filesystem::path> seen;
   for (const YAML::Node& f : files) {
     if (!f.IsScalar()) Fail(metadata + ": relative_file_paths holds a non-string");
-    out.push_back((std::filesystem::path(dir) / f.Scalar()).string());
+    const std::filesystem::path relative(f.Scalar());
+    const std::string named = metadata + ": relative_file_paths entry '" + f.Scalar() + "'";
+    if (relative.empty() || relative.is_absolute() ||
+        std::any_of(relative.begin(), relative.end(),
+                    [](const std::filesystem::path& part) { return part == ".."; }))
+      Fail(named + " is not a path inside the bag directory");
+    const std::filesystem::path real = std::filesystem::canonical(inside / relative, error);
+    if (error) Fail(named + ": " + error.message());
+    const auto [end, _] = std::mismatch(inside.begin(), inside.end(), real.begin(), real.end());
+    if (end != inside.end()) Fail(named + " is a link that leads out of the bag directory");
+    if (!seen.insert(real).second) Fail(named + " is listed twice");
+    out.push_back((inside / relative).string());
   }
   return out;
 }
@@ -440,62 +589,90 @@ bool IsRos2BagPath(const std::string& path) {
           std::filesystem::exists(std::filesystem::path(path) / "metadata.yaml"));
 }
 
-Ros2Content ParseMcap(std::string_view bytes) {
-  if (bytes.size() < 2 * kMcapMagic.size() || !bytes.starts_with(kMcapMagic))
-    Fail("not an MCAP file (no MCAP magic at its start)");
-  Ros2Content content;
-  McapState state{{}, {}, &content};
-  ParseRecords(bytes.substr(kMcapMagic.size()), &state, false);
-  return content;
-}
-
-Ros2BagFile::Ros2BagFile(const std::string& path) {
+Ros2BagFile::Ros2BagFile(const std::string& path, const Ros2ReadLimits& limits) : limits_(limits) {
   if (std::filesystem::is_directory(path)) {
-    for (const std::string& file : DirectoryFiles(path)) ReadStorage(file, &content_);
+    files_ = DirectoryFiles(path, limits_);
   } else {
-    ReadStorage(path, &content_);
+    files_ = {path};
   }
-  std::stable_sort(
-      content_.messages.begin(), content_.messages.end(),
-      [](const Ros2Message& a, const Ros2Message& b) { return a.time_ns < b.time_ns; });
+  Ros2Pass pass(limits_);
+  for (const std::string& file : files_) ReadStorage(file, &pass);
+  topics_ = std::move(pass.topics);
+  counts_ = std::move(pass.counts);
 }
 
 RosBagTopics Ros2BagFile::Topics() const {
   RosBagTopics topics;
-  for (const Ros2Topic& t : content_.topics) {
-    topics.types[t.name] = Ros1Name(t.type);
-    topics.counts[t.name];
+  for (std::size_t i = 0; i < topics_.size(); ++i) {
+    topics.types[topics_[i].name] = Ros1Name(topics_[i].type);
+    int& count = topics.counts[topics_[i].name];
+    count = static_cast<int>(std::min<std::int64_t>(count + counts_[i], kMaxCount));
   }
-  for (const Ros2Message& m : content_.messages)
-    ++topics.counts[content_.topics[static_cast<std::size_t>(m.topic)].name];
   return topics;
 }
 
 RosBagMessages Ros2BagFile::Messages(const std::string& scan_topic, const std::string& odom_topic,
                                      const std::string& truth_topic, bool read_tf) const {
-  RosBagMessages out;
-  for (const Ros2Message& m : content_.messages) {
-    const Ros2Topic& topic = content_.topics[static_cast<std::size_t>(m.topic)];
+  // Each message decoded as it is read, with its receive time: sorted by it at the end.
+  std::vector<std::pair<std::int64_t, RosScan>> scans;
+  std::vector<std::pair<std::int64_t, RosPose>> odometry, truth;
+  std::vector<std::pair<std::int64_t, std::vector<RosPose>>> tf, tf_static;
+  std::uint64_t held = 0;
+  Ros2Pass pass(limits_);
+  pass.wanted = [&](const Ros2Topic& t) {
+    return (!scan_topic.empty() && t.name == scan_topic) ||
+           (!odom_topic.empty() && t.name == odom_topic) ||
+           (!truth_topic.empty() && t.name == truth_topic) || (read_tf && t.name == "/tf") ||
+           t.name == "/tf_static";
+  };
+  pass.take = [&](int index, std::int64_t time_ns, std::string_view data) {
+    const Ros2Topic& topic = pass.topics[static_cast<std::size_t>(index)];
     const std::string& name = topic.name;
-    const bool scan = name == scan_topic, odom = name == odom_topic, truth = name == truth_topic,
-               tf = read_tf && name == "/tf", tf_static = name == "/tf_static";
-    if (!scan && !odom && !truth && !tf && !tf_static) continue;
+    held += std::max<std::uint64_t>(data.size(), kHeldBytesPerMessage);
+    if (held > limits_.max_held_bytes)
+      Fail("the messages of the topics read hold more than " +
+           std::to_string(limits_.max_held_bytes) + " bytes, the most a log may hold");
     if (topic.encoding != "cdr")
       Fail("topic " + name + " is serialized as '" + topic.encoding + "'; splam reads cdr");
     const auto fail = [&] {
       Fail("a message on " + name + " does not decode as " + topic.type + " (CDR)");
     };
-    if (scan) {
-      if (topic.type != kLaserScan2 || !DecodeLaserScan(m.data, &out.scans.emplace_back())) fail();
-    } else if (odom || truth) {
+    if (name == scan_topic) {
+      if (topic.type != kLaserScan2 ||
+          !DecodeLaserScan(data, &scans.emplace_back(time_ns, RosScan{}).second))
+        fail();
+    } else if (name == odom_topic || name == truth_topic) {
       RosPose p;
-      if (topic.type != kOdometry2 || !DecodeOdometry(m.data, &p)) fail();
-      (odom ? out.odometry : out.truth).push_back(std::move(p));
-    } else if (topic.type != kTfMessage2 ||
-               !DecodeTransforms(m.data, tf ? &out.tf : &out.tf_static)) {
-      fail();
+      if (topic.type != kOdometry2 || !DecodeOdometry(data, &p)) fail();
+      (name == odom_topic ? odometry : truth).emplace_back(time_ns, std::move(p));
+    } else {
+      auto& into = name == "/tf" ? tf : tf_static;
+      if (topic.type != kTfMessage2 ||
+          !DecodeTransforms(data, &into.emplace_back(time_ns, std::vector<RosPose>{}).second))
+        fail();
     }
-  }
+  };
+  for (const std::string& file : files_) ReadStorage(file, &pass);
+  const auto in_time_order = [](auto* stamped) {
+    std::stable_sort(stamped->begin(), stamped->end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+  };
+  RosBagMessages out;
+  const auto move_into = [&](auto* stamped, auto* into) {
+    in_time_order(stamped);
+    for (auto& [time, message] : *stamped) into->push_back(std::move(message));
+  };
+  const auto flatten_into = [&](auto* stamped, std::vector<RosPose>* into) {
+    in_time_order(stamped);
+    for (auto& [time, transforms] : *stamped)
+      into->insert(into->end(), std::make_move_iterator(transforms.begin()),
+                   std::make_move_iterator(transforms.end()));
+  };
+  move_into(&scans, &out.scans);
+  move_into(&odometry, &out.odometry);
+  move_into(&truth, &out.truth);
+  flatten_into(&tf, &out.tf);
+  flatten_into(&tf_static, &out.tf_static);
   return out;
 }
 

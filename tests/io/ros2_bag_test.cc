@@ -3,10 +3,12 @@
 // read as the script's formulas say, and damaged bags refused with what is wrong.
 #include <gtest/gtest.h>
 #include <sqlite3.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "io/internal/ros2_bag_file.h"
@@ -172,6 +174,162 @@ TEST(Ros2Bag, DamagedSqliteBagsAndDirectoriesAreRefusedSayingWhy) {
                 .message(),
             "");
   EXPECT_NE(ErrorOf(dir.string()).find("files compressed with zstd are not supported"),
+            std::string::npos);
+}
+
+// Scans on /scan, odometry on /odom and, on /unread, `unread` odometry messages that no read
+// asks for; as one MCAP file (zstd chunks of 1 MiB).
+std::string BagWithAnUnreadTopic(const std::string& name, int unread) {
+  internal::RosBagMessages bag;
+  for (int i = 0; i < 100; ++i) {
+    bag.odometry.push_back({1.0 + i, "odom", "base_link", 0.01 * i, 0.0, 0.0, 0.0, 0.0});
+    bag.scans.push_back(
+        {1.5 + i, "base_link", -1.0, 0.002, 0.05, 30.0, std::vector<float>(1000, 2.0f)});
+  }
+  for (int i = 0; i < unread; ++i)
+    bag.truth.push_back({1.0 + 0.01 * i, "map", "base_link", 0.5 * i, 0.0, 0.0, 0.0, 0.0});
+  const std::string path = ::testing::TempDir() + "/" + name;
+  internal::WriteRos2Bag(path, internal::Ros2Storage::kMcap, "/scan", "/odom", "/unread", bag);
+  return path;
+}
+
+std::string ReadError(const std::function<void()>& read) {
+  try {
+    read();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Issue 70, item 1: nothing bounded the sum of the chunks, and the messages of topics nobody
+// reads were kept (a 4.3 MB file took 5.3 GB). Now a read holds only the chosen topics'
+// messages, and every pass decompresses at most max_decompressed_bytes.
+TEST(Ros2Bag, OnlyTheTopicsReadAreHeldAndTheChunksTogetherAreBounded) {
+  const std::string path = BagWithAnUnreadTopic("unread.mcap", 4000);
+  // The scans take 100 x 4 kB; the unread topic 4000 x 0.7 kB.
+  internal::Ros2ReadLimits limits;
+  limits.max_held_bytes = 600 << 10;
+  const internal::Ros2BagFile file(path, limits);
+  EXPECT_EQ(file.Topics().counts.at("/unread"), 4000);
+  const internal::RosBagMessages read = file.Messages("/scan", "/odom", "", false);
+  EXPECT_EQ(read.scans.size(), 100u);
+  EXPECT_EQ(read.odometry.size(), 100u);
+  EXPECT_NE(ReadError([&] {
+              file.Messages("/scan", "/odom", "/unread", false);
+            }).find("the messages of the topics read hold more than 614400 bytes"),
+            std::string::npos);
+  // Chunks of 1 MiB: three of them pass 2.5 MiB.
+  limits = {};
+  limits.max_decompressed_bytes = 5 << 19;
+  EXPECT_NE(ReadError([&] {
+              internal::Ros2BagFile bounded(path, limits);
+            }).find("its chunks decompress to more than 2621440 bytes"),
+            std::string::npos);
+  limits = {};
+  limits.max_message_bytes = 1000;
+  EXPECT_NE(ReadError([&] {
+              internal::Ros2BagFile bounded(path, limits);
+            }).find("a message of 4"),  // a scan of 1000 beams: 4 kB
+            std::string::npos);
+}
+
+// Writes a bag directory: metadata.yaml listing `files` (a YAML flow sequence's items).
+std::filesystem::path BagDirectory(const std::string& name, const std::string& files) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  EXPECT_EQ(WriteTextFile((dir / "metadata.yaml").string(),
+                          "rosbag2_bagfile_information:\n  relative_file_paths: [" + files + "]\n")
+                .message(),
+            "");
+  return dir;
+}
+
+// Issue 70, items 1 and 10: a metadata.yaml listing one bag 20,000 times read every message
+// 20,000 times (6 GB); entries absolute or with "..", links out of the directory, a FIFO or a
+// device were read (a FIFO blocked for ever, /dev/zero took the memory).
+TEST(Ros2Bag, ABagDirectoryReadsOnlyItsOwnRegularFilesOnce) {
+  const std::string bag = Fixture("odom.db3");
+  std::filesystem::path dir = BagDirectory("twice", "a.db3, ./a.db3");
+  std::filesystem::copy_file(bag, dir / "a.db3");
+  EXPECT_NE(ErrorOf(dir.string()).find("relative_file_paths entry './a.db3' is listed twice"),
+            std::string::npos)
+      << ErrorOf(dir.string());
+  dir = BagDirectory("absolute", "'" + bag + "'");
+  EXPECT_NE(ErrorOf(dir.string()).find("is not a path inside the bag directory"),
+            std::string::npos);
+  dir = BagDirectory("dotdot", "../twice/a.db3");
+  EXPECT_NE(ErrorOf(dir.string()).find("'../twice/a.db3' is not a path inside the bag directory"),
+            std::string::npos);
+  dir = BagDirectory("link_out", "a.db3");
+  std::filesystem::create_symlink(bag, dir / "a.db3");
+  EXPECT_NE(ErrorOf(dir.string()).find("is a link that leads out of the bag directory"),
+            std::string::npos)
+      << ErrorOf(dir.string());
+  dir = BagDirectory("fifo", "a.mcap");
+  ASSERT_EQ(mkfifo((dir / "a.mcap").c_str(), 0600), 0);
+  EXPECT_NE(ErrorOf(dir.string()).find("is not a regular file (a directory, a FIFO or a device)"),
+            std::string::npos)
+      << ErrorOf(dir.string());
+  dir = BagDirectory("device", "a.mcap");
+  std::filesystem::create_symlink("/dev/zero", dir / "a.mcap");
+  EXPECT_NE(ErrorOf(dir.string()).find("leads out of the bag directory"), std::string::npos)
+      << ErrorOf(dir.string());
+  // A link inside the directory is read.
+  dir = BagDirectory("link_in", "b.db3");
+  std::filesystem::copy_file(bag, dir / "a.db3");
+  std::filesystem::create_symlink("a.db3", dir / "b.db3");
+  EXPECT_TRUE(ReadRosBag(dir.string()).log.ok());
+}
+
+// An SQLite bag made by `sql` (rosbag2's topics table and a messages table or view).
+std::string SqliteBag(const std::string& name, const std::string& sql) {
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::filesystem::remove(path);
+  sqlite3* db = nullptr;
+  EXPECT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  EXPECT_EQ(sqlite3_exec(db,
+                         ("CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT, type TEXT, "
+                          "serialization_format TEXT, offered_qos_profiles TEXT);"
+                          "INSERT INTO topics VALUES (1, '/odom', 'nav_msgs/msg/Odometry', "
+                          "'cdr', '');" +
+                          sql)
+                             .c_str(),
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  return path;
+}
+
+// Issue 70, item 2: a .db3 of 8 kB whose `messages` is a view over a recursive query hung or
+// took 7 GB. rosbag2 writes tables; the work of a read is bounded by the file's size.
+TEST(Ros2Bag, AnSqliteBagIsReadFromTablesWithBoundedWork) {
+  const std::string endless = SqliteBag(
+      "view.db3",
+      "CREATE VIEW messages AS WITH RECURSIVE r(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM r) "
+      "SELECT i AS id, 1 AS topic_id, i AS timestamp, zeroblob(500000000) AS data FROM r;");
+  EXPECT_NE(ErrorOf(endless).find("`messages` is a view, not a table (rosbag2 writes tables)"),
+            std::string::npos)
+      << ErrorOf(endless);
+  const std::string rows = SqliteBag(
+      "rows.db3",
+      "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER, timestamp INTEGER, data "
+      "BLOB);"
+      "WITH RECURSIVE r(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM r LIMIT 50000) "
+      "INSERT INTO messages SELECT i, 1, i, randomblob(3000) FROM r WHERE i <= 20 UNION ALL "
+      "SELECT i, 1, i, x'00' FROM r WHERE i > 20;");
+  internal::Ros2ReadLimits limits;
+  limits.max_message_bytes = 2000;
+  EXPECT_NE(ReadError([&] {
+              internal::Ros2BagFile(rows, limits).Messages("", "/odom", "", false);
+            }).find("string or blob too big"),
+            std::string::npos);
+  limits = {};
+  limits.sqlite_steps_per_byte = 0;  // the first ten thousand steps pass the budget
+  EXPECT_NE(ReadError([&] {
+              internal::Ros2BagFile bounded(rows, limits);
+            }).find("reading the database takes more than 0 steps per byte of the file"),
             std::string::npos);
 }
 

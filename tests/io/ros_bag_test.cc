@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 #include <link.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 
 #include "io/internal/ros2_bag_file.h"
@@ -153,6 +155,107 @@ TEST(RosBag, ScansWithoutBeamsOrWithRangesUpsideDownAreRefused) {
           std::string::npos)
           << read.log.error;
     }
+}
+
+// Issue 70, item 3: a LaserScan of one beam whose angle_increment is NaN or infinite passed the
+// checks (the step was checked with two beams or more only) and crashed every SLAM method in the
+// occupancy grid (SIGSEGV); `convert` wrote it into a log that splam then refused.
+TEST(RosBag, AOneBeamScanWithAStepThatIsNotFiniteIsRefused) {
+  for (const char* extension : kBagExtensions)
+    for (const double step :
+         {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+      internal::RosBagMessages bag;
+      for (int i = 0; i < 3; ++i) {
+        bag.odometry.push_back({1.0 + i, "odom", "base_link", 0.1 * i, 0.0, 0.0, 0.0, 0.0});
+        bag.scans.push_back({1.5 + i, "base_link", -1.0, i == 1 ? step : 0.01, 0.05, 30.0,
+                             std::vector<float>(i == 1 ? 1 : 201, 2.0f)});
+      }
+      const std::string path = TempBag("one_beam", extension);
+      WriteBag(path, bag);
+      const RosBagReadResult read = ReadRosBag(path);
+      ASSERT_FALSE(read.log.ok()) << extension;
+      EXPECT_NE(read.log.error.find("scan 2 on /scan: angular resolution "), std::string::npos)
+          << read.log.error;
+      EXPECT_NE(read.log.error.find(" rad is not finite and at least 0"), std::string::npos)
+          << read.log.error;
+    }
+}
+
+// Issue 70, item 4: the laser mounting from /tf_static was not checked: a NaN or 1e300 transform
+// ran to exit 4 ("keyframes spread over 2.7e69 m") instead of naming the bag and the frame.
+TEST(RosBag, AStaticTransformThatIsNotFiniteOrBeyondAMillionMetresIsRefused) {
+  for (const char* extension : kBagExtensions)
+    for (const double x : {std::numeric_limits<double>::quiet_NaN(), 1e300}) {
+      internal::RosBagMessages bag;
+      for (int i = 0; i < 3; ++i) {
+        bag.odometry.push_back({1.0 + i, "odom", "base_link", 0.1 * i, 0.0, 0.0, 0.0, 0.0});
+        bag.scans.push_back({1.5 + i, "laser", -1.0, 0.01, 0.05, 30.0, std::vector<float>(201, 2)});
+      }
+      bag.tf_static.push_back({0.0, "base_link", "laser", x, 0.0, 0.0, 0.0, 0.0});
+      const std::string path = TempBag("mounting", extension);
+      WriteBag(path, bag);
+      const RosBagReadResult read = ReadRosBag(path);
+      ASSERT_FALSE(read.log.ok()) << extension;
+      EXPECT_EQ(read.log.error.find(path + ": "), 0u) << read.log.error;
+      EXPECT_NE(read.log.error.find("/tf_static: the transform base_link -> laser " +
+                                    FormatDouble(x) + " is not finite or beyond +-1e+06 m"),
+                std::string::npos)
+          << read.log.error;
+    }
+}
+
+// Issue 70, item 5: a newline in a topic name (chosen by whoever wrote the bag) or in the bag's
+// path went unchanged into the converted log's comment, where the line after it became data.
+TEST(RosBag, ANewlineInATopicOrPathIsNoLineOfTheConvertedLog) {
+  for (const char* extension : {".bag", ".mcap", ".db3"}) {
+    internal::RosBagMessages bag;
+    for (int i = 0; i < 3; ++i) {
+      bag.odometry.push_back({1.0 + i, "odom", "base_link", 0.1 * i, 0.0, 0.0, 0.0, 0.0});
+      bag.scans.push_back(
+          {1.5 + i, "base_link", -1.0, 0.01, 0.05, 30.0, std::vector<float>(201, 2.0f)});
+    }
+    const std::string injected = "\nODOM 5 5 0 0 0 0 1e9 h 1e9\r\nROBOTLASER1";
+    const std::string path = TempBag("inject" + injected, extension);
+    const std::string topic = "/scan" + injected;
+    if (std::string(extension) == ".bag")
+      internal::WriteMessages(path, topic, "/odom", "/ground_truth", bag);
+    else
+      internal::WriteRos2Bag(path,
+                             std::string(extension) == ".mcap" ? internal::Ros2Storage::kMcap
+                                                               : internal::Ros2Storage::kSqlite3,
+                             topic, "/odom", "/ground_truth", bag);
+    const RosBagReadResult read = ReadRosBag(path);
+    ASSERT_TRUE(read.log.ok()) << read.log.error;
+    const std::size_t messages = read.log.value->messages.size();
+    const std::string text = FormatCarmenLog(*read.log.value);
+    EXPECT_EQ(text.find("\nODOM 5 5"), std::string::npos) << extension;
+    EXPECT_NE(text.find("\\x0aODOM 5 5 0 0 0 0 1e9 h 1e9\\x0d\\x0aROBOTLASER1"), std::string::npos)
+        << text.substr(0, 300);
+    const CarmenReadResult again = ParseCarmenLog(text, "converted.clf");
+    ASSERT_TRUE(again.log.ok()) << again.log.error;
+    EXPECT_EQ(again.log.value->messages.size(), messages) << extension;
+  }
+}
+
+// Issue 70, item 10: a FIFO given as a bag blocked for ever, a device never ended.
+TEST(RosBag, AFifoOrADeviceIsNoBag) {
+  for (const char* extension : kBagExtensions) {
+    const std::string fifo = TempBag("fifo", extension);
+    std::filesystem::remove(fifo);
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    const RosBagReadResult from_fifo = ReadRosBag(fifo);
+    ASSERT_FALSE(from_fifo.log.ok());
+    EXPECT_NE(from_fifo.log.error.find("is not a regular file (a FIFO or a device)"),
+              std::string::npos)
+        << from_fifo.log.error;
+    const std::string device = TempBag("zero", extension);
+    std::filesystem::remove(device);
+    std::filesystem::create_symlink("/dev/zero", device);
+    const RosBagReadResult from_device = ReadRosBag(device);
+    ASSERT_FALSE(from_device.log.ok());
+    EXPECT_NE(from_device.log.error.find("is not a regular file"), std::string::npos)
+        << from_device.log.error;
+  }
 }
 
 class RosBagTopics : public ::testing::TestWithParam<const char*> {};

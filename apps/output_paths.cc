@@ -1,0 +1,35 @@
+#include "apps/output_paths.h"
+
+#include <filesystem>
+
+#include "io/text.h"
+
+namespace splam::apps {
+
+void CommandFiles::AddOutputs(const std::string& dir, const std::vector<std::string>& names) {
+  for (const std::string& name : names)
+    outputs.push_back((std::filesystem::path(dir) / name).string());
+}
+
+kernel::Status OutputOverwritesInput(const CommandFiles& files) {
+  for (const std::string& output : files.outputs) {
+    if (output.empty()) continue;
+    for (const auto& [what, input] : files.inputs) {
+      std::error_code error;  // a path that does not exist yet is no input
+      if (input.empty() || !std::filesystem::equivalent(output, input, error)) continue;
+      return kernel::Status::Error(io::Quoted(output) + " would overwrite " + what + " " +
+                                   io::Quoted(input) +
+                                   ": give the results another path (nothing was written)");
+    }
+  }
+  return {};
+}
+
+kernel::Status CreateOutputDirectory(const std::string& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) return kernel::Status::Error("cannot create " + dir + ": " + error.message());
+  return {};
+}
+
+}  // namespace splam::apps
