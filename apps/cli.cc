@@ -3,9 +3,11 @@
 #include <CLI/CLI.hpp>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <new>
 #include <string_view>
 #include <system_error>
@@ -25,6 +27,9 @@ int StreamFailed(const char* why) {
 }  // namespace
 
 int Main(int argc, char** argv) {
+  // A file-size limit (ulimit -f) makes a write fail (EFBIG) like a full disk: the command then
+  // exits 4 naming the file, instead of being killed by SIGXFSZ with its files cut short.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"splam: B-spline SLAM and exploration for 2-D laser robots"};
   app.require_subcommand(1);
   int exit_code = splam::apps::kExitOk;
@@ -49,6 +54,9 @@ int Main(int argc, char** argv) {
     status = exit_code;
   } catch (const CLI::ParseError& e) {
     status = app.exit(e) == 0 ? 0 : splam::apps::kExitBadInput;
+  } catch (const std::filesystem::filesystem_error& e) {  // what no command caught: a path
+    std::fprintf(stderr, "splam: %s\n", e.what());
+    return splam::apps::kExitWriteFailed;
   } catch (const std::system_error& e) {  // fmt::print to a stream that refused the bytes
     return StreamFailed(e.code().message().c_str());
   } catch (const std::bad_alloc&) {  // what no bound caught: said, not a signal

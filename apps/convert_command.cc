@@ -8,6 +8,7 @@
 
 #include "apps/commands.h"
 #include "apps/log_input.h"
+#include "apps/output_paths.h"
 #include "io/trajectory.h"
 
 namespace splam::apps {
@@ -44,6 +45,13 @@ int ConvertTrajectory(const ConvertArgs& args) {
 }
 
 int RunConvert(const ConvertArgs& args) {
+  CommandFiles files;
+  files.inputs = {{"the input", args.in}};
+  files.outputs = {args.out};
+  if (const kernel::Status s = OutputOverwritesInput(files); !s.ok()) {
+    fmt::print(stderr, "splam convert: {}\n", s.message());
+    return kExitBadInput;
+  }
   if (IsTrajectoryPath(args.out) || IsTrajectoryPath(args.in)) return ConvertTrajectory(args);
   if (std::none_of(kLogOutputs.begin(), kLogOutputs.end(),
                    [&](std::string_view e) { return args.out.ends_with(e); })) {

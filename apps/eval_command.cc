@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "apps/output_paths.h"
 #include "estimation/evaluation/metrics.h"
 #include "io/relations.h"
 #include "io/run_picture.h"
@@ -95,6 +96,18 @@ int RunEval(EvalArgs args) {
                "truth.txt)\n");
     return kExitBadInput;
   }
+  if (!args.out.empty()) {
+    CommandFiles files;
+    files.inputs = {{"--estimate", args.estimate},
+                    {"--odometry", args.odometry},
+                    {"--truth", args.truth},
+                    {"--relations", args.relations}};
+    files.AddOutputs(args.out, {"eval.json", "eval_errors.svg", "eval_errors.png"});
+    if (const kernel::Status s = OutputOverwritesInput(files); !s.ok()) {
+      fmt::print(stderr, "splam eval: {}\n", s.message());
+      return kExitBadInput;
+    }
+  }
   // Trajectories to score: the estimate and, as the baseline, raw odometry.
   std::vector<std::pair<std::string, kernel::Trajectory>> runs;
   for (const auto& [label, path] :
@@ -141,13 +154,13 @@ int RunEval(EvalArgs args) {
     }
     ReportAlignedErrors(*truth.value, runs, &report);
     if (!args.out.empty()) {
-      std::filesystem::create_directories(args.out);
-      if (kernel::Status e =
-              io::SaveErrorPlot("error against ground truth", *truth.value, plotted,
-                                {args.out + "/eval_errors.svg", args.out + "/eval_errors.png"});
-          !e.ok()) {
+      kernel::Status e = CreateOutputDirectory(args.out);
+      if (e.ok())
+        e = io::SaveErrorPlot("error against ground truth", *truth.value, plotted,
+                              {args.out + "/eval_errors.svg", args.out + "/eval_errors.png"});
+      if (!e.ok()) {
         fmt::print(stderr, "splam eval: {}\n", e.message());
-        return kExitBadInput;
+        return kExitWriteFailed;
       }
     }
   }
@@ -178,10 +191,9 @@ int RunEval(EvalArgs args) {
     }
   }
   if (!args.out.empty()) {
-    std::filesystem::create_directories(args.out);
-    if (const kernel::Status e =
-            io::WriteTextFile(args.out + "/eval.json", runtime::JsonText(report, 2) + "\n");
-        !e.ok()) {
+    kernel::Status e = CreateOutputDirectory(args.out);
+    if (e.ok()) e = io::WriteTextFile(args.out + "/eval.json", runtime::JsonText(report, 2) + "\n");
+    if (!e.ok()) {
       fmt::print(stderr, "splam eval: {}\n", e.message());
       return kExitWriteFailed;
     }

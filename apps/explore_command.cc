@@ -9,6 +9,7 @@
 
 #include "apps/commands.h"
 #include "apps/interrupt.h"
+#include "apps/output_paths.h"
 #include "apps/run_config.h"
 #include "exploration/explorer.h"
 #include "io/config.h"
@@ -157,28 +158,39 @@ int RunExplore(const ExploreArgs& args) {
                std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
     std::fflush(stdout);
   };
+  const std::string out = args.out.empty()
+                              ? fmt::format("runs/explore-{}-{}", setup.explorer, world.value->name)
+                              : args.out;
+  CommandFiles files;
+  files.inputs = {{"the world", args.world}};
+  files.config_in = args.config_file;
+  files.config_out = out + "/config.yaml";
+  files.AddOutputs(
+      out, {"report.json", "graph.svg", "graph.png", "explored.svg", "explored.png", "errors.svg",
+            "errors.png", "truth.txt", "odometry.txt", "estimate.txt", "map.txt", "map.dxf",
+            "loops.csv", "map.svg", "map.png", "steps.csv", "report.html"});
+  if (const kernel::Status s = OutputOverwritesInput(files); !s.ok()) {
+    fmt::print(stderr, "splam explore: {}\n", s.message());
+    return kExitBadInput;
+  }
   setup.options.stop = Interrupted;
   CatchInterrupts();
   const runtime::ExploreOutcome outcome = RunExploration(*world.value, setup);
+  const WritingResults writing;  // a second signal from here on does not cut the files short
   if (!outcome.error.empty()) {
     fmt::print(stderr, "splam explore: {}\n", outcome.error);
     return kExitBadInput;
   }
-  const std::string out = args.out.empty()
-                              ? fmt::format("runs/explore-{}-{}", setup.explorer, world.value->name)
-                              : args.out;
-  std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  if (ec) {
-    fmt::print(stderr, "splam explore: cannot create {}: {}\n", out, ec.message());
-    return kExitBadInput;
+  if (const kernel::Status s = CreateOutputDirectory(out); !s.ok()) {
+    fmt::print(stderr, "splam explore: {}\n", s.message());
+    return kExitWriteFailed;
   }
   if (kernel::Status s = io::WriteConfig(
           out + "/config.yaml", ExploreConfigRoot(&config),
           "splam explore\nrepeat with: splam explore --config " + out + "/config.yaml");
       !s.ok()) {
     fmt::print(stderr, "splam explore: {}\n", s.message());
-    return kExitBadInput;
+    return kExitWriteFailed;
   }
   const exploration::ExplorationRun& run = outcome.run;
   const int nodes = static_cast<int>(run.graph.num_nodes());

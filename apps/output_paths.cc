@@ -12,11 +12,17 @@ void CommandFiles::AddOutputs(const std::string& dir, const std::vector<std::str
 }
 
 kernel::Status OutputOverwritesInput(const CommandFiles& files) {
-  for (const std::string& output : files.outputs) {
+  std::vector<std::string> outputs = files.outputs;
+  outputs.push_back(files.config_out);
+  std::vector<std::pair<std::string, std::string>> inputs = files.inputs;
+  inputs.emplace_back("--config", files.config_in);
+  for (const std::string& output : outputs) {
     if (output.empty()) continue;
-    for (const auto& [what, input] : files.inputs) {
+    for (const auto& [what, input] : inputs) {
       std::error_code error;  // a path that does not exist yet is no input
-      if (input.empty() || !std::filesystem::equivalent(output, input, error)) continue;
+      if (input.empty() || (input == files.config_in && output == files.config_out) ||
+          !std::filesystem::equivalent(output, input, error))
+        continue;
       return kernel::Status::Error(io::Quoted(output) + " would overwrite " + what + " " +
                                    io::Quoted(input) +
                                    ": give the results another path (nothing was written)");

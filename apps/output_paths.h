@@ -15,6 +15,9 @@ struct CommandFiles {
   // paths are left out.
   std::vector<std::pair<std::string, std::string>> inputs;
   std::vector<std::string> outputs;  // the files written; empty paths are left out
+  // The --config file read and the config.yaml written: the one may be the other (a run
+  // repeated where it was written renews its record), but no other output may be the config.
+  std::string config_in, config_out;
   // Adds dir/name for each name (the files a command writes into its output directory).
   void AddOutputs(const std::string& dir, const std::vector<std::string>& names);
 };

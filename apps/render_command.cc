@@ -3,6 +3,7 @@
 
 #include "apps/commands.h"
 #include "apps/log_input.h"
+#include "apps/output_paths.h"
 #include "io/carmen.h"
 #include "io/run_picture.h"
 #include "io/simulation_log.h"
@@ -40,7 +41,19 @@ int RunRender(const RenderArgs& args) {
   }
   // Output directories that do not exist yet are made, as slam's --out is.
   std::vector<std::string> outputs = args.out;
-  if (!args.grid.empty()) outputs.push_back(args.grid);
+  if (!args.grid.empty()) {
+    outputs.push_back(args.grid);
+    for (const char* extension : {".pgm", ".png"})
+      outputs.push_back(std::filesystem::path(args.grid).replace_extension(extension).string());
+  }
+  CommandFiles files;
+  files.inputs = {{"the world", args.world}, {"the log", args.log}};
+  for (const std::string& t : args.trajectories) files.inputs.emplace_back("--trajectory", t);
+  files.outputs = outputs;
+  if (const kernel::Status s = OutputOverwritesInput(files); !s.ok()) {
+    fmt::print(stderr, "splam render: {}\n", s.message());
+    return kExitBadInput;
+  }
   for (const std::string& o : outputs) {
     const std::filesystem::path parent = std::filesystem::path(o).parent_path();
     std::error_code ec;

@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "apps/interrupt.h"
+#include "apps/output_paths.h"
 #include "io/config.h"
 #include "io/run_picture.h"
 #include "io/simulation_log.h"
@@ -129,15 +131,34 @@ int RunSimulate(const SimulateArgs& args) {
                route.start.x(), route.start.y(), args.world);
     return kExitBadInput;
   }
-  const sim::RouteRun run = sim::FollowRoute(&simulator, route.waypoints, route_options);
+  const std::string out = args.out.empty() ? "runs/simulate-" + world.value->name : args.out;
+  CommandFiles files;
+  files.inputs = {{"the world", args.world}, {"the route", args.route}};
+  files.config_in = args.config_file;
+  files.config_out = out + "/config.yaml";
+  files.AddOutputs(out, {"log.clf", "truth.txt", "odometry.txt", "world.yaml", "run.svg", "run.png",
+                         "summary.json", "report.html"});
+  if (const kernel::Status s = OutputOverwritesInput(files); !s.ok()) {
+    fmt::print(stderr, "splam simulate: {}\n", s.message());
+    return kExitBadInput;
+  }
+  CatchInterrupts();
+  int steps = 0;
+  const auto progress_or_stop = [&steps, &simulator] {
+    if (++steps % 500 == 0) {
+      fmt::print("  {} steps, {:.0f} s simulated\n", steps, simulator.time_s());
+      std::fflush(stdout);
+    }
+    return Interrupted();
+  };
+  const sim::RouteRun run =
+      sim::FollowRoute(&simulator, route.waypoints, route_options, progress_or_stop);
+  const WritingResults writing;  // a second signal from here on does not cut the files short
 
   // Write everything, also after an early stop.
-  const std::string out = args.out.empty() ? "runs/simulate-" + world.value->name : args.out;
-  std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  if (ec) {
-    fmt::print(stderr, "splam simulate: cannot create {}: {}\n", out, ec.message());
-    return kExitBadInput;
+  if (const kernel::Status s = CreateOutputDirectory(out); !s.ok()) {
+    fmt::print(stderr, "splam simulate: {}\n", s.message());
+    return kExitWriteFailed;
   }
   if (const kernel::Status s = io::WriteConfig(
           out + "/config.yaml", SimulateConfigRoot(&options, &route_options),
@@ -145,7 +166,7 @@ int RunSimulate(const SimulateArgs& args) {
               "\nrepeat with --config " + out + "/config.yaml");
       !s.ok()) {
     fmt::print(stderr, "splam simulate: {}\n", s.message());
-    return kExitBadInput;
+    return kExitWriteFailed;
   }
   const std::vector<std::string> comments = {
       " splam simulate: world " + world.value->name + ", laser " + options.laser.model + ", seed " +

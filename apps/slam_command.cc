@@ -12,6 +12,7 @@
 #include "apps/commands.h"
 #include "apps/interrupt.h"
 #include "apps/log_input.h"
+#include "apps/output_paths.h"
 #include "apps/run_config.h"
 #include "estimation/chi_square.h"
 #include "estimation/evaluation/metrics.h"
@@ -278,6 +279,13 @@ bool PrintSlamSummary(const std::string& label, const estimation::SlamMethod& sl
   return true;
 }
 
+// Every file `slam` may write into its output directory (checked against its inputs first).
+const std::vector<std::string> kSlamFiles = {
+    "config.yaml", "trajectory.txt", "trajectory.tum", "odometry.txt",    "truth.txt",
+    "truth.tum",   "map.txt",        "map.dxf",        "loops.csv",       "map.svg",
+    "map.png",     "errors.svg",     "errors.png",     "consistency.csv", "map.yaml",
+    "map.pgm",     "grid.png",       "steps.csv",      "summary.json",    "report.html"};
+
 // The world to draw under the map: --world, or world.yaml beside a simulated log; none for a
 // real log.
 io::Result<std::optional<sim::World>> WorldToDraw(const SlamArgs& args) {
@@ -294,6 +302,21 @@ io::Result<std::optional<sim::World>> WorldToDraw(const SlamArgs& args) {
 int RunSlam(const SlamArgs& args) {
   if (args.log.empty()) {
     fmt::print(stderr, "splam slam: no log: give one, `splam slam LOG` (a CARMEN log or a .bag)\n");
+    return kExitBadInput;
+  }
+  const std::string out =
+      args.out.empty() ? "runs/slam-" + std::filesystem::path(args.log).stem().string() : args.out;
+  CommandFiles files;
+  files.inputs = {{"the log", args.log},
+                  {"the world", args.world},
+                  {"--relations", args.relations},
+                  {"--load-state", args.load_state}};
+  files.config_in = args.config_file;
+  files.config_out = out + "/config.yaml";
+  files.outputs = {args.save_state};
+  files.AddOutputs(out, kSlamFiles);
+  if (const kernel::Status s = OutputOverwritesInput(files); !s.ok()) {
+    fmt::print(stderr, "splam slam: {}\n", s.message());
     return kExitBadInput;
   }
   const io::CarmenReadResult read = ReadLogInput(args.log, args.input);
@@ -347,13 +370,9 @@ int RunSlam(const SlamArgs& args) {
     return kExitBadInput;
   }
   if (!PrepareState(args, config.method, made.value->get())) return kExitBadInput;
-  const std::string out =
-      args.out.empty() ? "runs/slam-" + std::filesystem::path(args.log).stem().string() : args.out;
-  std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  if (ec) {
-    fmt::print(stderr, "splam slam: cannot create {}: {}\n", out, ec.message());
-    return kExitBadInput;
+  if (const kernel::Status s = CreateOutputDirectory(out); !s.ok()) {
+    fmt::print(stderr, "splam slam: {}\n", s.message());
+    return kExitWriteFailed;
   }
   // From here a Ctrl-C stops the run with what is done written (config.yaml marks the moment).
   CatchInterrupts();
@@ -373,6 +392,7 @@ int RunSlam(const SlamArgs& args) {
   };
   replay_options.stop = Interrupted;
   const runtime::ReplayResult run = runtime::ReplayLog(log, &driver, replay_options);
+  const WritingResults writing;  // a second signal from here on does not cut the files short
   if (run.stopped_at) {
     fmt::print(stderr,
                "splam slam: interrupted before scan {} of {}: the results so far are written and "

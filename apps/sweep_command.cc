@@ -34,7 +34,7 @@ int Merge(const std::string& dir) {
   kernel::Result<std::vector<std::string>> written = studies::WriteMergedSweep(*merged.value);
   if (!written.ok()) {
     fmt::print(stderr, "splam sweep merge: {}\n", written.error);
-    return kExitBadInput;
+    return kExitWriteFailed;
   }
   int missing = 0;
   for (const studies::MergedCell& c : merged.value->cells) missing += !c.record || !c.record->ok();
@@ -175,6 +175,13 @@ int RunGrid(const CLI::App& root, const SweepArgs& args) {
     return kExitIncomplete;
   }
   const int merged = args.merge ? Merge(dir) : kExitOk;
+  // A cell that could not write its results (a full disk) makes the sweep's a failed write.
+  if (s.write_failed > 0 || merged == kExitWriteFailed) {
+    if (s.write_failed > 0)
+      fmt::print(stderr, "splam sweep: {} cells could not write their results (exit 4)\n",
+                 s.write_failed);
+    return kExitWriteFailed;
+  }
   return s.failed > 0 || merged != kExitOk ? kExitIncomplete : kExitOk;
 }
 

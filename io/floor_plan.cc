@@ -53,6 +53,13 @@ Result<sim::World> ReadFloorPlan(const std::string& path, const FloorPlanOptions
 
   cv::Mat dark;
   cv::threshold(grey, dark, options.dark_threshold - 1, 255, cv::THRESH_BINARY_INV);
+  // Dark everywhere: one solid block, no room in it (its outline alone read as walls around
+  // free space, and an exploration "covered" 91 % of it).
+  if (cv::countNonZero(dark) == static_cast<int>(dark.total()))
+    return R::Fail(FileError(path, 0,
+                             "every pixel is dark (below grey level " +
+                                 std::to_string(options.dark_threshold) +
+                                 "): a solid block with no free space"));
   // A one-pixel white frame so that regions touching the border still get closed outlines.
   cv::copyMakeBorder(dark, dark, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
   std::vector<std::vector<cv::Point>> contours;

@@ -1,5 +1,7 @@
 #include "studies/sweep.h"
 
+#include "runtime/exit_status.h"
+
 #include <fcntl.h>
 #include <fmt/core.h>
 #include <signal.h>
@@ -403,6 +405,7 @@ kernel::Result<SweepRunSummary> RunSweepLocally(const std::string& dir,
       const CellRecord record = FinishCell(CellDir(dir, cells[r.cell]), ExitStatusOf(status), wall);
       summary.cells_wall_s += wall;
       (record.ok() ? summary.done : summary.failed)++;
+      if (record.exit_status == runtime::kExitWriteFailed) ++summary.write_failed;
       progress.done = summary.done;
       progress.failed = summary.failed;
       report(Describe(cells[r.cell], record));

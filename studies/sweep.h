@@ -85,6 +85,7 @@ struct SweepRunOptions {
 
 struct SweepRunSummary {
   int cells = 0, skipped = 0, done = 0, failed = 0, left = 0;
+  int write_failed = 0;  // of the failed: cells that exited 4 (a result that could not be written)
   bool interrupted = false;
   double wall_s = 0.0;        // of the whole sweep
   double cells_wall_s = 0.0;  // the sum of the cells run now

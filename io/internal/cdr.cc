@@ -214,10 +214,10 @@ std::string EncodeTransforms(const std::vector<RosPose>& transforms) {
 
 #define SPLAM_SEPARATOR \
   "\n================================================================================\nMSG: "
-#define SPLAM_HEADER                                                                    \
-  SPLAM_SEPARATOR                                                                       \
-      "std_msgs/Header\nbuiltin_interfaces/Time stamp\nstring frame_id" SPLAM_SEPARATOR \
-      "builtin_interfaces/Time\nint32 sec\nuint32 nanosec"
+#define SPLAM_HEADER                                                                \
+  SPLAM_SEPARATOR                                                                   \
+  "std_msgs/Header\nbuiltin_interfaces/Time stamp\nstring frame_id" SPLAM_SEPARATOR \
+  "builtin_interfaces/Time\nint32 sec\nuint32 nanosec"
 #define SPLAM_VECTOR3 SPLAM_SEPARATOR "geometry_msgs/Vector3\nfloat64 x\nfloat64 y\nfloat64 z"
 #define SPLAM_QUATERNION \
   SPLAM_SEPARATOR "geometry_msgs/Quaternion\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w"

@@ -147,6 +147,45 @@ void KeepEncryptorPluginsLoaded() {
   (void)kLoader;
 }
 
+// The messages into an open bag (WriteMessages).
+void WriteAll(rosbag::Bag* out, const std::string& scan_topic, const std::string& odom_topic,
+              const std::string& truth_topic, const RosBagMessages& messages, bool bz2) {
+  rosbag::Bag& bag = *out;
+  if (bz2) bag.setCompression(rosbag::compression::BZ2);
+  const auto write_transform = [&](const char* topic, const RosPose& p) {
+    tf2_msgs::TFMessage tf;
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = Time(p.time_s);
+    t.header.frame_id = p.parent;
+    t.child_frame_id = p.child;
+    t.transform.translation.x = p.x;
+    t.transform.translation.y = p.y;
+    t.transform.rotation = Quaternion(p.yaw);
+    tf.transforms.push_back(t);
+    bag.write(topic, RecordTime(p.time_s), tf);
+  };
+  for (const RosPose& p : messages.tf_static) write_transform("/tf_static", p);
+  for (const RosPose& p : messages.tf) write_transform("/tf", p);
+  for (const RosScan& scan : messages.scans) {
+    sensor_msgs::LaserScan s;
+    s.header.stamp = Time(scan.time_s);
+    s.header.frame_id = scan.frame;
+    s.angle_min = static_cast<float>(scan.angle_min);
+    s.angle_increment = static_cast<float>(scan.angle_increment);
+    s.angle_max = static_cast<float>(
+        scan.angle_min + scan.angle_increment *
+                             static_cast<double>(std::max<std::size_t>(scan.ranges.size(), 1) - 1));
+    s.range_min = static_cast<float>(scan.range_min);
+    s.range_max = static_cast<float>(scan.range_max);
+    s.ranges = scan.ranges;
+    bag.write(scan_topic, RecordTime(scan.time_s), s);
+  }
+  for (const RosPose& p : messages.odometry)
+    bag.write(odom_topic, RecordTime(p.time_s), ToOdometry(p));
+  for (const RosPose& p : messages.truth)
+    bag.write(truth_topic, RecordTime(p.time_s), ToOdometry(p));
+}
+
 }  // namespace
 
 RosBagFile::RosBagFile(const std::string& path) {
@@ -202,41 +241,20 @@ void WriteMessages(const std::string& path, const std::string& scan_topic,
                    const std::string& odom_topic, const std::string& truth_topic,
                    const RosBagMessages& messages, bool bz2) {
   KeepEncryptorPluginsLoaded();
-  rosbag::Bag bag(path, rosbag::bagmode::Write);
-  if (bz2) bag.setCompression(rosbag::compression::BZ2);
-  const auto write_transform = [&](const char* topic, const RosPose& p) {
-    tf2_msgs::TFMessage tf;
-    geometry_msgs::TransformStamped t;
-    t.header.stamp = Time(p.time_s);
-    t.header.frame_id = p.parent;
-    t.child_frame_id = p.child;
-    t.transform.translation.x = p.x;
-    t.transform.translation.y = p.y;
-    t.transform.rotation = Quaternion(p.yaw);
-    tf.transforms.push_back(t);
-    bag.write(topic, RecordTime(p.time_s), tf);
-  };
-  for (const RosPose& p : messages.tf_static) write_transform("/tf_static", p);
-  for (const RosPose& p : messages.tf) write_transform("/tf", p);
-  for (const RosScan& scan : messages.scans) {
-    sensor_msgs::LaserScan s;
-    s.header.stamp = Time(scan.time_s);
-    s.header.frame_id = scan.frame;
-    s.angle_min = static_cast<float>(scan.angle_min);
-    s.angle_increment = static_cast<float>(scan.angle_increment);
-    s.angle_max = static_cast<float>(
-        scan.angle_min + scan.angle_increment *
-                             static_cast<double>(std::max<std::size_t>(scan.ranges.size(), 1) - 1));
-    s.range_min = static_cast<float>(scan.range_min);
-    s.range_max = static_cast<float>(scan.range_max);
-    s.ranges = scan.ranges;
-    bag.write(scan_topic, RecordTime(scan.time_s), s);
+  // rosbag::Bag's destructor closes the file, which writes the index: after a write that failed
+  // (a full disk, a file-size limit) that write throws again, and a destructor that throws ends
+  // the process (std::terminate: the uncaught rosbag::BagIOException). So the bag is closed
+  // here, and on failure it is left undestroyed (its memory and descriptor are given up) and the
+  // first exception goes on.
+  auto owned = std::make_unique<rosbag::Bag>(path, rosbag::bagmode::Write);
+  rosbag::Bag& bag = *owned;
+  try {
+    WriteAll(&bag, scan_topic, odom_topic, truth_topic, messages, bz2);
+    bag.close();
+  } catch (...) {
+    static_cast<void>(owned.release());  // left undestroyed: see above
+    throw;
   }
-  for (const RosPose& p : messages.odometry)
-    bag.write(odom_topic, RecordTime(p.time_s), ToOdometry(p));
-  for (const RosPose& p : messages.truth)
-    bag.write(truth_topic, RecordTime(p.time_s), ToOdometry(p));
-  bag.close();
 }
 
 }  // namespace splam::io::internal

@@ -14,6 +14,8 @@
 #include <functional>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "io/trajectory.h"
 
@@ -59,9 +61,10 @@ inline std::string Slurp(const fs::path& p) {
   return text;
 }
 
-// Runs splam with `args` (output discarded), sends it SIGINT once `ready()` holds (polled every
+// Runs splam with `args` (output discarded), sends it `signal` once `ready()` holds (polled every
 // 20 ms; at the latest after 120 s), and returns its exit status (-1 when a signal ended it).
-inline int SplamInterruptedWhen(const std::string& args, const std::function<bool()>& ready) {
+inline int SplamInterruptedWhen(const std::string& args, const std::function<bool()>& ready,
+                                int signal = SIGINT) {
   const std::string command =
       std::string("exec ") + SPLAM_BINARY + " " + args + " > /dev/null 2>&1";
   const pid_t pid = fork();
@@ -72,7 +75,44 @@ inline int SplamInterruptedWhen(const std::string& args, const std::function<boo
   const auto start = std::chrono::steady_clock::now();
   while (!ready() && std::chrono::steady_clock::now() - start < std::chrono::seconds(120))
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  kill(pid, SIGINT);
+  kill(pid, signal);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Runs splam with `args`, its standard output and error into a pipe, and sends it each signal
+// of `signals` in turn as soon as the output has said its text (the texts in the order said).
+// Returns the exit status (-1 when a signal ended it).
+inline int SplamSignalledWhenSaid(const std::string& args,
+                                  const std::vector<std::pair<std::string, int>>& signals) {
+  int pipe_fds[2];
+  if (pipe(pipe_fds) != 0) return -2;
+  const std::string command = std::string("exec ") + SPLAM_BINARY + " " + args + " 2>&1";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(pipe_fds[1], 1);
+    close(pipe_fds[0]);
+    close(pipe_fds[1]);
+    execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  close(pipe_fds[1]);
+  std::string said;
+  std::array<char, 256> buffer;
+  std::size_t from = 0;
+  for (const auto& [text, signal] : signals) {
+    std::size_t at = std::string::npos;
+    for (ssize_t n; (at = said.find(text, from)) == std::string::npos &&
+                    (n = read(pipe_fds[0], buffer.data(), buffer.size())) > 0;)
+      said.append(buffer.data(), static_cast<std::size_t>(n));
+    if (at == std::string::npos) break;  // it ended without saying it
+    from = at + text.size();
+    kill(pid, signal);
+  }
+  while (read(pipe_fds[0], buffer.data(), buffer.size()) > 0) {
+  }
+  close(pipe_fds[0]);
   int status = 0;
   waitpid(pid, &status, 0);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -394,9 +394,18 @@ TEST(SplamCli, WorldsThatCannotBeRunAreRefusedAndAFloorPlanTakesAStart) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.text.find("has no start pose: give one with --start X,Y,THETA"), std::string::npos)
       << r.text;
-  r = Splam(explore + " --world " + (dir / "solid.png").string() + " --start 2,2,0");
+  r = Splam(explore + " --world " + (dir / "plan.png").string() + " --start 0.05,0.05,0");
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.text.find("the start pose (2, 2) lies on a dark pixel"), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find("the start pose (0.05, 0.05) lies on a dark pixel"), std::string::npos)
+      << r.text;
+  // Issue 70: an all-black image was explored as free space; it is refused wherever the start.
+  for (const char* start : {"2,2,0", "-1,-1,0", "6.5,2,0"}) {
+    r = Splam(explore + " --world " + (dir / "solid.png").string() + " --start " + start);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.text.find("every pixel is dark (below grey level 128): a solid block"),
+              std::string::npos)
+        << r.text;
+  }
   r = Splam(explore + " --world " + (dir / "plan.png").string() + " --start 1.5,2,0");
   EXPECT_NE(r.status, 2) << r.text;
   const auto report = nlohmann::json::parse(Slurp(dir / "e" / "report.json"));
@@ -564,6 +573,131 @@ TEST(SplamCli, AFullDiskGivesExitStatus4NamingTheFile) {
   EXPECT_EQ(bagged.status, 4) << bagged.text;
   EXPECT_NE(bagged.text.find("converted.bag: cannot write the bag"), std::string::npos)
       << bagged.text;
+  // Issue 70, item 7: simulate's and explore's config.yaml, eval's picture on a full disk, and
+  // an output directory that cannot be made, said "bad input" (2); eval's named no file.
+  const fs::path sim_config = full("sim-config", "config.yaml");
+  const Output simulated_config = Splam("simulate --world corridor --out " + sim_config.string());
+  EXPECT_EQ(simulated_config.status, 4) << simulated_config.text;
+  EXPECT_NE(simulated_config.text.find("config.yaml: write failed"), std::string::npos)
+      << simulated_config.text;
+  const fs::path explore_config = full("explore-config", "config.yaml");
+  const Output explored_config = Splam(
+      "explore --world corridor --explorer srt --localization ground-truth --max-nodes 2 --out " +
+      explore_config.string());
+  EXPECT_EQ(explored_config.status, 4) << explored_config.text;
+  EXPECT_NE(explored_config.text.find("config.yaml: write failed"), std::string::npos)
+      << explored_config.text;
+  const fs::path eval_picture = full("eval-picture", "eval_errors.png");
+  const Output pictured =
+      Splam("eval --truth " + (dir / "sim" / "truth.txt").string() + " --estimate " +
+            (dir / "sim" / "odometry.txt").string() + " --out " + eval_picture.string());
+  EXPECT_EQ(pictured.status, 4) << pictured.text;
+  EXPECT_NE(pictured.text.find("eval_errors.png"), std::string::npos) << pictured.text;
+  const std::string regular = WriteIn(dir, "a_file", "x");
+  for (const std::string& command :
+       {"eval --truth " + (dir / "sim" / "truth.txt").string() + " --estimate " +
+            (dir / "sim" / "odometry.txt").string() + " --out " + regular + "/eval",
+        "simulate --world corridor --out " + regular + "/sim",
+        "slam " + log + " --out " + regular + "/slam"}) {
+    const Output under_a_file = Splam(command);
+    EXPECT_EQ(under_a_file.status, 4) << command << "\n" << under_a_file.text;
+    EXPECT_NE(under_a_file.text.find("cannot create " + regular + "/"), std::string::npos)
+        << under_a_file.text;
+  }
+  // A file-size limit (ulimit -f): SIGXFSZ killed splam; where it was ignored (as Python does
+  // for its children) rosbag's second exception, from the bag's destructor, aborted.
+  for (const char* file : {"limited.bag", "limited.clf", "limited.mcap"}) {
+    const std::string command = "sh -c 'ulimit -f 20; exec " + std::string(SPLAM_BINARY) +
+                                " convert " + log + " " + (dir / file).string() + "' 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string text;
+    std::array<char, 4096> buffer;
+    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
+      text.append(buffer.data(), n);
+    const int status = pclose(pipe);
+    ASSERT_TRUE(WIFEXITED(status)) << file << ": ended by signal " << WTERMSIG(status);
+    EXPECT_EQ(WEXITSTATUS(status), 4) << file << ": " << text;
+    EXPECT_NE(text.find(file), std::string::npos) << text;
+  }
+}
+
+// Issue 70, item 8: `slam LOG --save-state LOG` overwrote the log and exited 0. Any output that
+// is an input file, by any name, is refused before anything is written.
+TEST(SplamCli, AnOutputThatIsAnInputIsRefusedBeforeAnythingIsWritten) {
+  const fs::path dir = Temp("output_is_input");
+  ASSERT_EQ(Splam("simulate --world corridor --out " + (dir / "sim").string()).status, 0);
+  const std::string log = (dir / "sim" / "log.clf").string();
+  const std::string before = Slurp(log);
+  fs::create_symlink(log, dir / "link.clf");
+  for (const std::string& command :
+       {"slam " + log + " --save-state " + log + " --out " + (dir / "a").string(),
+        "slam " + log + " --save-state " + (dir / "link.clf").string() + " --out " +
+            (dir / "b").string(),
+        "slam " + (dir / "sim" / "." / "log.clf").string() + " --relations " +
+            (dir / "c" / "summary.json").string() + " --out " + (dir / "c").string(),
+        "convert " + log + " " + (dir / "link.clf").string(),
+        "simulate --world " + (dir / "sim" / "world.yaml").string() + " --out " +
+            (dir / "sim").string(),
+        "eval --truth " + (dir / "sim" / "truth.txt").string() + " --estimate " +
+            (dir / "sim" / "odometry.txt").string() + " --out " + (dir / "sim").string() +
+            " --odometry " + WriteIn(dir / "sim", "eval.json", "")}) {
+    if (command.find("--relations") != std::string::npos) {
+      fs::create_directories(dir / "c");
+      WriteIn(dir / "c", "summary.json", "0 0 1 0 0 0 0 0\n");
+    }
+    const Output r = Splam(command);
+    EXPECT_EQ(r.status, 2) << command << "\n" << r.text;
+    EXPECT_NE(r.text.find("would overwrite"), std::string::npos) << r.text;
+    EXPECT_NE(r.text.find("nothing was written"), std::string::npos) << r.text;
+  }
+  EXPECT_EQ(Slurp(log), before);
+  EXPECT_FALSE(fs::exists(dir / "a"));
+  EXPECT_FALSE(fs::exists(dir / "b"));
+  EXPECT_EQ(Slurp(dir / "c" / "summary.json"), "0 0 1 0 0 0 0 0\n");
+  // A run repeated in its own directory from its own config.yaml renews that record.
+  ASSERT_EQ(Splam("slam " + log + " --max-scans 20 --out " + (dir / "d").string()).status, 0);
+  const Output again =
+      Splam("slam " + log + " --max-scans 20 --config " + (dir / "d" / "config.yaml").string() +
+            " --out " + (dir / "d").string());
+  EXPECT_EQ(again.status, 0) << again.text;
+}
+
+// Issue 70, item 9: a second SIGINT during the final write left only config.yaml (rc 130);
+// SIGHUP was not handled (rc 129, nothing written); `simulate` handled neither SIGINT nor
+// SIGTERM (rc 143, no summary.json).
+TEST(SplamCli, EverySignalToStopWritesTheFilesWholeAndExits3) {
+  const fs::path dir = Temp("signals");
+  ASSERT_EQ(Splam("simulate --world complex --out " + (dir / "complex").string()).status, 0);
+  const std::string log = (dir / "complex" / "log.clf").string();
+  // The first signal after the first progress line, the second once the message that the
+  // results are being written is out.
+  EXPECT_EQ(SplamSignalledWhenSaid(
+                "slam --method ekf-bspline " + log + " --out " + (dir / "twice").string(),
+                {{" scans, ", SIGINT}, {"the results so far are written", SIGINT}}),
+            3);
+  EXPECT_EQ(SplamSignalledWhenSaid(
+                "slam --method ekf-bspline " + log + " --out " + (dir / "hup").string(),
+                {{" scans, ", SIGHUP}}),
+            3);
+  for (const fs::path& out : {dir / "twice", dir / "hup"}) {
+    const auto summary = nlohmann::json::parse(Slurp(out / "summary.json"));
+    EXPECT_NE(summary["stopped_early"].get<std::string>().find("interrupted before scan"),
+              std::string::npos);
+    for (const char* file : {"trajectory.txt", "map.png", "map.dxf", "report.html"})
+      EXPECT_TRUE(fs::exists(out / file)) << out / file;
+  }
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+    const fs::path out = dir / ("sim-" + std::to_string(signal));
+    EXPECT_EQ(SplamSignalledWhenSaid("simulate --world office-long --out " + out.string(),
+                                     {{"500 steps", signal}}),
+              3);
+    const auto summary = nlohmann::json::parse(Slurp(out / "summary.json"));
+    EXPECT_NE(summary["message"].get<std::string>().find("interrupted at t = "), std::string::npos);
+    const auto truth = io::ReadTrajectory((out / "truth.txt").string());
+    ASSERT_TRUE(truth.ok()) << truth.error;
+    EXPECT_GT(truth.value->size(), 1u);
+  }
 }
 
 // Standard output on a full disk (`config print > /dev/full`) aborted with

@@ -86,6 +86,13 @@ TEST(FloorPlan, BadInputsAreClearErrors) {
   ASSERT_TRUE(cv::imwrite(blank, white));
   EXPECT_NE(ReadFloorPlan(blank, FloorPlanOptions()).error.find("no dark pixels"),
             std::string::npos);
+  // Issue 70: an all-black image was explored as free space (exit 3, "91 % covered").
+  const std::string solid = TempPath("black.png");
+  ASSERT_TRUE(cv::imwrite(solid, cv::Mat(40, 60, CV_8UC1, cv::Scalar(0))));
+  EXPECT_EQ(ReadFloorPlan(solid, FloorPlanOptions()).error,
+            solid +
+                ": every pixel is dark (below grey level 128): a solid block with no free "
+                "space");
 
   FloorPlanOptions bad;
   bad.resolution_m_per_px = 0.0;

@@ -98,6 +98,11 @@ TEST(SlamStateFile, BadFilesNameFileAndLine) {
             ":3: spline: expected id, n >= 4, n control points and n + 4 knots");
   EXPECT_EQ(error("splam_state 1\nmethod graph\nspline 1 4 0 0 1 1 2 2 3 3 0 0 0 0 1 1 1 0.5\n"),
             ":3: spline: knots must be finite and non-decreasing");
+  // Issue 70, item 6: control points of 1e15 or 1e300 loaded, and the run ended at map.dxf.
+  EXPECT_EQ(error("splam_state 1\nmethod graph\nspline 3 4 1e300 0 1 1 2 2 3 3 0 0 0 0 1 1 1 1\n"),
+            ":3: spline 3: control point 0 (1e+300, 0) is not finite or beyond +-1e+06 m");
+  EXPECT_EQ(error("splam_state 1\nmethod graph\nspline 3 4 0 0 1 1 2 1e15 3 3 0 0 0 0 1 1 1 1\n"),
+            ":3: spline 3: control point 2 (2, 1e+15) is not finite or beyond +-1e+06 m");
   EXPECT_EQ(error("splam_state 1\nmethod graph\nscan 0 0 0 0 0 0 0 0 0.1 0 4 3 1 2\n"),
             ":3: scan: 3 ranges announced, 2 given");
   EXPECT_EQ(error("splam_state 1\nmethod graph\nscan 0 0 0 0 0 0 0 0 0.1 5 4 1 1\n"),
