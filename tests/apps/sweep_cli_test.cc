@@ -92,6 +92,26 @@ TEST(SweepCli, GridRunsOnAllCoresResumesAndMerges) {
       << run.text;
 }
 
+// Issue 70, item 7: a sweep whose cells could not write their results (a full disk) exited 3, as
+// if stopped early; a merge that could not be written said bad input (2). Both are exit 4.
+TEST(SweepCli, CellsOrAMergeThatCannotBeWrittenGiveExitStatus4) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full on this machine";
+  const fs::path dir = SlamGrid("sweep_full");
+  const fs::path cell = dir / "out/cells/method-graph_odometry-noise-1";
+  fs::create_directories(cell);
+  fs::create_symlink("/dev/full", cell / "summary.json");
+  Output run = Splam("sweep grid.yaml --out out --jobs 2", dir);
+  EXPECT_EQ(run.status, 4) << run.text;
+  EXPECT_NE(run.text.find("1 cells could not write their results (exit 4)"), std::string::npos)
+      << run.text;
+  fs::remove(cell / "summary.json");
+  fs::remove(dir / "out/table.md");
+  fs::create_symlink("/dev/full", dir / "out/table.md");
+  run = Splam("sweep merge out", dir);
+  EXPECT_EQ(run.status, 4) << run.text;
+  EXPECT_NE(run.text.find("table.md"), std::string::npos) << run.text;
+}
+
 TEST(SweepCli, CtrlCKeepsFinishedCellsAndTheNextRunResumes) {
   const fs::path dir = Temp("sweep_interrupt");
   fs::create_directories(dir);
