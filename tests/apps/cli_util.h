@@ -28,18 +28,28 @@ struct Output {
   std::string text;  // stdout and stderr
 };
 
+// Runs a shell command and collects its standard output; *wait_status is what waitpid says of
+// it (WIFEXITED, WTERMSIG), -1 when it could not start.
+inline std::string Shell(const std::string& command, int* wait_status) {
+  std::string text;
+  *wait_status = -1;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return text;
+  std::array<char, 4096> buffer;
+  while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
+    text.append(buffer.data(), n);
+  *wait_status = pclose(pipe);
+  return text;
+}
+
 // Runs `splam args` (in directory `cwd` when given) and collects its output and exit status.
 inline Output Splam(const std::string& args, const fs::path& cwd = {}) {
   const std::string command = (cwd.empty() ? "" : "cd '" + cwd.string() + "' && ") +
                               std::string(SPLAM_BINARY) + " " + args + " 2>&1";
   Output out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return out;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
-    out.text.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  out.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  int status = 0;
+  out.text = Shell(command, &status);
+  out.status = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return out;
 }
 

@@ -607,15 +607,10 @@ TEST(SplamCli, AFullDiskGivesExitStatus4NamingTheFile) {
   // A file-size limit (ulimit -f): SIGXFSZ killed splam; where it was ignored (as Python does
   // for its children) rosbag's second exception, from the bag's destructor, aborted.
   for (const char* file : {"limited.bag", "limited.clf", "limited.mcap"}) {
-    const std::string command = "sh -c 'ulimit -f 20; exec " + std::string(SPLAM_BINARY) +
-                                " convert " + log + " " + (dir / file).string() + "' 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    ASSERT_NE(pipe, nullptr);
-    std::string text;
-    std::array<char, 4096> buffer;
-    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
-      text.append(buffer.data(), n);
-    const int status = pclose(pipe);
+    int status = 0;
+    const std::string text = Shell("sh -c 'ulimit -f 20; exec " + std::string(SPLAM_BINARY) +
+                                       " convert " + log + " " + (dir / file).string() + "' 2>&1",
+                                   &status);
     ASSERT_TRUE(WIFEXITED(status)) << file << ": ended by signal " << WTERMSIG(status);
     EXPECT_EQ(WEXITSTATUS(status), 4) << file << ": " << text;
     EXPECT_NE(text.find(file), std::string::npos) << text;
@@ -711,13 +706,9 @@ TEST(SplamCli, AFullStandardOutputGivesExitStatus4) {
                                   "slam --method graph " + (dir / "sim" / "log.clf").string() +
                                       " --out " + (dir / "slam").string()}) {
     // Standard error to the pipe, standard output to /dev/full.
-    FILE* pipe = popen((std::string(SPLAM_BINARY) + " " + args + " 2>&1 >/dev/full").c_str(), "r");
-    ASSERT_NE(pipe, nullptr);
-    std::string text;
-    std::array<char, 4096> buffer;
-    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
-      text.append(buffer.data(), n);
-    const int status = pclose(pipe);
+    int status = 0;
+    const std::string text =
+        Shell(std::string(SPLAM_BINARY) + " " + args + " 2>&1 >/dev/full", &status);
     ASSERT_TRUE(WIFEXITED(status)) << args << ": ended by a signal";
     EXPECT_EQ(WEXITSTATUS(status), 4) << args << "\n" << text;
     EXPECT_NE(text.find("writing to standard output or error failed"), std::string::npos)
