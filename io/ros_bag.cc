@@ -133,7 +133,7 @@ kernel::Scan ScanOf(const internal::RosScan& m) {
       scan.ranges_m.push_back(range);
     }
   }
-  if (scan.angular_step_rad < 0.0) {  // a laser mounted upside down
+  if (scan.angular_step_rad < 0.0 && scan.size() > 0) {  // a laser mounted upside down
     scan.start_angle_rad += scan.angular_step_rad * static_cast<double>(scan.size() - 1);
     scan.angular_step_rad = -scan.angular_step_rad;
     std::reverse(scan.ranges_m.begin(), scan.ranges_m.end());

@@ -120,9 +120,8 @@ struct Ros2Pass {
   std::function<void(int topic, std::int64_t time_ns, std::string_view data)> take;
   std::vector<Ros2Topic> topics;
   std::vector<std::int64_t> counts;
-  std::vector<char> taken;          // per topic: whether its messages go to `take`
-  std::uint64_t decompressed = 0;   // bytes of every chunk decompressed so far
-  std::uint64_t storage_bytes = 0;  // bytes of the storage files read so far
+  std::vector<char> taken;         // per topic: whether its messages go to `take`
+  std::uint64_t decompressed = 0;  // bytes of every chunk decompressed so far
 
   int AddTopic(Ros2Topic topic) {
     if (topics.size() >= limits.max_topics)
@@ -356,7 +355,6 @@ void ReadStorage(const std::string& path, Ros2Pass* pass) {
   if (!path.ends_with(".db3") && !path.ends_with(".mcap"))
     Fail("storage file " + path + " is neither .db3 nor .mcap");
   const std::uint64_t size = RegularFileSize(path);
-  pass->storage_bytes += size;
   if (path.ends_with(".db3")) return ReadSqlite(path, size, pass);
   ReadMcap(path, size, pass);
 }
