@@ -120,8 +120,9 @@ struct Ros2Pass {
   std::function<void(int topic, std::int64_t time_ns, std::string_view data)> take;
   std::vector<Ros2Topic> topics;
   std::vector<std::int64_t> counts;
-  std::vector<char> taken;         // per topic: whether its messages go to `take`
-  std::uint64_t decompressed = 0;  // bytes of every chunk decompressed so far
+  std::vector<char> taken;                 // per topic: whether its messages go to `take`
+  std::uint64_t decompressed = 0;          // bytes of every chunk decompressed so far
+  std::uint64_t decompression_budget = 0;  // bytes the pass may decompress
 
   int AddTopic(Ros2Topic topic) {
     if (topics.size() >= limits.max_topics)
@@ -198,10 +199,11 @@ void ParseRecord(std::uint8_t opcode, Cursor r, McapState* state, bool in_chunk)
              std::to_string(records.size()) + " (at most " +
              std::to_string(pass.limits.max_chunk_bytes) + ", and 1000 times its compressed size)");
       pass.decompressed += size;
-      if (pass.decompressed > pass.limits.max_decompressed_bytes)
-        Fail("its chunks decompress to more than " +
-             std::to_string(pass.limits.max_decompressed_bytes) +
-             " bytes, the most a bag may hold");
+      if (pass.decompressed > pass.decompression_budget)
+        Fail("its chunks decompress to more than " + std::to_string(pass.decompression_budget) +
+             " bytes (" + std::to_string(pass.limits.max_decompressed_bytes) + " and " +
+             std::to_string(pass.limits.decompression_ratio) +
+             " times the size of its storage files), the most a bag may hold");
       const std::string plain = Decompress(compression, records, size);
       if (crc != 0 && Crc32(plain) != crc) Fail("a chunk's CRC does not match its records");
       ParseRecords(plain, state);
@@ -593,7 +595,11 @@ Ros2BagFile::Ros2BagFile(const std::string& path, const Ros2ReadLimits& limits) 
   } else {
     files_ = {path};
   }
+  decompression_budget_ = limits_.max_decompressed_bytes;
+  for (const std::string& file : files_)
+    decompression_budget_ += limits_.decompression_ratio * RegularFileSize(file);
   Ros2Pass pass(limits_);
+  pass.decompression_budget = decompression_budget_;
   for (const std::string& file : files_) ReadStorage(file, &pass);
   topics_ = std::move(pass.topics);
   counts_ = std::move(pass.counts);
@@ -617,6 +623,7 @@ RosBagMessages Ros2BagFile::Messages(const std::string& scan_topic, const std::s
   std::vector<std::pair<std::int64_t, std::vector<RosPose>>> tf, tf_static;
   std::uint64_t held = 0;
   Ros2Pass pass(limits_);
+  pass.decompression_budget = decompression_budget_;
   pass.wanted = [&](const Ros2Topic& t) {
     return (!scan_topic.empty() && t.name == scan_topic) ||
            (!odom_topic.empty() && t.name == odom_topic) ||

@@ -37,8 +37,11 @@ struct Ros2ReadLimits {
   std::uint64_t max_chunk_bytes = std::uint64_t{256} << 20;
   // One message or other record read (a schema, a channel), one SQLite value. Bytes.
   std::uint64_t max_message_bytes = std::uint64_t{64} << 20;
-  // All chunks of one pass over the bag, decompressed (time: about 10 s). Bytes.
-  std::uint64_t max_decompressed_bytes = std::uint64_t{16} << 30;
+  // All chunks of one pass over the bag together, decompressed: at most this many bytes plus
+  // decompression_ratio times the size of the bag's storage files (sensor data compresses 2 to
+  // 10 times; a 4.3 MB file of chunks of zeros decompressed to 5.3 GB). Bytes.
+  std::uint64_t max_decompressed_bytes = std::uint64_t{1} << 30;
+  std::uint64_t decompression_ratio = 100;
   // The messages of the topics read, each counted as at least 256 bytes: the most a text log
   // may hold too. The other topics' messages are counted, never held. Bytes.
   std::uint64_t max_held_bytes = std::uint64_t{4} << 30;
@@ -61,9 +64,10 @@ class Ros2BagFile : public BagReader {
 
  private:
   Ros2ReadLimits limits_;
-  std::vector<std::string> files_;    // the storage files, in the order metadata.yaml lists them
-  std::vector<Ros2Topic> topics_;     // as the files define them (one name may recur)
-  std::vector<std::int64_t> counts_;  // messages per topic
+  std::vector<std::string> files_;  // the storage files, in the order metadata.yaml lists them
+  std::uint64_t decompression_budget_ = 0;  // bytes a pass may decompress
+  std::vector<Ros2Topic> topics_;           // as the files define them (one name may recur)
+  std::vector<std::int64_t> counts_;        // messages per topic
 };
 
 // Writes the messages as one storage file (a zstd-chunked MCAP, or a SQLite3 .db3): scans on

@@ -204,7 +204,8 @@ std::string ReadError(const std::function<void()>& read) {
 
 // Issue 70, item 1: nothing bounded the sum of the chunks, and the messages of topics nobody
 // reads were kept (a 4.3 MB file took 5.3 GB). Now a read holds only the chosen topics'
-// messages, and every pass decompresses at most max_decompressed_bytes.
+// messages, and every pass decompresses at most max_decompressed_bytes and decompression_ratio
+// times the file.
 TEST(Ros2Bag, OnlyTheTopicsReadAreHeldAndTheChunksTogetherAreBounded) {
   const std::string path = BagWithAnUnreadTopic("unread.mcap", 4000);
   // The scans take 100 x 4 kB; the unread topic 4000 x 0.7 kB.
@@ -222,9 +223,19 @@ TEST(Ros2Bag, OnlyTheTopicsReadAreHeldAndTheChunksTogetherAreBounded) {
   // Chunks of 1 MiB: three of them pass 2.5 MiB.
   limits = {};
   limits.max_decompressed_bytes = 5 << 19;
+  limits.decompression_ratio = 0;
   EXPECT_NE(ReadError([&] {
               internal::Ros2BagFile bounded(path, limits);
-            }).find("its chunks decompress to more than 2621440 bytes"),
+            }).find("its chunks decompress to more than 2621440 bytes (2621440 and 0 times"),
+            std::string::npos);
+  // The default: 1 GiB and 100 times the file; without the 1 GiB, once the file is too little.
+  EXPECT_NO_THROW(internal::Ros2BagFile(path, internal::Ros2ReadLimits()));
+  limits = {};
+  limits.max_decompressed_bytes = 0;
+  limits.decompression_ratio = 1;
+  EXPECT_NE(ReadError([&] {
+              internal::Ros2BagFile bounded(path, limits);
+            }).find("times the size of its storage files), the most a bag may hold"),
             std::string::npos);
   limits = {};
   limits.max_message_bytes = 1000;
