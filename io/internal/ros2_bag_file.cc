@@ -280,8 +280,23 @@ void ReadMcap(const std::string& path, std::uint64_t size, Ros2Pass* pass) {
 // max_message_bytes (SQLite's length limit), and at most sqlite_steps_per_byte virtual-machine
 // steps per byte of the file (a table scan needs a few per row).
 void ReadSqlite(const std::string& path, std::uint64_t size, Ros2Pass* pass) {
+  // Immutable: SQLite then looks for no journal, WAL or lock beside the file (a FIFO named
+  // X.db3-journal blocked the read for ever). The path as a URI: '%', '?', '#' and control bytes
+  // percent-encoded.
+  std::string uri = "file:";
+  for (const char c : path) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte >= 0x7f || c == '%' || c == '?' || c == '#') {
+      constexpr char kHex[] = "0123456789ABCDEF";
+      uri += {'%', kHex[byte >> 4], kHex[byte & 0xf]};
+    } else {
+      uri += c;
+    }
+  }
+  uri += "?immutable=1";
   sqlite3* raw = nullptr;
-  const int opened = sqlite3_open_v2(path.c_str(), &raw, SQLITE_OPEN_READONLY, nullptr);
+  const int opened =
+      sqlite3_open_v2(uri.c_str(), &raw, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr);
   const std::unique_ptr<sqlite3, decltype(&sqlite3_close)> db(raw, &sqlite3_close);
   if (opened != SQLITE_OK) Fail(std::string("not an SQLite3 database: ") + sqlite3_errstr(opened));
   const Ros2ReadLimits& limits = pass->limits;
