@@ -29,7 +29,7 @@ kernel::Status ScanGeometryProblem(const kernel::Scan& s) {
       (s.size() > 1 && s.angular_step_rad == 0.0))
     return kernel::Status::Error("angular resolution " + FormatDouble(s.angular_step_rad) +
                                  " rad is not " +
-                                 (s.size() > 1 ? "positive" : "finite and at least 0"));
+                                 (s.size() > 1 ? "positive" : "a finite angle of 0 or more"));
   if (s.size() > 1 && s.angular_step_rad < kMinAngularStepRad)
     return kernel::Status::Error("angular resolution " + FormatDouble(s.angular_step_rad) +
                                  " rad is below 1e-4 rad (0.006 deg): no laser resolves that");
