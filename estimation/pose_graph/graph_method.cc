@@ -62,7 +62,7 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
       // keyframe by the jump there, so that registration and loop closure go on from it.
       continuing_ = false;
       slam_.Predict(slam_.pose().Between(StartInMap(scan, robot_T_laser)));
-      slam_.UpdateAt(scan, robot_T_laser, slam_.pose());
+      Place(scan, robot_T_laser, slam_.pose());
     } else {
       slam_.Update(scan, robot_T_laser);
     }
@@ -180,7 +180,7 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
       const MapScan& m = state.scans[i];
       if (i > 0) slam_.Predict(state.scans[i - 1].pose.Between(m.pose));
       const std::size_t before = slam_.keyframes().size();
-      slam_.UpdateAt(m.scan, m.robot_T_laser, m.pose);
+      Place(m.scan, m.robot_T_laser, m.pose);
       if (keep_readings_ && slam_.keyframes().size() > before)
         readings_.push_back({slam_.keyframes().size() - 1, m.robot_T_laser, m.scan});
     }
@@ -190,6 +190,13 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
   }
 
  private:
+  // A scan at a known pose (the saved map's, the first one localised in it): no registration.
+  void Place(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
+             const kernel::Pose2& pose) {
+    GraphFrontEnd& front_end = slam_.front_end();
+    std::optional<GraphFrontEnd::PreparedScan> placed = front_end.Place(scan, robot_T_laser, pose);
+    if (placed && front_end.Settle(pose)) slam_.AddScan(std::move(*placed), robot_T_laser);
+  }
   // The first new scan's pose in the loaded map: found by the localiser from the start pose.
   kernel::Pose2 StartInMap(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) const {
     MapLocalizer localizer(loaded_.scans, start_, slam_.options());

@@ -19,13 +19,6 @@ std::vector<OrientedPoint> RobotPoints(const kernel::Scan& scan, const kernel::P
                        options.normal_max_gap_m, options.line_tolerance_m);
 }
 
-std::vector<Eigen::Vector2d> Positions(const std::vector<OrientedPoint>& points) {
-  std::vector<Eigen::Vector2d> out;
-  out.reserve(points.size());
-  for (const OrientedPoint& p : points) out.push_back(p.point);
-  return out;
-}
-
 }  // namespace
 
 MapLocalizer::MapLocalizer(std::vector<MapScan> map, const kernel::Pose2& start,

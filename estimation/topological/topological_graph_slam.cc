@@ -56,7 +56,13 @@ TopologicalUpdateReport TopologicalGraphSlam::Update(const kernel::Scan& scan,
   const std::size_t optimizations = graph().optimizations().size();
   const TopologicalUpdateReport report = topological_.Update(scan, robot_T_laser);
   const Pose2 localised = topological_.pose();
-  if (own_graph_) own_graph_->UpdateAt(scan, robot_T_laser, localised);
+  if (own_graph_) {
+    GraphFrontEnd& front_end = own_graph_->front_end();
+    std::optional<GraphFrontEnd::PreparedScan> placed =
+        front_end.Place(scan, robot_T_laser, localised);
+    if (placed && front_end.Settle(localised))
+      own_graph_->AddScan(std::move(*placed), robot_T_laser);
+  }
   // New keyframes were made at the localised pose (an optimisation in this update may have
   // moved them since: FollowGraph applies that too).
   keyframe_poses_.resize(graph().keyframes().size(), localised);

@@ -34,13 +34,13 @@ struct TopologicalGraphSlamOptions {
 // The topological B-spline SLAM with the graph SLAM behind it. One graph SLAM is both the
 // topological SLAM's scan matcher and its back end: it registers every scan against its submap
 // (the prediction), the topological SLAM corrects the pose against its curve map, and the scan
-// becomes a keyframe at the corrected pose (GraphSlam::UpdateCorrected; every
+// becomes a keyframe at the corrected pose (GraphFrontEnd::Settle, then GraphSlam::AddScan; every
 // keyframe_distance_m or keyframe_angle_rad, and at every exploration node). The graph searches
 // every new keyframe for loop closures and optimises; its submap then follows the optimised
 // keyframes, and so does the topological map: every map curve moves rigidly with the keyframe it
 // was created at (new = K_new K_old^-1 old), and the pose with its keyframe. A curve extended by
 // splices from later keyframes moves with the first. With the odometry's prediction (no scan
-// matcher) a graph of its own takes the localised poses as keyframes (GraphSlam::UpdateAt).
+// matcher) a graph of its own takes the localised poses as keyframes (GraphFrontEnd::Place).
 // Until session 41 the scan matcher was a second graph SLAM without loop closure, whose submap
 // the optimisations did not move; one graph measured the same (REG explorations, seeds 1-10:
 // `complex` 0.058 against 0.057 m mean position RMSE, `halls` 0.091 against 0.090 m; intel
@@ -75,7 +75,7 @@ class TopologicalGraphSlam {
 
   TopologicalSlam topological_;
   // With the odometry's prediction the topological SLAM has no scan matcher: the back end is
-  // a graph of its own, fed the localised poses (GraphSlam::UpdateAt).
+  // a graph of its own, fed the localised poses (GraphFrontEnd::Place).
   std::unique_ptr<GraphSlam> own_graph_;
   std::vector<int> curve_keyframe_;            // the keyframe each map curve was created at
   std::vector<kernel::Pose2> keyframe_poses_;  // each keyframe's pose when the map last followed

@@ -806,15 +806,18 @@ TopologicalUpdateReport TopologicalSlam::Update(const kernel::Scan& scan,
   if (scan_matcher_ && options_.scan_matching_feedback) {
     // The front end's registered pose is the prediction, and the corrected pose goes back to it
     // before it makes the scan a keyframe.
-    scan_matcher_->UpdateCorrected(scan, robot_T_laser, [&](const Pose2& front) {
-      report.scan_matched = scan_matcher_->registered();
+    GraphFrontEnd& front_end = scan_matcher_->front_end();
+    if (std::optional<GraphFrontEnd::PreparedScan> registered =
+            front_end.Register(scan, robot_T_laser)) {
+      report.scan_matched = front_end.registered();
       if (report.scan_matched) {
-        pose_ = front_frame_ * front;
+        pose_ = front_frame_ * front_end.pose();
         covariance_ = scan_matched_covariance_;
       }
       CorrectAndMap(scan, robot_T_laser, observed, &report);
-      return front_frame_.Inverse() * pose_;
-    });
+      if (front_end.Settle(front_frame_.Inverse() * pose_))
+        scan_matcher_->AddScan(std::move(*registered), robot_T_laser);
+    }
   } else {
     if (scan_matcher_) PredictByScanMatching(scan, robot_T_laser, &report);
     CorrectAndMap(scan, robot_T_laser, observed, &report);

@@ -60,8 +60,8 @@ struct TopologicalSlamOptions {
   // 0.16 deg and 3 mm; the odometry itself drifted 0.38 deg.
   double scan_matching_noise_scale = 0.1;
   // scan_matching: the corrected pose goes back to the front end before the scan becomes one of
-  // its keyframes, so that its submap is built at the corrected poses (GraphSlam::
-  // UpdateCorrected). Without it the front end registers on its own, in a frame that drifts from
+  // its keyframes, so that its submap is built at the corrected poses (GraphFrontEnd::
+  // Settle). Without it the front end registers on its own, in a frame that drifts from
   // the curve map's, and only its increments are used: in REG explorations the corrections then
   // held the heading 0.5-1 deg off against the front end's drift (`complex` seeds 1-10: 0.082 m
   // mean position RMSE; `halls` seeds 1-3: 0.076, 0.112, 0.160 m). With it: 0.065 m; 0.033,

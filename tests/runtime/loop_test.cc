@@ -599,7 +599,7 @@ TEST(GraphSlam, ARotationAboutARoundHallsCentreIsNoRecovery) {
 // nothing of the curve corrections, and its back end's closures did not move them: the heading
 // stayed 0.5-1 deg off, and REG + topological-graph in `halls`, seed 3, ended 0.159 m RMSE as
 // the second hall was mapped with the offset. With one graph SLAM as scan matcher and back end,
-// its keyframes at the corrected poses (GraphSlam::UpdateCorrected), it is 0.065 m (worst 0.112).
+// its keyframes at the corrected poses (GraphFrontEnd::Settle), it is 0.065 m (worst 0.112).
 TEST(TopologicalGraphSlam, TheCorrectedPosesHoldTheHeadingAcrossTheRoundHalls) {
   const sim::World world = *sim::BuiltinWorld("halls");
   ExploreSetup setup;

@@ -92,7 +92,8 @@ class ComplexWorld : public ::testing::Test {
   kernel::Random random_{7};
 };
 
-// UpdateCorrected: the pose another method corrects the registration to is where the scan's
+// The step by parts (GraphSlam::front_end, AddScan): the pose another method corrects the
+// registration to (GraphFrontEnd::Settle) is where the scan's
 // keyframe stands, so the next scans register in the corrected frame. The first scan's pose is
 // moved 5 cm and 0.6 deg; the scans after it, along 0.5 m, follow the moved frame.
 TEST_F(ComplexWorld, ACorrectedPoseIsWhereTheKeyframeAndTheNextScansStand) {
@@ -111,7 +112,11 @@ TEST_F(ComplexWorld, ACorrectedPoseIsWhereTheKeyframeAndTheNextScansStand) {
       const kernel::Scan scan =
           sim::SimulateLaser(caster_, laser, truth * laser.robot_T_laser, 0.0, &random_);
       if (i == 0 && correct) {
-        slam.UpdateCorrected(scan, laser.robot_T_laser, [&](const Pose2& p) { return p * moved; });
+        GraphFrontEnd& front_end = slam.front_end();
+        std::optional<GraphFrontEnd::PreparedScan> registered =
+            front_end.Register(scan, laser.robot_T_laser);
+        ASSERT_TRUE(registered && front_end.Settle(front_end.pose() * moved));
+        slam.AddScan(std::move(*registered), laser.robot_T_laser);
       } else {
         slam.Update(scan, laser.robot_T_laser);
       }
@@ -921,8 +926,8 @@ struct LapConditions {
   double scan_spacing_m = 0.0;
   std::uint64_t seed = 2;
 };
-LapsRun DriveLaps(int laps, const GraphSlamOptions& options = {},
-                  const LapConditions& conditions = {}) {
+// The simulated lap's scans: odometry, truth and scan of each frame.
+sim::RouteRun SimulateLaps(int laps, const LapConditions& conditions, Pose2* robot_T_laser) {
   const io::Result<sim::World> loaded = io::LoadWorld(conditions.world);
   if (!loaded.ok()) ADD_FAILURE() << loaded.error;
   sim::World world = loaded.ok() ? *loaded.value : *sim::BuiltinWorld("complex");
@@ -944,8 +949,16 @@ LapsRun DriveLaps(int laps, const GraphSlamOptions& options = {},
     }
     run.frames = std::move(kept);
   }
-  const Pose2& robot_T_laser = simulator.options().laser.robot_T_laser;
-  GraphSlam slam(run.frames[0].odometry_pose, options);
+  *robot_T_laser = simulator.options().laser.robot_T_laser;
+  return run;
+}
+// `acceptance` null: the built-in one.
+LapsRun DriveLaps(int laps, const GraphSlamOptions& options = {},
+                  const LapConditions& conditions = {},
+                  std::unique_ptr<ClosureAcceptance> acceptance = nullptr) {
+  Pose2 robot_T_laser;
+  const sim::RouteRun run = SimulateLaps(laps, conditions, &robot_T_laser);
+  GraphSlam slam(run.frames[0].odometry_pose, options, std::move(acceptance));
   for (std::size_t i = 0; i < run.frames.size(); ++i) {
     if (i > 0) slam.Predict(run.frames[i - 1].odometry_pose.Between(run.frames[i].odometry_pose));
     slam.Update(run.frames[i].scan, robot_T_laser);
@@ -1183,6 +1196,104 @@ TEST(GraphSlam, ABackgroundLoopSearchGivesTheSameTrajectory) {
   for (std::size_t i = 0; i < background.trajectory.size(); ++i)
     ASSERT_EQ(background.trajectory[i].ToVector(), inline_run.trajectory[i].ToVector()) << i;
   EXPECT_LT(background.rmse_m, 0.1);
+}
+
+// The loop closer's acceptance is a part a variant replaces (ClosureAcceptance). The built-in
+// one given explicitly is the default to the bit; one that refuses every closure leaves the
+// graph without loop edges, every closure found counted as unconfirmed, and the map no better
+// than the front end's; one that takes every closure agreeing with the graph as it is, without a
+// second to confirm it (about twenty lines), maps two laps of `complex` within 0.1 m, but worse
+// than the built-in one. Measured: built-in 206 closures, 0.030 m; refusing all 201 refused,
+// 0.124 m; without confirmation 71 closures, 0.086 m.
+class RefuseEvery : public ClosureAcceptance {
+ public:
+  explicit RefuseEvery(long* decided) : decided_(decided) {}
+  std::vector<ClosureVerdict> Decide(const std::vector<PendingClosure>& pending,
+                                     const ClosureContext& /*context*/) override {
+    *decided_ += static_cast<long>(pending.size());
+    return std::vector<ClosureVerdict>(pending.size(), ClosureVerdict::kRefuse);
+  }
+
+ private:
+  long* decided_;
+};
+class AcceptWhatAgreesWithTheGraph : public ClosureAcceptance {
+ public:
+  std::vector<ClosureVerdict> Decide(const std::vector<PendingClosure>& pending,
+                                     const ClosureContext& context) override {
+    std::vector<ClosureVerdict> verdicts;
+    for (const PendingClosure& c : pending)
+      verdicts.push_back(context.graph.EdgeChi2(c.edge) <= 16.27 ? ClosureVerdict::kAccept
+                                                                 : ClosureVerdict::kRefuse);
+    return verdicts;
+  }
+};
+TEST(ClosureAcceptance, APolicyDecidesWhichClosuresEnterTheGraph) {
+  const LapsRun built_in = DriveLaps(2);
+  const LapsRun explicit_built_in =
+      DriveLaps(2, {}, {}, std::make_unique<AgreementAcceptance>(GraphSlamOptions().loop));
+  ASSERT_GT(built_in.loops_accepted, 10);
+  ASSERT_EQ(built_in.trajectory.size(), explicit_built_in.trajectory.size());
+  for (std::size_t i = 0; i < built_in.trajectory.size(); ++i)
+    ASSERT_EQ(built_in.trajectory[i].ToVector(), explicit_built_in.trajectory[i].ToVector()) << i;
+
+  long refused = 0;
+  const LapsRun none = DriveLaps(2, {}, {}, std::make_unique<RefuseEvery>(&refused));
+  EXPECT_EQ(none.loops_accepted, 0);
+  EXPECT_EQ(none.max_loop_chi2, 0.0);  // no loop edge
+  EXPECT_GT(refused, built_in.loops_accepted / 2);
+  EXPECT_GT(none.rmse_m, 2 * built_in.rmse_m);
+
+  const LapsRun alone = DriveLaps(2, {}, {}, std::make_unique<AcceptWhatAgreesWithTheGraph>());
+  EXPECT_GT(alone.loops_accepted, 0);
+  EXPECT_LT(alone.rmse_m, 0.1);
+  EXPECT_LT(alone.rmse_m, none.rmse_m);
+  std::cout << "built-in: " << built_in.loops_accepted << " closures, RMSE " << built_in.rmse_m
+            << " m; refusing all: " << refused << " refused, RMSE " << none.rmse_m
+            << " m; without confirmation: " << alone.loops_accepted << " closures, RMSE "
+            << alone.rmse_m << " m\n";
+}
+
+// The parts compose without GraphSlam: a front end feeding a back end, loop closure off, is the
+// graph SLAM without loop closure to the bit (the topological SLAM's use of them).
+TEST(GraphParts, AFrontEndFeedingABackEndIsTheGraphSlamWithoutLoopClosure) {
+  GraphSlamOptions options;
+  options.loop.enabled = false;
+  Pose2 robot_T_laser;
+  const sim::RouteRun run = SimulateLaps(1, {}, &robot_T_laser);
+  GraphSlam slam(run.frames[0].odometry_pose, options);
+  Keyframes keyframes;
+  GraphFrontEnd front_end(run.frames[0].odometry_pose, options, &keyframes);
+  GraphBackEnd back_end(options, &keyframes);
+  for (std::size_t i = 0; i < run.frames.size(); ++i) {
+    if (i > 0) {
+      const Pose2 u = run.frames[i - 1].odometry_pose.Between(run.frames[i].odometry_pose);
+      slam.Predict(u);
+      front_end.Predict(u);
+    }
+    slam.Update(run.frames[i].scan, robot_T_laser);
+    std::optional<GraphFrontEnd::PreparedScan> scan =
+        front_end.Register(run.frames[i].scan, robot_T_laser);
+    ASSERT_TRUE(scan && front_end.Settle(front_end.pose()));
+    if (!front_end.KeyframeDue()) continue;
+    bool robust = false;
+    keyframes.push_back(
+        front_end.MakeKeyframe(std::move(*scan), robot_T_laser, static_cast<int>(i), &robust));
+    const int k = static_cast<int>(keyframes.size()) - 1;
+    back_end.AddKeyframe(
+        k > 0 ? KeyframeEdgeCovariance(options, keyframes, k) : Eigen::Matrix3d::Identity(),
+        robust);
+    front_end.KeyframeAdded(k);
+    back_end.Trim(k - options.submap_keyframes);
+  }
+  ASSERT_EQ(keyframes.size(), slam.keyframes().size());
+  ASSERT_GT(keyframes.size(), 50u);
+  for (std::size_t k = 0; k < keyframes.size(); ++k) {
+    ASSERT_EQ(keyframes[k].pose.ToVector(), slam.keyframes()[k].pose.ToVector()) << k;
+    EXPECT_EQ(keyframes[k].trimmed, slam.keyframes()[k].trimmed) << k;
+  }
+  EXPECT_EQ(back_end.graph().edges().size(), slam.graph().edges().size());
+  EXPECT_EQ(front_end.pose().ToVector(), slam.pose().ToVector());
 }
 
 // What real logs contain, one condition at a time against the same lap of
