@@ -14,24 +14,18 @@
 #include "apps/log_input.h"
 #include "apps/output_paths.h"
 #include "apps/run_config.h"
-#include "estimation/chi_square.h"
 #include "estimation/evaluation/metrics.h"
 #include "estimation/slam_state.h"
 #include "io/carmen.h"
 #include "io/config.h"
-#include "io/plot.h"
 #include "io/relations.h"
-#include "io/run_picture.h"
-#include "io/simulation_log.h"
 #include "io/slam_state_file.h"
 #include "io/text.h"
 #include "io/world_file.h"
 #include "kernel/angle.h"
 #include "runtime/json_text.h"
 #include "runtime/log_replay.h"
-#include "runtime/run_html.h"
-#include "runtime/slam_report.h"
-#include "runtime/step_trace.h"
+#include "runtime/slam_run.h"
 
 namespace splam::apps {
 namespace {
@@ -142,94 +136,6 @@ bool Configure(const SlamArgs& args, const io::LaserMessage& first, SlamConfig* 
     return false;
   }
   return true;
-}
-
-// consistency.csv: every scan checked for the map's self-consistency.
-kernel::Status WriteConsistency(const std::string& path,
-                                const evaluation::ConsistencyReport& consistency,
-                                const kernel::Trajectory& estimate) {
-  std::string text = "scan,time_s,x_m,y_m,references,contradicting\n";
-  for (const evaluation::CheckedScan& c : consistency.checked)
-    text += fmt::format("{},{:.3f},{:.3f},{:.3f},{},{:.4f}\n", c.index,
-                        estimate[static_cast<std::size_t>(c.index)].time_s, c.position.x(),
-                        c.position.y(), c.references, c.contradicting);
-  return io::WriteTextFile(path, text);
-}
-
-// The run's figures in a few lines, for report.html and (the first ones) map.png's title: the
-// error against the truth or the relations metric when known, the map, the map's
-// self-consistency, the time, and why the run stopped early when it did.
-std::vector<std::string> SlamHeadline(const estimation::SlamMethod& slam,
-                                      const runtime::ReplayResult& run,
-                                      const evaluation::ConsistencyReport& consistency,
-                                      const std::optional<evaluation::RelationsError>& relations) {
-  std::vector<std::string> lines;
-  if (!run.truth.empty()) {
-    const auto e = evaluation::CompareToTruth(run.truth, run.estimate);
-    const auto o = evaluation::CompareToTruth(run.truth, run.odometry);
-    lines.push_back(fmt::format("position RMSE {:.3f} m (odometry {:.3f} m)", e.rmse_position_m,
-                                o.rmse_position_m));
-  }
-  if (relations && relations->used > 0)
-    lines.push_back(fmt::format("relations metric {:.4f} m, {:.2f} deg",
-                                relations->translation_mean,
-                                kernel::RadToDeg(relations->rotation_mean)));
-  lines.push_back(slam.MapDescription());
-  lines.push_back(fmt::format("{:.1f} % of the points in other passes' free space",
-                              100 * consistency.mean_contradicting));
-  lines.push_back(fmt::format("{} scans in {:.1f} s", run.estimate.size(), run.wall_s));
-  if (run.failed_at) lines.push_back("the method failed: " + slam.health().message());
-  if (run.stopped_at)
-    lines.push_back(fmt::format("interrupted before scan {}", *run.stopped_at + 1));
-  return lines;
-}
-
-// The headline's first two lines, for a picture's title.
-std::string HeadlineTitle(const std::vector<std::string>& headline) {
-  std::string title;
-  for (std::size_t i = 0; i < headline.size() && i < 2; ++i)
-    title += (i > 0 ? "; " : "") + headline[i];
-  return title;
-}
-
-// trajectory, odometry, truth, map files and pictures; errors appended to *errors.
-void WriteSlamFiles(const std::string& log, const std::string& out, const std::string& label,
-                    const std::string& headline, const sim::World* world,
-                    const estimation::SlamMethod& slam, const runtime::ReplayResult& run,
-                    const evaluation::ConsistencyReport& consistency,
-                    const evaluation::ConsistencyOptions& consistency_options,
-                    std::vector<kernel::Status>* errors) {
-  const estimation::SlamMap map = slam.Map();
-  errors->push_back(io::WriteMap(map, out));
-  // trajectory.txt in splam's format, trajectory.tum (and truth.tum) for evo and the like.
-  for (const char* name : {"/trajectory.txt", "/trajectory.tum"})
-    errors->push_back(io::WriteTrajectory(out + name, run.estimate, label + " estimate of " + log));
-  errors->push_back(io::WriteTrajectory(out + "/odometry.txt", run.odometry, "odometry of " + log));
-  for (const char* name : {"/truth.txt", "/truth.tum"})
-    if (!run.truth.empty())
-      errors->push_back(io::WriteTrajectory(out + name, run.truth, "ground truth of " + log));
-  io::RunPicture picture;
-  picture.title =
-      fmt::format("{} on {}: {}", label, std::filesystem::path(log).filename().string(), headline);
-  picture.world = world;
-  picture.world_color = io::Rgb{0.75, 0.75, 0.75};
-  picture.truth = run.truth;
-  picture.odometry = run.odometry;
-  picture.estimates = {{"estimate", run.estimate}};
-  picture.before_optimization = run.online;
-  io::DrawMap(map, &picture);
-  for (const evaluation::CheckedScan& c : consistency.checked)
-    (c.contradicting > consistency_options.inconsistent_share ? picture.inconsistent_scans
-                                                              : picture.consistent_scans)
-        .push_back(c.position);
-  picture.pixels_per_meter = 40.0;
-  errors->push_back(io::SaveRunPicture(picture, {out + "/map.svg", out + "/map.png"}));
-  if (!run.truth.empty()) {
-    errors->push_back(io::SaveErrorPlot(label + ": error against ground truth", run.truth,
-                                        {{"odometry", io::palette::kOdometry, run.odometry},
-                                         {label, io::palette::kEstimate, run.estimate}},
-                                        {out + "/errors.svg", out + "/errors.png"}));
-  }
 }
 
 // Prints the run's figures; false when an error against the truth is not finite (an estimate
@@ -403,67 +309,27 @@ int RunSlam(const SlamArgs& args) {
     fmt::print(stderr, "splam slam: the filter failed at scan {} (t = {} s): {}\n", *run.failed_at,
                run.failed_at_time_s, slam.health().message());
   }
-  const estimation::SlamStatistics statistics = slam.Statistics();
-  const evaluation::ConsistencyOptions consistency_options;
-  const evaluation::ConsistencyReport consistency =
-      evaluation::CheckMapConsistency(runtime::PlacedScans(log, run.estimate), consistency_options);
-  errors.push_back(WriteConsistency(out + "/consistency.csv", consistency, run.estimate));
-  const std::string label = statistics.association.empty()
-                                ? config.method
-                                : config.method + " (" + statistics.association + ")";
-  std::optional<evaluation::RelationsError> relations_error;
-  if (!args.relations.empty())
-    relations_error = evaluation::EvaluateRelations(relations, run.estimate);
-  if (!args.save_state.empty()) {
-    const kernel::Result<estimation::SlamState> state =
-        estimation::PersistenceOf(&driver.method())->SaveState();
-    errors.push_back(state ? io::WriteSlamState(args.save_state, *state)
-                           : kernel::Status::Error(state.error));
-  }
-  std::vector<std::string> headline = SlamHeadline(slam, run, consistency, relations_error);
-  if (truncated) headline.push_back("the log stopped early: " + read.log.error);
-  WriteSlamFiles(args.log, out, label, HeadlineTitle(headline),
-                 *world.value ? &**world.value : nullptr, slam, run, consistency,
-                 consistency_options, &errors);
-  const nlohmann::ordered_json grid = runtime::WriteGridFiles(
-      runtime::PlacedScans(log, run.estimate), config.grid, out + "/map.yaml", {out + "/grid.png"},
-      fmt::format("{} on {}: occupancy grid", label,
-                  std::filesystem::path(args.log).filename().string()),
-      run.estimate, &errors);
-  if (grid.contains("error"))
-    fmt::print(stderr, "splam slam: no map.pgm: {}\n", grid["error"].get<std::string>());
-  if (args.trace) {
-    std::vector<double> times;
-    for (const kernel::StampedPose& p : run.online.empty() ? run.estimate : run.online)
-      times.push_back(p.time_s);
-    errors.push_back(runtime::WriteStepTrace(out + "/steps.csv", driver.steps(), times, run.truth));
-  }
-
-  nlohmann::ordered_json summary;
-  summary["method"] = config.method;
-  if (!statistics.association.empty()) summary["association"] = statistics.association;
-  summary["odometry_noise_scale"] = noise.odometry_noise_scale;
-  summary["range_noise_model"] = {{"range_sigma_m", noise.range_sigma_m},
-                                  {"range_sigma_fraction", noise.range_sigma_fraction}};
-  summary["log"] = args.log;
-  if (read.stats.piled_no_return_from_m > 0)
-    summary["no_returns_found"] = {{"from_m", read.stats.piled_no_return_from_m},
-                                   {"readings", read.stats.piled_no_return_readings},
-                                   {"share_of_hits", read.stats.piled_no_return_share}};
-  // Why the run covers less than the log, when it does.
-  if (truncated) summary["stopped_early"] = read.log.error;
-  if (run.stopped_at)
-    summary["stopped_early"] = "interrupted before scan " + std::to_string(*run.stopped_at + 1);
-  summary.update(runtime::ReplaySummaryJson(slam, statistics, run, driver));
-  summary["consistency"] = runtime::ConsistencyJson(consistency, consistency_options);
-  summary["occupancy_grid"] = grid;
-  bool scored = true;
-  if (!args.relations.empty()) {
-    const evaluation::RelationsError& r = *relations_error;
-    scored = r.used > 0 && std::isfinite(r.translation_mean) && std::isfinite(r.rotation_mean);
-    summary["relations"] = runtime::RelationsJson(r);
-    summary["relations"]["file"] = args.relations;
-    if (scored) {
+  runtime::SlamRunFiles run_files;
+  run_files.method = config.method;
+  run_files.out = out;
+  run_files.log = args.log;
+  run_files.world = *world.value ? &**world.value : nullptr;
+  if (!args.relations.empty()) run_files.relations = relations;
+  run_files.relations_file = args.relations;
+  run_files.grid = config.grid;
+  run_files.save_state = args.save_state;
+  run_files.trace = args.trace;
+  run_files.noise = noise;
+  run_files.read_stats = read.stats;
+  if (truncated) run_files.stopped_early = read.log.error;
+  const runtime::SlamRunReport report = runtime::WriteSlamRun(log, driver, run, run_files);
+  errors.push_back(report.written);
+  const std::string& label = report.label;
+  const nlohmann::ordered_json& summary = report.summary;
+  if (report.grid_error) fmt::print(stderr, "splam slam: no map.pgm: {}\n", *report.grid_error);
+  if (report.relations) {
+    const evaluation::RelationsError& r = *report.relations;
+    if (report.scored) {
       fmt::print(
           "relations metric ({} of {} relations): translation {:.4f} +- {:.4f} m, rotation "
           "{:.3f} +- {:.3f} deg\n",
@@ -474,9 +340,6 @@ int RunSlam(const SlamArgs& args) {
                  args.relations);
     }
   }
-  errors.push_back(io::WriteTextFile(out + "/summary.json", runtime::JsonText(summary, 2) + "\n"));
-  errors.push_back(
-      runtime::WriteRunHtml(out, "splam slam: " + label + " on " + args.log, headline));
   if (const kernel::Status e = kernel::FirstError(errors); !e.ok()) {
     fmt::print(stderr, "splam slam: {}\n", e.message());
     return kExitWriteFailed;
@@ -485,10 +348,11 @@ int RunSlam(const SlamArgs& args) {
   fmt::print(
       "wrote {}/{{config.yaml, trajectory.txt, trajectory.tum, odometry.txt, map.txt, map.dxf, "
       "map.svg, map.png, {}summary.json, report.html{}{}}}\n",
-      out, grid.contains("error") ? "" : "map.yaml, map.pgm, grid.png, ",
+      out, report.grid_error ? "" : "map.yaml, map.pgm, grid.png, ",
       run.truth.empty() ? "" : ", truth.txt, truth.tum, errors.svg, errors.png",
       args.trace ? ", steps.csv" : "");
-  if (!slam.healthy() || !finite || !scored || truncated || run.stopped_at) return kExitIncomplete;
+  if (!slam.healthy() || !finite || !report.scored || truncated || run.stopped_at)
+    return kExitIncomplete;
   return kExitOk;
 }
 

@@ -50,6 +50,9 @@ class PersistentSlam {
 inline PersistentSlam* PersistenceOf(SlamMethod* method) {
   return dynamic_cast<PersistentSlam*>(method);
 }
+inline const PersistentSlam* PersistenceOf(const SlamMethod* method) {
+  return dynamic_cast<const PersistentSlam*>(method);
+}
 
 }  // namespace splam::estimation
 

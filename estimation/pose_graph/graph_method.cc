@@ -48,8 +48,9 @@ namespace {
 // localises new scans in that map (MapLocalizer) or goes on mapping from it.
 class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public PersistentSlam {
  public:
-  GraphSlamMethod(const GraphSlamOptions& options, const SlamContext& context)
-      : slam_(context.start, options), start_(context.start) {}
+  GraphSlamMethod(const GraphSlamOptions& options, const SlamContext& context,
+                  std::unique_ptr<ClosureAcceptance> acceptance)
+      : slam_(context.start, options, std::move(acceptance)), start_(context.start) {}
   void Predict(const kernel::Pose2& u) override {
     if (localizer_) return localizer_->Predict(u);
     slam_.Predict(u);
@@ -222,16 +223,24 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
 
 }  // namespace
 
+std::unique_ptr<SlamMethod> MakeGraphSlamMethod(const GraphSlamOptions& options,
+                                                const SlamContext& context,
+                                                std::unique_ptr<ClosureAcceptance> acceptance) {
+  return std::make_unique<GraphSlamMethod>(options, context, std::move(acceptance));
+}
+
+void AdaptGraphSlamToSensors(const SensorNoise& noise, GraphSlamOptions* options) {
+  options->odometry = OdometryNoiseModel().Scaled(noise.odometry_noise_scale);
+}
+
 void AddGraphSlamMethod(kernel::Registry<SlamMethodInfo>* registry) {
   registry->Add(MakeSlamMethodInfo<GraphSlamOptions>(
       "graph",
       "graph SLAM on curve maps: scan-to-submap registration, loop closure, Ceres pose graph",
       [](const GraphSlamOptions& o, const SlamContext& c) {
-        return std::make_unique<GraphSlamMethod>(o, c);
+        return MakeGraphSlamMethod(o, c, nullptr);
       },
-      [](const SensorNoise& noise, GraphSlamOptions* o) {
-        o->odometry = OdometryNoiseModel().Scaled(noise.odometry_noise_scale);
-      }));
+      AdaptGraphSlamToSensors));
 }
 
 }  // namespace splam::estimation
