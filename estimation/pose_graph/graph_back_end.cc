@@ -26,8 +26,15 @@ void GraphBackEnd::AddKeyframe(const Eigen::Matrix3d& edge_covariance, bool robu
   graph_.AddEdge(edge);
 }
 
+int TrimmedKeyframe(const GraphSlamOptions& options, int k) {
+  const LoopClosureOptions& loop = options.loop;
+  return k - (loop.enabled ? std::max({options.submap_keyframes, loop.query_keyframes + 1,
+                                       loop.min_gap_keyframes + loop.target_keyframes})
+                           : options.submap_keyframes);
+}
+
 void GraphBackEnd::Trim(int j) {
-  if (j < 1) return;
+  if (j < 1 || !(options_.trim_spacing_m > 0)) return;
   Keyframe& kf = (*keyframes_)[static_cast<std::size_t>(j)];
   if (kf.in_map || kf.trimmed) return;
   // The nearest earlier keyframe that holds its data within the spacing.

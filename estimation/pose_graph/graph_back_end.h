@@ -13,6 +13,11 @@
 
 namespace splam::estimation {
 
+// The keyframe that the new keyframe k lets the back end trim: the newest that has left every
+// window reading keyframe data (the submap's, and with loop closure the loop query's and the
+// youngest loop targets').
+int TrimmedKeyframe(const GraphSlamOptions& options, int k);
+
 // The back end of the graph SLAM (after Cartographer's PoseGraph2D and OptimizationProblem2D):
 // the pose graph over the keyframes (node k is keyframe k; each carries its keyframe's
 // trajectory), the optimisation schedule (closures that agree with the graph wait in it
@@ -31,7 +36,8 @@ class GraphBackEnd {
   // Drops keyframe j's data when an earlier keyframe that still holds its own lies within
   // trim_spacing_m and trim_spacing_rad (with loop closure; without, whenever it is not a map
   // keyframe), and queues it to be merged into that one (merge_trimmed_keyframes). j must have
-  // left every window that reads keyframe data (GraphSlam::Trim's).
+  // left every window that reads keyframe data (TrimmedKeyframe). Nothing when trim_spacing_m
+  // is 0.
   void Trim(int j);
   // Adds the closures accepted (tags: the caller's names for them, returned in the report):
   // without an optimisation when they agree with the graph as it is and it has grown by less

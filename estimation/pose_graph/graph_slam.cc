@@ -48,16 +48,9 @@ void GraphSlam::AddKeyframe(GraphFrontEnd::PreparedScan scan, const kernel::Pose
   for (NodeAnchor& node : nodes_)
     if (node.keyframe < 0) node = {k, keyframes_.back().pose.Between(node.pose)};
   front_end_.KeyframeAdded(k);
-  // The keyframe that has left every window that reads keyframe data: the submap's, the loop
-  // query's and the youngest loop targets'.
-  const LoopClosureOptions& loop = options_.loop;
-  if (options_.trim_spacing_m > 0)
-    back_end_.Trim(k - (loop.enabled
-                            ? std::max({options_.submap_keyframes, loop.query_keyframes + 1,
-                                        loop.min_gap_keyframes + loop.target_keyframes})
-                            : options_.submap_keyframes));
+  back_end_.Trim(TrimmedKeyframe(options_, k));
   timer.reset();
-  if (loop.enabled) loop_closer_.Start(k, front_end_.travelled_m());
+  loop_closer_.Start(k, front_end_.travelled_m());
 }
 
 void GraphSlam::FlushClosures(bool final, double travelled_m) {

@@ -103,7 +103,7 @@ bool LoopCloser::BackgroundSearch() const {
 }
 
 void LoopCloser::Start(int k, double travelled_m) {
-  if (k < options_.loop.min_gap_keyframes) return;  // no candidate yet
+  if (!options_.loop.enabled || k < options_.loop.min_gap_keyframes) return;  // no candidate
   // The query's keyframes are copied now: the front end may take moving objects out of them
   // while the search runs.
   std::vector<std::pair<kernel::Pose2, std::vector<OrientedPoint>>> query_keyframes;

@@ -131,7 +131,8 @@ class LoopCloser {
   ~LoopCloser();
 
   // Starts the searches of the new keyframe k, made when the front end had travelled
-  // travelled_m; none before keyframe loop.min_gap_keyframes. Only one runs at a time: call
+  // travelled_m; none before keyframe loop.min_gap_keyframes, nor without loop.enabled. Only
+  // one runs at a time: call
   // Collect before the keyframes or the graph change.
   void Start(int k, double travelled_m);
   // Waits for the running search and records what it found. The travel of its keyframe when the

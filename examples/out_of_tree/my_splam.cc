@@ -7,6 +7,8 @@
 #include <string>
 
 #include "apps/cli.h"
+#include "estimation/pose_graph/graph_method.h"
+#include "estimation/pose_graph/loop_closer.h"
 #include "estimation/slam_method.h"
 #include "exploration/explorer.h"
 #include "exploration/reg.h"
@@ -48,6 +50,26 @@ class DeadReckoning : public splam::estimation::SlamMethod {
   long scans_ = 0;
 };
 
+// A graph SLAM variant that changes only the loop-closure acceptance: every closure that agrees
+// with the graph as it is goes in, no second one needed to confirm it.
+class AcceptWhatAgreesWithTheGraph : public splam::estimation::ClosureAcceptance {
+ public:
+  explicit AcceptWhatAgreesWithTheGraph(double max_chi2) : max_chi2_(max_chi2) {}
+  std::vector<splam::estimation::ClosureVerdict> Decide(
+      const std::vector<splam::estimation::PendingClosure>& pending,
+      const splam::estimation::ClosureContext& context) override {
+    std::vector<splam::estimation::ClosureVerdict> verdicts;
+    for (const auto& c : pending)
+      verdicts.push_back(context.graph.EdgeChi2(c.edge) <= max_chi2_
+                             ? splam::estimation::ClosureVerdict::kAccept
+                             : splam::estimation::ClosureVerdict::kRefuse);
+    return verdicts;
+  }
+
+ private:
+  double max_chi2_;
+};
+
 // An explorer variant's shape: REG under a name of its own (a variant of the strategy
 // implements Run as exploration/reg.h does).
 class RegAgain : public splam::exploration::Explorer {
@@ -73,6 +95,13 @@ int main(int argc, char** argv) {
       [](const my_lab::DeadReckoningOptions& o, const splam::estimation::SlamContext& c) {
         return std::make_unique<my_lab::DeadReckoning>(o, c);
       });
+  splam::estimation::RegisterSlamMethod<splam::estimation::GraphSlamOptions>(
+      "graph-unconfirmed", "graph SLAM taking every closure that agrees with the graph",
+      [](const splam::estimation::GraphSlamOptions& o, const splam::estimation::SlamContext& c) {
+        return splam::estimation::MakeGraphSlamMethod(
+            o, c, std::make_unique<my_lab::AcceptWhatAgreesWithTheGraph>(o.loop.max_chi2));
+      },
+      splam::estimation::AdaptGraphSlamToSensors);
   splam::exploration::RegisterExplorer("reg-again", "REG under another name (out-of-tree tutorial)",
                                        [](const splam::exploration::ExplorerOptions& o) {
                                          return std::make_unique<my_lab::RegAgain>(o);

@@ -27,6 +27,9 @@ grep -q "reg-again: REG under another name" "$work/explore-help.txt"
 "$program" slam --method dead-reckoning "$work/sim/log.clf" --out "$work/slam" > /dev/null
 test -s "$work/slam/trajectory.txt"
 grep -q '"scans"' "$work/slam/summary.json"
+"$program" slam --method graph-unconfirmed "$work/sim/log.clf" --out "$work/graph" > /dev/null
+grep -q '"method": "graph-unconfirmed"' "$work/graph/summary.json"
+grep -q '"loop_accepted"' "$work/graph/summary.json"
 "$program" explore --explorer reg-again --localization ground-truth --world corridor \
   --out "$work/explore" > /dev/null
 grep -q '"reg-again"' "$work/explore/report.json"

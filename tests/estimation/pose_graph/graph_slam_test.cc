@@ -1284,7 +1284,7 @@ TEST(GraphParts, AFrontEndFeedingABackEndIsTheGraphSlamWithoutLoopClosure) {
         k > 0 ? KeyframeEdgeCovariance(options, keyframes, k) : Eigen::Matrix3d::Identity(),
         robust);
     front_end.KeyframeAdded(k);
-    back_end.Trim(k - options.submap_keyframes);
+    back_end.Trim(TrimmedKeyframe(options, k));
   }
   ASSERT_EQ(keyframes.size(), slam.keyframes().size());
   ASSERT_GT(keyframes.size(), 50u);
