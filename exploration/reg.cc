@@ -20,11 +20,11 @@ using graph::Vertex;
 
 class Reg {
  public:
-  Reg(const ExplorerOptions& options, const RegOptions& reg, RobotInterface* robot,
-      Localization* localization)
-      : session_("reg", options, robot, localization),
+  Reg(RegExplorer* steps, RobotInterface* robot, Localization* localization)
+      : session_(steps->name(), steps->options(), robot, localization),
+        steps_(*steps),
         options_(session_.options()),
-        reg_(reg),
+        reg_(steps->reg_options()),
         g_(session_.graph()),
         active_(options_.active_loop_closing) {}
 
@@ -36,6 +36,7 @@ class Reg {
   void Unlist(Vertex v);
 
   Session session_;
+  RegExplorer& steps_;              // the choices (a variant's overrides)
   const ExplorerOptions& options_;  // the session's
   const RegOptions& reg_;
   graph::ExplorationGraph& g_;
@@ -89,8 +90,8 @@ ExplorationRun Reg::Run() {
       // FRONTIERS / FRONT_RAND, until a piece with a clear leg is found.
       std::vector<kernel::FrontierArc>& frontiers = g_[current].frontiers;
       while (!frontiers.empty() && !destination && !look) {
-        piece = FrontRand(session_, &frontiers, &session_.random(), max_piece);
-        destination = Displacement(session_, g_[current], *piece);
+        piece = steps_.NextPiece(session_, current, &frontiers, max_piece);
+        destination = steps_.StepTowards(session_, current, *piece);
         if (!destination && reg_.look_before_giving_up && !looked_.contains(current)) {
           // Before anything else the robot looks at the piece from where it stands: the piece
           // goes back to the node, and what the new LSR covers of it leaves (CurrIntersection).
@@ -147,8 +148,8 @@ ExplorationRun Reg::Run() {
         if (list_.empty() && options_.shadow_frontiers) Sweep();
         if (list_.empty()) retry = retries_.Next(session_);
         if (!retry)
-          path = graph::BidirectionalAStar(g_, current,
-                                           list_.empty() ? std::vector<Vertex>{start} : list_);
+          path = steps_.NextNode(session_, current,
+                                 list_.empty() ? std::vector<Vertex>{start} : list_);
       }
     }
     if (destination) {
@@ -225,7 +226,23 @@ void Reg::Unlist(Vertex v) { std::erase(list_, v); }
 }  // namespace
 
 ExplorationRun RegExplorer::Run(RobotInterface* robot, Localization* localization) {
-  return Reg(options_, reg_, robot, localization).Run();
+  return Reg(this, robot, localization).Run();
+}
+
+kernel::FrontierArc RegExplorer::NextPiece(Session& session, graph::Vertex /*node*/,
+                                           std::vector<kernel::FrontierArc>* frontiers,
+                                           double max_piece_rad) {
+  return FrontRand(session, frontiers, &session.random(), max_piece_rad);
+}
+
+std::optional<std::vector<Eigen::Vector2d>> RegExplorer::StepTowards(
+    Session& session, graph::Vertex node, const kernel::FrontierArc& piece) {
+  return Displacement(session, session.graph()[node], piece);
+}
+
+std::optional<graph::GraphPath> RegExplorer::NextNode(Session& session, graph::Vertex current,
+                                                      const std::vector<graph::Vertex>& targets) {
+  return graph::BidirectionalAStar(session.graph(), current, targets);
 }
 
 void RegOptions::VisitFields(kernel::FieldVisitor& v) {

@@ -1,9 +1,18 @@
 #ifndef SPLAM_EXPLORATION_REG_H_
 #define SPLAM_EXPLORATION_REG_H_
 
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
 #include "exploration/explorer.h"
+#include "graph/bidirectional_astar.h"
+#include "graph/exploration_graph.h"
+#include "kernel/local_safe_region.h"
 
 namespace splam::exploration {
+
+class Session;
 
 // REG's own options (the shared ones are ExplorerOptions).
 struct RegOptions {
@@ -42,12 +51,38 @@ struct RegOptions {
 // The run ends when the list is empty and q has no frontier: the robot returns to the start.
 // The start node is in the graph from the beginning; as it has no neighbours at the first
 // iteration this equals the paper's late insertion.
+//
+// The run loop is fixed; its three choices are steps a variant overrides (examples/exploration):
+// which frontier piece next (NextPiece), where to step for it (StepTowards), and where to go
+// when the node has nothing left (NextNode). A variant that changes one of them derives from
+// RegExplorer and overrides that one, with name() its own.
 class RegExplorer : public Explorer {
  public:
   explicit RegExplorer(const ExplorerOptions& options, const RegOptions& reg = {})
       : options_(options), reg_(reg) {}
   std::string name() const override { return "reg"; }
   ExplorationRun Run(RobotInterface* robot, Localization* localization) override;
+
+  // Which frontier next: takes a piece off `frontiers` (node `node`'s free arcs, not empty), at
+  // most max_piece_rad wide. REG: FRONT_RAND, the leading piece of a random arc (FrontRand).
+  virtual kernel::FrontierArc NextPiece(Session& session, graph::Vertex node,
+                                        std::vector<kernel::FrontierArc>* frontiers,
+                                        double max_piece_rad);
+  // Where to step for that piece: the path from the node to the next node's configuration;
+  // nullopt when there is no clear leg (the piece is then approached from where the node
+  // stands, or given up). REG: DISPLACEMENT, alpha r towards the piece (Displacement).
+  virtual std::optional<std::vector<Eigen::Vector2d>> StepTowards(Session& session,
+                                                                  graph::Vertex node,
+                                                                  const kernel::FrontierArc& piece);
+  // What to do when the node has nothing left: the path through the graph to the node the run
+  // goes on from, one of `targets` (the listed nodes that still have frontiers, or the start
+  // when none is left, to return home); nullopt when none is reachable. REG: FIND_PATH, the
+  // nearest by graph distance (bidirectional A*).
+  virtual std::optional<graph::GraphPath> NextNode(Session& session, graph::Vertex current,
+                                                   const std::vector<graph::Vertex>& targets);
+
+  const ExplorerOptions& options() const { return options_; }
+  const RegOptions& reg_options() const { return reg_; }
 
  private:
   ExplorerOptions options_;

@@ -87,11 +87,10 @@ kernel::Status SrtOptions::Validate() const {
 }
 
 ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localization) {
-  Session session("srt", options_, robot, localization);
+  Session session(name(), options_, robot, localization);
   if (!session.Start()) return session.Finish();
   graph::ExplorationGraph& g = session.graph();
   graph::Vertex current = session.AddNodeHere(-1);
-  const double step = options_.alpha * options_.lsr_radius_m;
   std::map<graph::Vertex, int> failed_returns;  // failed backtracks from each node
   std::map<graph::Vertex, double> last_open;    // RelaxedMove's open width at each node, rad
   Retries retries;                              // given-up frontiers, once back at the root
@@ -107,14 +106,8 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
     {
       Session::PlanningTimer timer(&session);
       const graph::NodeData& node = g[current];
-      const Eigen::Vector2d here = node.configuration.translation();
       for (int attempt = 0; attempt < srt_.max_attempts && !node.frontiers.empty(); ++attempt) {
-        const double theta = RandomDirection(node.frontiers, &session.random());
-        const Eigen::Vector2d candidate =
-            node.lsr.center() + step * Eigen::Vector2d(std::cos(theta), std::sin(theta));
-        // VALID_CONF: outside the LSR of every other node, and reachable inside this one.
-        const bool valid = OutsideOtherLsrs(g, current, candidate);
-        if (valid) path = session.paths().PathInside(node.lsr, here, candidate);
+        path = StepTowards(session, current, NextDirection(session, current, node.frontiers));
         if (path) break;
       }
       if (!path && srt_.relaxed_valid_conf) {
@@ -140,7 +133,7 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
     for (const kernel::FrontierArc& arc : g[current].frontiers)
       session.GiveUp(current, arc, reason);
     for (const std::size_t edge : g[current].shadows) session.GiveUpShadow(current, edge, reason);
-    const int parent = session.run().nodes[current].parent;
+    const int parent = BacktrackTo(session, current);
     if (parent < 0) {
       // Back at the root: the frontiers given up and still open are retried from other nodes
       // (ExplorerOptions::retry_nodes), each a new subtree.
@@ -170,6 +163,27 @@ ExplorationRun SrtExplorer::Run(RobotInterface* robot, Localization* localizatio
     }
   }
   return session.Finish();
+}
+
+double SrtExplorer::NextDirection(Session& session, graph::Vertex /*node*/,
+                                  const std::vector<kernel::FrontierArc>& frontiers) {
+  return RandomDirection(frontiers, &session.random());
+}
+
+std::optional<std::vector<Eigen::Vector2d>> SrtExplorer::StepTowards(Session& session,
+                                                                     graph::Vertex node,
+                                                                     double direction_rad) {
+  const graph::NodeData& data = session.graph()[node];
+  const double step = options_.alpha * options_.lsr_radius_m;
+  const Eigen::Vector2d candidate =
+      data.lsr.center() + step * Eigen::Vector2d(std::cos(direction_rad), std::sin(direction_rad));
+  // VALID_CONF: outside the LSR of every other node, and reachable inside this one.
+  if (!OutsideOtherLsrs(session.graph(), node, candidate)) return std::nullopt;
+  return session.paths().PathInside(data.lsr, data.configuration.translation(), candidate);
+}
+
+int SrtExplorer::BacktrackTo(Session& session, graph::Vertex node) {
+  return session.run().nodes[node].parent;
 }
 
 }  // namespace splam::exploration

@@ -1,10 +1,13 @@
 // A splam program of one's own, built outside splam's tree against the installed package
-// (find_package(splam)): a SLAM variant and an explorer variant, one registration line each,
-// and splam's command line with both among its choices.
+// (find_package(splam)): two SLAM variants and an explorer variant, one registration line each,
+// and splam's command line with them among its choices.
 //   my_splam slam --method dead-reckoning LOG --out DIR
-//   my_splam explore --explorer reg-again --localization dead-reckoning
+//   my_splam slam --method graph-unconfirmed LOG --out DIR
+//   my_splam explore --explorer nearest --localization dead-reckoning
+#include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "apps/cli.h"
 #include "estimation/pose_graph/graph_method.h"
@@ -12,6 +15,9 @@
 #include "estimation/slam_method.h"
 #include "exploration/explorer.h"
 #include "exploration/reg.h"
+#include "exploration/session.h"
+#include "exploration/steps.h"
+#include "kernel/angle.h"
 
 namespace my_lab {
 
@@ -70,21 +76,28 @@ class AcceptWhatAgreesWithTheGraph : public splam::estimation::ClosureAcceptance
   double max_chi2_;
 };
 
-// An explorer variant's shape: REG under a name of its own (a variant of the strategy
-// implements Run as exploration/reg.h does).
-class RegAgain : public splam::exploration::Explorer {
+// An explorer variant: one of REG's steps overridden (which frontier next): the frontier nearest
+// the robot's heading first, where REG draws one at random.
+class NearestFrontierFirst : public splam::exploration::RegExplorer {
  public:
-  explicit RegAgain(const splam::exploration::ExplorerOptions& o) : reg_(o) {}
-  std::string name() const override { return "reg-again"; }
-  splam::exploration::ExplorationRun Run(splam::exploration::RobotInterface* robot,
-                                         splam::exploration::Localization* localization) override {
-    splam::exploration::ExplorationRun run = reg_.Run(robot, localization);
-    run.explorer = name();
-    return run;
+  using RegExplorer::RegExplorer;
+  std::string name() const override { return "nearest"; }
+  splam::kernel::FrontierArc NextPiece(splam::exploration::Session& session,
+                                       splam::graph::Vertex node,
+                                       std::vector<splam::kernel::FrontierArc>* frontiers,
+                                       double max_piece_rad) override {
+    const double heading = session.graph()[node].configuration.theta();
+    std::size_t nearest = 0;
+    for (std::size_t k = 1; k < frontiers->size(); ++k)
+      if (Turn((*frontiers)[k], heading) < Turn((*frontiers)[nearest], heading)) nearest = k;
+    return splam::exploration::TakePiece(session, frontiers, nearest, max_piece_rad);
   }
 
  private:
-  splam::exploration::RegExplorer reg_;
+  static double Turn(const splam::kernel::FrontierArc& arc, double heading) {
+    return std::abs(
+        splam::kernel::WrapAngle(0.5 * (arc.start_angle_rad + arc.end_angle_rad) - heading));
+  }
 };
 
 }  // namespace my_lab
@@ -102,9 +115,10 @@ int main(int argc, char** argv) {
             o, c, std::make_unique<my_lab::AcceptWhatAgreesWithTheGraph>(o.loop.max_chi2));
       },
       splam::estimation::AdaptGraphSlamToSensors);
-  splam::exploration::RegisterExplorer("reg-again", "REG under another name (out-of-tree tutorial)",
-                                       [](const splam::exploration::ExplorerOptions& o) {
-                                         return std::make_unique<my_lab::RegAgain>(o);
-                                       });
+  splam::exploration::RegisterExplorer<splam::exploration::RegOptions>(
+      "nearest", "REG taking first the frontier nearest the robot's heading (out-of-tree tutorial)",
+      [](const splam::exploration::ExplorerOptions& o, const splam::exploration::RegOptions& r) {
+        return std::make_unique<my_lab::NearestFrontierFirst>(o, r);
+      });
   return splam::apps::Main(argc, argv);
 }
