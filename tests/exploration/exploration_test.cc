@@ -12,7 +12,9 @@
 #include "exploration/motion.h"
 #include "exploration/perception.h"
 #include "exploration/reg.h"
+#include "exploration/session.h"
 #include "exploration/srt.h"
+#include "exploration/steps.h"
 #include "io/floor_plan.h"
 #include "kernel/angle.h"
 #include "kernel/random.h"
@@ -464,6 +466,75 @@ TEST(Exploration, OdometryLocalisationTerminatesWithoutCollisions) {
   EXPECT_NE(t.run.termination, Termination::kInvalidInput);
   EXPECT_GT(t.run.time_s, 60.0);
   EXPECT_GT(t.coverage, 0.3);
+}
+
+// REG's and SRT's run loops ask their steps; a variant overrides one. Overrides that count their
+// calls and defer to the base give the same run to the bit, so the loop calls exactly the steps
+// it names; an override that changes a step changes the run.
+class CountingReg : public RegExplorer {
+ public:
+  using RegExplorer::RegExplorer;
+  kernel::FrontierArc NextPiece(Session& session, graph::Vertex node,
+                                std::vector<kernel::FrontierArc>* frontiers,
+                                double max_piece_rad) override {
+    ++pieces;
+    if (last_arc) return TakePiece(session, frontiers, frontiers->size() - 1, max_piece_rad);
+    return RegExplorer::NextPiece(session, node, frontiers, max_piece_rad);
+  }
+  std::optional<graph::GraphPath> NextNode(Session& session, graph::Vertex current,
+                                           const std::vector<graph::Vertex>& targets) override {
+    ++next_nodes;
+    return RegExplorer::NextNode(session, current, targets);
+  }
+  bool last_arc = false;
+  int pieces = 0, next_nodes = 0;
+};
+class CountingSrt : public SrtExplorer {
+ public:
+  using SrtExplorer::SrtExplorer;
+  double NextDirection(Session& session, graph::Vertex node,
+                       const std::vector<kernel::FrontierArc>& frontiers) override {
+    ++directions;
+    return SrtExplorer::NextDirection(session, node, frontiers);
+  }
+  int BacktrackTo(Session& session, graph::Vertex node) override {
+    ++backtracks;
+    return SrtExplorer::BacktrackTo(session, node);
+  }
+  int directions = 0, backtracks = 0;
+};
+
+ExplorationRun RunIn(Explorer* explorer, const sim::World& world) {
+  const sim::RayCaster caster(world);
+  sim::SimulatorOptions sim_options;
+  sim_options.enable_sonar = true;
+  sim::Simulator simulator(caster, sim_options, *world.start, 3);
+  runtime::SimulatedRobot robot(&simulator);
+  GroundTruthLocalization truth;
+  return explorer->Run(&robot, &truth);
+}
+
+TEST(ExplorerSteps, TheRunLoopsAskTheirStepsAndAVariantOverridesOne) {
+  const sim::World world = *sim::BuiltinWorld("office");
+  ExplorerOptions options;
+  options.seed = 3;
+  RegExplorer reg(options);
+  CountingReg counting(options), last(options);
+  last.last_arc = true;
+  const ExplorationRun a = RunIn(&reg, world), b = RunIn(&counting, world), c = RunIn(&last, world);
+  EXPECT_GT(counting.pieces, 10);
+  EXPECT_GT(counting.next_nodes, 0);
+  EXPECT_EQ(a.graph.num_nodes(), b.graph.num_nodes());
+  EXPECT_EQ(a.distance_m, b.distance_m);
+  EXPECT_NE(a.distance_m, c.distance_m);
+
+  SrtExplorer srt(options);
+  CountingSrt counting_srt(options);
+  const ExplorationRun s = RunIn(&srt, world), t = RunIn(&counting_srt, world);
+  EXPECT_GT(counting_srt.directions, 10);
+  EXPECT_GT(counting_srt.backtracks, 0);
+  EXPECT_EQ(s.graph.num_nodes(), t.graph.num_nodes());
+  EXPECT_EQ(s.distance_m, t.distance_m);
 }
 
 }  // namespace
