@@ -25,6 +25,7 @@
 // and one RegisterSlamMethod call (see examples/estimation/).
 namespace splam::estimation {
 
+// Predict, Update and pose are all a method must implement; the rest have defaults.
 class SlamMethod {
  public:
   virtual ~SlamMethod() = default;
@@ -39,19 +40,24 @@ class SlamMethod {
   // past (a pose graph moves earlier poses when a loop closes); empty for filters, whose
   // trajectory is the sequence of pose() after each update.
   virtual std::vector<kernel::Pose2> Trajectory() const { return {}; }
-  // The pose covariance; methods without one return nullopt.
-  virtual std::optional<Eigen::Matrix3d> pose_covariance() const { return std::nullopt; }
+  // The covariance of the current pose (x, y, theta; world frame), nullopt for a method that
+  // keeps none. A filter's is part of its state; a pose graph's marginal costs a factorisation of
+  // the graph (PoseCovarianceEveryScan false): the explorer asks it at its decisions, and the log
+  // replay's per-scan consistency (NEES) only of methods whose covariance is cheap.
+  virtual std::optional<Eigen::Matrix3d> PoseCovariance() const { return std::nullopt; }
+  virtual bool PoseCovarianceEveryScan() const { return true; }
   // Ok while the method runs; otherwise why it stopped (it then ignores input).
-  virtual kernel::Status health() const = 0;
+  virtual kernel::Status health() const { return kernel::Status::Ok(); }
   bool healthy() const { return health().ok(); }
   // Number of 2-vectors in the state besides the pose: landmarks, or control points.
-  virtual std::size_t MapSize() const = 0;
+  virtual std::size_t MapSize() const { return 0; }
   // Map curves (0 for maps that are not curves).
   virtual std::size_t MapCurves() const { return 0; }
-  // "12 lines, 3 corners"
-  virtual std::string MapDescription() const = 0;
-  virtual SlamMap Map() const = 0;
-  virtual SlamStatistics Statistics() const = 0;
+  // "12 lines, 3 corners"; empty for a method without a map.
+  virtual std::string MapDescription() const { return {}; }
+  virtual SlamMap Map() const { return {}; }
+  // Named counters for summary.json (associations, map size, solver runs, times).
+  virtual SlamStatistics Statistics() const { return {}; }
   // What the last Update did, as named numbers (associations, corrections, map changes): the
   // per-step trace of `splam slam --trace`. Empty for methods that keep none.
   virtual std::vector<std::pair<std::string, double>> LastUpdate() const { return {}; }

@@ -57,7 +57,7 @@ std::optional<graph::Vertex> ActiveLoopClosing::Step(Session* session, graph::Ve
   std::optional<double> sigma;
   {
     Session::PlanningTimer timer(session);
-    if (const auto covariance = session->localization().PoseUncertainty())
+    if (const auto covariance = session->localization().PoseCovariance())
       sigma = PositionSigma(*covariance);
   }
   if (sigma && !run.trace.empty()) run.position_sigma.emplace_back(run.trace.back().time_s, *sigma);

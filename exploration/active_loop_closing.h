@@ -13,7 +13,7 @@
 // Active loop closing (Stachniss et al. 2005; Makarenko et al. 2002): an explorer whose
 // localisation grows uncertain drives back to a place it knows, where the SLAM closes a loop,
 // before it explores on. The localisation says how uncertain it is (Localization::
-// PoseUncertainty) and what a revisit to each node is expected to give (Localization::
+// PoseCovariance) and what a revisit to each node is expected to give (Localization::
 // RevisitInformation: the reduction of the pose's entropy after the drive and the closure, in
 // nats); the explorer weighs that against the drive's length.
 namespace splam::exploration {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "exploration/robot_interface.h"
+#include "kernel/exploration_nodes.h"
 #include "kernel/local_safe_region.h"
 #include "kernel/pose2.h"
 #include "kernel/status.h"
@@ -14,8 +15,12 @@
 namespace splam::exploration {
 
 // Where the robot believes it is: the explorer plans with this estimate only. Implementations
-// range from ground truth (an oracle, for studying exploration alone) to full SLAM methods.
-class Localization {
+// range from ground truth (an oracle, for studying exploration alone) to full SLAM methods. The
+// explorer tells it of every node and asks where the nodes now are and what a revisit would give
+// (kernel::ExplorationNodes: AtNode, NodePoses, RevisitInformation). SLAM methods may use the
+// nodes (the topological SLAM associates against the map curves in the newest node's LSR and
+// extends its map at the nodes; a pose graph moves them when a loop closes).
+class Localization : public kernel::ExplorationNodes {
  public:
   virtual ~Localization() = default;
   virtual std::string name() const = 0;
@@ -28,25 +33,10 @@ class Localization {
                                const Perception& first) = 0;
   // The estimate after a new reading (odometry always, laser when needs_scans()).
   virtual kernel::Pose2 Update(const Perception& perception) = 0;
-  // The explorer added a node here; `lsr` is its local safe region, placed at the estimate.
-  // SLAM methods may use it (the topological SLAM associates against the map curves in the
-  // newest node's LSR and extends its map at the nodes).
-  virtual void AtNode(const kernel::LocalSafeRegion& /*lsr*/) {}
-  // Where the localisation now puts the nodes of the AtNode calls so far, in order, when it
-  // revises the past (a pose graph moves them when a loop closes): the explorer then moves its
-  // nodes, their LSRs and frontiers and the paths between them. Empty: the nodes stay.
-  virtual std::vector<kernel::Pose2> NodePoses() const { return {}; }
   // Active loop closing (ActiveLoopClosingOptions). The covariance of the current pose (x, y,
   // theta; world frame), nullopt when the localisation keeps none (ground truth, odometry). It may
   // cost a factorisation of a pose graph: asked at the explorer's decisions.
-  virtual std::optional<Eigen::Matrix3d> PoseUncertainty() const { return std::nullopt; }
-  // The information (nats: the reduction of the pose's entropy, against now) expected from
-  // driving path_m[i] to node nodes[i] (AtNode order) and closing a loop there; nullopt where
-  // the localisation cannot say (the default: every node).
-  virtual std::vector<std::optional<double>> RevisitInformation(
-      const std::vector<int>& nodes, const std::vector<double>& /*path_m*/) const {
-    return std::vector<std::optional<double>>(nodes.size());
-  }
+  virtual std::optional<Eigen::Matrix3d> PoseCovariance() const { return std::nullopt; }
 };
 
 // The simulator's ground truth; Perception::true_pose must be present.

@@ -49,7 +49,9 @@ void Replay(std::size_t count, const Reading& reading, SlamDriver* driver,
     result->estimate.push_back({t, slam.pose()});
     result->odometry.push_back({t, odometry});
     const auto truth = kernel::PoseAt(result->truth, t, 0.0, 1e-3);
-    if (const auto covariance = slam.pose_covariance(); truth && covariance)
+    if (const auto covariance =
+            truth && slam.PoseCovarianceEveryScan() ? slam.PoseCovariance() : std::nullopt;
+        covariance)
       result->nees.push_back(evaluation::PoseNees(*truth, slam.pose(), *covariance));
     if (options.progress && (i + 1) % 1000 == 0) options.progress(i + 1, n);
   }

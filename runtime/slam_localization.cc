@@ -40,11 +40,9 @@ std::vector<kernel::Pose2> SlamLocalization::NodePoses() const {
   return nodes != nullptr ? nodes->NodePoses() : std::vector<kernel::Pose2>{};
 }
 
-std::optional<Eigen::Matrix3d> SlamLocalization::PoseUncertainty() const {
+std::optional<Eigen::Matrix3d> SlamLocalization::PoseCovariance() const {
   if (!driver_) return std::nullopt;
-  if (const estimation::ExplorationNodes* nodes = estimation::NodesOf(driver_->method()))
-    if (auto covariance = nodes->PoseUncertainty()) return covariance;
-  return driver_->method().pose_covariance();
+  return driver_->method().PoseCovariance();
 }
 
 std::vector<std::optional<double>> SlamLocalization::RevisitInformation(

@@ -30,8 +30,8 @@ class SlamLocalization : public exploration::Localization {
   kernel::Pose2 Update(const exploration::Perception& perception) override;
   void AtNode(const kernel::LocalSafeRegion& lsr) override;
   std::vector<kernel::Pose2> NodePoses() const override;
-  // The method's (ExplorationNodes::PoseUncertainty), else its filter covariance.
-  std::optional<Eigen::Matrix3d> PoseUncertainty() const override;
+  // The method's (SlamMethod::PoseCovariance).
+  std::optional<Eigen::Matrix3d> PoseCovariance() const override;
   std::vector<std::optional<double>> RevisitInformation(
       const std::vector<int>& nodes, const std::vector<double>& path_m) const override;
   // At the end of the run (after Start): the method's last optimisation (SlamMethod::Finish).

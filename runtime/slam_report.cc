@@ -118,7 +118,7 @@ nlohmann::ordered_json ReplaySummaryJson(const estimation::SlamMethod& slam,
                        {"message", slam.health().message()},
                        {"scans_processed", run.estimate.size()},
                        {"scans_in_log", run.scans_in_log}};
-  if (const auto p = slam.pose_covariance()) {
+  if (const auto p = slam.PoseCovarianceEveryScan() ? slam.PoseCovariance() : std::nullopt) {
     summary["health"]["final_pose_sigma"] = {std::sqrt((*p)(0, 0)), std::sqrt((*p)(1, 1)),
                                              std::sqrt((*p)(2, 2))};
   }

@@ -19,9 +19,7 @@ class FilterMethod : public SlamMethod {
       : slam_(context.start, StartCovariance(), options) {}
   void Predict(const kernel::Pose2& u) override { slam_.Predict(u); }
   kernel::Pose2 pose() const override { return slam_.pose(); }
-  std::optional<Eigen::Matrix3d> pose_covariance() const override {
-    return slam_.pose_covariance();
-  }
+  std::optional<Eigen::Matrix3d> PoseCovariance() const override { return slam_.pose_covariance(); }
   std::size_t MapSize() const override {
     return static_cast<std::size_t>(slam_.state().size() - 3) / 2;
   }

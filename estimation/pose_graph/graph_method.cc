@@ -95,7 +95,9 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
     if (localizer_) return ExplorationNodes::RevisitInformation(nodes, path_m);
     return slam_.RevisitInformation(nodes, path_m);
   }
-  std::optional<Eigen::Matrix3d> PoseUncertainty() const override {
+  // The pose graph's marginal (a factorisation): asked at decisions, not at every scan.
+  bool PoseCovarianceEveryScan() const override { return false; }
+  std::optional<Eigen::Matrix3d> PoseCovariance() const override {
     if (localizer_) return std::nullopt;
     return slam_.PoseCovariance();
   }

@@ -39,10 +39,7 @@ class ScanMatcher : public splam::estimation::SlamMethod {
   void Predict(const splam::kernel::Pose2& odometry_increment) override;
   void Update(const splam::kernel::Scan& scan, const splam::kernel::Pose2& robot_T_laser) override;
   splam::kernel::Pose2 pose() const override { return pose_; }
-  splam::kernel::Status health() const override { return splam::kernel::Status::Ok(); }
-  std::size_t MapSize() const override { return 0; }
   std::string MapDescription() const override { return "no map"; }
-  splam::estimation::SlamMap Map() const override { return {}; }
   splam::estimation::SlamStatistics Statistics() const override;
 
  private:

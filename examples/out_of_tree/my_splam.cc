@@ -40,10 +40,7 @@ class DeadReckoning : public splam::estimation::SlamMethod {
   }
   void Update(const splam::kernel::Scan&, const splam::kernel::Pose2&) override { ++scans_; }
   splam::kernel::Pose2 pose() const override { return pose_; }
-  splam::kernel::Status health() const override { return splam::kernel::Status::Ok(); }
-  std::size_t MapSize() const override { return 0; }
   std::string MapDescription() const override { return "no map"; }
-  splam::estimation::SlamMap Map() const override { return {}; }
   splam::estimation::SlamStatistics Statistics() const override {
     splam::estimation::SlamStatistics s;
     s.map = {{"scans", scans_}};
