@@ -59,7 +59,7 @@ void BM_GraphRegistration(benchmark::State& state) {
 }
 BENCHMARK(BM_GraphRegistration)->Unit(benchmark::kMillisecond);
 
-// A submap as the graph SLAM makes it (GraphSlam::UpdateSubmap): the points of 30 keyframes
+// A submap as the graph SLAM makes it (GraphFrontEnd::UpdateSubmap): the points of 30 keyframes
 // 0.3 m apart with their views (the part of the plane they saw, rasterised once per keyframe),
 // into a 10 cm field truncated at 0.5 m with 1.2 m of room for the inserts; then the 31st
 // keyframe, 0.3 m on, inserted into it.
