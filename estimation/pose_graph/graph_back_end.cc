@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <cassert>
 #include <limits>
 
 #include "estimation/chi_square.h"
@@ -14,6 +15,8 @@ GraphBackEnd::GraphBackEnd(const GraphSlamOptions& options, Keyframes* keyframes
     : options_(options), keyframes_(keyframes) {}
 
 void GraphBackEnd::AddKeyframe(const Eigen::Matrix3d& edge_covariance, bool robust) {
+  // One node per keyframe, in order: the store has just grown by one.
+  assert(static_cast<int>(keyframes_->size()) == graph_.num_nodes() + 1);
   const int k = graph_.AddNode(keyframes_->back().pose);
   if (k == 0) return;
   PoseGraphEdge edge;

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 #include "estimation/pose_graph/scan_view.h"
@@ -101,6 +102,7 @@ Eigen::Matrix3d EdgeCovariance(const GraphSlamOptions& options, double distance_
 
 Eigen::Matrix3d KeyframeEdgeCovariance(const GraphSlamOptions& options, const Keyframes& keyframes,
                                        int to) {
+  assert(to >= 1 && to < static_cast<int>(keyframes.size()));
   const Keyframe& prev = keyframes[static_cast<std::size_t>(to - 1)];
   const Keyframe& kf = keyframes[static_cast<std::size_t>(to)];
   return EdgeCovariance(options, kf.travelled_m - prev.travelled_m,
