@@ -3,7 +3,6 @@
 
 #include <Eigen/Core>
 #include <deque>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
