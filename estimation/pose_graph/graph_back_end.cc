@@ -83,8 +83,11 @@ ClosureReport GraphBackEnd::AddClosures(const std::vector<PoseGraphEdge>& closur
   }
   ++deferred_optimizations_;
   // Node 0 is held in any case: a window over the whole graph frees nodes 1 on.
-  if (options_.local_optimization_keyframes > 0) Optimize(std::max(1, LocalWindow(closures)), pose);
   ClosureReport report;
+  if (options_.local_optimization_keyframes > 0) {
+    Optimize(std::max(1, LocalWindow(closures)), pose);
+    report.moved = true;
+  }
   report.deferred = true;
   report.stand = tags;
   return report;
@@ -108,6 +111,7 @@ ClosureReport GraphBackEnd::AddAndOptimize(const std::vector<PoseGraphEdge>& clo
   // Agreement with the other edges: optimised together, a closure's residual stays small;
   // those that do not are removed and the graph optimised again from where it was.
   ClosureReport report;
+  report.moved = true;
   std::vector<int> disagree;
   for (std::size_t i = 0; i < checked.size(); ++i) {
     const bool undone = graph_.EdgeChi2(graph_.edges()[static_cast<std::size_t>(checked[i])]) >
@@ -130,8 +134,12 @@ ClosureReport GraphBackEnd::AddAndOptimize(const std::vector<PoseGraphEdge>& clo
 
 ClosureReport GraphBackEnd::Finish(bool optimize, kernel::Pose2* pose) {
   if (!deferred_edges_.empty()) return AddAndOptimize({}, {}, {}, pose);
-  if (optimize) Optimize(0, pose);
-  return {};
+  ClosureReport report;
+  if (optimize) {
+    Optimize(0, pose);
+    report.moved = true;
+  }
+  return report;
 }
 
 void GraphBackEnd::MergeTrimmed(const std::vector<PoseGraphEdge>& waiting) {

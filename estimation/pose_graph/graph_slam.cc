@@ -56,25 +56,22 @@ void GraphSlam::AddKeyframe(GraphFrontEnd::PreparedScan scan, const kernel::Pose
 void GraphSlam::FlushClosures(bool final, double travelled_m) {
   const LoopCloser::Accepted accepted = loop_closer_.Decide(final);
   if (accepted.closures.empty()) return;
-  const std::size_t optimizations = back_end_.optimizations().size();
   Apply(back_end_.AddClosures(accepted.closures, accepted.tags, loop_closer_.waiting(),
                               front_end_.mutable_pose()),
-        accepted.closures.size(), travelled_m, optimizations);
+        accepted.closures.size(), travelled_m);
 }
 
-void GraphSlam::Apply(const ClosureReport& report, std::size_t added, double travelled_m,
-                      std::size_t optimizations_before) {
+void GraphSlam::Apply(const ClosureReport& report, std::size_t added, double travelled_m) {
   loop_closer_.Record(report, added, travelled_m);
-  if (back_end_.optimizations().size() != optimizations_before) front_end_.MapMoved();
+  if (report.moved) front_end_.MapMoved();
 }
 
 void GraphSlam::Finish() {
   if (const std::optional<double> travelled = loop_closer_.Collect())
     FlushClosures(false, *travelled);
   FlushClosures(true, front_end_.travelled_m());
-  const std::size_t optimizations = back_end_.optimizations().size();
   Apply(back_end_.Finish(loop_closer_.counts().accepted > 0, front_end_.mutable_pose()), 0,
-        front_end_.travelled_m(), optimizations);
+        front_end_.travelled_m());
 }
 
 GraphSlam::Times GraphSlam::times() const {

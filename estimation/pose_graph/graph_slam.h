@@ -130,8 +130,7 @@ class GraphSlam {
   // `travelled_m`: the travel at the keyframe whose search found the latest closures.
   void FlushClosures(bool final, double travelled_m);
   // The back end's report: recorded by the loop closer; the submap follows an optimisation.
-  void Apply(const ClosureReport& report, std::size_t added, double travelled_m,
-             std::size_t optimizations_before);
+  void Apply(const ClosureReport& report, std::size_t added, double travelled_m);
 
   GraphSlamOptions options_;
   Keyframes keyframes_;

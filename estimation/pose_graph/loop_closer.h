@@ -108,6 +108,7 @@ class AgreementAcceptance : public ClosureAcceptance {
 // What the back end did with the closures it was given (GraphBackEnd::AddClosures).
 struct ClosureReport {
   bool deferred = false;  // added without a whole optimisation (all stand)
+  bool moved = false;     // an optimisation moved the keyframes (a submap built on them is stale)
   // The closures checked against the optimised graph (those given and those that waited in it
   // unoptimised), by their tags: the ones that stand, and the ones removed for disagreeing.
   std::vector<int> stand, undone;

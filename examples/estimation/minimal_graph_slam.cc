@@ -109,11 +109,10 @@ class MinimalGraphSlam {
   void AddClosures(bool final, double travelled_m) {
     const estimation::LoopCloser::Accepted accepted = loop_closer_.Decide(final);
     if (accepted.closures.empty()) return;
-    const std::size_t optimizations = back_end_.optimizations().size();
-    loop_closer_.Record(back_end_.AddClosures(accepted.closures, accepted.tags,
-                                              loop_closer_.waiting(), front_end_.mutable_pose()),
-                        accepted.closures.size(), travelled_m);
-    if (back_end_.optimizations().size() != optimizations) front_end_.MapMoved();
+    const estimation::ClosureReport report = back_end_.AddClosures(
+        accepted.closures, accepted.tags, loop_closer_.waiting(), front_end_.mutable_pose());
+    loop_closer_.Record(report, accepted.closures.size(), travelled_m);
+    if (report.moved) front_end_.MapMoved();
   }
 
   estimation::GraphSlamOptions options_;
