@@ -127,7 +127,7 @@ BENCHMARK_CAPTURE(BM_LongRun, graph, "graph")
 // session 35's deferred_optimization_fraction).
 BENCHMARK_CAPTURE(
     BM_LongRun, graph_every_flush, "graph",
-    +[](GraphSlamOptions& o) { o.deferred_optimization_fraction = 0.0; })
+    +[](GraphSlamOptions& o) { o.back_end.advanced.deferred_optimization_fraction = 0.0; })
     ->Arg(2)
     ->Arg(5)
     ->Iterations(1)
@@ -136,7 +136,7 @@ BENCHMARK_CAPTURE(
 // merge_trimmed_keyframes).
 BENCHMARK_CAPTURE(
     BM_LongRun, graph_without_merging, "graph",
-    +[](GraphSlamOptions& o) { o.merge_trimmed_keyframes = false; })
+    +[](GraphSlamOptions& o) { o.back_end.merge_trimmed_keyframes = false; })
     ->Arg(2)
     ->Arg(5)
     ->Iterations(1)
@@ -145,7 +145,7 @@ BENCHMARK_CAPTURE(
 // last keyframes meanwhile.
 BENCHMARK_CAPTURE(
     BM_LongRun, graph_without_local, "graph",
-    +[](GraphSlamOptions& o) { o.local_optimization_keyframes = 0; })
+    +[](GraphSlamOptions& o) { o.back_end.advanced.local_optimization_keyframes = 0; })
     ->Arg(2)
     ->Iterations(1)
     ->Unit(benchmark::kSecond);

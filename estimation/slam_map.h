@@ -1,6 +1,7 @@
 #ifndef SPLAM_ESTIMATION_SLAM_MAP_H_
 #define SPLAM_ESTIMATION_SLAM_MAP_H_
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -69,10 +70,29 @@ struct SlamMap {
   std::vector<LoopSearch> loop_searches;
 };
 
-// Method-independent counters of what a method did, in the order they are reported.
+// Counters of scan-to-map registrations (a graph SLAM's front end, localisation in a saved map).
+struct RegistrationCounts {
+  long registrations = 0;
+  long recovery_searches = 0;  // a correlative search around the prediction ran
+  long recovered = 0;          // and its pose was taken
+  long fallbacks = 0;          // scans left at the odometric prediction
+};
+
+// Loop-closure counters: every candidate searched, and what became of it.
+struct LoopClosureCounts {
+  long searches = 0;
+  long accepted = 0;
+  long rejected_score = 0, rejected_ambiguous = 0, rejected_registration = 0, rejected_misfit = 0,
+       rejected_disagreement = 0, rejected_unconfirmed = 0;
+};
+
+// Method-independent counters of what a method did, in the order they are reported: the typed
+// ones of the kinds a method has, then its own named counters.
 struct SlamStatistics {
   std::string association;  // the association's name ("" when the method has none to report)
-  std::vector<std::pair<std::string, long>> map;           // e.g. {"lines", 12}, {"corners", 3}
+  std::vector<std::pair<std::string, long>> map;  // e.g. {"lines", 12}, {"corners", 3}
+  std::optional<RegistrationCounts> registration;
+  std::optional<LoopClosureCounts> loop_closure;
   std::vector<std::pair<std::string, long>> associations;  // e.g. {"accepted", 4120}
   // Nonlinear least-squares solves (Ceres) and those that did not converge.
   long solver_runs = 0;

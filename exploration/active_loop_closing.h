@@ -27,8 +27,8 @@ struct ActiveLoopClosingOptions {
   // largest eigenvalue of its position covariance) reaches this, m: 3 sigma is then the graph
   // SLAM's near loop-search window (LoopClosureOptions::near_window_m, 3 m), beyond which only
   // its wide search, slower and readier to take a look-alike place, still finds the robot. The
-  // graph SLAM's covariance follows its front-end edge model (GraphSlamOptions::edge_sigma_m,
-  // ...), wider than what its registration achieves: exploring `complex` it reaches 1 m after
+  // graph SLAM's covariance follows its front-end edge model (FrontEndOptions::edge), wider
+  // than what its registration achieves: exploring `complex` it reaches 1 m after
   // 20-40 m of path without closures.
   double min_position_sigma_m = 1.0;
   // A revisit is taken when its expected information minus cost_nats_per_m times its detour
@@ -41,7 +41,7 @@ struct ActiveLoopClosingOptions {
   double min_information_nats = 0.69;
   // After a revisit, none again before the robot has driven this far (its estimate's path), m:
   // the closures a revisit finds are confirmed and optimised over the next few keyframes
-  // (GraphSlamOptions::optimize_every_keyframes, LoopClosureOptions::confirm_keyframes: 20
+  // (LoopClosureOptions::optimize_every_keyframes, LoopClosureOptions::confirm_keyframes: 20
   // keyframes, 6 m), and until then the covariance does not show them.
   double min_travel_between_m = 10.0;
 

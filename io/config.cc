@@ -195,6 +195,11 @@ class YamlReader : public kernel::FieldVisitor {
     nested.CheckUnknown();
   }
 
+  void Moved(std::string_view old_key, std::string_view new_key) override {
+    const YAML::Node n = Find(old_key);
+    if (n && status_->ok()) Fail(n, old_key, "this key is now " + Qualified(new_key));
+  }
+
   // An error for the first key of the map that no field visited.
   void CheckUnknown() {
     if (allow_unknown_ || !status_->ok()) return;

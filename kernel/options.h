@@ -37,6 +37,11 @@ class FieldVisitor {
   virtual void Group(std::string_view key, std::string_view doc,
                      const std::function<void(FieldVisitor&)>& fields) = 0;
 
+  // A key that this struct no longer has, now at `new_key` (relative to the struct's own
+  // section): a reader refuses a value under `old_key` with a message naming the new key. Writers
+  // and checks ignore it.
+  virtual void Moved(std::string_view /*old_key*/, std::string_view /*new_key*/) {}
+
   // Visits a nested options struct that has a VisitFields(FieldVisitor&) member.
   template <class Options>
   void Nested(std::string_view key, std::string_view doc, Options* options) {

@@ -17,6 +17,22 @@ nlohmann::ordered_json StatisticsJson(const estimation::SlamStatistics& statisti
   for (const auto& [key, value] : statistics.map) map[key] = value;
   nlohmann::ordered_json associations = nlohmann::ordered_json::object();
   if (!statistics.association.empty()) associations["method"] = statistics.association;
+  if (const auto& r = statistics.registration) {
+    associations["registrations"] = r->registrations;
+    associations["registration_recovery_searches"] = r->recovery_searches;
+    associations["registration_recovered"] = r->recovered;
+    associations["registration_fallbacks"] = r->fallbacks;
+  }
+  if (const auto& l = statistics.loop_closure) {
+    associations["loop_searches"] = l->searches;
+    associations["loop_accepted"] = l->accepted;
+    associations["loop_rejected_score"] = l->rejected_score;
+    associations["loop_rejected_ambiguous"] = l->rejected_ambiguous;
+    associations["loop_rejected_registration"] = l->rejected_registration;
+    associations["loop_rejected_misfit"] = l->rejected_misfit;
+    associations["loop_rejected_disagreement"] = l->rejected_disagreement;
+    associations["loop_rejected_unconfirmed"] = l->rejected_unconfirmed;
+  }
   for (const auto& [key, value] : statistics.associations) associations[key] = value;
   nlohmann::ordered_json json = {{"map", map}, {"associations", associations}};
   if (statistics.solver_runs > 0) {

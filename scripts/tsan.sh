@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # ThreadSanitizer over the code that runs on more than one thread: the registries
 # (kernel::Registry) and the graph SLAM's background loop search
-# (GraphSlamOptions::background_loop_search). Configures build-tsan (Clang, SPLAM_TSAN), builds
+# (LoopClosureOptions::background_search). Configures build-tsan (Clang, SPLAM_TSAN), builds
 # kernel_test and estimation_test and runs the tests that drive the threads, with any
 # report failing the run. Run it before resolving a change to threaded code; it is not part of
 # the test command (the instrumented build takes about ten minutes on two cores).

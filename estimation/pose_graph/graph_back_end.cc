@@ -11,8 +11,8 @@
 
 namespace splam::estimation {
 
-GraphBackEnd::GraphBackEnd(const GraphSlamOptions& options, Keyframes* keyframes)
-    : options_(options), keyframes_(keyframes) {}
+GraphBackEnd::GraphBackEnd(const BackEndOptions& options, Keyframes* keyframes, bool closures)
+    : options_(options), keyframes_(keyframes), closures_(closures) {}
 
 void GraphBackEnd::AddKeyframe(const Eigen::Matrix3d& edge_covariance, bool robust) {
   // One node per keyframe, in order: the store has just grown by one.
@@ -27,13 +27,6 @@ void GraphBackEnd::AddKeyframe(const Eigen::Matrix3d& edge_covariance, bool robu
   edge.information = edge_covariance.inverse();
   edge.robust = robust;
   graph_.AddEdge(edge);
-}
-
-int TrimmedKeyframe(const GraphSlamOptions& options, int k) {
-  const LoopClosureOptions& loop = options.loop;
-  return k - (loop.enabled ? std::max({options.submap_keyframes, loop.query_keyframes + 1,
-                                       loop.min_gap_keyframes + loop.target_keyframes})
-                           : options.submap_keyframes);
 }
 
 void GraphBackEnd::Trim(int j) {
@@ -53,8 +46,8 @@ void GraphBackEnd::Trim(int j) {
     }
   }
   // Without loop closure no search reads a keyframe that has left the submap.
-  if (options_.loop.enabled && cover < 0) return;
-  if (options_.loop.enabled && options_.merge_trimmed_keyframes) merge_queue_.push_back({j, cover});
+  if (closures_ && cover < 0) return;
+  if (closures_ && options_.merge_trimmed_keyframes) merge_queue_.push_back({j, cover});
   kf.data.reset();
   kf.trimmed = true;
   ++trimmed_;
@@ -69,7 +62,7 @@ ClosureReport GraphBackEnd::AddClosures(const std::vector<PoseGraphEdge>& closur
   double chi2 = 0.0;
   for (const PoseGraphEdge& e : closures) {
     const double c = graph_.EdgeChi2(e);
-    agree_with_graph &= c <= options_.loop.max_chi2;
+    agree_with_graph &= c <= options_.max_chi2;
     chi2 += c;
   }
   // Closures that agree with the graph as it is wait in it, unoptimised (DeferOptimization).
@@ -84,7 +77,7 @@ ClosureReport GraphBackEnd::AddClosures(const std::vector<PoseGraphEdge>& closur
   ++deferred_optimizations_;
   // Node 0 is held in any case: a window over the whole graph frees nodes 1 on.
   ClosureReport report;
-  if (options_.local_optimization_keyframes > 0) {
+  if (options_.advanced.local_optimization_keyframes > 0) {
     Optimize(std::max(1, LocalWindow(closures)), pose);
     report.moved = true;
   }
@@ -114,8 +107,8 @@ ClosureReport GraphBackEnd::AddAndOptimize(const std::vector<PoseGraphEdge>& clo
   report.moved = true;
   std::vector<int> disagree;
   for (std::size_t i = 0; i < checked.size(); ++i) {
-    const bool undone = graph_.EdgeChi2(graph_.edges()[static_cast<std::size_t>(checked[i])]) >
-                        options_.loop.max_chi2;
+    const bool undone =
+        graph_.EdgeChi2(graph_.edges()[static_cast<std::size_t>(checked[i])]) > options_.max_chi2;
     if (undone) disagree.push_back(checked[i]);
     (undone ? report.undone : report.stand).push_back(checked_tags[i]);
   }
@@ -167,18 +160,18 @@ void GraphBackEnd::MergeTrimmed(const std::vector<PoseGraphEdge>& waiting) {
 }
 
 int GraphBackEnd::LocalWindow(const std::vector<PoseGraphEdge>& closures) const {
-  int first_free = std::max(0, graph_.num_nodes() - options_.local_optimization_keyframes);
+  int first_free = std::max(0, graph_.num_nodes() - options_.advanced.local_optimization_keyframes);
   for (const PoseGraphEdge& e : closures) first_free = std::min(first_free, std::max(e.from, e.to));
   return first_free;
 }
 
 bool GraphBackEnd::DeferOptimization(double chi2, int closures) const {
-  const double fraction = options_.deferred_optimization_fraction;
+  const double fraction = options_.advanced.deferred_optimization_fraction;
   if (!(fraction > 0) ||
       graph_.num_nodes() - optimized_nodes_ >= fraction * static_cast<double>(optimized_nodes_))
     return false;
   // Right closures on right poses: the sum of their whitened squared residuals is chi^2 with
-  // three degrees of freedom per closure; tested at loop.max_chi2's significance.
+  // three degrees of freedom per closure; tested at max_chi2's significance.
   constexpr double kSignificance = 0.999;
   const int n = static_cast<int>(deferred_edges_.size()) + closures;
   return deferred_chi2_ + chi2 <= ChiSquareQuantile(kSignificance, 3.0 * n);

@@ -13,38 +13,35 @@
 
 namespace splam::estimation {
 
-// The keyframe that the new keyframe k lets the back end trim: the newest that has left every
-// window reading keyframe data (the submap's, and with loop closure the loop query's and the
-// youngest loop targets').
-int TrimmedKeyframe(const GraphSlamOptions& options, int k);
-
 // The back end of the graph SLAM (after Cartographer's PoseGraph2D and OptimizationProblem2D):
 // the pose graph over the keyframes (node k is keyframe k; each carries its keyframe's
 // trajectory), the optimisation schedule (closures that agree with the graph wait in it
-// unoptimised, deferred_optimization_fraction, meanwhile optimising the last
-// local_optimization_keyframes) and the trimming and merging of redundant keyframes
+// unoptimised, advanced.deferred_optimization_fraction, meanwhile optimising the last
+// advanced.local_optimization_keyframes) and the trimming and merging of redundant keyframes
 // (trim_spacing_m, merge_trimmed_keyframes). Every optimisation writes the keyframes' poses and
 // moves the robot's pose it is given with the newest keyframe.
 class GraphBackEnd {
  public:
-  // `keyframes` outlives the back end.
-  GraphBackEnd(const GraphSlamOptions& options, Keyframes* keyframes);
+  // `keyframes` outlives the back end. `closures`: a loop closer reads the keyframes that have
+  // left the submap and adds closures (then a keyframe is trimmed only beside one that keeps its
+  // data, and merged into it).
+  GraphBackEnd(const BackEndOptions& options, Keyframes* keyframes, bool closures);
 
   // The store's last keyframe k is new: its node, and the front-end edge from keyframe k - 1
   // (none for the first) with this covariance, with the closures' robust loss when `robust`.
   void AddKeyframe(const Eigen::Matrix3d& edge_covariance, bool robust);
   // Drops keyframe j's data when an earlier keyframe that still holds its own lies within
-  // trim_spacing_m and trim_spacing_rad (with loop closure; without, whenever it is not a map
+  // trim_spacing_m and trim_spacing_rad (with `closures`; without, whenever it is not a map
   // keyframe), and queues it to be merged into that one (merge_trimmed_keyframes). j must have
   // left every window that reads keyframe data (TrimmedKeyframe). Nothing when trim_spacing_m
   // is 0.
   void Trim(int j);
   // Adds the closures accepted (tags: the caller's names for them, returned in the report):
   // without an optimisation when they agree with the graph as it is and it has grown by less
-  // than deferred_optimization_fraction since its last whole optimisation (then the last
-  // local_optimization_keyframes are optimised); otherwise optimises the whole graph and removes
-  // every closure added since its last whole optimisation that then disagrees with it
-  // (whitened squared residual above loop.max_chi2), optimising again from where it was.
+  // than advanced.deferred_optimization_fraction since its last whole optimisation (then the last
+  // advanced.local_optimization_keyframes are optimised); otherwise optimises the whole graph and
+  // removes every closure added since its last whole optimisation that then disagrees with it
+  // (whitened squared residual above max_chi2), optimising again from where it was.
   // `waiting`: closures still to be decided, whose keyframes are not merged; *pose moves with
   // the newest keyframe.
   ClosureReport AddClosures(const std::vector<PoseGraphEdge>& closures,
@@ -81,8 +78,9 @@ class GraphBackEnd {
   // every closure in the graph has been checked against it.
   void MergeTrimmed(const std::vector<PoseGraphEdge>& waiting);
 
-  GraphSlamOptions options_;
+  BackEndOptions options_;
   Keyframes* keyframes_;
+  bool closures_;
   PoseGraph graph_;
   long trimmed_ = 0;
   int optimized_nodes_ = 0;  // the graph's nodes at its last whole optimisation

@@ -13,7 +13,7 @@ namespace splam::estimation {
 namespace {
 
 // How much farther than its keyframes' outline a submap's grid reaches at most, for the keyframes
-// inserted into it (GraphSlamOptions::submap_insert_keyframes), m.
+// inserted into it (FrontEndOptions::Advanced::submap_insert_keyframes), m.
 constexpr double kMaxSubmapRoom_m = 5.0;
 
 }  // namespace
@@ -23,7 +23,7 @@ FrontEndRegistration RegisterFrontEnd(const std::vector<OrientedPoint>& points,
                                       const std::function<const LikelihoodPyramid&()>& scores,
                                       const kernel::Pose2& predicted,
                                       const kernel::Pose2& odometry_since,
-                                      const GraphSlamOptions& options) {
+                                      const FrontEndOptions& options) {
   FrontEndRegistration out;
   RegistrationResult& r = out.result;
   r = RegisterPoints(points, field, predicted, options.registration);
@@ -38,22 +38,22 @@ FrontEndRegistration RegisterFrontEnd(const std::vector<OrientedPoint>& points,
     const Eigen::Matrix3d odometry = options.odometry.Covariance(odometry_since);
     RegistrationResult fused =
         RegisterPoints(points, field, predicted, options.registration, &odometry);
-    if (r.accepted ? OdometryIsInlier(fused, r, options.odometry_outlier_probability)
+    if (r.accepted ? OdometryIsInlier(fused, r, options.advanced.odometry_outlier_probability)
                    : fused.accepted)
       r = std::move(fused);
   }
-  const bool suspect = r.accepted && r.misfit_fraction > options.verify_misfit_fraction;
+  const bool suspect = r.accepted && r.misfit_fraction > options.advanced.verify_misfit_fraction;
   if ((r.accepted && !suspect) || options.recovery_window_m <= 0) return out;
   // The odometry can be off by more than the registration's basin (wheel slip, a bump, a fast
   // turn): a correlative search around the prediction finds the basin, the registration refines
   // it. It replaces a failed registration when at least as many points lie near the map, a
   // suspect one only when more do and fewer contradict it.
   out.searched = true;
-  const CorrelativeOptions search{.angular_step_rad = options.recovery_step_rad};
+  const CorrelativeOptions search{.angular_step_rad = options.advanced.recovery_step_rad};
   const CorrelativeMatch match = SearchCorrelative(
       Positions(Thinned(points, options.grid_resolution_m)), scores(), predicted,
       options.recovery_window_m, options.recovery_window_rad,
-      options.registration.min_inlier_fraction, options.loop.ambiguity_ratio, search);
+      options.registration.min_inlier_fraction, options.advanced.recovery_ambiguity_ratio, search);
   if (!match.found) return out;
   // Nor when another heading fits about as well (a distinct peak within the loop closure's
   // ambiguity_ratio of the best) and the points do not tell the two apart (TellsApart): a scan
@@ -66,7 +66,7 @@ FrontEndRegistration RegisterFrontEnd(const std::vector<OrientedPoint>& points,
       std::abs(kernel::WrapAngle(match.second_pose.theta() - match.pose.theta())) >
           search.distinct_rad &&
       !TellsApart(field, points, match.pose, match.second_pose, options.registration,
-                  options.normal_max_gap_m, options.loop.tell_apart_alpha))
+                  options.normal_max_gap_m, options.advanced.recovery_tell_apart_alpha))
     return out;
   RegistrationOptions wide = options.registration;
   wide.max_correction_m = options.recovery_window_m + wide.max_correction_m;
@@ -83,7 +83,8 @@ FrontEndRegistration RegisterFrontEnd(const std::vector<OrientedPoint>& points,
   // an absolute bound: mit-csail's odometry turns 10-70 deg wrong, and its right recoveries leave
   // up to 8 % contradicting where the registration left 4.5 % (an absolute 5 % cut three of them
   // and the log ended 0.28 m off).
-  if (recovered.misfit_fraction - r.misfit_fraction > options.verify_misfit_fraction) return out;
+  if (recovered.misfit_fraction - r.misfit_fraction > options.advanced.verify_misfit_fraction)
+    return out;
   if (suspect && !(recovered.inlier_fraction > r.inlier_fraction &&
                    recovered.misfit_fraction < r.misfit_fraction))
     return out;
@@ -94,24 +95,22 @@ FrontEndRegistration RegisterFrontEnd(const std::vector<OrientedPoint>& points,
   return out;
 }
 
-Eigen::Matrix3d EdgeCovariance(const GraphSlamOptions& options, double distance_m,
-                               double turn_rad) {
-  return Diagonal(options.edge_sigma_m + options.edge_sigma_per_m * distance_m,
-                  options.edge_sigma_rad + options.edge_sigma_per_rad * std::abs(turn_rad));
+Eigen::Matrix3d EdgeCovariance(const EdgeModel& model, double distance_m, double turn_rad) {
+  return Diagonal(model.sigma_m + model.per_m * distance_m,
+                  model.sigma_rad + model.per_rad * std::abs(turn_rad));
 }
 
-Eigen::Matrix3d KeyframeEdgeCovariance(const GraphSlamOptions& options, const Keyframes& keyframes,
-                                       int to) {
+Eigen::Matrix3d KeyframeEdgeCovariance(const EdgeModel& model, const Keyframes& keyframes, int to) {
   assert(to >= 1 && to < static_cast<int>(keyframes.size()));
   const Keyframe& prev = keyframes[static_cast<std::size_t>(to - 1)];
   const Keyframe& kf = keyframes[static_cast<std::size_t>(to)];
-  return EdgeCovariance(options, kf.travelled_m - prev.travelled_m,
+  return EdgeCovariance(model, kf.travelled_m - prev.travelled_m,
                         prev.pose.Between(kf.pose).theta());
 }
 
-GraphFrontEnd::GraphFrontEnd(const kernel::Pose2& start, const GraphSlamOptions& options,
-                             Keyframes* keyframes)
-    : options_(options), keyframes_(keyframes), pose_(start) {}
+GraphFrontEnd::GraphFrontEnd(const kernel::Pose2& start, const FrontEndOptions& options,
+                             Keyframes* keyframes, bool hit_views)
+    : options_(options), keyframes_(keyframes), hit_views_(hit_views), pose_(start) {}
 
 void GraphFrontEnd::Predict(const kernel::Pose2& odometry_increment) {
   pose_ = pose_ * odometry_increment;
@@ -136,15 +135,15 @@ std::optional<GraphFrontEnd::PreparedScan> GraphFrontEnd::Register(
   if (!keyframes_->empty()) {
     UpdateSubmap();
     if (!health_.ok()) return std::nullopt;
-    const long recovered_before = recovered_;
+    const long recovered_before = counts_.recovered;
     const RegistrationResult r = RegisterScan(prepared.points);
-    ++registrations_;
+    ++counts_.registrations;
     registered_ = r.accepted;
-    recovered_since_keyframe_ |= r.accepted && recovered_ > recovered_before;
+    recovered_since_keyframe_ |= r.accepted && counts_.recovered > recovered_before;
     if (r.accepted)
       pose_ = r.pose;
     else
-      ++fallbacks_;
+      ++counts_.fallbacks;
   }
   if (registered_) LeaveOutMoving(robot_T_laser, predicted, true, &prepared);
   since_update_ = kernel::Pose2();
@@ -197,7 +196,7 @@ bool GraphFrontEnd::KeyframeDue() const {
 Keyframe GraphFrontEnd::MakeKeyframe(PreparedScan scan, const kernel::Pose2& robot_T_laser,
                                      int scan_index, bool* robust_edge) {
   force_keyframe_ = false;
-  *robust_edge = options_.robust_recovery_edges && recovered_since_keyframe_;
+  *robust_edge = options_.advanced.robust_recovery_edges && recovered_since_keyframe_;
   recovered_since_keyframe_ = false;
   Keyframe kf;
   kf.pose = pose_;
@@ -224,7 +223,7 @@ void GraphFrontEnd::KeyframeAdded(int k) {
 std::vector<OrientedPoint> GraphFrontEnd::ScanPoints(const kernel::Scan& scan,
                                                      const kernel::Pose2& robot_T_laser) const {
   return OrientTowards(robot_T_laser * scan.HitPoints(), robot_T_laser.translation(),
-                       options_.normal_max_gap_m, options_.line_tolerance_m);
+                       options_.normal_max_gap_m, options_.advanced.line_tolerance_m);
 }
 
 double GraphFrontEnd::UsableRange(const kernel::Scan& scan) const {
@@ -271,15 +270,15 @@ void GraphFrontEnd::FillKeyframe(std::vector<OrientedPoint> points, Keyframe* kf
   if (options_.moving.enabled) d.candidates = ForegroundObjects(d.reading, options_.moving);
   for (const auto& curve : kernel::ExtractCurves(d.reading, options_.extraction)) {
     d.curves.push_back(kernel::Transformed(curve, d.robot_T_laser));
-    if (!options_.raster_curves) continue;
+    if (!options_.advanced.raster_curves) continue;
     const auto samples = OrientTowards(d.curves.back().samples, d.robot_T_laser.translation(),
                                        options_.grid_resolution_m);
     d.raster.insert(d.raster.end(), samples.begin(), samples.end());
   }
-  if (options_.raster_points || d.raster.empty()) {
+  if (options_.advanced.raster_points || d.raster.empty()) {
     d.raster.insert(d.raster.end(), points.begin(), points.end());
     const std::vector<OrientedPoint> fill =
-        FillLinkedGaps(points, options_.normal_max_gap_m, options_.line_tolerance_m,
+        FillLinkedGaps(points, options_.normal_max_gap_m, options_.advanced.line_tolerance_m,
                        options_.grid_resolution_m / 2);
     d.raster.insert(d.raster.end(), fill.begin(), fill.end());
   }
@@ -287,10 +286,11 @@ void GraphFrontEnd::FillKeyframe(std::vector<OrientedPoint> points, Keyframe* kf
   d.raster = Thinned(d.raster, options_.grid_resolution_m / 2);
   d.points = std::move(points);
   d.rasters = {};  // the view changes
-  d.seen = ScanView(d.reading, d.robot_T_laser, UsableRange(d.reading), options_.seen_margin_m);
-  if (options_.loop.enabled && options_.loop.seen_free_score < 0)
-    d.seen_by_hits =
-        ScanView(d.reading, d.robot_T_laser, UsableRange(d.reading), options_.seen_margin_m, false);
+  d.seen =
+      ScanView(d.reading, d.robot_T_laser, UsableRange(d.reading), options_.advanced.seen_margin_m);
+  if (hit_views_)
+    d.seen_by_hits = ScanView(d.reading, d.robot_T_laser, UsableRange(d.reading),
+                              options_.advanced.seen_margin_m, false);
   if (kf->in_map) {
     map_curves_ += d.curves.size();
     for (const auto& c : d.curves) map_control_points_ += c.spline.control_points().size();
@@ -304,15 +304,17 @@ void GraphFrontEnd::UpdateSubmap() {
   const int last = static_cast<int>(keyframes_->size()) - 1;
   if (!submap_dirty_ && submap_last_ == last) return;
   const ScopedTimer timer(&times_.submap_ms);
-  const bool mask = options_.mask_unseen;
+  const bool mask = options_.advanced.mask_unseen;
   const double resolution = options_.grid_resolution_m;
-  if (!submap_dirty_ && options_.submap_insert_keyframes > 0 &&
-      last - submap_first_ < options_.submap_keyframes + options_.submap_insert_keyframes) {
+  if (!submap_dirty_ && options_.advanced.submap_insert_keyframes > 0 &&
+      last - submap_first_ <
+          options_.submap_keyframes + options_.advanced.submap_insert_keyframes) {
     bool fits = true;
     for (int i = submap_last_ + 1; i <= last && fits; ++i) {
-      fits = submap_.Insert(WorldRaster(*keyframes_, {i}),
-                            mask ? ViewsOf(*keyframes_, {i}, 0, resolution, options_.seen_margin_m)
-                                 : std::vector<const ViewCells*>{});
+      fits = submap_.Insert(
+          WorldRaster(*keyframes_, {i}),
+          mask ? ViewsOf(*keyframes_, {i}, 0, resolution, options_.advanced.seen_margin_m)
+               : std::vector<const ViewCells*>{});
       submap_inserts_ += fits;
     }
     if (fits) {
@@ -330,11 +332,11 @@ void GraphFrontEnd::UpdateSubmap() {
   submap_ = DistanceGrid::Build(
       WorldRaster(*keyframes_, recent), resolution, options_.truncation_m,
       options_.truncation_m +
-          std::min(options_.submap_insert_keyframes * options_.keyframe_distance_m,
+          std::min(options_.advanced.submap_insert_keyframes * options_.keyframe_distance_m,
                    kMaxSubmapRoom_m),
-      mask ? ViewsOf(*keyframes_, recent, 0, resolution, options_.seen_margin_m)
+      mask ? ViewsOf(*keyframes_, recent, 0, resolution, options_.advanced.seen_margin_m)
            : std::vector<const ViewCells*>{},
-      options_.signed_distance, {});
+      options_.advanced.signed_distance, {});
   ++submap_builds_;
   submap_first_ = first;
   submap_last_ = last;
@@ -354,12 +356,13 @@ RegistrationResult GraphFrontEnd::RegisterScan(const std::vector<OrientedPoint>&
       points, submap_,
       [this]() -> const LikelihoodPyramid& {
         if (!submap_scores_)
-          submap_scores_ = std::make_unique<LikelihoodPyramid>(submap_, options_.loop.sigma_m, 3);
+          submap_scores_ =
+              std::make_unique<LikelihoodPyramid>(submap_, options_.advanced.recovery_sigma_m, 3);
         return *submap_scores_;
       },
       pose_, since_update_, options_);
-  recoveries_ += r.searched;
-  recovered_ += r.recovered;
+  counts_.recovery_searches += r.searched;
+  counts_.recovered += r.recovered;
   return r.result;
 }
 

@@ -12,6 +12,7 @@
 #include "estimation/pose_graph/graph_slam_options.h"
 #include "estimation/pose_graph/keyframes.h"
 #include "estimation/pose_graph/scan_registration.h"
+#include "estimation/slam_map.h"
 #include "kernel/pose2.h"
 #include "kernel/scan.h"
 #include "kernel/status.h"
@@ -21,10 +22,10 @@ namespace splam::estimation {
 // The graph SLAM front end's registration of a scan's points (robot frame) against a field
 // (world frame) from the predicted pose: the scan alone and with the odometry increment since
 // the last scan as its prior (the fused pose unless the odometry is an outlier); when that fails
-// its test or looks suspect (misfit above verify_misfit_fraction), a correlative search over the
-// recovery window on `scores` (made on first need) and a wide registration from its best pose,
-// taken when it fits at least as well. GraphFrontEnd registers against its submap, MapLocalizer
-// against a saved map.
+// its test or looks suspect (misfit above advanced.verify_misfit_fraction), a correlative search
+// over the recovery window on `scores` (made on first need) and a wide registration from its best
+// pose, taken when it fits at least as well. GraphFrontEnd registers against its submap,
+// MapLocalizer against a saved map.
 struct FrontEndRegistration {
   RegistrationResult result;
   bool searched = false;   // the recovery search ran
@@ -35,14 +36,12 @@ FrontEndRegistration RegisterFrontEnd(const std::vector<OrientedPoint>& points,
                                       const std::function<const LikelihoodPyramid&()>& scores,
                                       const kernel::Pose2& predicted,
                                       const kernel::Pose2& odometry_since,
-                                      const GraphSlamOptions& options);
+                                      const FrontEndOptions& options);
 
-// The front-end edge model: sigma = edge_sigma_m + edge_sigma_per_m * distance_m for the
-// translation, edge_sigma_rad + edge_sigma_per_rad * |turn_rad| for the heading (diagonal).
-Eigen::Matrix3d EdgeCovariance(const GraphSlamOptions& options, double distance_m, double turn_rad);
+// The front-end edge model's covariance for distance_m of travel and a turn of turn_rad.
+Eigen::Matrix3d EdgeCovariance(const EdgeModel& model, double distance_m, double turn_rad);
 // That model for the edge from keyframe `to` - 1 to `to`, at their present poses and travel.
-Eigen::Matrix3d KeyframeEdgeCovariance(const GraphSlamOptions& options, const Keyframes& keyframes,
-                                       int to);
+Eigen::Matrix3d KeyframeEdgeCovariance(const EdgeModel& model, const Keyframes& keyframes, int to);
 
 // The front end of the graph SLAM (after Cartographer's LocalTrajectoryBuilder2D): scans in,
 // keyframes out. Every scan is registered against a submap rasterised from the last keyframes
@@ -55,8 +54,11 @@ Eigen::Matrix3d KeyframeEdgeCovariance(const GraphSlamOptions& options, const Ke
 // the step ends at, and, when KeyframeDue, MakeKeyframe and KeyframeAdded once it is stored.
 class GraphFrontEnd {
  public:
-  // `keyframes` outlives the front end.
-  GraphFrontEnd(const kernel::Pose2& start, const GraphSlamOptions& options, Keyframes* keyframes);
+  // `keyframes` outlives the front end. `hit_views`: each keyframe also keeps the view of its
+  // beams that returned (Keyframe::Data::seen_by_hits), which a loop closer scoring where the
+  // target's returning beams passed reads (LoopCloser::NeedsHitViews).
+  GraphFrontEnd(const kernel::Pose2& start, const FrontEndOptions& options, Keyframes* keyframes,
+                bool hit_views = false);
 
   void Predict(const kernel::Pose2& odometry_increment);
 
@@ -84,7 +86,7 @@ class GraphFrontEnd {
   void ForceKeyframe() { force_keyframe_ = true; }
   // The keyframe the settled scan makes at pose(); scan_index: its index in input order;
   // *robust_edge: whether the front-end edge into it gets the closures' robust loss (a
-  // recovery placed a scan since the last keyframe, robust_recovery_edges).
+  // recovery placed a scan since the last keyframe, advanced.robust_recovery_edges).
   Keyframe MakeKeyframe(PreparedScan scan, const kernel::Pose2& robot_T_laser, int scan_index,
                         bool* robust_edge);
   // Keyframe k, made by MakeKeyframe, is now the store's last: the one that has left the last
@@ -100,10 +102,7 @@ class GraphFrontEnd {
   kernel::Status health() const { return health_; }
 
   bool registered() const { return registered_; }
-  long registrations() const { return registrations_; }
-  long registration_fallbacks() const { return fallbacks_; }
-  long recovery_searches() const { return recoveries_; }
-  long recovered() const { return recovered_; }
+  const RegistrationCounts& registration_counts() const { return counts_; }
   long moving_beams() const { return moving_beams_; }
   long submap_builds() const { return submap_builds_; }
   long submap_inserts() const { return submap_inserts_; }
@@ -135,13 +134,14 @@ class GraphFrontEnd {
   // Beams longer than this are not used: max_range_m, or the laser's range when it is 0.
   double UsableRange(const kernel::Scan& scan) const;
   // Brings the submap up to the last keyframe: inserts the new keyframes or builds it anew (see
-  // submap_insert_keyframes).
+  // advanced.submap_insert_keyframes).
   void UpdateSubmap();
   // Registers a scan at the predicted pose against the submap (see recovery_window_m).
   RegistrationResult RegisterScan(const std::vector<OrientedPoint>& points);
 
-  GraphSlamOptions options_;
+  FrontEndOptions options_;
   Keyframes* keyframes_;
+  bool hit_views_;
   kernel::Pose2 pose_;
   double travelled_m_ = 0.0;
   kernel::Pose2 since_update_;  // odometry since the last registered scan
@@ -153,7 +153,7 @@ class GraphFrontEnd {
   bool force_keyframe_ = false;
   bool recovered_since_keyframe_ = false;  // a recovery search placed a scan since the last one
   bool registered_ = false;
-  long registrations_ = 0, fallbacks_ = 0, recoveries_ = 0, recovered_ = 0;
+  RegistrationCounts counts_;
   long moving_beams_ = 0;
   std::size_t map_curves_ = 0, map_control_points_ = 0;
   Times times_;

@@ -19,17 +19,9 @@ void AddGraphLayers(const GraphSlam& graph, SlamMap* map) {
 
 // The loop-closure counters, times and optimisations of a graph, appended to *s.
 void AddGraphStatistics(const GraphSlam& graph, SlamStatistics* s) {
-  const LoopClosureCounts& l = graph.loops();
+  s->loop_closure = graph.loops();
   s->associations.insert(s->associations.end(),
-                         {{"loop_searches", l.searches},
-                          {"loop_accepted", l.accepted},
-                          {"loop_rejected_score", l.rejected_score},
-                          {"loop_rejected_ambiguous", l.rejected_ambiguous},
-                          {"loop_rejected_registration", l.rejected_registration},
-                          {"loop_rejected_misfit", l.rejected_misfit},
-                          {"loop_rejected_disagreement", l.rejected_disagreement},
-                          {"loop_rejected_unconfirmed", l.rejected_unconfirmed},
-                          {"loop_flushes_deferred", graph.deferred_optimizations()},
+                         {{"loop_flushes_deferred", graph.deferred_optimizations()},
                           {"moving_object_beams", graph.moving_beams()}});
   const GraphSlam::Times& t = graph.times();
   s->time_ms = {{"registration", t.registration_ms}, {"keyframes", t.keyframe_ms},
@@ -112,7 +104,7 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
     if (localizer_) return loaded_.map;
     SlamMap map;
     map.splines = slam_.MapSplines();
-    map.spline_features = slam_.options().extraction;
+    map.spline_features = slam_.options().front_end.extraction;
     AddGraphLayers(slam_, &map);
     return map;
   }
@@ -124,10 +116,8 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
                {"map_scans", static_cast<long>(loaded_.scans.size())},
                {"curves", static_cast<long>(loaded_.map.splines.size())},
                {"local_fields_built", localizer_->grid_builds()}};
-      s.associations = {{"registrations", localizer_->registrations()},
-                        {"registration_recovered", localizer_->recovered()},
-                        {"registration_fallbacks", localizer_->fallbacks()},
-                        {"start_found", localizer_->found_start() ? 1 : 0}};
+      s.registration = localizer_->registration_counts();
+      s.associations = {{"start_found", localizer_->found_start() ? 1 : 0}};
       return s;
     }
     s.association = "scan-to-submap registration, correlative loop closure";
@@ -140,10 +130,7 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
              {"submap_inserts", slam_.submap_inserts()},
              {"curves", static_cast<long>(slam_.num_map_curves())},
              {"control_points", static_cast<long>(slam_.num_map_control_points())}};
-    s.associations = {{"registrations", slam_.registrations()},
-                      {"registration_recovery_searches", slam_.recovery_searches()},
-                      {"registration_recovered", slam_.recovered()},
-                      {"registration_fallbacks", slam_.registration_fallbacks()}};
+    s.registration = slam_.front_end().registration_counts();
     AddGraphStatistics(slam_, &s);
     return s;
   }
@@ -170,12 +157,13 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
                                    "', this run's is 'graph'");
     if (state.scans.empty()) return kernel::Status::Error("the state holds no map scans");
     loaded_ = state;
-    loaded_.map.spline_features = slam_.options().extraction;
+    loaded_.map.spline_features = slam_.options().front_end.extraction;
     if (localize_only) {
       // Asked after every scan (the time per scan by map size): counted once.
       for (const MapSpline& s : loaded_.map.splines)
         loaded_control_points_ += s.spline.control_points().size();
-      localizer_ = std::make_unique<MapLocalizer>(state.scans, start_, slam_.options());
+      localizer_ = std::make_unique<MapLocalizer>(state.scans, start_, slam_.options().front_end,
+                                                  slam_.options().localization);
       return kernel::Status::Ok();
     }
     // The map's scans again, at their poses: the same keyframes, curves and closures.
@@ -202,7 +190,8 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
   }
   // The first new scan's pose in the loaded map: found by the localiser from the start pose.
   kernel::Pose2 StartInMap(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) const {
-    MapLocalizer localizer(loaded_.scans, start_, slam_.options());
+    MapLocalizer localizer(loaded_.scans, start_, slam_.options().front_end,
+                           slam_.options().localization);
     localizer.Update(scan, robot_T_laser);
     return localizer.pose();
   }
@@ -232,7 +221,7 @@ std::unique_ptr<SlamMethod> MakeGraphSlamMethod(const GraphSlamOptions& options,
 }
 
 void AdaptGraphSlamToSensors(const SensorNoise& noise, GraphSlamOptions* options) {
-  options->odometry = OdometryNoiseModel().Scaled(noise.odometry_noise_scale);
+  options->front_end.odometry = OdometryNoiseModel().Scaled(noise.odometry_noise_scale);
 }
 
 void AddGraphSlamMethod(kernel::Registry<SlamMethodInfo>* registry) {

@@ -10,9 +10,10 @@ namespace splam::estimation {
 GraphSlam::GraphSlam(const kernel::Pose2& start, const GraphSlamOptions& options,
                      std::unique_ptr<ClosureAcceptance> acceptance)
     : options_(options),
-      front_end_(start, options, &keyframes_),
-      back_end_(options, &keyframes_),
-      loop_closer_(options, &keyframes_, &back_end_.graph(), std::move(acceptance)) {}
+      front_end_(start, options.front_end, &keyframes_, LoopCloser::NeedsHitViews(options.loop)),
+      back_end_(options.back_end, &keyframes_, options.loop.enabled),
+      loop_closer_(options.loop, LoopCloser::FrontEndOf(options.front_end), &keyframes_,
+                   &back_end_.graph(), std::move(acceptance)) {}
 
 void GraphSlam::Predict(const kernel::Pose2& odometry_increment) {
   front_end_.Predict(odometry_increment);
@@ -42,9 +43,9 @@ void GraphSlam::AddKeyframe(GraphFrontEnd::PreparedScan scan, const kernel::Pose
   keyframes_.push_back(front_end_.MakeKeyframe(std::move(scan), robot_T_laser,
                                                static_cast<int>(scans_.size()), &robust_edge));
   const int k = static_cast<int>(keyframes_.size()) - 1;
-  back_end_.AddKeyframe(
-      k > 0 ? KeyframeEdgeCovariance(options_, keyframes_, k) : Eigen::Matrix3d::Identity(),
-      robust_edge);
+  back_end_.AddKeyframe(k > 0 ? KeyframeEdgeCovariance(options_.front_end.edge, keyframes_, k)
+                              : Eigen::Matrix3d::Identity(),
+                        robust_edge);
   for (NodeAnchor& node : nodes_)
     if (node.keyframe < 0) node = {k, keyframes_.back().pose.Between(node.pose)};
   front_end_.KeyframeAdded(k);
@@ -111,14 +112,15 @@ std::vector<kernel::Pose2> GraphSlam::NodePoses() const {
 
 std::optional<Eigen::Matrix3d> GraphSlam::KeyframeCovariance(int k) const {
   if (k < 0 || k >= back_end_.graph().num_nodes()) return std::nullopt;
-  const auto joint = back_end_.graph().JointCovariance({k}, options_.pose_graph);
+  const auto joint = back_end_.graph().JointCovariance({k}, options_.back_end.pose_graph);
   if (!joint) return std::nullopt;
   return Eigen::Matrix3d(*joint);
 }
 
 Eigen::Matrix3d GraphSlam::TravelCovariance(double path_m) const {
-  const double edges = std::max(path_m, 0.0) / options_.keyframe_distance_m;
-  return edges * EdgeCovariance(options_, options_.keyframe_distance_m, 0.0);
+  const FrontEndOptions& f = options_.front_end;
+  return std::max(path_m, 0.0) / f.keyframe_distance_m *
+         EdgeCovariance(f.edge, f.keyframe_distance_m, 0.0);
 }
 
 std::optional<Eigen::Matrix3d> GraphSlam::PoseCovariance() const {
@@ -147,7 +149,8 @@ std::vector<std::optional<double>> GraphSlam::RevisitInformation(
     keyframes.push_back(k);
     which.push_back(i);
   }
-  const auto joints = back_end_.graph().JointCovariancesWith(last, keyframes, options_.pose_graph);
+  const auto joints =
+      back_end_.graph().JointCovariancesWith(last, keyframes, options_.back_end.pose_graph);
   if (!joints) return information;
   // The current pose c from the newest keyframe: rows of c are J times the keyframe's.
   const Keyframe& newest = keyframes_.back();

@@ -64,7 +64,7 @@ class GraphSlam {
   // The current pose's: the newest keyframe's moved to the pose, plus TravelCovariance for the
   // path since. nullopt before the first keyframe.
   std::optional<Eigen::Matrix3d> PoseCovariance() const;
-  // The front-end edges' model (edge_sigma_m, ...) over path_m of straight travel: one edge per
+  // The front-end edges' model (FrontEndOptions::edge) over path_m of straight travel: one edge per
   // keyframe_distance_m, independent.
   Eigen::Matrix3d TravelCovariance(double path_m) const;
   // Expected information of a revisit (active loop closing) to each marked node: the robot drives
@@ -95,17 +95,13 @@ class GraphSlam {
   // Submaps built anew, and keyframes inserted into one (submap_insert_keyframes).
   long submap_builds() const { return front_end_.submap_builds(); }
   long submap_inserts() const { return front_end_.submap_inserts(); }
-  // Flushes whose closures were added without an optimisation (deferred_optimization_fraction).
+  // Flushes whose closures were added without an optimisation
+  // (BackEndOptions::Advanced::deferred_optimization_fraction).
   long deferred_optimizations() const { return back_end_.deferred_optimizations(); }
 
   // Whether the last scan's registration stood (Update; false after a fallback to odometry, and
   // after GraphFrontEnd::Place).
   bool registered() const { return front_end_.registered(); }
-  long registrations() const { return front_end_.registrations(); }
-  long registration_fallbacks() const { return front_end_.registration_fallbacks(); }
-  // Registrations searched again after failing, and those recovered that way.
-  long recovery_searches() const { return front_end_.recovery_searches(); }
-  long recovered() const { return front_end_.recovered(); }
   const LoopClosureCounts& loops() const { return loop_closer_.counts(); }
   // Beams of scans and keyframes left out as moving objects (MovingObjectOptions).
   long moving_beams() const { return front_end_.moving_beams(); }

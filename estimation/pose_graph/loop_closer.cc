@@ -83,13 +83,15 @@ std::vector<int> LargestAgreeingSet(const std::vector<bool>& with_graph,
   return best;
 }
 
-LoopCloser::LoopCloser(const GraphSlamOptions& options, const Keyframes* keyframes,
-                       const PoseGraph* graph, std::unique_ptr<ClosureAcceptance> acceptance)
+LoopCloser::LoopCloser(const LoopClosureOptions& options, const FrontEnd& front_end,
+                       const Keyframes* keyframes, const PoseGraph* graph,
+                       std::unique_ptr<ClosureAcceptance> acceptance)
     : options_(options),
+      front_end_(front_end),
       keyframes_(keyframes),
       graph_(graph),
       acceptance_(acceptance ? std::move(acceptance)
-                             : std::make_unique<AgreementAcceptance>(options.loop)) {
+                             : std::make_unique<AgreementAcceptance>(options)) {
   if (BackgroundSearch()) background_ = std::make_unique<Background>(1);
 }
 
@@ -98,16 +100,16 @@ LoopCloser::~LoopCloser() {
 }
 
 bool LoopCloser::BackgroundSearch() const {
-  return options_.loop.enabled && options_.background_loop_search &&
-         options_.loop.min_gap_keyframes > options_.moving_keyframes;
+  return options_.enabled && options_.background_search &&
+         options_.min_gap_keyframes > front_end_.settling_keyframes;
 }
 
 void LoopCloser::Start(int k, double travelled_m) {
-  if (!options_.loop.enabled || k < options_.loop.min_gap_keyframes) return;  // no candidate
+  if (!options_.enabled || k < options_.min_gap_keyframes) return;  // no candidate
   // The query's keyframes are copied now: the front end may take moving objects out of them
   // while the search runs.
   std::vector<std::pair<kernel::Pose2, std::vector<OrientedPoint>>> query_keyframes;
-  for (int i = std::max(0, k - options_.loop.query_keyframes); i <= k; ++i) {
+  for (int i = std::max(0, k - options_.query_keyframes); i <= k; ++i) {
     const Keyframe& q = (*keyframes_)[static_cast<std::size_t>(i)];
     query_keyframes.emplace_back(q.pose, q.data ? q.data->points : std::vector<OrientedPoint>{});
   }
@@ -120,7 +122,7 @@ void LoopCloser::Start(int k, double travelled_m) {
       const std::vector<OrientedPoint> placed = Placed(kf_inverse * pose, points);
       query.insert(query.end(), placed.begin(), placed.end());
     }
-    return Search(k, travelled, since, Thinned(query, options_.loop.resolution_m));
+    return Search(k, travelled, since, Thinned(query, options_.resolution_m));
   };
   if (BackgroundSearch()) {
     run_ = background_->Run(std::move(search));
@@ -152,8 +154,8 @@ LoopCloser::LoopSearchRun LoopCloser::Search(int k, double travelled_m, double s
   run.keyframe = k;
   run.travelled_m = travelled_m;
   const ScopedTimer timer(&run.time_ms);
-  const int newest_candidate = k - options_.loop.min_gap_keyframes;
-  const LoopClosureOptions& o = options_.loop;
+  const int newest_candidate = k - options_.min_gap_keyframes;
+  const LoopClosureOptions& o = options_;
   const kernel::Pose2& pose = (*keyframes_)[static_cast<std::size_t>(k)].pose;
   // First the nearest keyframes within a radius that grows with the travel since the last
   // closure, in a window of at most near_window_m.
@@ -180,7 +182,7 @@ LoopCloser::LoopSearchRun LoopCloser::Search(int k, double travelled_m, double s
 
 void LoopCloser::SearchWide(int k, const std::vector<OrientedPoint>& query, double near_m,
                             std::vector<LoopFinding>* findings) {
-  const LoopClosureOptions& o = options_.loop;
+  const LoopClosureOptions& o = options_;
   const kernel::Pose2& pose = (*keyframes_)[static_cast<std::size_t>(k)].pose;
   // The graph's uncertainty of this keyframe relative to each earlier one, in the world's axes.
   const std::vector<Eigen::Matrix3d> relative = RelativeCovariances(*graph_, k);
@@ -196,10 +198,10 @@ void LoopCloser::SearchWide(int k, const std::vector<OrientedPoint>& query, doub
     const Eigen::Matrix2d position =
         (to_world * relative[static_cast<std::size_t>(i)] * to_world.transpose())
             .topLeftCorner<2, 2>() +
-        o.reach_m * o.reach_m * Eigen::Matrix2d::Identity();
+        o.advanced.reach_m * o.advanced.reach_m * Eigen::Matrix2d::Identity();
     const Eigen::Vector2d d = c.pose.translation() - pose.translation();
     const double mahalanobis2 = d.dot(position.inverse() * d);
-    if (mahalanobis2 <= o.candidate_sigmas * o.candidate_sigmas)
+    if (mahalanobis2 <= o.advanced.candidate_sigmas * o.advanced.candidate_sigmas)
       plausible.emplace_back(mahalanobis2, i);
   }
   // The wide search's target is every keyframe around the query (MatchLoop), whichever candidate
@@ -217,20 +219,22 @@ void LoopCloser::SearchWide(int k, const std::vector<OrientedPoint>& query, doub
     const double largest =
         0.5 * (position.trace() + std::sqrt(std::pow(position(0, 0) - position(1, 1), 2) +
                                             4 * position(0, 1) * position(0, 1)));
-    const double m = std::min(o.radius_m + o.candidate_sigmas * std::sqrt(largest), o.max_window_m);
+    const double m =
+        std::min(o.radius_m + o.advanced.candidate_sigmas * std::sqrt(largest), o.max_window_m);
     // A window barely wider than the first finds little more.
-    if (m < o.wide_window_ratio * near_m) continue;
+    if (m < o.advanced.wide_window_ratio * near_m) continue;
     if (!anchor) anchor = c;
     window_m = std::max(window_m, m);
-    window_rad = std::max(window_rad,
-                          std::min(o.window_rad + o.candidate_sigmas * std::sqrt(covariance(2, 2)),
-                                   o.max_window_rad));
+    window_rad = std::max(window_rad, std::min(o.window_rad + o.advanced.candidate_sigmas *
+                                                                  std::sqrt(covariance(2, 2)),
+                                               o.max_window_rad));
   }
   // A wide window is searched at every stride-th keyframe only: consecutive queries share all
   // but one keyframe, and a search's cost grows with the window's area, so the cost per keyframe
   // grows with its width instead. In doubles: a tiny stride_window_m makes a stride beyond any
   // int.
-  if (!anchor || std::fmod(static_cast<double>(k), std::ceil(window_m / o.stride_window_m)) != 0.0)
+  if (!anchor ||
+      std::fmod(static_cast<double>(k), std::ceil(window_m / o.advanced.stride_window_m)) != 0.0)
     return;
   LoopFinding& finding = findings->emplace_back();
   finding.edge = MatchLoop(k, query, *anchor, window_m, window_rad, &finding.record);
@@ -265,16 +269,16 @@ void LoopCloser::AddFinding(int k, LoopFinding finding, double travelled_m) {
 bool LoopCloser::Agree(const PoseGraphEdge& a, const PoseGraphEdge& b) const {
   const PoseGraphEdge& older = a.to <= b.to ? a : b;
   const PoseGraphEdge& newer = a.to <= b.to ? b : a;
-  if (newer.to - older.to > options_.loop.confirm_keyframes) return false;
+  if (newer.to - older.to > options_.confirm_keyframes) return false;
   const auto pose = [&](int i) { return (*keyframes_)[static_cast<std::size_t>(i)].pose; };
   Eigen::Matrix3d chain_covariance = Eigen::Matrix3d::Zero();
   for (int i = older.to + 1; i <= newer.to; ++i)
-    chain_covariance += PropagatedCovariance(KeyframeEdgeCovariance(options_, *keyframes_, i),
-                                             pose(i).Between(pose(newer.to)));
+    chain_covariance += PropagatedCovariance(
+        KeyframeEdgeCovariance(front_end_.edge, *keyframes_, i), pose(i).Between(pose(newer.to)));
   return ClosureDisagreementChi2(pose(older.from) * older.measurement, older.information.inverse(),
                                  pose(older.to).Between(pose(newer.to)), chain_covariance,
                                  pose(newer.from) * newer.measurement,
-                                 newer.information.inverse()) <= options_.loop.max_chi2;
+                                 newer.information.inverse()) <= options_.max_chi2;
 }
 
 std::vector<ClosureVerdict> AgreementAcceptance::Decide(const std::vector<PendingClosure>& pending,
@@ -399,43 +403,41 @@ std::optional<PoseGraphEdge> LoopCloser::MatchLoop(int k, const std::vector<Orie
   };
   const Keyframe& kf = (*keyframes_)[static_cast<std::size_t>(k)];
   const LoopTarget& loop_target = Target(
-      window_m > options_.loop.near_window_m
-          ? AreaKeyframes(*keyframes_, kf.pose.translation(), window_m + options_.loop.reach_m,
-                          k - options_.loop.min_gap_keyframes)
-          : TargetKeyframes(candidate, k - options_.loop.min_gap_keyframes));
+      window_m > options_.near_window_m
+          ? AreaKeyframes(*keyframes_, kf.pose.translation(), window_m + options_.advanced.reach_m,
+                          k - options_.min_gap_keyframes)
+          : TargetKeyframes(candidate, k - options_.min_gap_keyframes));
   const DistanceGrid& target = *loop_target.grid;
   if (target.too_large()) return refuse(LoopSearch::Outcome::kScore);
   const LikelihoodPyramid& pyramid = *loop_target.pyramid;
-  const CorrelativeMatch match = SearchCorrelative(
-      Positions(query), pyramid, kf.pose, window_m, window_rad,
-      options_.loop.min_score * options_.loop.min_overlap, options_.loop.ambiguity_ratio);
+  const CorrelativeMatch match =
+      SearchCorrelative(Positions(query), pyramid, kf.pose, window_m, window_rad,
+                        options_.min_score * options_.min_overlap, options_.ambiguity_ratio);
   record.matched = match.found;
   record.match = match.pose;
   std::vector<OrientedPoint> overlapping;
   if (match.found) {
     const std::vector<OrientedPoint> placed = Placed(match.pose, query);
     for (std::size_t i = 0; i < query.size(); ++i)
-      if (Matchable(target, placed[i], options_.loop.registration)) overlapping.push_back(query[i]);
+      if (Matchable(target, placed[i], options_.registration)) overlapping.push_back(query[i]);
   }
   const double overlap =
       static_cast<double>(overlapping.size()) / static_cast<double>(query.size());
-  if (!match.found || overlap < options_.loop.min_overlap)
-    return refuse(LoopSearch::Outcome::kScore);
+  if (!match.found || overlap < options_.min_overlap) return refuse(LoopSearch::Outcome::kScore);
   if (match.second_score > 0 &&
-      !TellsApart(target, query, match.pose, match.second_pose, options_.loop.registration,
-                  options_.normal_max_gap_m, options_.loop.tell_apart_alpha))
+      !TellsApart(target, query, match.pose, match.second_pose, options_.registration,
+                  options_.advanced.normal_max_gap_m, options_.advanced.tell_apart_alpha))
     return refuse(LoopSearch::Outcome::kAmbiguous);
   const RegistrationResult fine =
-      RegisterPoints(overlapping, target, match.pose, options_.loop.registration);
-  if (!fine.accepted || fine.rms_m > options_.loop.max_rms_m)
+      RegisterPoints(overlapping, target, match.pose, options_.registration);
+  if (!fine.accepted || fine.rms_m > options_.max_rms_m)
     return refuse(LoopSearch::Outcome::kRegistration);
   record.match = fine.pose;
-  if (MeanLikelihood(target, Placed(fine.pose, overlapping), options_.loop.sigma_m) <
-      options_.loop.min_score)
+  if (MeanLikelihood(target, Placed(fine.pose, overlapping), options_.sigma_m) < options_.min_score)
     return refuse(LoopSearch::Outcome::kScore);
   if (SeenFreeMisfitFraction(target, Placed(fine.pose, query),
-                             options_.loop.registration.inlier_distance_m) >
-      options_.loop.max_misfit_fraction)
+                             options_.registration.inlier_distance_m) >
+      options_.advanced.max_misfit_fraction)
     return refuse(LoopSearch::Outcome::kMisfit);
   PoseGraphEdge edge;
   edge.from = candidate;
@@ -446,9 +448,8 @@ std::optional<PoseGraphEdge> LoopCloser::MatchLoop(int k, const std::vector<Orie
   // the measured frame, whose rotation from the world is fine.pose's heading.
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   rotation.topLeftCorner<2, 2>() = fine.pose.Rotation().transpose();
-  const Eigen::Matrix3d covariance =
-      rotation * fine.covariance * rotation.transpose() +
-      Diagonal(options_.loop.sigma_floor_m, options_.loop.sigma_floor_rad);
+  const Eigen::Matrix3d covariance = rotation * fine.covariance * rotation.transpose() +
+                                     Diagonal(options_.sigma_floor_m, options_.sigma_floor_rad);
   edge.information = covariance.inverse();
   return edge;
 }
@@ -460,16 +461,17 @@ const LoopCloser::LoopTarget& LoopCloser::Target(const std::vector<int>& keyfram
   t.keyframes = keyframes;
   t.poses = PosesOf(*keyframes_, keyframes);
   t.grid = std::make_unique<DistanceGrid>(DistanceGrid::Build(
-      WorldRaster(*keyframes_, keyframes), options_.loop.resolution_m, options_.truncation_m,
-      options_.truncation_m,
-      ViewsOf(*keyframes_, keyframes, 1, options_.loop.resolution_m, options_.seen_margin_m), false,
-      options_.loop.seen_free_score < 0
-          ? ViewsOf(*keyframes_, keyframes, 1, options_.loop.resolution_m, options_.seen_margin_m,
-                    true)
+      WorldRaster(*keyframes_, keyframes), options_.resolution_m, options_.advanced.truncation_m,
+      options_.advanced.truncation_m,
+      ViewsOf(*keyframes_, keyframes, 1, options_.resolution_m, options_.advanced.seen_margin_m),
+      false,
+      options_.advanced.seen_free_score < 0
+          ? ViewsOf(*keyframes_, keyframes, 1, options_.resolution_m,
+                    options_.advanced.seen_margin_m, true)
           : std::vector<const ViewCells*>{}));
   t.pyramid = std::make_unique<LikelihoodPyramid>(
-      *t.grid, options_.loop.sigma_m, options_.loop.levels, options_.loop.seen_free_score,
-      3 * options_.loop.resolution_m);
+      *t.grid, options_.sigma_m, options_.advanced.levels, options_.advanced.seen_free_score,
+      3 * options_.resolution_m);
   // Consecutive keyframes search the same few candidates: a handful of targets is enough.
   constexpr std::size_t kCachedTargets = 4;
   if (targets_.size() >= kCachedTargets) targets_.erase(targets_.begin());
@@ -481,7 +483,7 @@ std::vector<int> LoopCloser::TargetKeyframes(int candidate, int newest) const {
   std::vector<int> target{candidate};
   const auto gather = [&](int from, int step) {
     int n = 0;
-    for (int i = from; i >= 0 && i <= newest && n < options_.loop.target_keyframes; i += step) {
+    for (int i = from; i >= 0 && i <= newest && n < options_.target_keyframes; i += step) {
       if ((*keyframes_)[static_cast<std::size_t>(i)].trimmed) continue;
       target.push_back(i);
       ++n;

@@ -46,14 +46,6 @@ std::vector<int> LargestAgreeingSet(const std::vector<bool>& with_graph,
 double SeenFreeMisfitFraction(const DistanceGrid& target, const std::vector<OrientedPoint>& placed,
                               double inlier_distance_m);
 
-// Loop-closure counters.
-struct LoopClosureCounts {
-  long searches = 0;  // candidates searched (proposals)
-  long accepted = 0;
-  long rejected_score = 0, rejected_ambiguous = 0, rejected_registration = 0, rejected_misfit = 0,
-       rejected_disagreement = 0, rejected_unconfirmed = 0;
-};
-
 // A closure that passed its search's tests and waits to be added to the graph.
 struct PendingClosure {
   PoseGraphEdge edge;        // from the candidate keyframe to the query keyframe
@@ -118,21 +110,37 @@ struct ClosureReport {
 // keyframe, candidates among the older keyframes, a correlative search of its query against each
 // candidate's target, and the tests (LoopClosureOptions); the closures found wait until the
 // acceptance (a ClosureAcceptance) lets them into the graph. The search may run on a second
-// thread beside the front end (background_loop_search); it reads keyframes at least
-// loop.min_gap_keyframes older than the new one, the new one's pose and the graph, and writes
+// thread beside the front end (background_search); it reads keyframes at least
+// min_gap_keyframes older than the new one, the new one's pose and the graph, and writes
 // nothing but its target cache and those keyframes' loop-target view rasters.
 class LoopCloser {
  public:
+  // What the loop closer takes of the front end that feeds it: the model of its edges, chained
+  // between two closures to tell whether they agree, and how many of the newest keyframes it may
+  // still change (the search runs on a second thread only when it reads none of them).
+  struct FrontEnd {
+    EdgeModel edge;
+    int settling_keyframes = 0;
+  };
+  static FrontEnd FrontEndOf(const FrontEndOptions& options) {
+    return {options.edge, options.moving_keyframes};
+  }
   // `keyframes` and `graph` outlive the loop closer; `acceptance` null: AgreementAcceptance.
-  LoopCloser(const GraphSlamOptions& options, const Keyframes* keyframes, const PoseGraph* graph,
+  LoopCloser(const LoopClosureOptions& options, const FrontEnd& front_end,
+             const Keyframes* keyframes, const PoseGraph* graph,
              std::unique_ptr<ClosureAcceptance> acceptance = nullptr);
+  // Whether the keyframes must keep the view of their beams that returned
+  // (GraphFrontEnd's hit_views): the correlative score of where they passed is in use.
+  static bool NeedsHitViews(const LoopClosureOptions& options) {
+    return options.enabled && options.advanced.seen_free_score < 0;
+  }
   // A search may be running on `this`.
   LoopCloser(const LoopCloser&) = delete;
   LoopCloser& operator=(const LoopCloser&) = delete;
   ~LoopCloser();
 
   // Starts the searches of the new keyframe k, made when the front end had travelled
-  // travelled_m; none before keyframe loop.min_gap_keyframes, nor without loop.enabled. Only
+  // travelled_m; none before keyframe min_gap_keyframes, nor without `enabled`. Only
   // one runs at a time: call
   // Collect before the keyframes or the graph change.
   void Start(int k, double travelled_m);
@@ -175,8 +183,8 @@ class LoopCloser {
   };
   bool BackgroundSearch() const;
   // Searches keyframe k against earlier ones, `since_m` travelled since the last closure, with
-  // `query` (its points and those of the loop.query_keyframes before it, in its frame, thinned
-  // to loop.resolution_m).
+  // `query` (its points and those of the query_keyframes before it, in its frame, thinned
+  // to resolution_m).
   LoopSearchRun Search(int k, double travelled_m, double since_m,
                        const std::vector<OrientedPoint>& query);
   // The wide search of LoopClosureOptions at keyframe k, whose first window was near_m wide.
@@ -192,7 +200,7 @@ class LoopCloser {
   void AddFinding(int k, LoopFinding finding, double travelled_m);
   // Whether closures a and b put the newer of their keyframes at the same pose.
   bool Agree(const PoseGraphEdge& a, const PoseGraphEdge& b) const;
-  // A loop target: the candidate and up to loop.target_keyframes keyframes holding data on
+  // A loop target: the candidate and up to target_keyframes keyframes holding data on
   // either side of it, none newer than `newest`.
   std::vector<int> TargetKeyframes(int candidate, int newest) const;
   // A loop target's field and likelihood pyramid, built from these keyframes at these poses;
@@ -206,7 +214,8 @@ class LoopCloser {
   };
   const LoopTarget& Target(const std::vector<int>& keyframes);
 
-  GraphSlamOptions options_;
+  LoopClosureOptions options_;
+  FrontEnd front_end_;
   const Keyframes* keyframes_;
   const PoseGraph* graph_;
   std::unique_ptr<ClosureAcceptance> acceptance_;
@@ -218,7 +227,7 @@ class LoopCloser {
   int unflushed_since_ = -1;            // keyframe of the first closure found since the last
   LoopClosureCounts loops_;
   double search_ms_ = 0.0, wait_ms_ = 0.0;
-  // The search's thread (background_loop_search); null when it runs on the calling thread.
+  // The search's thread (background_search); null when it runs on the calling thread.
   std::unique_ptr<Background> background_;
   // The latest keyframe's search (Start), waited for by the destructor.
   std::future<LoopSearchRun> run_;

@@ -13,17 +13,18 @@ namespace {
 // The scan's hits (robot frame) with the normals of their outlines, as the graph SLAM takes them:
 // beams beyond max_range_m (0: the laser's maximum) left out.
 std::vector<OrientedPoint> RobotPoints(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
-                                       const GraphSlamOptions& options) {
+                                       const FrontEndOptions& options) {
   const double range = options.max_range_m > 0 ? options.max_range_m : scan.max_range_m;
   return OrientTowards(robot_T_laser * scan.Clipped(range).HitPoints(), robot_T_laser.translation(),
-                       options.normal_max_gap_m, options.line_tolerance_m);
+                       options.normal_max_gap_m, options.advanced.line_tolerance_m);
 }
 
 }  // namespace
 
 MapLocalizer::MapLocalizer(std::vector<MapScan> map, const kernel::Pose2& start,
-                           const GraphSlamOptions& options)
-    : map_(std::move(map)), options_(options), pose_(start) {
+                           const FrontEndOptions& options,
+                           const MapLocalizationOptions& localization)
+    : map_(std::move(map)), options_(options), localization_(localization), pose_(start) {
   assert(!map_.empty());
   for (const MapScan& s : map_)
     world_points_.push_back(Placed(s.pose, RobotPoints(s.scan, s.robot_T_laser, options_)));
@@ -39,7 +40,7 @@ void MapLocalizer::Predict(const kernel::Pose2& odometry_increment) {
 // The field of the map scans within map_radius_m of the robot, built again once the robot is
 // rebuild_distance_m from where it was built (or none was near then).
 void MapLocalizer::UpdateGrid() {
-  const MapLocalizationOptions& o = options_.localization;
+  const MapLocalizationOptions& o = localization_;
   if (grid_built_ && (pose_.translation() - grid_center_).norm() < o.rebuild_distance_m) return;
   std::vector<OrientedPoint> points;
   for (std::size_t i = 0; i < map_.size(); ++i) {
@@ -50,8 +51,8 @@ void MapLocalizer::UpdateGrid() {
   grid_built_ = !points.empty();
   if (!grid_built_) return;
   grid_ = DistanceGrid::Build(points, options_.grid_resolution_m, options_.truncation_m,
-                              options_.truncation_m + options_.localization.rebuild_distance_m);
-  scores_ = std::make_unique<LikelihoodPyramid>(grid_, options_.loop.sigma_m, options_.loop.levels);
+                              options_.truncation_m + localization_.rebuild_distance_m);
+  scores_ = std::make_unique<LikelihoodPyramid>(grid_, localization_.sigma_m, localization_.levels);
   ++grid_builds_;
 }
 
@@ -59,7 +60,8 @@ RegistrationResult MapLocalizer::Register(const std::vector<OrientedPoint>& poin
   const FrontEndRegistration r = RegisterFrontEnd(
       points, grid_, [this]() -> const LikelihoodPyramid& { return *scores_; }, pose_,
       since_update_, options_);
-  recovered_ += r.recovered;
+  counts_.recovery_searches += r.searched;
+  counts_.recovered += r.recovered;
   return r.result;
 }
 
@@ -67,11 +69,11 @@ void MapLocalizer::Update(const kernel::Scan& scan, const kernel::Pose2& robot_T
   const std::vector<OrientedPoint> points = RobotPoints(scan, robot_T_laser, options_);
   UpdateGrid();
   if (!grid_built_) {  // no map near: dead reckoning until the robot comes back into it
-    ++fallbacks_;
+    ++counts_.fallbacks;
     since_update_ = kernel::Pose2();
     return;
   }
-  ++registrations_;
+  ++counts_.registrations;
   RegistrationResult r = Register(points);
   if (first_) {
     // A start pose off by more than the registration's basin: where in the initial window the
@@ -79,7 +81,7 @@ void MapLocalizer::Update(const kernel::Scan& scan, const kernel::Pose2& robot_T
     // from a start that was right.
     first_ = false;
     found_start_ = r.accepted;
-    const MapLocalizationOptions& o = options_.localization;
+    const MapLocalizationOptions& o = localization_;
     if (!r.accepted) {
       const CorrelativeMatch match =
           SearchCorrelative(Positions(points), *scores_, pose_, o.initial_window_m,
@@ -96,7 +98,7 @@ void MapLocalizer::Update(const kernel::Scan& scan, const kernel::Pose2& robot_T
   if (r.accepted)
     pose_ = r.pose;
   else
-    ++fallbacks_;
+    ++counts_.fallbacks;
   since_update_ = kernel::Pose2();
 }
 

@@ -13,17 +13,17 @@
 
 // Localisation in a saved map (graph SLAM's pure localisation): each scan is registered, as the
 // graph SLAM's front end registers it against its submap, against a distance field of the map's
-// scans near the robot, with the odometry increment as the prior (GraphSlamOptions::registration,
+// scans near the robot, with the odometry increment as the prior (FrontEndOptions::registration,
 // odometry, recovery_window_*). The map never changes. The first scan is searched for over
-// LocalizationOptions' initial window around the start pose (branch-and-bound correlative
+// MapLocalizationOptions' initial window around the start pose (branch-and-bound correlative
 // search), so the start need only be roughly known.
 namespace splam::estimation {
 
 class MapLocalizer {
  public:
   // `map` must not be empty; `start` is the first pose in the map's frame.
-  MapLocalizer(std::vector<MapScan> map, const kernel::Pose2& start,
-               const GraphSlamOptions& options);
+  MapLocalizer(std::vector<MapScan> map, const kernel::Pose2& start, const FrontEndOptions& options,
+               const MapLocalizationOptions& localization);
   ~MapLocalizer();
   MapLocalizer(const MapLocalizer&) = delete;
   MapLocalizer& operator=(const MapLocalizer&) = delete;
@@ -32,9 +32,7 @@ class MapLocalizer {
   void Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser);
   const kernel::Pose2& pose() const { return pose_; }
 
-  long registrations() const { return registrations_; }
-  long fallbacks() const { return fallbacks_; }      // scans left at the odometric prediction
-  long recovered() const { return recovered_; }      // by the correlative search
+  const RegistrationCounts& registration_counts() const { return counts_; }
   long grid_builds() const { return grid_builds_; }  // local fields built
   bool found_start() const { return found_start_; }  // the first scan's search succeeded
 
@@ -44,7 +42,8 @@ class MapLocalizer {
 
   std::vector<MapScan> map_;
   std::vector<std::vector<OrientedPoint>> world_points_;  // per map scan, world frame
-  GraphSlamOptions options_;
+  FrontEndOptions options_;
+  MapLocalizationOptions localization_;
   kernel::Pose2 pose_;
   kernel::Pose2 since_update_;  // odometry since the last scan
   DistanceGrid grid_;
@@ -53,7 +52,8 @@ class MapLocalizer {
   bool grid_built_ = false;
   bool first_ = true;
   bool found_start_ = false;
-  long registrations_ = 0, fallbacks_ = 0, recovered_ = 0, grid_builds_ = 0;
+  RegistrationCounts counts_;
+  long grid_builds_ = 0;
 };
 
 }  // namespace splam::estimation

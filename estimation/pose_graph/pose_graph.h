@@ -22,7 +22,7 @@ struct PoseGraphEdge {
   Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
   bool loop = false;  // a loop closure (robust loss) rather than a front-end edge
   // A front-end edge that also gets the closures' robust loss (see
-  // GraphSlamOptions::robust_recovery_edges).
+  // FrontEndOptions::Advanced::robust_recovery_edges).
   bool robust = false;
 };
 

@@ -179,7 +179,7 @@ void AddTopologicalMethod(kernel::Registry<SlamMethodInfo>* registry) {
       },
       [](const SensorNoise& noise, TopologicalSlamOptions* o) {
         o->odometry = OdometryNoiseModel().Scaled(noise.odometry_noise_scale);
-        o->scan_matching.odometry = o->odometry;
+        o->scan_matching.front_end.odometry = o->odometry;
       }));
 }
 
@@ -192,8 +192,8 @@ void AddTopologicalGraphMethod(kernel::Registry<SlamMethodInfo>* registry) {
       },
       [](const SensorNoise& noise, TopologicalGraphSlamOptions* o) {
         o->topological.odometry = OdometryNoiseModel().Scaled(noise.odometry_noise_scale);
-        o->topological.scan_matching.odometry = o->topological.odometry;
-        o->graph.odometry = o->topological.odometry;
+        o->topological.scan_matching.front_end.odometry = o->topological.odometry;
+        o->graph.front_end.odometry = o->topological.odometry;
       }));
 }
 

@@ -34,9 +34,11 @@ class MinimalGraphSlam {
  public:
   MinimalGraphSlam(const Pose2& start, const estimation::GraphSlamOptions& options)
       : options_(options),
-        front_end_(start, options, &keyframes_),
-        back_end_(options, &keyframes_),
-        loop_closer_(options, &keyframes_, &back_end_.graph()) {}
+        front_end_(start, options.front_end, &keyframes_,
+                   estimation::LoopCloser::NeedsHitViews(options.loop)),
+        back_end_(options.back_end, &keyframes_, options.loop.enabled),
+        loop_closer_(options.loop, estimation::LoopCloser::FrontEndOf(options.front_end),
+                     &keyframes_, &back_end_.graph()) {}
 
   void Predict(const Pose2& odometry) { front_end_.Predict(odometry); }
 
@@ -95,9 +97,10 @@ class MinimalGraphSlam {
     keyframes_.push_back(front_end_.MakeKeyframe(std::move(scan), robot_T_laser,
                                                  static_cast<int>(scans_.size()), &robust));
     const int k = static_cast<int>(keyframes_.size()) - 1;
-    back_end_.AddKeyframe(k > 0 ? estimation::KeyframeEdgeCovariance(options_, keyframes_, k)
-                                : Eigen::Matrix3d::Identity(),
-                          robust);
+    back_end_.AddKeyframe(
+        k > 0 ? estimation::KeyframeEdgeCovariance(options_.front_end.edge, keyframes_, k)
+              : Eigen::Matrix3d::Identity(),
+        robust);
     front_end_.KeyframeAdded(k);
     // The keyframe that has left every window reading keyframe data may drop its own.
     back_end_.Trim(estimation::TrimmedKeyframe(options_, k));

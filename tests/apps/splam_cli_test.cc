@@ -1043,15 +1043,15 @@ TEST(SplamCli, SlamRunsOnTheRealMitLog) {
 // The graph SLAM on all of mit-csail: every relation scored, with the accuracy of the published
 // graph-based systems (measured 0.0301 m, 0.41 deg; Cartographer 0.0319 m), and still so with
 // keyframes 2 cm farther apart. Before the front end checked registrations whose points contradict
-// the submap (GraphSlamOptions::verify_misfit_fraction), a fast turn's wrong local minimum at
-// scan 1350 was accepted or not depending on such details: 0.0295 m at 0.30 m, 0.49 m at 0.32 m.
+// the submap (FrontEndOptions::Advanced::verify_misfit_fraction), a fast turn's wrong local minimum
+// at scan 1350 was accepted or not depending on such details: 0.0295 m at 0.30 m, 0.49 m at 0.32 m.
 TEST(SplamCli, GraphSlamClosesTheMitLoopsToCentimetres) {
   const char* env = std::getenv("SPLAM_DATA");
   const fs::path data = env != nullptr ? env : SPLAM_DEFAULT_DATA_DIR;
   if (!fs::exists(data / "mit-csail.clf"))
     GTEST_SKIP() << data / "mit-csail.clf"
                  << " not found: set SPLAM_DATA";
-  for (const std::string keyframes : {"", " --set graph.keyframe_distance_m=0.32"}) {
+  for (const std::string keyframes : {"", " --set graph.front_end.keyframe_distance_m=0.32"}) {
     const fs::path dir = Temp("mit_graph");
     const Output r = Splam("slam --method graph " + (data / "mit-csail.clf").string() + keyframes +
                            " --out " + dir.string());
@@ -1209,7 +1209,7 @@ TEST(SplamCli, SplamExperimentComparesTheStrategies) {
     if (s["method"] != "ekf-lines") {
       EXPECT_GT(s["map_curves"][0].get<double>(), 10.0) << name;
       // The graph SLAM's map of this trial was 0.47 m off when a recovery search's wrong basin
-      // was a stiff front-end edge (GraphSlamOptions::robust_recovery_edges).
+      // was a stiff front-end edge (FrontEndOptions::Advanced::robust_recovery_edges).
       EXPECT_LT(s["map_accuracy_m"][0].get<double>(), 0.15) << name;
     }
   }
@@ -1296,6 +1296,17 @@ TEST(SplamCli, ConfigFileEditedChangesTheRunAndAMisspeltKeyIsRefused) {
   EXPECT_EQ(invalid.status, 2);
   EXPECT_NE(invalid.text.find("correction_rounds must be in [1, 100]"), std::string::npos)
       << invalid.text;
+  // The graph SLAM's keys of before its options were split by part are refused with the new one.
+  const Output moved = Splam("slam --method graph --set graph.trim_spacing_m=0 " + log);
+  EXPECT_EQ(moved.status, 2);
+  EXPECT_NE(
+      moved.text.find("--set: graph.trim_spacing_m: this key is now graph.back_end.trim_spacing_m"),
+      std::string::npos)
+      << moved.text;
+  const Output part = Splam("slam --method graph --set graph.front_end.truncation_m=20 " + log);
+  EXPECT_EQ(part.status, 2);
+  EXPECT_NE(part.text.find("graph: front_end: submap_keyframes >= 1"), std::string::npos)
+      << part.text;
 }
 
 TEST(SplamCli, ExploreReadsItsConfigAndWritesTheOneItUsed) {

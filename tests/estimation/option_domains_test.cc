@@ -155,9 +155,9 @@ TEST(OptionDomains, ValuesTheFuzzerFoundAreRefused) {
                "translation_floor_m");
 }
 
-// A heading step of 1e-12 rad (graph.recovery_step_rad) made 10^11 headings (a segfault as the
-// count overflowed `int`): a step finer than a sixteenth of the one that moves the 90 % farthest
-// point by a cell moves no point to another cell, and is raised to it.
+// A heading step of 1e-12 rad (graph.front_end.advanced.recovery_step_rad) made 10^11 headings (a
+// segfault as the count overflowed `int`): a step finer than a sixteenth of the one that moves the
+// 90 % farthest point by a cell moves no point to another cell, and is raised to it.
 TEST(OptionDomains, AHeadingStepFinerThanAnyCellChangeIsRaised) {
   std::vector<Eigen::Vector2d> points;
   for (double x = -3; x <= 3; x += 0.05) {
@@ -253,7 +253,8 @@ TEST(OptionDomains, EveryMethodRefusesNumbersThatAreNotFiniteAndHugeCounts) {
   graph.loop.target_keyframes = kernel::kMaxCount;
   EXPECT_TRUE(kernel::FiniteFields(graph).ok());
   TopologicalSlamOptions topological;
-  topological.scan_matching.seen_margin_m = std::numeric_limits<double>::infinity();
+  topological.scan_matching.front_end.advanced.seen_margin_m =
+      std::numeric_limits<double>::infinity();
   EXPECT_FALSE(SlamOptionsOf<TopologicalSlamOptions>(topological).Validate().ok());
   const SlamRegistry& registry = SlamRegistry::Global();
   int refused = 0;

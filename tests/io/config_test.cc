@@ -141,6 +141,33 @@ TEST(Config, SetOverridesOneField) {
   EXPECT_EQ(SetConfigValue(RootOf(&d), "no_value").message(), "--set no_value: expected key=value");
 }
 
+// A key an options struct no longer has (FieldVisitor::Moved: the graph SLAM's options split by
+// part) is refused, in a file and by --set, naming where it went; the new key reads; a writer
+// shows only the new form.
+TEST(Config, AMovedKeyIsRefusedNamingItsNewKey) {
+  EXPECT_EQ(Problem("slam:\n  scan_matching:\n    submap_keyframes: 5\n"),
+            "bad.yaml:3: slam.scan_matching.submap_keyframes: this key is now "
+            "slam.scan_matching.front_end.submap_keyframes");
+  EXPECT_EQ(Problem("slam:\n  scan_matching:\n    registration:\n      max_iterations: 3\n"),
+            "bad.yaml:4: slam.scan_matching.registration: this key is now "
+            "slam.scan_matching.front_end.registration");
+  Doc d;
+  EXPECT_EQ(SetConfigValue(RootOf(&d), "slam.scan_matching.loop.tell_apart_alpha=0.01").message(),
+            "--set: slam.scan_matching.loop.tell_apart_alpha: this key is now "
+            "slam.scan_matching.loop.advanced.tell_apart_alpha");
+  EXPECT_EQ(SetConfigValue(RootOf(&d), "slam.scan_matching.trim_spacing_m=0").message(),
+            "--set: slam.scan_matching.trim_spacing_m: this key is now "
+            "slam.scan_matching.back_end.trim_spacing_m");
+  ASSERT_TRUE(
+      SetConfigValue(RootOf(&d), "slam.scan_matching.loop.advanced.tell_apart_alpha=0.01").ok());
+  EXPECT_EQ(d.slam.scan_matching.loop.advanced.tell_apart_alpha, 0.01);
+  const std::string text = ConfigToYaml(RootOf(&d), "");
+  EXPECT_NE(text.find("\n    front_end:"), std::string::npos) << text;
+  EXPECT_NE(text.find("\n      submap_keyframes: 30"), std::string::npos);
+  EXPECT_EQ(text.find("\n    submap_keyframes:"), std::string::npos);
+  EXPECT_NE(text.find("\n        tell_apart_alpha: 0.01"), std::string::npos);
+}
+
 TEST(Config, LoadNamesAMissingFile) {
   const Result<ConfigFile> file = ConfigFile::Load("/nonexistent/c.yaml");
   ASSERT_FALSE(file.ok());

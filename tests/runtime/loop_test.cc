@@ -419,8 +419,8 @@ GraphRun RunGraphOnRoute(const std::string& world_name, const sim::LaserOptions&
   RouteReplay run = ReplayRoute("graph", world_name, laser, seed);
   GraphRun result;
   result.replay = std::move(run.replay);
-  for (const auto& [key, value] : run.driver->method().Statistics().associations)
-    result.loops_accepted += key == "loop_accepted" ? value : 0;
+  const estimation::SlamStatistics statistics = run.driver->method().Statistics();
+  if (statistics.loop_closure) result.loops_accepted = statistics.loop_closure->accepted;
   return result;
 }
 
@@ -580,7 +580,8 @@ namespace {
 // Beside a round hall's wall every rotation about the hall's centre fits the wall: REG + graph
 // in `halls`, seed 3, once took a recovery 16 deg and 0.67 m off that left 18 % of the scan in
 // the submap's free space, and ended 0.53 m off (heading 6.7 deg). A recovery may not contradict
-// the submap more than the registration it replaces (GraphSlamOptions::verify_misfit_fraction).
+// the submap more than the registration it replaces
+// (FrontEndOptions::Advanced::verify_misfit_fraction).
 TEST(GraphSlam, ARotationAboutARoundHallsCentreIsNoRecovery) {
   const sim::World world = *sim::BuiltinWorld("halls");
   ExploreSetup setup;

@@ -23,9 +23,10 @@ int Lines(const std::string& path) {
   return n;
 }
 
-// The graph SLAM over the first 400 steps of the `complex` route, scored against its truth and against
-// relations made from the truth every 20 scans: every file of the command line, summary.json's
-// figures those of the report, the relations metric equal to the error of the relative motions.
+// The graph SLAM over the first 400 steps of the `complex` route, scored against its truth and
+// against relations made from the truth every 20 scans: every file of the command line,
+// summary.json's figures those of the report, the relations metric equal to the error of the
+// relative motions.
 TEST(RunSlam, WritesTheFilesAndFiguresOfTheCommandLineFromOneCall) {
   const sim::World world = *sim::BuiltinWorld("complex");
   const sim::RayCaster caster(world);
@@ -75,6 +76,16 @@ TEST(RunSlam, WritesTheFilesAndFiguresOfTheCommandLineFromOneCall) {
   EXPECT_EQ(summary["relations"]["translation_m"]["mean"].get<double>(),
             report.relations->translation_mean);
   EXPECT_EQ(replay.estimate.size(), run.frames.size());
+  // The typed counters (SlamStatistics::registration and loop_closure) under their keys: every
+  // scan but the first registered against a submap, none left at the odometry, and no loop
+  // search yet (fewer keyframes than loop.min_gap_keyframes).
+  const nlohmann::json& counts = summary["associations"];
+  EXPECT_EQ(counts["registrations"].get<long>(), static_cast<long>(run.frames.size()) - 1);
+  EXPECT_EQ(counts["registration_fallbacks"].get<long>(), 0);
+  EXPECT_LE(counts["registration_recovered"].get<long>(),
+            counts["registration_recovery_searches"].get<long>());
+  EXPECT_EQ(counts["loop_searches"].get<long>(), 0);
+  EXPECT_EQ(counts["loop_accepted"].get<long>(), 0);
 }
 
 }  // namespace

@@ -1028,10 +1028,10 @@ TEST(RegisterFrontEnd, ARecoveryBetweenTwoHeadingsThatFitAlikeIsRefused) {
       seen.push_back(view);
     }
     const DistanceGrid field = DistanceGrid::Build(map, 0.1, 0.5, 1.0, seen);
-    const LikelihoodPyramid scores(field, options.loop.sigma_m, 3);
+    const LikelihoodPyramid scores(field, options.front_end.advanced.recovery_sigma_m, 3);
     const FrontEndRegistration r = RegisterFrontEnd(
         scan, field, [&]() -> const LikelihoodPyramid& { return scores; }, Pose2(), Pose2(),
-        options);
+        options.front_end);
     EXPECT_TRUE(r.searched) << both;
     EXPECT_EQ(r.recovered, !both);
     if (!both) {
@@ -1090,7 +1090,7 @@ TEST_F(ComplexWorld, PropertyAFastTurnsHeadingErrorIsCorrected) {
 // the graph SLAM holds the points, curves and views of about as many keyframes as after one lap
 // (the revisits' keyframes are trimmed once they leave the recent window), and its pose graph
 // about as many nodes and edges (the trimmed keyframes' nodes merged into the keyframes beside
-// them, GraphSlamOptions::merge_trimmed_keyframes), where without merging the graph keeps a node
+// them, BackEndOptions::merge_trimmed_keyframes), where without merging the graph keeps a node
 // for every keyframe; and it stays as accurate as without trimming or merging. Measured: 1 lap
 // 186 of 196 keyframes with data (those made turning on the spot near an earlier one are
 // trimmed); 3 laps 256 of 596, RMSE 0.036 m (0.042 m untrimmed).
@@ -1098,8 +1098,8 @@ TEST(GraphSlam, KeyframeDataAndTheGraphAreBoundedByTheMappedArea) {
   const LapsRun one = DriveLaps(1);
   const LapsRun three = DriveLaps(3);
   GraphSlamOptions untrimmed, unmerged;
-  untrimmed.trim_spacing_m = 0.0;
-  unmerged.merge_trimmed_keyframes = false;
+  untrimmed.back_end.trim_spacing_m = 0.0;
+  unmerged.back_end.merge_trimmed_keyframes = false;
   const LapsRun three_untrimmed = DriveLaps(3, untrimmed);
   const LapsRun three_unmerged = DriveLaps(3, unmerged);
   EXPECT_GT(one.keyframes_with_data, 9 * one.keyframes / 10);
@@ -1124,7 +1124,7 @@ TEST(GraphSlam, KeyframeDataAndTheGraphAreBoundedByTheMappedArea) {
 
 // Closures that agree with the graph wait in it for its whole optimisation until it has grown by
 // 3 % since the last, optimising only its last 100 keyframes meanwhile
-// (GraphSlamOptions::deferred_optimization_fraction and local_optimization_keyframes, the
+// (BackEndOptions::Advanced::deferred_optimization_fraction and local_optimization_keyframes, the
 // defaults): over three laps of `complex` the nodes optimised fall to under 60 % of optimising
 // the whole graph at every flush, at nearly the same accuracy, and every closure in the final
 // graph agrees with it. Measured over seeds 1-6: 0.0242 m on average with about 15,200 nodes
@@ -1135,17 +1135,17 @@ TEST(GraphSlam, KeyframeDataAndTheGraphAreBoundedByTheMappedArea) {
 // flush optimised 17,200 nodes in all.
 TEST(GraphSlam, ClosuresThatAgreeWithTheGraphWaitForALaterOptimisation) {
   GraphSlamOptions deferring, every_flush;
-  ASSERT_EQ(deferring.deferred_optimization_fraction, 0.03);
-  ASSERT_EQ(deferring.local_optimization_keyframes, 100);
-  deferring.merge_trimmed_keyframes = false;
+  ASSERT_EQ(deferring.back_end.advanced.deferred_optimization_fraction, 0.03);
+  ASSERT_EQ(deferring.back_end.advanced.local_optimization_keyframes, 100);
+  deferring.back_end.merge_trimmed_keyframes = false;
   every_flush = deferring;
-  every_flush.deferred_optimization_fraction = 0.0;
+  every_flush.back_end.advanced.deferred_optimization_fraction = 0.0;
   const LapsRun deferred = DriveLaps(3, deferring), flushed = DriveLaps(3, every_flush);
   EXPECT_EQ(flushed.local_optimizations, 0);
   EXPECT_GT(deferred.local_optimizations, deferred.optimizations / 2);
   EXPECT_LT(deferred.optimized_nodes, flushed.optimized_nodes * 6 / 10);
   EXPECT_GT(deferred.loops_accepted, flushed.loops_accepted * 9 / 10);
-  EXPECT_LE(deferred.max_loop_chi2, deferring.loop.max_chi2);
+  EXPECT_LE(deferred.max_loop_chi2, deferring.back_end.max_chi2);
   EXPECT_LT(deferred.rmse_m, 0.1);
   EXPECT_LT(deferred.rmse_m, flushed.rmse_m + 0.01);
   std::cout << "deferred: RMSE " << deferred.rmse_m << " m, " << deferred.optimizations
@@ -1163,8 +1163,8 @@ TEST(GraphSlam, ClosuresThatAgreeWithTheGraphWaitForALaterOptimisation) {
 // keyframes), 0.0264 m built anew.
 TEST(GraphSlam, KeyframesInsertedIntoTheSubmapKeepItsAccuracy) {
   GraphSlamOptions inserts, anew;
-  inserts.submap_insert_keyframes = 4;
-  anew.submap_insert_keyframes = 0;
+  inserts.front_end.advanced.submap_insert_keyframes = 4;
+  anew.front_end.advanced.submap_insert_keyframes = 0;
   const LapsRun inserting = DriveLaps(2, inserts), building = DriveLaps(2, anew);
   EXPECT_EQ(building.submap_inserts, 0);
   EXPECT_GT(building.submap_builds, static_cast<long>(building.keyframes) - 2);
@@ -1178,7 +1178,7 @@ TEST(GraphSlam, KeyframesInsertedIntoTheSubmapKeepItsAccuracy) {
 }
 
 // A keyframe's loop search runs on a second thread while the front end registers the next scans
-// (GraphSlamOptions::background_loop_search), and gives the same trajectory as run at once on
+// (LoopClosureOptions::background_search), and gives the same trajectory as run at once on
 // the calling thread: it reads what the front end does not change, and its closures enter the
 // graph at the next keyframe in both modes. Two laps with people walking, whose moving objects
 // the front end takes out of its recent keyframes while a search runs. ThreadSanitizer runs this
@@ -1188,7 +1188,7 @@ TEST(GraphSlam, ABackgroundLoopSearchGivesTheSameTrajectory) {
   c.people = {{{{6.5, 0.6}, {6.5, 6.0}}, 1.0, 0.25, 0.0},
               {{{11.0, 4.5}, {16.5, 4.0}}, 1.0, 0.25, 4.0}};
   GraphSlamOptions at_once;
-  at_once.background_loop_search = false;
+  at_once.loop.background_search = false;
   const LapsRun background = DriveLaps(2, {}, c), inline_run = DriveLaps(2, at_once, c);
   EXPECT_GT(background.loops_accepted, 10);
   EXPECT_EQ(background.loops_accepted, inline_run.loops_accepted);
@@ -1263,8 +1263,8 @@ TEST(GraphParts, AFrontEndFeedingABackEndIsTheGraphSlamWithoutLoopClosure) {
   const sim::RouteRun run = SimulateLaps(1, {}, &robot_T_laser);
   GraphSlam slam(run.frames[0].odometry_pose, options);
   Keyframes keyframes;
-  GraphFrontEnd front_end(run.frames[0].odometry_pose, options, &keyframes);
-  GraphBackEnd back_end(options, &keyframes);
+  GraphFrontEnd front_end(run.frames[0].odometry_pose, options.front_end, &keyframes);
+  GraphBackEnd back_end(options.back_end, &keyframes, /*closures=*/false);
   for (std::size_t i = 0; i < run.frames.size(); ++i) {
     if (i > 0) {
       const Pose2 u = run.frames[i - 1].odometry_pose.Between(run.frames[i].odometry_pose);
@@ -1280,9 +1280,9 @@ TEST(GraphParts, AFrontEndFeedingABackEndIsTheGraphSlamWithoutLoopClosure) {
     keyframes.push_back(
         front_end.MakeKeyframe(std::move(*scan), robot_T_laser, static_cast<int>(i), &robust));
     const int k = static_cast<int>(keyframes.size()) - 1;
-    back_end.AddKeyframe(
-        k > 0 ? KeyframeEdgeCovariance(options, keyframes, k) : Eigen::Matrix3d::Identity(),
-        robust);
+    back_end.AddKeyframe(k > 0 ? KeyframeEdgeCovariance(options.front_end.edge, keyframes, k)
+                               : Eigen::Matrix3d::Identity(),
+                         robust);
     front_end.KeyframeAdded(k);
     back_end.Trim(TrimmedKeyframe(options, k));
   }
@@ -1314,7 +1314,7 @@ double RealConditions::plain_ = 0.0;
 
 // People walking: four discs of 0.25 m crossing the room at 0.8-1.2 m/s, seen by the URG in
 // front of the walls, often a fifth of its 4 m view. Left out as moving objects (seen through
-// by an earlier or a later scan, GraphSlamOptions::moving) they cost much less than kept in.
+// by an earlier or a later scan, FrontEndOptions::moving) they cost much less than kept in.
 // Measured: 0.073 m, 0.181 m kept in (session 33: closures enter at the next keyframe, grids on
 // the lattice); 0.059 m, 0.106 m kept in before (0.259 m before the loop search counted seen free
 // space against a pose: people kept in the map no longer lead it to wrong closures as often; 0.029
@@ -1326,7 +1326,7 @@ TEST(GraphSlam, PeopleWalkingThroughTheRoomAreLeftOut) {
               {{{2.0, 13.8}, {7.0, 13.0}}, 1.2, 0.25, 1.0},
               {{{11.0, 4.5}, {16.5, 4.0}}, 1.0, 0.25, 4.0}};
   GraphSlamOptions kept;
-  kept.moving.enabled = false;
+  kept.front_end.moving.enabled = false;
   const double with = DriveLaps(1, {}, c).rmse_m, without = DriveLaps(1, kept, c).rmse_m;
   std::cout << "people walking: RMSE " << with << " m, " << without << " m kept in\n";
   EXPECT_LT(with, 0.12);
@@ -1352,8 +1352,8 @@ LapConditions HospitalFloor(std::uint64_t seed) {
 // where the target never looked, the search took the ward east and closed the loop 6.2 m off;
 // the few points that fall there where the target's beams returned from farther (the end wall,
 // the side corridor's walls: 34 of 346 at the alias, 2 at the truth, 0.1 m or more off its outline)
-// now count against it (LoopClosureOptions::seen_free_score). Measured: 0.065 m; 4.65 m with
-// seen_free_score 0.
+// now count against it (LoopClosureOptions::Advanced::seen_free_score). Measured: 0.065 m; 4.65 m
+// with seen_free_score 0.
 TEST(GraphSlam, AWardAlongTheCorridorIsNotTakenForTheOneTheLoopEndsAt) {
   const double rmse = DriveLaps(1, {}, HospitalFloor(2)).rmse_m;
   std::cout << "hospital floor: RMSE " << rmse << " m\n";
@@ -1372,7 +1372,7 @@ TEST(GraphSlam, ANearClosureOutweighsWideOnesThatDisagree) {
   LapConditions c = HospitalFloor(6);
   c.simulator.odometry = sim::OdometryNoiseOptions().Scaled(4.0);
   GraphSlamOptions options;
-  options.odometry = OdometryNoiseModel().Scaled(4.0);
+  options.front_end.odometry = OdometryNoiseModel().Scaled(4.0);
   const LapsRun run = DriveLaps(1, options, c);
   std::cout << "hospital floor, 4x odometry noise: RMSE " << run.rmse_m << " m, "
             << run.wide_searches << " wide searches\n";
@@ -1423,11 +1423,11 @@ TEST(GraphSlam, WithoutLoopClosureOnlyTheSubmapAndTheMapKeepTheirData) {
   GraphSlamOptions options;
   options.loop.enabled = false;
   GraphSlamOptions untrimmed = options;
-  untrimmed.trim_spacing_m = 0.0;
+  untrimmed.back_end.trim_spacing_m = 0.0;
   const LapsRun run = DriveLaps(1, options), kept = DriveLaps(1, untrimmed);
   EXPECT_EQ(kept.keyframes_with_data, kept.keyframes);
   EXPECT_EQ(run.keyframes, kept.keyframes);
-  const auto submap = static_cast<std::size_t>(options.submap_keyframes);
+  const auto submap = static_cast<std::size_t>(options.front_end.submap_keyframes);
   EXPECT_LE(run.keyframes_with_data, submap + run.map_keyframes);
   EXPECT_GE(run.keyframes_with_data, submap);
   EXPECT_LT(run.keyframes_with_data, kept.keyframes / 2);
@@ -1440,8 +1440,9 @@ TEST(GraphSlam, WithoutLoopClosureOnlyTheSubmapAndTheMapKeepTheirData) {
 // brute-force scan of every heading and translation finds, also where the window reaches past
 // the target's grid (a room's corner near the grid's origin, searched from a guess up to 1 m
 // off), and with the room's free space scoring below zero (every other trial,
-// LoopClosureOptions::seen_free_score). The pyramid once bounded a block that started before the
-// grid by 0, and the search returned a pose scoring 0.79 with one scoring 0.95 in its window.
+// LoopClosureOptions::Advanced::seen_free_score). The pyramid once bounded a block that started
+// before the grid by 0, and the search returned a pose scoring 0.79 with one scoring 0.95 in its
+// window.
 TEST(CorrelativeMatcher, PropertyFindsTheBruteForceBestAlsoPastTheGridsEdges) {
   std::mt19937 gen(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -1522,10 +1523,10 @@ TEST(CorrelativeMatcher, PropertyFindsTheBruteForceBestAlsoPastTheGridsEdges) {
   EXPECT_EQ(trials, 40);
 }
 
-// Loop evidence (LoopClosureOptions::tell_apart_alpha): in a 2.5 m corridor with a door recess
-// every 6 m, a pose 3 m along it fits most points as well as the truth, and the recesses' points
-// tell the two apart; with plain walls nothing does, and a pose one recess (6 m) along fits the
-// same points as the truth.
+// Loop evidence (LoopClosureOptions::Advanced::tell_apart_alpha): in a 2.5 m corridor with a door
+// recess every 6 m, a pose 3 m along it fits most points as well as the truth, and the recesses'
+// points tell the two apart; with plain walls nothing does, and a pose one recess (6 m) along fits
+// the same points as the truth.
 TEST(LoopEvidence, DoorRecessesTellAPoseAlongACorridorAndPlainWallsDoNot) {
   const auto corridor = [](bool recesses) {
     std::vector<Eigen::Vector2d> points;
@@ -1622,11 +1623,11 @@ struct RayCastScans {
 // looked, so the search and every test of matchable points took it, and four such closures
 // confirmed each other (0.32 m RMSE; 0.08 m with the test). Only the query's wall points across
 // the target's open doors and its end wall in the target's free corridor contradict it: the
-// criterion of LoopClosureOptions::max_misfit_fraction. Here the same scene, ray-cast: at the true
-// pose and within 2 cm of it few points contradict, slid 0.8 to 1.5 m along the corridor more
-// than the bound. Measured: 0.00 at the truth; slid 0.5, 0.6, 0.7, 0.8, 1.0, 1.4 m: 0.03, 0.07,
-// 0.11, 0.13, 0.19, 0.21 (a shorter slide lays fewer wall points across the doors: the test does
-// not catch every slide, the correlative search's own score has to).
+// criterion of LoopClosureOptions::Advanced::max_misfit_fraction. Here the same scene, ray-cast: at
+// the true pose and within 2 cm of it few points contradict, slid 0.8 to 1.5 m along the corridor
+// more than the bound. Measured: 0.00 at the truth; slid 0.5, 0.6, 0.7, 0.8, 1.0, 1.4 m: 0.03,
+// 0.07, 0.11, 0.13, 0.19, 0.21 (a shorter slide lays fewer wall points across the doors: the test
+// does not catch every slide, the correlative search's own score has to).
 TEST(GraphSlam, AQuerySlidAlongACorridorContradictsWhatTheTargetSawFree) {
   RayCastScans scans(*sim::BuiltinWorld("office"), sim::LaserOptions());
   std::vector<OrientedPoint> target;
@@ -1648,7 +1649,7 @@ TEST(GraphSlam, AQuerySlidAlongACorridorContradictsWhatTheTargetSawFree) {
   double least_slid = 1.0;
   for (double dx = 0.8; dx <= 1.5; dx += 0.1)
     least_slid = std::min(least_slid, misfits({dx, 0, 0}));
-  EXPECT_GT(least_slid, LoopClosureOptions().max_misfit_fraction);
+  EXPECT_GT(least_slid, LoopClosureOptions().advanced.max_misfit_fraction);
   std::cout << "points contradicting the target: " << at_truth << " at the truth, at least "
             << least_slid << " slid 0.8-1.5 m along the corridor\n";
 }
@@ -1694,14 +1695,17 @@ TEST(GraphSlamOptions, GridCellsAndTruncationHaveABoundedDomain) {
   EXPECT_TRUE(GraphSlamOptions{}.Validate().ok());
   for (const double resolution : {1e-6, 0.005, 2.0}) {
     GraphSlamOptions o;
-    o.grid_resolution_m = resolution;
+    o.front_end.grid_resolution_m = resolution;
     EXPECT_FALSE(o.Validate().ok()) << resolution;
     o = {};
     o.loop.resolution_m = resolution;
     EXPECT_FALSE(o.Validate().ok()) << resolution;
   }
   GraphSlamOptions o;
-  o.truncation_m = 1e6;
+  o.front_end.truncation_m = 1e6;
+  EXPECT_FALSE(o.Validate().ok());
+  o = {};
+  o.loop.advanced.truncation_m = 1e6;
   EXPECT_FALSE(o.Validate().ok());
 }
 

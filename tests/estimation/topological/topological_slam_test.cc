@@ -166,12 +166,14 @@ DriveResult Drive(const sim::World& world, int max_scans, std::uint64_t seed,
       *SlamRegistry::Global().Make(method, chosen, {*world.start, options.region}).value));
   const runtime::ReplayResult replay = runtime::ReplayFrames(r.frames, kernel::Pose2(), &driver);
   DriveResult run{replay.truth, replay.estimate, replay.odometry, driver.method().Map().splines};
-  for (const auto& [name, count] : driver.method().Statistics().associations) {
+  const SlamStatistics statistics = driver.method().Statistics();
+  if (statistics.loop_closure)
+    run.loop_closures = static_cast<int>(statistics.loop_closure->accepted);
+  for (const auto& [name, count] : statistics.associations) {
     if (name == "localized_scans") run.localized = static_cast<int>(count);
     if (name == "dense_refinements") run.dense = static_cast<int>(count);
     if (name == "extensions") run.extended = static_cast<int>(count);
     if (name == "new_curves") run.added = static_cast<int>(count);
-    if (name == "loop_accepted") run.loop_closures = static_cast<int>(count);
   }
   return run;
 }
@@ -394,7 +396,7 @@ TEST(TopologicalSlamOptions, Validate) {
   o.prediction = TopologicalPrediction::kOdometry;  // then the scan matcher's options are unused
   EXPECT_TRUE(o.Validate().ok());
   o = {};
-  o.scan_matching.keyframe_distance_m = -1.0;
+  o.scan_matching.front_end.keyframe_distance_m = -1.0;
   EXPECT_NE(o.Validate().message().find("scan_matching"), std::string::npos);
   o = {};
   o.verify_threshold_m = -1.0;
