@@ -41,6 +41,7 @@ int Main(int argc, char** argv) {
   splam::apps::AddExploreCommand(&app, &exit_code);
   splam::apps::AddConfigCommand(&app, &exit_code);
   splam::apps::AddConvertCommand(&app, &exit_code);
+  splam::apps::AddSplitCommand(&app, &exit_code);
   splam::apps::AddSweepCommand(&app, &exit_code);
   // SPLAM_PARSE_ONLY=1: check the command line and stop before the command runs (the test of
   // the documentation's commands, tests/apps/docs_commands_test.cc).

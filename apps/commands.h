@@ -19,6 +19,7 @@ void AddExperimentCommand(CLI::App* app, int* exit_code);
 void AddExploreCommand(CLI::App* app, int* exit_code);
 void AddConfigCommand(CLI::App* app, int* exit_code);
 void AddConvertCommand(CLI::App* app, int* exit_code);
+void AddSplitCommand(CLI::App* app, int* exit_code);
 void AddSweepCommand(CLI::App* app, int* exit_code);
 
 // The path of this splam binary (sweeps and experiments run their cells with it).

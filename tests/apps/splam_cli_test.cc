@@ -759,6 +759,51 @@ TEST(SplamCli, BackwardTimeStampsAreCountedNotANegativeSpan) {
 // Eval gave "0.0000 +- 0.0000, used 0" and exit 0 for an empty or non-matching
 // relations file, a directory, an empty estimate; a huge estimate wrote null. A metric over
 // nothing, or one that is not finite, is an error (exit 2, the reason in eval.json).
+// `splam split`: a log cut into sessions that share no frame (io::SplitLog), each a log of its
+// own; split.json's motions undo the move; bad requests are refused before anything is written.
+TEST(SplamCli, SplitCutsALogIntoSessionsThatShareNoFrame) {
+  const fs::path sim = Temp("split_sim"), out = Temp("split_out");
+  ASSERT_EQ(Splam("simulate --world complex --seed 4 --out " + sim.string()).status, 0);
+  const std::string log = (sim / "log.clf").string();
+  const Output r = Splam("split " + log + " --sessions 3 --seed 7 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.text;
+  const io::CarmenReadResult whole = io::ReadCarmenLog(log);
+  ASSERT_TRUE(whole.log.ok());
+  const auto lasers = whole.log.value->Lasers();
+  const auto manifest = nlohmann::json::parse(Slurp(out / "split.json"));
+  ASSERT_EQ(manifest["sessions"].size(), 3u);
+  std::size_t first = 0;
+  for (const auto& s : manifest["sessions"]) {
+    const io::CarmenReadResult session =
+        io::ReadCarmenLog((out / s["file"].get<std::string>()).string());
+    ASSERT_TRUE(session.log.ok()) << session.log.error;
+    const auto scans = session.log.value->Lasers();
+    ASSERT_EQ(scans.size(), s["scans"].get<std::size_t>());
+    const auto t = s["log_T_session"].get<std::vector<double>>();
+    const kernel::Pose2 log_T_session(t[0], t[1], t[2]);
+    // The session's first and last poses, moved back, are the log's (to the file's precision).
+    for (const std::size_t i : {std::size_t{0}, scans.size() - 1}) {
+      const kernel::Pose2 back = log_T_session * scans[i]->robot_pose;
+      EXPECT_NEAR((back.translation() - lasers[first + i]->robot_pose.translation()).norm(), 0.0,
+                  1e-4);
+      EXPECT_EQ(scans[i]->stamp.ipc_timestamp_s, lasers[first + i]->stamp.ipc_timestamp_s);
+    }
+    const double moved_m =
+        (scans[0]->robot_pose.translation() - lasers[first]->robot_pose.translation()).norm();
+    EXPECT_GE(moved_m, 50.0 - 1e-3);
+    EXPECT_LE(moved_m, 150.0 + 1e-3);
+    first += scans.size();
+  }
+  EXPECT_EQ(first, lasers.size());
+  EXPECT_TRUE(fs::exists(out / "sessions.png"));
+  const Output one = Splam("split " + log + " --sessions 1 --out " + Temp("split_one").string());
+  EXPECT_EQ(one.status, 2);
+  EXPECT_NE(one.text.find("sessions must be in [2, 10]"), std::string::npos) << one.text;
+  const Output over = Splam("split " + (out / "session1.clf").string() + " --out " + out.string());
+  EXPECT_EQ(over.status, 2);
+  EXPECT_NE(over.text.find("would overwrite"), std::string::npos) << over.text;
+}
+
 TEST(SplamCli, EvalScoresNothingFromNothing) {
   const fs::path dir = Temp("eval_nothing");
   fs::create_directories(dir);
