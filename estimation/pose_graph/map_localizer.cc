@@ -8,18 +8,13 @@
 #include "estimation/pose_graph/scan_registration.h"
 
 namespace splam::estimation {
-namespace {
-
-// The scan's hits (robot frame) with the normals of their outlines, as the graph SLAM takes them:
-// beams beyond max_range_m (0: the laser's maximum) left out.
-std::vector<OrientedPoint> RobotPoints(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser,
-                                       const FrontEndOptions& options) {
+std::vector<OrientedPoint> MapScanPoints(const kernel::Scan& scan,
+                                         const kernel::Pose2& robot_T_laser,
+                                         const FrontEndOptions& options) {
   const double range = options.max_range_m > 0 ? options.max_range_m : scan.max_range_m;
   return OrientTowards(robot_T_laser * scan.Clipped(range).HitPoints(), robot_T_laser.translation(),
                        options.normal_max_gap_m, options.advanced.line_tolerance_m);
 }
-
-}  // namespace
 
 MapLocalizer::MapLocalizer(std::vector<MapScan> map, const kernel::Pose2& start,
                            const FrontEndOptions& options,
@@ -27,7 +22,7 @@ MapLocalizer::MapLocalizer(std::vector<MapScan> map, const kernel::Pose2& start,
     : map_(std::move(map)), options_(options), localization_(localization), pose_(start) {
   assert(!map_.empty());
   for (const MapScan& s : map_)
-    world_points_.push_back(Placed(s.pose, RobotPoints(s.scan, s.robot_T_laser, options_)));
+    world_points_.push_back(Placed(s.pose, MapScanPoints(s.scan, s.robot_T_laser, options_)));
 }
 
 MapLocalizer::~MapLocalizer() = default;
@@ -66,7 +61,7 @@ RegistrationResult MapLocalizer::Register(const std::vector<OrientedPoint>& poin
 }
 
 void MapLocalizer::Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) {
-  const std::vector<OrientedPoint> points = RobotPoints(scan, robot_T_laser, options_);
+  const std::vector<OrientedPoint> points = MapScanPoints(scan, robot_T_laser, options_);
   UpdateGrid();
   if (!grid_built_) {  // no map near: dead reckoning until the robot comes back into it
     ++counts_.fallbacks;

@@ -19,6 +19,12 @@
 // search), so the start need only be roughly known.
 namespace splam::estimation {
 
+// The scan's hits (robot frame) with the normals of their outlines, as the graph SLAM takes them:
+// beams beyond max_range_m (0: the laser's maximum) left out.
+std::vector<OrientedPoint> MapScanPoints(const kernel::Scan& scan,
+                                         const kernel::Pose2& robot_T_laser,
+                                         const FrontEndOptions& options);
+
 class MapLocalizer {
  public:
   // `map` must not be empty; `start` is the first pose in the map's frame.

@@ -1,0 +1,87 @@
+#ifndef SPLAM_ESTIMATION_POSE_GRAPH_GLOBAL_LOCALIZER_H_
+#define SPLAM_ESTIMATION_POSE_GRAPH_GLOBAL_LOCALIZER_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "estimation/pose_graph/distance_grid.h"
+#include "estimation/pose_graph/graph_slam_options.h"
+#include "estimation/slam_state.h"
+#include "kernel/options.h"
+#include "kernel/pose2.h"
+#include "kernel/status.h"
+
+// Global localisation: where a scan, or a short stretch of scans, lies anywhere in a saved map,
+// at any heading, with no initial pose (the kidnapped robot; a session that shares no frame with
+// the map). After Cartographer's global search (Hess et al. 2016): a correlative branch and bound
+// over the whole map's likelihood pyramid and every heading, then a fine registration.
+namespace splam::estimation {
+
+struct GlobalLocalizationOptions {
+  // The query's points within this range of the robot, m: the farther points set the heading
+  // step (one cell at the 90 % farthest point), and the whole-map search tries every heading.
+  double max_range_m = 15.0;
+  // The map's field: likelihood exp(-d^2 / 2 sigma^2) (sigma_m, m) on cells of resolution_m
+  // (0.01-1 m), searched with `levels` resolution levels (1-8; the coarsest cells are
+  // resolution_m * 2^(levels - 1) wide). A point where the map's returning beams passed, three
+  // cells or more from an outline, scores seen_free_score (-10 to 0): evidence against the pose.
+  double resolution_m = 0.1;
+  double sigma_m = 0.05;
+  int levels = 7;
+  double seen_free_score = -1.0;
+  // Accepted when the best pose's mean likelihood is at least min_score (0-1), no distinct pose
+  // (0.5 m or 0.2 rad away) scores ambiguity_ratio (0-1) of it unless the points tell the two
+  // apart at tell_apart_alpha (a sign test; 0-1), and the fine registration from it passes.
+  double min_score = 0.5;
+  double ambiguity_ratio = 0.9;
+  double tell_apart_alpha = 1e-3;
+
+  void VisitFields(kernel::FieldVisitor& v);
+  kernel::Status Validate() const;
+};
+
+// The outcome of one query.
+struct GlobalFix {
+  bool found = false;
+  kernel::Pose2 pose;         // world_T_robot (refused: the search's best, unchecked)
+  double score = 0.0;         // the correlative search's best mean likelihood
+  double second_score = 0.0;  // the best distinct pose's (0: none above the floor)
+  kernel::Pose2 second_pose;  // that pose, when second_score > 0
+  long evaluated = 0;         // score evaluations of the search (its cost)
+  std::string refused;        // why not found: "score", "ambiguous", "registration"
+};
+
+// A stretch of scans as one query: each scan's points (MapScanPoints) placed in the last scan's
+// frame by the scans' poses (where a front end put them: only their relative poses matter).
+std::vector<OrientedPoint> StretchPoints(const std::vector<MapScan>& scans,
+                                         const FrontEndOptions& front_end);
+
+class GlobalLocalizer {
+ public:
+  // The map's field from its scans (each at its pose, with its view); `front_end` says how scans
+  // become points (range, normals) and how the fix is registered. `map` must not be empty.
+  GlobalLocalizer(const std::vector<MapScan>& map, const FrontEndOptions& front_end,
+                  const GlobalLocalizationOptions& options);
+  ~GlobalLocalizer();
+  GlobalLocalizer(const GlobalLocalizer&) = delete;
+  GlobalLocalizer& operator=(const GlobalLocalizer&) = delete;
+
+  // Where `points` (robot frame, with normals: a scan's, or a stretch of scans placed in the
+  // last one's frame) lie in the map.
+  GlobalFix Locate(const std::vector<OrientedPoint>& points) const;
+  // The same for one scan.
+  GlobalFix Locate(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) const;
+
+  const DistanceGrid& field() const { return grid_; }
+
+ private:
+  FrontEndOptions front_end_;
+  GlobalLocalizationOptions options_;
+  DistanceGrid grid_;
+  std::unique_ptr<LikelihoodPyramid> pyramid_;
+};
+
+}  // namespace splam::estimation
+
+#endif  // SPLAM_ESTIMATION_POSE_GRAPH_GLOBAL_LOCALIZER_H_
