@@ -8,7 +8,6 @@
 #include "estimation/pose_graph/distance_grid.h"
 #include "estimation/pose_graph/graph_slam_options.h"
 #include "estimation/slam_state.h"
-#include "kernel/options.h"
 #include "kernel/pose2.h"
 #include "kernel/status.h"
 
@@ -17,29 +16,6 @@
 // the map). After Cartographer's global search (Hess et al. 2016): a correlative branch and bound
 // over the whole map's likelihood pyramid and every heading, then a fine registration.
 namespace splam::estimation {
-
-struct GlobalLocalizationOptions {
-  // The query's points within this range of the robot, m: the farther points set the heading
-  // step (one cell at the 90 % farthest point), and the whole-map search tries every heading.
-  double max_range_m = 15.0;
-  // The map's field: likelihood exp(-d^2 / 2 sigma^2) (sigma_m, m) on cells of resolution_m
-  // (0.01-1 m), searched with `levels` resolution levels (1-8; the coarsest cells are
-  // resolution_m * 2^(levels - 1) wide). A point where the map's returning beams passed, three
-  // cells or more from an outline, scores seen_free_score (-10 to 0): evidence against the pose.
-  double resolution_m = 0.1;
-  double sigma_m = 0.05;
-  int levels = 7;
-  double seen_free_score = -1.0;
-  // Accepted when the best pose's mean likelihood is at least min_score (0-1), no distinct pose
-  // (0.5 m or 0.2 rad away) scores ambiguity_ratio (0-1) of it unless the points tell the two
-  // apart at tell_apart_alpha (a sign test; 0-1), and the fine registration from it passes.
-  double min_score = 0.5;
-  double ambiguity_ratio = 0.9;
-  double tell_apart_alpha = 1e-3;
-
-  void VisitFields(kernel::FieldVisitor& v);
-  kernel::Status Validate() const;
-};
 
 // The outcome of one query.
 struct GlobalFix {

@@ -67,7 +67,7 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
     if (!localizer_) slam_.Finish();
   }
   std::vector<kernel::Pose2> Trajectory() const override {
-    if (localizer_) return {};  // a filter: the pose after each update
+    if (localizer_) return localizer_->poses();  // the pose after each update, relocalised
     std::vector<kernel::Pose2> all = slam_.Trajectory();
     return {all.begin() + static_cast<std::ptrdiff_t>(std::min(loaded_scans_, all.size())),
             all.end()};
@@ -117,7 +117,9 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
                {"curves", static_cast<long>(loaded_.map.splines.size())},
                {"local_fields_built", localizer_->grid_builds()}};
       s.registration = localizer_->registration_counts();
-      s.associations = {{"start_found", localizer_->found_start() ? 1 : 0}};
+      s.associations = {{"start_found", localizer_->found_start() ? 1 : 0},
+                        {"start_confirmed", localizer_->start_confirmed() ? 1 : 0},
+                        {"relocalized", localizer_->relocalized() ? 1 : 0}};
       return s;
     }
     s.association = "scan-to-submap registration, correlative loop closure";

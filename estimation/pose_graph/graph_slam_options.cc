@@ -281,6 +281,37 @@ kernel::Status BackEndOptions::Validate() const {
   return kernel::Status::Ok();
 }
 
+void GlobalLocalizationOptions::VisitFields(kernel::FieldVisitor& v) {
+  v.Field("max_range_m", &max_range_m, "the query's points within this range, m");
+  v.Field("resolution_m", &resolution_m, "the map field's cell size, in [0.01, 1] m");
+  v.Field("sigma_m", &sigma_m, "likelihood sigma, m");
+  v.Field("levels", &levels, "resolution levels of the search");
+  v.Field("seen_free_score", &seen_free_score,
+          "score of a point where the map's returning beams passed, away from an outline (in "
+          "[-10, 0])");
+  v.Field("min_score", &min_score, "accepted: the best pose's mean likelihood at least");
+  v.Field("ambiguity_ratio", &ambiguity_ratio,
+          "refused when a distinct pose scores this fraction of the best");
+  v.Field("tell_apart_alpha", &tell_apart_alpha,
+          "... unless the points fitting only one of the two favour the best at this "
+          "significance (sign test; 0: never)");
+}
+
+kernel::Status GlobalLocalizationOptions::Validate() const {
+  if (!(max_range_m > 0 && max_range_m <= 100) || !(resolution_m >= 0.01 && resolution_m <= 1) ||
+      !(sigma_m > 0) || levels < 1 || levels > 8 ||
+      !(seen_free_score >= -10 && seen_free_score <= 0))
+    return kernel::Status::Error(
+        "global localisation: max_range_m in (0, 100], resolution_m in [0.01, 1] m, sigma_m "
+        "positive, levels in [1, 8], seen_free_score in [-10, 0]");
+  if (!(min_score > 0 && min_score <= 1) || !(ambiguity_ratio > 0 && ambiguity_ratio <= 1) ||
+      !(tell_apart_alpha >= 0 && tell_apart_alpha <= 1))
+    return kernel::Status::Error(
+        "global localisation: min_score and ambiguity_ratio in (0, 1], tell_apart_alpha in "
+        "[0, 1]");
+  return kernel::Status::Ok();
+}
+
 void MapLocalizationOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("map_radius_m", &map_radius_m,
           "the field registered against holds the map scans within this distance, m");
@@ -291,6 +322,10 @@ void MapLocalizationOptions::VisitFields(kernel::FieldVisitor& v) {
   v.Field("initial_window_rad", &initial_window_rad, "and this angle of its heading, rad");
   v.Field("sigma_m", &sigma_m, "likelihood sigma of that search, m");
   v.Field("levels", &levels, "resolution levels of that search");
+  v.Nested("global", "the search of the whole map that confirms the start", &global);
+  v.Field("confirm_every_scans", &confirm_every_scans,
+          "the start is confirmed by a search of the whole map every this many scans");
+  v.Field("confirm_scans", &confirm_scans, "... of the first this many (0: never)");
 }
 
 kernel::Status MapLocalizationOptions::Validate() const {
@@ -299,7 +334,9 @@ kernel::Status MapLocalizationOptions::Validate() const {
     return kernel::Status::Error(
         "localization: map_radius_m, rebuild_distance_m and sigma_m must be positive, the "
         "initial windows >= 0, levels in [1, 8]");
-  return kernel::Status::Ok();
+  if (confirm_every_scans < 1 || confirm_scans < 0)
+    return kernel::Status::Error("localization: confirm_every_scans >= 1, confirm_scans >= 0");
+  return global.Validate();
 }
 
 namespace {

@@ -243,6 +243,30 @@ struct BackEndOptions {
   kernel::Status Validate() const;
 };
 
+// Global localisation in a saved map (GlobalLocalizer): no initial pose, any heading.
+struct GlobalLocalizationOptions {
+  // The query's points within this range of the robot, m: the farther points set the heading
+  // step (one cell at the 90 % farthest point), and the whole-map search tries every heading.
+  double max_range_m = 15.0;
+  // The map's field: likelihood exp(-d^2 / 2 sigma^2) (sigma_m, m) on cells of resolution_m
+  // (0.01-1 m), searched with `levels` resolution levels (1-8; the coarsest cells are
+  // resolution_m * 2^(levels - 1) wide). A point where the map's returning beams passed, three
+  // cells or more from an outline, scores seen_free_score (-10 to 0): evidence against the pose.
+  double resolution_m = 0.1;
+  double sigma_m = 0.05;
+  int levels = 7;
+  double seen_free_score = -1.0;
+  // Accepted when the best pose's mean likelihood is at least min_score (0-1), no distinct pose
+  // (0.5 m or 0.2 rad away) scores ambiguity_ratio (0-1) of it unless the points tell the two
+  // apart at tell_apart_alpha (a sign test; 0-1), and the fine registration from it passes.
+  double min_score = 0.5;
+  double ambiguity_ratio = 0.9;
+  double tell_apart_alpha = 1e-3;
+
+  void VisitFields(kernel::FieldVisitor& v);
+  kernel::Status Validate() const;
+};
+
 // Localisation in a saved map (MapLocalizer, `slam --load-state --localize-only`), which
 // registers as the front end does (FrontEndOptions) against a field of the map's scans.
 struct MapLocalizationOptions {
@@ -257,6 +281,12 @@ struct MapLocalizationOptions {
   double initial_window_rad = 0.5;
   double sigma_m = 0.05;
   int levels = 5;
+  // The start is confirmed by a search of the whole map at any heading (GlobalLocalizer, these
+  // options) at every confirm_every_scans-th (>= 1) of the first confirm_scans (>= 0) scans,
+  // until a fix: one elsewhere relocalises (a start that was wrong, the kidnapped robot).
+  GlobalLocalizationOptions global;
+  int confirm_every_scans = 5;
+  int confirm_scans = 200;
 
   void VisitFields(kernel::FieldVisitor& v);
   kernel::Status Validate() const;

@@ -5,6 +5,8 @@
 #include <utility>
 
 #include "estimation/pose_graph/correlative_matcher.h"
+#include "estimation/pose_graph/global_localizer.h"
+#include "estimation/pose_graph/keyframes.h"
 #include "estimation/pose_graph/scan_registration.h"
 
 namespace splam::estimation {
@@ -62,6 +64,31 @@ RegistrationResult MapLocalizer::Register(const std::vector<OrientedPoint>& poin
 
 void MapLocalizer::Update(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) {
   const std::vector<OrientedPoint> points = MapScanPoints(scan, robot_T_laser, options_);
+  Track(points);
+  ConfirmStart(points);
+  poses_.push_back(pose_);
+}
+
+void MapLocalizer::ConfirmStart(const std::vector<OrientedPoint>& points) {
+  const MapLocalizationOptions& o = localization_;
+  const int scan = scans_++;
+  if (confirmed_ || scan >= o.confirm_scans || scan % o.confirm_every_scans != 0) return;
+  if (!global_) global_ = std::make_unique<GlobalLocalizer>(map_, options_, o.global);
+  const GlobalFix fix = global_->Locate(points);
+  if (!fix.found) return;  // ambiguous here: the next try sees other walls
+  confirmed_ = true;
+  const CorrelativeOptions distinct;
+  if (Within(pose_, fix.pose, distinct.distinct_m, distinct.distinct_rad)) return;
+  // The best pose in the whole map by a margin is elsewhere: the start given was wrong, and the
+  // start search took a look-alike place or none. The scans so far move with the fix.
+  const kernel::Pose2 correction = fix.pose * pose_.Inverse();
+  for (kernel::Pose2& p : poses_) p = correction * p;
+  pose_ = fix.pose;
+  found_start_ = relocalized_ = true;
+  grid_built_ = false;  // built anew around the fix
+}
+
+void MapLocalizer::Track(const std::vector<OrientedPoint>& points) {
   UpdateGrid();
   if (!grid_built_) {  // no map near: dead reckoning until the robot comes back into it
     ++counts_.fallbacks;

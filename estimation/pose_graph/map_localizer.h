@@ -16,8 +16,11 @@
 // scans near the robot, with the odometry increment as the prior (FrontEndOptions::registration,
 // odometry, recovery_window_*). The map never changes. The first scan is searched for over
 // MapLocalizationOptions' initial window around the start pose (branch-and-bound correlative
-// search), so the start need only be roughly known.
+// search), so the start need only be roughly known. One of the first scans then confirms the
+// start by a search of the whole map (GlobalLocalizer), which relocalises a start that was wrong.
 namespace splam::estimation {
+
+class GlobalLocalizer;
 
 // The scan's hits (robot frame) with the normals of their outlines, as the graph SLAM takes them:
 // beams beyond max_range_m (0: the laser's maximum) left out.
@@ -41,9 +44,20 @@ class MapLocalizer {
   const RegistrationCounts& registration_counts() const { return counts_; }
   long grid_builds() const { return grid_builds_; }  // local fields built
   bool found_start() const { return found_start_; }  // the first scan's search succeeded
+  // The start was confirmed by a global search (GlobalLocalizer) of one of the first scans, and
+  // whether that search moved it (the start given was wrong: the kidnapped robot).
+  bool start_confirmed() const { return confirmed_; }
+  bool relocalized() const { return relocalized_; }
+  // The pose after each Update; the ones before a relocalisation moved with it.
+  const std::vector<kernel::Pose2>& poses() const { return poses_; }
 
  private:
   void UpdateGrid();
+  // Registers the scan against the local field (the first one searched for near the start).
+  void Track(const std::vector<OrientedPoint>& points);
+  // Until the start is confirmed (every confirm_every_scans-th of the first confirm_scans
+  // scans): where the scan lies in the whole map; an unambiguous fix elsewhere relocalises.
+  void ConfirmStart(const std::vector<OrientedPoint>& points);
   RegistrationResult Register(const std::vector<OrientedPoint>& points);
 
   std::vector<MapScan> map_;
@@ -58,6 +72,10 @@ class MapLocalizer {
   bool grid_built_ = false;
   bool first_ = true;
   bool found_start_ = false;
+  std::unique_ptr<GlobalLocalizer> global_;  // made at the first confirmation
+  int scans_ = 0;
+  bool confirmed_ = false, relocalized_ = false;
+  std::vector<kernel::Pose2> poses_;
   RegistrationCounts counts_;
   long grid_builds_ = 0;
 };
