@@ -25,7 +25,7 @@ struct GlobalFix {
   double second_score = 0.0;  // the best distinct pose's (0: none above the floor)
   kernel::Pose2 second_pose;  // that pose, when second_score > 0
   long evaluated = 0;         // score evaluations of the search (its cost)
-  std::string refused;        // why not found: "score", "ambiguous", "registration"
+  std::string refused;        // why not found: "points", "score", "ambiguous", "registration"
 };
 
 // A stretch of scans as one query: each scan's points (MapScanPoints) placed in the last scan's
