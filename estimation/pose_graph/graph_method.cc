@@ -190,7 +190,9 @@ class GraphSlamMethod : public SlamMethod, public ExplorationNodes, public Persi
     std::optional<GraphFrontEnd::PreparedScan> placed = front_end.Place(scan, robot_T_laser, pose);
     if (placed && front_end.Settle(pose)) slam_.AddScan(std::move(*placed), robot_T_laser);
   }
-  // The first new scan's pose in the loaded map: found by the localiser from the start pose.
+  // The first new scan's pose in the loaded map: found by the localiser from the start pose, and
+  // moved by the search of the whole map when that scan's fix there is unambiguous and elsewhere
+  // (MapLocalizer::ConfirmStart).
   kernel::Pose2 StartInMap(const kernel::Scan& scan, const kernel::Pose2& robot_T_laser) const {
     MapLocalizer localizer(loaded_.scans, start_, slam_.options().front_end,
                            slam_.options().localization);
